@@ -1,0 +1,1 @@
+"""Pure math on sympy matrices: no robot concepts, no I/O."""
