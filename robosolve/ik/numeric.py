@@ -31,6 +31,10 @@ def wrap_angle(a: float) -> float:
     return w + 0.0
 
 
+def _clean(v: float) -> float:
+    return 0.0 if abs(v) < 1e-15 else v + 0.0
+
+
 def wrap_array(a):
     return np.pi - np.mod(np.pi - a, TWO_PI)
 
@@ -227,11 +231,6 @@ def _close(a, b, rev, tol=DEDUPE_TOL):
     return bool(np.all(d <= tol * np.maximum(1.0, np.abs(np.asarray(a)))))
 
 
-def lex_key(q, tol=1e-9):
-    """Sort key: lexicographic in joint order, values within `tol` counting as equal."""
-    return tuple(round(v / tol) * tol if False else v for v in q)
-
-
 def sort_solutions(sols, get=lambda s: s, tol=1e-9):
     """Lexicographic sort in joint order with values within `tol` equal (stable)."""
     import functools
@@ -275,9 +274,49 @@ def _is_family(system: NumericSystem, q, delta=1e-3):
     return False, []
 
 
-def solve_all(system: NumericSystem, boxes, budget: int = 4096, deflation: bool = True) -> NumericResult:
+def polish_singular(system: NumericSystem, q, iters=30):
+    """At a double root (square J singular) Newton is only linear: solve f = 0 and det J = 0."""
+    q = np.array(q, dtype=float)
+    n = q.size
+
+    def g(p):
+        J = system.jac(p[None])[0]
+        if J.shape[0] != n:
+            return None
+        return np.concatenate([system.residual(p[None])[0], [np.linalg.det(J)]])
+
+    r = g(q)
+    if r is None:
+        return q
+    best, best_n = q.copy(), np.max(np.abs(r))
+    for _ in range(iters):
+        G = np.empty((r.size, n))
+        for k in range(n):
+            h = 1e-7 * max(1.0, abs(q[k]))
+            qh = q.copy()
+            qh[k] += h
+            G[:, k] = (g(qh) - r) / h
+        G[:-1] = system.jac(q[None])[0]
+        step = np.linalg.lstsq(G, -r, rcond=1e-13)[0]
+        q = q + step
+        r = g(q)
+        nr = np.max(np.abs(r))
+        if nr < best_n:
+            best, best_n = q.copy(), nr
+        if np.max(np.abs(step)) < 1e-15:
+            break
+    f_best = np.max(np.abs(system.residual(best[None])[0]))
+    return best if f_best <= RESIDUAL_TOL else np.asarray(q)
+
+
+DEFAULT_BUDGET = {1: 64, 2: 576, 3: 4096}
+
+
+def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation: bool = True) -> NumericResult:
     """Every isolated solution of the system reached from starts in `boxes`."""
     n = len(boxes)
+    if budget is None:
+        budget = DEFAULT_BUDGET.get(n, 4096)
     rev = np.array(system.revolute, dtype=bool)
     res = NumericResult()
     if n == 0:
@@ -339,8 +378,13 @@ def solve_all(system: NumericSystem, boxes, budget: int = 4096, deflation: bool 
     for qq, nr in zip(found, residuals):
         J = system.jac(qq[None])[0]
         s = np.linalg.svd(J, compute_uv=False)
-        deficient = s.size < qq.size or (s.size > 0 and s[-1] < 1e-7 * max(s[0], 1e-300))
-        sols.append(NumericSolution([wrap_angle(v) if rv else float(v) + 0.0 for v, rv in zip(qq, rev)],
-                                    nr, bool(deficient)))
+        deficient = s.size < qq.size or (s.size > 0 and s[-1] < 1e-6 * max(s[0], 1e-300))
+        if deficient and not res.family and J.shape[0] == J.shape[1]:
+            p = polish_singular(system, qq)
+            rp = float(np.max(np.abs(system.residual(p[None])[0])))
+            if rp <= RESIDUAL_TOL:
+                qq, nr = p, rp
+        sols.append(NumericSolution([wrap_angle(float(v)) if rv else _clean(float(v)) for v, rv in zip(qq, rev)],
+                                    float(nr), bool(deficient)))
     res.solutions = sort_solutions(sols, get=lambda s: s.q)
     return res

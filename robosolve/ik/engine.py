@@ -1,0 +1,553 @@
+"""Inverse kinematics: equations in, every solution out (closed form + numeric).
+
+`solve_ik` takes plain sympy: equations ``lhs(q) = rhs`` (parameters may stay
+symbolic in them; `values` gives every non-joint symbol a number), the joints
+with their kind and limits, and returns an `IKResult`: the solutions inside
+the limits (sorted, angles wrapped into (-pi, pi]), those rejected with the
+limit they break, the selected one, the closed form with its derivation when
+one was found, and for an unreachable target a reason a student understands.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import math
+import signal
+import threading
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+
+from robosolve.ik import closed_form as cfm
+from robosolve.ik.numeric import (
+    DEDUPE_TOL,
+    RESIDUAL_TOL,
+    lambdify_system,
+    solve_all,
+    sort_solutions,
+    wrap_angle,
+)
+
+LIMIT_TOL = 1e-9
+
+
+class Timeout(Exception):
+    pass
+
+
+@contextlib.contextmanager
+def time_limit(seconds: float | None):
+    """Raise `Timeout` after `seconds` (main thread only; elsewhere no limit)."""
+    if not seconds or threading.current_thread() is not threading.main_thread() \
+            or not hasattr(signal, "setitimer"):
+        yield
+        return
+
+    def handler(signum, frame):
+        raise Timeout()
+
+    old = signal.signal(signal.SIGALRM, handler)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+
+
+@dataclass
+class IKJoint:
+    symbol: sp.Symbol
+    revolute: bool = True
+    limits: tuple[float, float] | None = None
+
+    @property
+    def name(self) -> str:
+        return str(self.symbol)
+
+
+@dataclass
+class IKResult:
+    status: str = "ok"                  # ok | unreachable | redundant | overdetermined | family
+    solutions: list[dict] = field(default_factory=list)      # inside the limits, sorted
+    all_solutions: list[dict] = field(default_factory=list)  # before the limits
+    singular: list[bool] = field(default_factory=list)       # per solution: J loses rank there
+    rejected: list[tuple[dict, list[str]]] = field(default_factory=list)
+    selected: dict | None = None
+    selected_index: int | None = None
+    closed_form: cfm.ClosedForm | None = None
+    closed_form_branches: list[dict] = field(default_factory=list)
+    closed_form_values: list[dict] = field(default_factory=list)   # valid branches, evaluated
+    closed_form_note: str | None = None
+    agree: bool | None = None           # closed-form and numeric sets are the same
+    reason: str | None = None
+    notes: list[str] = field(default_factory=list)
+    family: dict | None = None          # a continuum: free joints, parametrization
+    subsets: list[dict] = field(default_factory=list)   # over-determined: each choice of n equations
+    nearest: dict | None = None         # unreachable: the closest configuration found
+    angular: list[bool] = field(default_factory=list)
+
+
+# ---------------------------------------------------------------------------
+# helpers
+
+def is_angular(expr, joints: list[IKJoint]) -> bool:
+    """An orientation equation: an integer combination of angles (+ constants), compared mod 2 pi."""
+    qs = [j.symbol for j in joints]
+    e = sp.expand(expr)
+    if not any(q in e.free_symbols for q in qs):
+        return False
+    try:
+        p = sp.Poly(e, *qs)
+    except sp.PolynomialError:
+        return False
+    if p.total_degree() != 1:
+        return False
+    const = e.subs({q: 0 for q in qs})
+    if any(q in const.free_symbols for q in qs):
+        return False
+    for j in joints:
+        c = p.coeff_monomial(j.symbol)
+        if c == 0:
+            continue
+        if not j.revolute or not (c.is_Integer):
+            return False
+    return True
+
+
+def _fmt(v: float) -> str:
+    return f"{v:.4g}"
+
+
+def in_limits(q: dict, joints: list[IKJoint]) -> list[str]:
+    """The limits a configuration breaks (empty when inside), as sentences."""
+    broken = []
+    for j in joints:
+        if j.limits is None:
+            continue
+        lo, hi = j.limits
+        v = q[j.name]
+        if j.revolute:
+            # any representative v + 2 pi k inside the limits will do
+            ok = False
+            k0 = math.floor((lo - v) / (2 * math.pi)) - 1
+            for k in range(k0, k0 + 4):
+                w = v + 2 * math.pi * k
+                if lo - LIMIT_TOL <= w <= hi + LIMIT_TOL:
+                    ok = True
+                    break
+        else:
+            ok = lo - LIMIT_TOL <= v <= hi + LIMIT_TOL
+        if not ok:
+            if v < lo:
+                broken.append(f"{j.name} = {_fmt(v)} < {_fmt(lo)} (lower limit)")
+            else:
+                broken.append(f"{j.name} = {_fmt(v)} > {_fmt(hi)} (upper limit)")
+    return broken
+
+
+def _distance(a: dict, b: dict, joints) -> float:
+    s = 0.0
+    for j in joints:
+        d = a[j.name] - b[j.name]
+        if j.revolute:
+            d = wrap_angle(d)
+        s += d * d
+    return math.sqrt(s)
+
+
+def _same(a: dict, b: dict, joints, tol=DEDUPE_TOL) -> bool:
+    for j in joints:
+        d = abs(a[j.name] - b[j.name])
+        if j.revolute:
+            d = min(d, 2 * math.pi - d)
+        if d > tol * max(1.0, abs(a[j.name])):
+            return False
+    return True
+
+
+def _scale(values: dict) -> float:
+    nums = [abs(float(v)) for v in values.values() if v is not None]
+    return max([1.0] + nums)
+
+
+def _boxes(joints, scale):
+    out = []
+    for j in joints:
+        if j.revolute:
+            out.append((-math.pi, math.pi))
+        else:
+            lo, hi = -3.0 * scale, 3.0 * scale
+            if j.limits is not None:
+                w = max(j.limits[1] - j.limits[0], 1e-3)
+                lo = min(lo, j.limits[0] - w)
+                hi = max(hi, j.limits[1] + w)
+            out.append((lo, hi))
+    return out
+
+
+def _numeric_system(exprs, joints, values, angular):
+    subs = {k: v for k, v in values.items()}
+    num = [sp.sympify(e).subs(subs) for e in exprs]
+    for e in num:
+        extra = e.free_symbols - {j.symbol for j in joints}
+        if extra:
+            raise ValueError("no value for " + ", ".join(sorted(map(str, extra))))
+    return lambdify_system(num, [j.symbol for j in joints], [j.revolute for j in joints], angular,
+                           _scale(values))
+
+
+# ---------------------------------------------------------------------------
+# unreachable: reasons
+
+def _positive(expr):
+    """Simplify assuming every symbol positive (lengths): sqrt((L1 + L2)^2) -> L1 + L2."""
+    reps = {s: sp.Symbol(s.name, positive=True) for s in expr.free_symbols}
+    back = {v: k for k, v in reps.items()}
+    e = expr.xreplace(reps)
+    if isinstance(e, sp.Pow) and e.exp == sp.Rational(1, 2):
+        e = sp.sqrt(sp.factor(e.base))
+    return e.xreplace(back)
+
+
+def _distance_reason(st: cfm.Stage, target_syms: set, values: dict):
+    """'distance sqrt(x^2 + y^2) = 1.31 > L1 + L2 = 1.10' for a cos/sin/phase stage, or None."""
+    if st.equation is None or st.rule not in ("cos", "sin", "phase"):
+        return None
+    abc = cfm.trig_linear(st.equation, st.joint)
+    if abc is None:
+        return None
+    a, b, c = abc
+    T = sorted([s for s in c.free_symbols if s in target_syms], key=sp.default_sort_key)
+    if not T:
+        return None
+    c = sp.expand(c)
+    d2 = sp.Integer(0)
+    for t in T:
+        if sp.expand(c.coeff(t, 2) - 1) != 0:
+            return None
+        lin = c.coeff(t, 1)
+        if any(s in lin.free_symbols for s in T if s != t) and False:
+            return None
+        d2 += (t + lin / 2) ** 2
+    rest = sp.expand(c - sp.expand(d2))
+    rest_red = rest
+    # cos^2 + sin^2 of target angles left over
+    args = sorted({x.args[0] for x in rest.atoms(sp.sin, sp.cos) if x.args[0].is_Symbol}, key=sp.default_sort_key)
+    if args:
+        g, back, rel = cfm._to_poly_symbols(rest, args)
+        rest_red = sp.expand(cfm._reduce_pythagoras(g, rel).subs(back))
+    if any(s in rest_red.free_symbols for s in T):
+        return None
+    # e = a cos + b sin + d2 + rest = 0  ->  d2 in [-rest - r, -rest + r]
+    r = sp.sqrt(a**2 + b**2)
+    lo2, hi2 = -rest_red - r, -rest_red + r
+    try:
+        dv = math.sqrt(max(0.0, float(d2.evalf(subs=values))))
+        hv = math.sqrt(max(0.0, float(hi2.evalf(subs=values))))
+        lv = math.sqrt(max(0.0, float(lo2.evalf(subs=values))))
+    except (TypeError, ValueError):
+        return None
+    d_sym = sp.sqrt(d2)
+    if dv > hv:
+        bound = _positive(sp.sqrt(hi2))
+        return (f"distance ${sp.latex(d_sym)}$ = {dv:.4g} > ${sp.latex(bound)}$ = {hv:.4g}: "
+                f"the target is beyond the reach of the arm")
+    if dv < lv:
+        bound = _positive(sp.sqrt(lo2))
+        return (f"distance ${sp.latex(d_sym)}$ = {dv:.4g} < ${sp.latex(bound)}$"
+                f" = {lv:.4g}: the target is too close, inside the unreachable inner circle")
+    return None
+
+
+def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names) -> str:
+    k, joint, ex = fail
+    st = cf.stages[k]
+    name = names.get(joint, sp.latex(joint))
+    dist = _distance_reason(st, target_syms, values)
+    if ex.what in ("acos", "asin"):
+        fn = "cos" if ex.what == "acos" else "sin"
+        if st.rule == "phase":
+            base = (f"the equation for ${name}$ needs $\\cos({name} - \\varphi)$ = {ex.value:.4g}, "
+                    f"impossible because a cosine lies in [-1, 1]")
+        else:
+            base = (f"the equation for ${name}$ needs $\\{fn} {name}$ = {ex.value:.4g}, "
+                    f"impossible because a {'cosine' if fn == 'cos' else 'sine'} lies in [-1, 1]")
+        return dist + f" ({base})" if dist else base
+    if ex.what == "sqrt":
+        return f"solving for ${name}$ needs the square root of a negative number ({ex.value:.4g})"
+    if ex.what == "atan2":
+        return f"${name}$ is undetermined (atan2(0, 0)): the configuration is singular"
+    return f"solving for ${name}$ fails ({ex.what})"
+
+
+# ---------------------------------------------------------------------------
+# main entry
+
+def solve_ik(
+    equations: list[tuple],
+    joints: list[IKJoint],
+    values: dict,
+    select="limits",
+    closed_form: bool = True,
+    time_limit_s: float | None = 20.0,
+    target_symbols=(),
+    latex_names: dict | None = None,
+    budget: int | None = None,
+) -> IKResult:
+    """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring."""
+    res = IKResult()
+    names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
+    exprs = [sp.sympify(l) - sp.sympify(r) for l, r in equations]
+    res.angular = [is_angular(e, joints) for e in exprs]
+    n, m = len(joints), len(exprs)
+    target_syms = set(target_symbols)
+
+    if m < n:
+        res.status = "redundant"
+        _redundant(res, exprs, joints, values, names, time_limit_s)
+        return res
+    if m > n:
+        system = _numeric_system(exprs, joints, values, res.angular)
+        num = solve_all(system, _boxes(joints, _scale(values)), budget)
+        if num.solutions:
+            res.notes.append(f"{m} equations for {n} unknowns: they are consistent here, "
+                             f"so the solutions satisfy all of them.")
+            _finish(res, num, None, joints, values, select, system)
+            return res
+        res.status = "overdetermined"
+        res.reason = (f"{m} equations for {n} unknown joints: no configuration satisfies all of "
+                      f"them. Choose {n} of the {m} equations (each choice is solved below).")
+        for combo in itertools.combinations(range(m), n):
+            if len(res.subsets) >= 20:
+                break
+            sub = [exprs[k] for k in combo]
+            sys2 = _numeric_system(sub, joints, values, [res.angular[k] for k in combo])
+            r2 = solve_all(sys2, _boxes(joints, _scale(values)), budget)
+            res.subsets.append({
+                "equations": list(combo),
+                "solutions": [{j.name: v for j, v in zip(joints, s.q)} for s in r2.solutions],
+                "family": r2.family,
+            })
+        return res
+
+    # square system: closed form first (under a time limit), then numbers
+    cf = None
+    if closed_form:
+        try:
+            with time_limit(time_limit_s):
+                cf = cfm.derive(exprs, [j.symbol for j in joints], [j.revolute for j in joints], names,
+                                res.angular)
+                res.closed_form_branches = cf.branches()
+        except cfm.NoClosedForm as ex:
+            res.closed_form_note = f"no closed form: {ex}"
+        except Timeout:
+            res.closed_form_note = f"no closed form within {time_limit_s:g} s"
+        except (RecursionError, sp.PolynomialError, ValueError, TypeError, ZeroDivisionError,
+                NotImplementedError) as ex:  # pragma: no cover - defensive
+            res.closed_form_note = f"no closed form ({type(ex).__name__})"
+        if cf is None:
+            res.closed_form_branches = []
+        res.closed_form = cf
+
+    system = _numeric_system(exprs, joints, values, res.angular)
+    num = solve_all(system, _boxes(joints, _scale(values)), budget)
+
+    cf_fail = None
+    if cf is not None:
+        branch_vals = cfm.evaluate(cf, values)
+        cf_sols = []
+        for bv in branch_vals:
+            if bv.q is None:
+                if cf_fail is None:
+                    cf_fail = bv.failure
+                continue
+            q = {j.name: (wrap_angle(bv.q[j.symbol]) if j.revolute else bv.q[j.symbol] + 0.0) for j in joints}
+            vec = np.array([[q[j.name] for j in joints]])
+            if float(np.max(np.abs(system.residual(vec)[0]), initial=0.0)) > RESIDUAL_TOL:
+                continue
+            if any(_same(q, o, joints) for o in cf_sols):
+                continue
+            cf_sols.append(q)
+        if cf.conditions:
+            bad = []
+            for c in cf.conditions:
+                try:
+                    v = float(c.evalf(subs=values))
+                except (TypeError, ValueError):
+                    continue
+                if abs(v) > 1e-9 * _scale(values):
+                    bad.append(c)
+            if bad:
+                cf_sols = []
+                res.reason = ("the target is incompatible with the robot: it requires "
+                              + ", ".join(f"${sp.latex(c)} = 0$" for c in bad))
+        res.closed_form_values = sort_solutions(cf_sols, get=lambda d: [d[j.name] for j in joints])
+    _finish(res, num, res.closed_form_values if cf is not None else None, joints, values, select, system)
+
+    if res.status == "unreachable" and res.reason is None:
+        if cf is not None and cf_fail is not None and not res.all_solutions:
+            res.reason = _stage_reason(cf_fail, cf, target_syms, values, names)
+        if res.reason is None and not res.all_solutions:
+            res.reason = _nearest_reason(res, equations, joints, values)
+    return res
+
+
+def _nearest_reason(res, equations, joints, values) -> str:
+    if res.nearest is None:
+        return "no configuration of the joints satisfies the equations"
+    parts = []
+    subs = dict(values)
+    subs.update({j.symbol: res.nearest[j.name] for j in joints})
+    for lhs, rhs in equations:
+        try:
+            got = float(sp.sympify(lhs).evalf(subs=subs))
+            want = float(sp.sympify(rhs).evalf(subs=subs))
+        except (TypeError, ValueError):
+            continue
+        parts.append(f"${sp.latex(sp.sympify(lhs))}$ = {got:.4g} (target {want:.4g})")
+    return ("no configuration of the joints satisfies the equations; the closest one gives "
+            + ", ".join(parts))
+
+
+def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
+    """Merge closed-form and numeric sets, apply limits, select."""
+    numeric = [{j.name: v for j, v in zip(joints, s.q)} for s in num.solutions]
+    sing = {id(d): s.rank_deficient for d, s in zip(numeric, num.solutions)}
+    if num.family:
+        res.status = "family"
+        free = [joints[i].name for i in num.family_free]
+        fixed = {}
+        for j in joints:
+            if j.name in free or not numeric:
+                continue
+            vals = [d[j.name] for d in numeric]
+            if all(_same({j.name: v}, {j.name: vals[0]}, [j], 1e-6) for v in vals):
+                fixed[j.name] = vals[0]
+        res.family = {"free": free, "fixed": fixed, "example": numeric[0] if numeric else None}
+        res.notes.append("infinitely many solutions: the target is reached along a continuum"
+                         + (f" ({', '.join(free)} can take any value" if free else "")
+                         + (", with " + ", ".join(f"{k} = {v:.6g}" for k, v in fixed.items()) if fixed else "")
+                         + (")" if free else "") + ".")
+        numeric = numeric[:1]
+    merged = list(numeric)
+    if cf_sols is not None:
+        missing_num = [c for c in cf_sols if not any(_same(c, d, joints) for d in numeric)]
+        missing_cf = [d for d in numeric if not any(_same(c, d, joints) for c in cf_sols)]
+        res.agree = not missing_num and not missing_cf
+        if not num.family:
+            # prefer the closed-form values (exact formulas) where both found a solution
+            merged = []
+            for d in numeric:
+                match = [c for c in cf_sols if _same(c, d, joints)]
+                merged.append(match[0] if match else d)
+                sing[id(merged[-1])] = sing.get(id(d), False)
+            for c in missing_num:
+                merged.append(c)
+                sing[id(c)] = False
+            if not res.agree:
+                res.notes.append(
+                    f"the closed form and the numeric search disagree ({len(cf_sols)} vs {len(numeric)} "
+                    f"solutions); every verified solution is listed")
+    merged = sort_solutions(merged, get=lambda d: [d[j.name] for j in joints])
+    res.all_solutions = merged
+    for d in merged:
+        broken = in_limits(d, joints)
+        if broken:
+            res.rejected.append((d, broken))
+        else:
+            res.solutions.append(d)
+            res.singular.append(bool(sing.get(id(d), False)))
+    if any(res.singular) and res.status != "family":
+        res.notes.append("the Jacobian of the equations is singular at a solution: the target is on "
+                         "the boundary of the workspace (two solutions merge into one)")
+    if not res.solutions:
+        if res.status != "family":
+            res.status = "unreachable"
+        if merged:
+            res.reason = "every solution breaks a joint limit: " + "; ".join(
+                ", ".join(b) for _, b in res.rejected)
+        elif num.best_q is not None:
+            res.nearest = {j.name: (wrap_angle(v) if j.revolute else v) for j, v in zip(joints, num.best_q)}
+        return
+    if isinstance(select, dict):
+        target = {k: float(v) for k, v in select.items()}
+        for j in joints:
+            target.setdefault(j.name, 0.0)
+        dists = [_distance(d, target, joints) for d in res.solutions]
+        res.selected_index = int(min(range(len(dists)), key=lambda i: (dists[i], i)))
+    else:
+        res.selected_index = 0
+    res.selected = res.solutions[res.selected_index]
+
+
+def _redundant(res, exprs, joints, values, names, time_limit_s):
+    n, m = len(joints), len(exprs)
+    res.reason = (f"{m} equation{'s' if m != 1 else ''} for {n} unknown joints: infinitely many "
+                  f"solutions ({n - m} free parameter{'s' if n - m > 1 else ''}).")
+    # try to express the family: the last joints free, the others in closed form
+    for free in itertools.combinations(list(reversed(range(n))), n - m):
+        unk = [j for i, j in enumerate(joints) if i not in free]
+        try:
+            with time_limit(time_limit_s):
+                cf = cfm.derive(exprs, [j.symbol for j in unk], [j.revolute for j in unk], names)
+                branches = cf.branches()
+        except (cfm.NoClosedForm, Timeout, sp.PolynomialError, ValueError, TypeError, ZeroDivisionError,
+                NotImplementedError):
+            continue
+        res.family = {"free": [joints[i].name for i in sorted(free)], "closed_form": cf,
+                      "branches": branches}
+        res.reason += (" For each value of " + ", ".join(joints[i].name for i in sorted(free))
+                       + " the others follow from the closed form below; add an equation to fix it.")
+        return
+    res.reason += " Add equations (one per free joint) to get a finite set of solutions."
+
+
+# ---------------------------------------------------------------------------
+# velocity
+
+@dataclass
+class VelocityIK:
+    q_dot: dict
+    J: np.ndarray
+    method: str                          # inverse | least_squares | min_norm
+    note: str | None = None
+    residual: float = 0.0
+    condition: float = 1.0
+
+
+def velocity_ik(coords, rates, joints: list[IKJoint], q: dict, values: dict) -> VelocityIK:
+    """q_dot with J q_dot = rates, J = d coords / dq at q (J^-1, else least squares)."""
+    subs = dict(values)
+    qs = [j.symbol for j in joints]
+    exprs = [sp.sympify(c).subs(subs) for c in coords]
+    Jsym = sp.Matrix(exprs).jacobian(qs)
+    f = sp.lambdify(qs, Jsym, modules="numpy")
+    J = np.array(f(*[q[j.name] for j in joints]), dtype=float).reshape(len(exprs), len(qs))
+    v = np.array([float(sp.sympify(r).evalf(subs=subs)) for r in rates])
+    s = np.linalg.svd(J, compute_uv=False) if J.size else np.array([0.0])
+    cond = float(s[0] / s[-1]) if s[-1] > 0 else math.inf
+    m, n = J.shape
+    note = None
+    if m == n and s[-1] > 1e-9 * max(s[0], 1e-300):
+        qd = np.linalg.solve(J, v)
+        method = "inverse"
+        if cond > 1e6:
+            note = (f"J is nearly singular here (condition number {cond:.3g}): "
+                    f"small velocity errors become large joint rates")
+    else:
+        qd = np.linalg.lstsq(J, v, rcond=1e-9)[0]
+        method = "least_squares" if m >= n else "min_norm"
+        if m == n:
+            note = ("J is singular at this configuration: q_dot is the least-squares "
+                    "(pseudo-inverse) solution, the velocity may not be reachable exactly")
+        elif m < n:
+            note = "fewer velocity components than joints: minimum-norm q_dot (pseudo-inverse)"
+        else:
+            note = "more velocity components than joints: least-squares q_dot"
+    resid = float(np.linalg.norm(J @ qd - v))
+    if resid > 1e-9 * max(1.0, float(np.linalg.norm(v))):
+        note = (note + "; " if note else "") + f"the desired velocity is not reachable exactly (residual {resid:.3g})"
+    return VelocityIK({j.name: float(x) + 0.0 for j, x in zip(joints, qd)}, J, method, note, resid, cond)
