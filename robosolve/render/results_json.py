@@ -55,5 +55,22 @@ def results_document(report, figure_paths: dict) -> dict:
     }
 
 
+def dumps(value, indent: int = 0) -> str:
+    """JSON with 2-space indentation, but lists of scalars (vectors, matrix rows) on one line."""
+    pad, inner = "  " * indent, "  " * (indent + 1)
+    if isinstance(value, dict):
+        if not value:
+            return "{}"
+        items = [f"{inner}{json.dumps(str(k), ensure_ascii=False)}: {dumps(v, indent + 1)}"
+                 for k, v in value.items()]
+        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+    if isinstance(value, list):
+        if all(not isinstance(v, (list, dict)) for v in value):
+            return "[" + ", ".join(json.dumps(v, ensure_ascii=False) for v in value) + "]"
+        items = [inner + dumps(v, indent + 1) for v in value]
+        return "[\n" + ",\n".join(items) + "\n" + pad + "]"
+    return json.dumps(value, ensure_ascii=False)
+
+
 def render_results_json(report, figure_paths: dict) -> str:
-    return json.dumps(results_document(report, figure_paths), indent=2, ensure_ascii=False) + "\n"
+    return dumps(results_document(report, figure_paths)) + "\n"
