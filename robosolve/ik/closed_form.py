@@ -256,11 +256,27 @@ def _isolate_linear(e, unknowns, revolute_of):
     return None
 
 
-def derive(equations, unknowns, revolute, latex_names=None, angular=None) -> ClosedForm:
+_TEX = [sp.latex]
+
+
+def _tex(e):
+    return _TEX[0](e)
+
+
+def derive(equations, unknowns, revolute, latex_names=None, angular=None, tex=None) -> ClosedForm:
     """Closed-form solution of equations (each an expression = 0) for `unknowns`.
 
+    `tex` renders sympy objects in the step texts (default sympy.latex).
     Raises NoClosedForm when no rule applies.  Run it under a time limit.
     """
+    _TEX[0] = tex or sp.latex
+    try:
+        return _derive(equations, unknowns, revolute, latex_names)
+    finally:
+        _TEX[0] = sp.latex
+
+
+def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
     unknowns = list(unknowns)
     rev = dict(zip(unknowns, revolute))
     names = latex_names or {q: sp.latex(q) for q in unknowns}
@@ -292,8 +308,8 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None) -> Clo
                                             {"S": S, "C": C, "D": D, "rot": (u_, w_, X, Y)}))
                         steps.append(Step(
                             f"${names[q]}$ from the two equations it was eliminated from",
-                            f"These two equations say that the vector $({sp.latex(X)},\\ {sp.latex(Y)})$ is the "
-                            f"vector $({sp.latex(u_)},\\ {sp.latex(w_)})$ rotated by ${names[q]}$: "
+                            f"These two equations say that the vector $({_tex(X)},\\ {_tex(Y)})$ is the "
+                            f"vector $({_tex(u_)},\\ {_tex(w_)})$ rotated by ${names[q]}$: "
                             f"${names[q]}$ is the difference of their directions (one value per branch).",
                             [(names[q], alt)]))
                     else:
@@ -334,10 +350,10 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None) -> Clo
                     aux_count[0] += 1
                 r = sp.Symbol(f"rho_{aux_count[0]}")
                 definition = _tidy(sign * known)
-                stages.append(Stage(r, [definition], "aux", None, sp.latex(r), definition))
-                steps.append(Step(f"Auxiliary quantity ${sp.latex(r)}$",
+                stages.append(Stage(r, [definition], "aux", None, _tex(r), definition))
+                steps.append(Step(f"Auxiliary quantity ${_tex(r)}$",
                                   "A known combination, named to keep the next steps short.",
-                                  [(sp.latex(r), definition)]))
+                                  [(_tex(r), definition)]))
                 e = sp.expand(e - known + sign * r)
             out.append(e)
         eqs = out
@@ -388,7 +404,7 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None) -> Clo
             q, expr = iso
             steps.append(Step(
                 f"${names[q]}$ appears linearly",
-                f"The equation ${sp.latex(e)} = 0$ gives ${names[q]}$ directly; it is substituted "
+                f"The equation ${_tex(e)} = 0$ gives ${names[q]}$ directly; it is substituted "
                 f"into the other equations.",
                 [(names[q], expr)]))
             eqs.pop(idx)
@@ -455,7 +471,7 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None) -> Clo
             Fa, Fb = data
             steps.append(Step(
                 f"${names[q]}$ by a rotation of two equations",
-                f"The two equations ${sp.latex(ei)} = 0$ and ${sp.latex(ej)} = 0$ rotate a vector by "
+                f"The two equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ rotate a vector by "
                 f"${names[q]}$; combining them with $\\cos {names[q]}$ and $\\sin {names[q]}$ leaves an "
                 f"equation in ${names[q]}$ alone and one without it.",
                 [("0", _tidy(Fa)), ("0", _tidy(Fb))]))
@@ -464,7 +480,7 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None) -> Clo
             new, Nc, Ns, D, rot = data
             steps.append(Step(
                 f"Eliminate ${names[q]}$ with $\\cos^2 + \\sin^2 = 1$",
-                f"The equations ${sp.latex(ei)} = 0$ and ${sp.latex(ej)} = 0$ are linear in "
+                f"The equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ are linear in "
                 f"$\\cos {names[q]}$ and $\\sin {names[q]}$. Solving for them (Cramer) and imposing "
                 f"$\\cos^2 {names[q]} + \\sin^2 {names[q]} = 1$ removes ${names[q]}$:",
                 [("0", _tidy(new))]))
@@ -488,7 +504,7 @@ def _single_step(st: Stage, name: str) -> Step:
     eq = [(st.lhs, st.rhs)] if st.rhs is not None else []
     if st.rule == "cos":
         text = f"This equation contains ${name}$ only, through its cosine: two solutions $\\pm$."
-        eq.append((name, r"\pm " + sp.latex(st.alternatives[0])))
+        eq.append((name, r"\pm " + _tex(st.alternatives[0])))
     elif st.rule == "sin":
         text = f"This equation contains ${name}$ only, through its sine: ${name} = \\arcsin K$ or $\\pi - \\arcsin K$."
         eq += [(name, st.alternatives[0]), (name, st.alternatives[1])]
@@ -505,7 +521,7 @@ def _single_step(st: Stage, name: str) -> Step:
         eq += [(name, a) for a in st.alternatives]
     else:
         text = f"This equation is linear in ${name}$."
-    return Step(f"${name}$", f"From ${sp.latex(_tidy(st.equation))} = 0$. " + text, eq)
+    return Step(f"${name}$", f"From ${_tex(_tidy(st.equation))} = 0$. " + text, eq)
 
 
 # ---------------------------------------------------------------------------

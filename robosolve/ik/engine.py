@@ -10,16 +10,15 @@ one was found, and for an unreachable target a reason a student understands.
 
 from __future__ import annotations
 
-import contextlib
 import itertools
 import math
-import signal
-import threading
 from dataclasses import dataclass, field
 
 import numpy as np
 import sympy as sp
 
+from robosolve.core.timing import time_limit
+from robosolve.errors import SymbolicTimeout as Timeout
 from robosolve.ik import closed_form as cfm
 from robosolve.ik.numeric import (
     DEDUPE_TOL,
@@ -31,30 +30,6 @@ from robosolve.ik.numeric import (
 )
 
 LIMIT_TOL = 1e-9
-
-
-class Timeout(Exception):
-    pass
-
-
-@contextlib.contextmanager
-def time_limit(seconds: float | None):
-    """Raise `Timeout` after `seconds` (main thread only; elsewhere no limit)."""
-    if not seconds or threading.current_thread() is not threading.main_thread() \
-            or not hasattr(signal, "setitimer"):
-        yield
-        return
-
-    def handler(signum, frame):
-        raise Timeout()
-
-    old = signal.signal(signal.SIGALRM, handler)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
-    try:
-        yield
-    finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
 
 
 @dataclass
@@ -82,7 +57,8 @@ class IKResult:
     closed_form_values: list[dict] = field(default_factory=list)   # valid branches, evaluated
     closed_form_note: str | None = None
     agree: bool | None = None           # closed-form and numeric sets are the same
-    reason: str | None = None
+    reason: str | None = None           # plain text (results.json)
+    reason_tex: str | None = None       # with $...$ (report)
     notes: list[str] = field(default_factory=list)
     family: dict | None = None          # a continuum: free joints, parametrization
     subsets: list[dict] = field(default_factory=list)   # over-determined: each choice of n equations
@@ -212,7 +188,28 @@ def _positive(expr):
     return e.xreplace(back)
 
 
-def _distance_reason(st: cfm.Stage, target_syms: set, values: dict):
+class _Fmt:
+    """Formats reasons as LaTeX (report) or as plain text (results.json)."""
+
+    def __init__(self, tex=None, plain=False):
+        self.plain = plain
+        self.tex = tex or sp.latex
+
+    def __call__(self, e) -> str:
+        if self.plain:
+            return str(e)
+        return "$" + (e if isinstance(e, str) else self.tex(e)) + "$"
+
+    def name(self, latex_name: str, joint) -> str:
+        return str(joint) if self.plain else f"${latex_name}$"
+
+    def fn(self, fn: str, latex_name: str, joint, shift=False) -> str:
+        if self.plain:
+            return f"{fn}({joint} - phi)" if shift else f"{fn}({joint})"
+        return f"$\\{fn}({latex_name} - \\varphi)$" if shift else f"$\\{fn} {latex_name}$"
+
+
+def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt):
     """'distance sqrt(x^2 + y^2) = 1.31 > L1 + L2 = 1.10' for a cos/sin/phase stage, or None."""
     if st.equation is None or st.rule not in ("cos", "sin", "phase"):
         return None
@@ -228,13 +225,9 @@ def _distance_reason(st: cfm.Stage, target_syms: set, values: dict):
     for t in T:
         if sp.expand(c.coeff(t, 2) - 1) != 0:
             return None
-        lin = c.coeff(t, 1)
-        if any(s in lin.free_symbols for s in T if s != t) and False:
-            return None
-        d2 += (t + lin / 2) ** 2
+        d2 += (t + c.coeff(t, 1) / 2) ** 2
     rest = sp.expand(c - sp.expand(d2))
     rest_red = rest
-    # cos^2 + sin^2 of target angles left over
     args = sorted({x.args[0] for x in rest.atoms(sp.sin, sp.cos) if x.args[0].is_Symbol}, key=sp.default_sort_key)
     if args:
         g, back, rel = cfm._to_poly_symbols(rest, args)
@@ -252,38 +245,33 @@ def _distance_reason(st: cfm.Stage, target_syms: set, values: dict):
         return None
     d_sym = sp.sqrt(d2)
     if dv > hv:
-        bound = _positive(sp.sqrt(hi2))
-        return (f"distance ${sp.latex(d_sym)}$ = {dv:.4g} > ${sp.latex(bound)}$ = {hv:.4g}: "
+        return (f"distance {F(d_sym)} = {dv:.4g} > {F(_positive(sp.sqrt(hi2)))} = {hv:.4g}: "
                 f"the target is beyond the reach of the arm")
     if dv < lv:
-        bound = _positive(sp.sqrt(lo2))
-        return (f"distance ${sp.latex(d_sym)}$ = {dv:.4g} < ${sp.latex(bound)}$"
-                f" = {lv:.4g}: the target is too close, inside the unreachable inner circle")
+        return (f"distance {F(d_sym)} = {dv:.4g} < {F(_positive(sp.sqrt(lo2)))} = {lv:.4g}: "
+                f"the target is too close, inside the unreachable inner region")
     return None
 
 
-def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names) -> str:
+def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt) -> str:
     k, joint, ex = fail
     st = cf.stages[k]
-    name = names.get(joint, sp.latex(joint))
-    dist = _distance_reason(st, target_syms, values)
+    lname = names.get(joint, sp.latex(joint))
+    name = F.name(lname, joint)
+    dist = _distance_reason(st, target_syms, values, F)
     if ex.what in ("acos", "asin"):
         fn = "cos" if ex.what == "acos" else "sin"
-        if st.rule == "phase":
-            base = (f"the equation for ${name}$ needs $\\cos({name} - \\varphi)$ = {ex.value:.4g}, "
-                    f"impossible because a cosine lies in [-1, 1]")
-        else:
-            base = (f"the equation for ${name}$ needs $\\{fn} {name}$ = {ex.value:.4g}, "
-                    f"impossible because a {'cosine' if fn == 'cos' else 'sine'} lies in [-1, 1]")
+        word = "cosine" if fn == "cos" else "sine"
+        base = (f"the equation for {name} needs {F.fn(fn, lname, joint, st.rule == 'phase')} = "
+                f"{ex.value:.4g}, impossible because a {word} lies in [-1, 1]")
         return dist + f" ({base})" if dist else base
     if ex.what == "sqrt":
-        return f"solving for ${name}$ needs the square root of a negative number ({ex.value:.4g})"
+        return f"solving for {name} needs the square root of a negative number ({ex.value:.4g})"
     if ex.what == "atan2":
-        return f"${name}$ is undetermined (atan2(0, 0)): the configuration is singular"
-    return f"solving for ${name}$ fails ({ex.what})"
+        return f"{name} is undetermined (atan2(0, 0)): the configuration is singular"
+    return f"solving for {name} fails ({ex.what})"
 
 
-# ---------------------------------------------------------------------------
 # main entry
 
 def solve_ik(
@@ -296,6 +284,7 @@ def solve_ik(
     target_symbols=(),
     latex_names: dict | None = None,
     budget: int | None = None,
+    tex=None,
 ) -> IKResult:
     """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring."""
     res = IKResult()
@@ -307,7 +296,7 @@ def solve_ik(
 
     if m < n:
         res.status = "redundant"
-        _redundant(res, exprs, joints, values, names, time_limit_s)
+        _redundant(res, exprs, joints, values, names, time_limit_s, tex)
         return res
     if m > n:
         system = _numeric_system(exprs, joints, values, res.angular)
@@ -339,7 +328,7 @@ def solve_ik(
         try:
             with time_limit(time_limit_s):
                 cf = cfm.derive(exprs, [j.symbol for j in joints], [j.revolute for j in joints], names,
-                                res.angular)
+                                res.angular, tex=tex)
                 res.closed_form_branches = cf.branches()
         except cfm.NoClosedForm as ex:
             res.closed_form_note = f"no closed form: {ex}"
@@ -383,19 +372,25 @@ def solve_ik(
             if bad:
                 cf_sols = []
                 res.reason = ("the target is incompatible with the robot: it requires "
-                              + ", ".join(f"${sp.latex(c)} = 0$" for c in bad))
+                              + ", ".join(f"{c} = 0" for c in bad))
+                res.reason_tex = ("the target is incompatible with the robot: it requires "
+                                  + ", ".join(f"${(tex or sp.latex)(c)} = 0$" for c in bad))
         res.closed_form_values = sort_solutions(cf_sols, get=lambda d: [d[j.name] for j in joints])
     _finish(res, num, res.closed_form_values if cf is not None else None, joints, values, select, system)
 
     if res.status == "unreachable" and res.reason is None:
         if cf is not None and cf_fail is not None and not res.all_solutions:
-            res.reason = _stage_reason(cf_fail, cf, target_syms, values, names)
+            res.reason = _stage_reason(cf_fail, cf, target_syms, values, names, _Fmt(plain=True))
+            res.reason_tex = _stage_reason(cf_fail, cf, target_syms, values, names, _Fmt(tex))
         if res.reason is None and not res.all_solutions:
-            res.reason = _nearest_reason(res, equations, joints, values)
+            res.reason = _nearest_reason(res, equations, joints, values, _Fmt(plain=True))
+            res.reason_tex = _nearest_reason(res, equations, joints, values, _Fmt(tex))
+    if res.reason_tex is None:
+        res.reason_tex = res.reason
     return res
 
 
-def _nearest_reason(res, equations, joints, values) -> str:
+def _nearest_reason(res, equations, joints, values, F) -> str:
     if res.nearest is None:
         return "no configuration of the joints satisfies the equations"
     parts = []
@@ -407,7 +402,7 @@ def _nearest_reason(res, equations, joints, values) -> str:
             want = float(sp.sympify(rhs).evalf(subs=subs))
         except (TypeError, ValueError):
             continue
-        parts.append(f"${sp.latex(sp.sympify(lhs))}$ = {got:.4g} (target {want:.4g})")
+        parts.append(f"{F(sp.sympify(lhs))} = {got:.4g} (target {want:.4g})")
     return ("no configuration of the joints satisfies the equations; the closest one gives "
             + ", ".join(parts))
 
@@ -483,7 +478,7 @@ def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
     res.selected = res.solutions[res.selected_index]
 
 
-def _redundant(res, exprs, joints, values, names, time_limit_s):
+def _redundant(res, exprs, joints, values, names, time_limit_s, tex=None):
     n, m = len(joints), len(exprs)
     res.reason = (f"{m} equation{'s' if m != 1 else ''} for {n} unknown joints: infinitely many "
                   f"solutions ({n - m} free parameter{'s' if n - m > 1 else ''}).")
@@ -492,7 +487,7 @@ def _redundant(res, exprs, joints, values, names, time_limit_s):
         unk = [j for i, j in enumerate(joints) if i not in free]
         try:
             with time_limit(time_limit_s):
-                cf = cfm.derive(exprs, [j.symbol for j in unk], [j.revolute for j in unk], names)
+                cf = cfm.derive(exprs, [j.symbol for j in unk], [j.revolute for j in unk], names, tex=tex)
                 branches = cf.branches()
         except (cfm.NoClosedForm, Timeout, sp.PolynomialError, ValueError, TypeError, ZeroDivisionError,
                 NotImplementedError):
