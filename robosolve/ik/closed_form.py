@@ -160,6 +160,13 @@ def _tidy(e):
     """Light simplification for display and smaller expressions."""
     try:
         e = sp.factor_terms(sp.together(e))
+        num, den = sp.fraction(e)
+        if den != 1:
+            num = sp.expand(num)
+            if num.could_extract_minus_sign() and sp.expand(-num).is_Add:
+                e = sp.Mul(-1, sp.expand(-num), sp.Pow(den, -1))
+            else:
+                e = num / den
         if sp.count_ops(e) < 40:
             t = sp.trigsimp(e)
             if sp.count_ops(t) <= sp.count_ops(e):

@@ -294,6 +294,30 @@ def solve_ik(
     n, m = len(joints), len(exprs)
     target_syms = set(target_symbols)
 
+    used = [j for j in joints if any(j.symbol in e.free_symbols for e in exprs)]
+    unused = [j.name for j in joints if j not in used]
+    if unused:
+        res.notes.append(f"{', '.join(unused)} appear{'s' if len(unused) == 1 else ''} in no equation: "
+                         f"{'it is' if len(unused) == 1 else 'they are'} not determined by this target")
+    if m > len(used) and unused:
+        m_eff = len(used)
+        res.status = "overdetermined"
+        res.reason = (f"{m} equations involve only {m_eff} joint{'s' if m_eff != 1 else ''} "
+                      f"({', '.join(j.name for j in used)}); {', '.join(unused)} "
+                      f"{'is' if len(unused) == 1 else 'are'} free. Choose {m_eff} of the {m} equations "
+                      f"for {', '.join(j.name for j in used)}, and add an equation for {', '.join(unused)}.")
+        for combo in itertools.combinations(range(m), m_eff):
+            if len(res.subsets) >= 20:
+                break
+            sub = [exprs[k] for k in combo]
+            sys2 = _numeric_system(sub, used, values, [res.angular[k] for k in combo])
+            r2 = solve_all(sys2, _boxes(used, _scale(values)), budget)
+            res.subsets.append({
+                "equations": list(combo),
+                "solutions": [{j.name: v for j, v in zip(used, s.q)} for s in r2.solutions],
+                "family": r2.family,
+            })
+        return res
     if m < n:
         res.status = "redundant"
         _redundant(res, exprs, joints, values, names, time_limit_s, tex)
