@@ -575,6 +575,7 @@ class BranchValue:
     label: list[int]
     q: dict | None
     failure: tuple | None = None      # (stage index, joint, DomainFailure)
+    partial: dict | None = None       # values found before the failure
 
 
 def evaluate(cf: ClosedForm, values: dict) -> list[BranchValue]:
@@ -607,5 +608,5 @@ def evaluate(cf: ClosedForm, values: dict) -> list[BranchValue]:
                 fail = (k, st.joint, DomainFailure("zero", str(ex)))
                 break
             q[st.joint] = v
-        out.append(BranchValue(label, None if fail else q, fail))
+        out.append(BranchValue(label, None if fail else q, fail, dict(q)))
     return out

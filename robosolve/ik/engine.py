@@ -209,7 +209,7 @@ class _Fmt:
         return f"$\\{fn}({latex_name} - \\varphi)$" if shift else f"$\\{fn} {latex_name}$"
 
 
-def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt):
+def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt, aux=None):
     """'distance sqrt(x^2 + y^2) = 1.31 > L1 + L2 = 1.10' for a cos/sin/phase stage, or None."""
     if st.equation is None or st.rule not in ("cos", "sin", "phase"):
         return None
@@ -243,7 +243,7 @@ def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt):
         lv = math.sqrt(max(0.0, float(lo2.evalf(subs=values))))
     except (TypeError, ValueError):
         return None
-    d_sym = sp.sqrt(d2)
+    d_sym = sp.sqrt(d2.subs(aux or {}))
     if dv > hv:
         return (f"distance {F(d_sym)} = {dv:.4g} > {F(_positive(sp.sqrt(hi2)))} = {hv:.4g}: "
                 f"the target is beyond the reach of the arm")
@@ -253,12 +253,12 @@ def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt):
     return None
 
 
-def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt) -> str:
+def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt, aux=None) -> str:
     k, joint, ex = fail
     st = cf.stages[k]
     lname = names.get(joint, sp.latex(joint))
     name = F.name(lname, joint)
-    dist = _distance_reason(st, target_syms, values, F)
+    dist = _distance_reason(st, target_syms, values, F, aux or {})
     if ex.what in ("acos", "asin"):
         fn = "cos" if ex.what == "acos" else "sin"
         word = "cosine" if fn == "cos" else "sine"
@@ -369,6 +369,7 @@ def solve_ik(
     num = solve_all(system, _boxes(joints, _scale(values)), budget)
 
     cf_fail = None
+    cf_partial = {}
     if cf is not None:
         branch_vals = cfm.evaluate(cf, values)
         cf_sols = []
@@ -376,6 +377,7 @@ def solve_ik(
             if bv.q is None:
                 if cf_fail is None:
                     cf_fail = bv.failure
+                    cf_partial = bv.partial or {}
                 continue
             q = {j.name: (wrap_angle(bv.q[j.symbol]) if j.revolute else bv.q[j.symbol] + 0.0) for j in joints}
             vec = np.array([[q[j.name] for j in joints]])
@@ -404,8 +406,12 @@ def solve_ik(
 
     if res.status == "unreachable" and res.reason is None:
         if cf is not None and cf_fail is not None and not res.all_solutions:
-            res.reason = _stage_reason(cf_fail, cf, target_syms, values, names, _Fmt(plain=True))
-            res.reason_tex = _stage_reason(cf_fail, cf, target_syms, values, names, _Fmt(tex))
+            aux = {st.joint: st.alternatives[0] for st in cf.stages if st.rule == "aux"}
+            vals = dict(values)
+            vals.update(cf_partial)
+            tsyms = set(target_syms) | set(aux)
+            res.reason = _stage_reason(cf_fail, cf, tsyms, vals, names, _Fmt(plain=True), aux)
+            res.reason_tex = _stage_reason(cf_fail, cf, tsyms, vals, names, _Fmt(tex), aux)
         if res.reason is None and not res.all_solutions:
             res.reason = _nearest_reason(res, equations, joints, values, _Fmt(plain=True))
             res.reason_tex = _nearest_reason(res, equations, joints, values, _Fmt(tex))
@@ -569,4 +575,6 @@ def velocity_ik(coords, rates, joints: list[IKJoint], q: dict, values: dict) -> 
     resid = float(np.linalg.norm(J @ qd - v))
     if resid > 1e-9 * max(1.0, float(np.linalg.norm(v))):
         note = (note + "; " if note else "") + f"the desired velocity is not reachable exactly (residual {resid:.3g})"
+    big = float(np.max(np.abs(qd))) if qd.size else 0.0
+    qd = np.where(np.abs(qd) < 1e-13 * max(1.0, big), 0.0, qd)
     return VelocityIK({j.name: float(x) + 0.0 for j, x in zip(joints, qd)}, J, method, note, resid, cond)
