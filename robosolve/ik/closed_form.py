@@ -453,14 +453,25 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                     continue
                 Nc = sp.expand(Bi * Ej - Bj * Ei)
                 Ns = sp.expand(Aj * Ei - Ai * Ej)
-                g, back, rel = _to_poly_symbols(Nc**2 + Ns**2 - D**2, others)
+                rotation = _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
+                if rotation:
+                    # (X, Y) = Rot(q)(u, w): Nc^2 + Ns^2 = D (X^2 + Y^2) and D = u^2 + w^2
+                    raw = sp.expand(sp.expand_trig(Ei**2 + Ej**2 - D))
+                else:
+                    raw = sp.expand(sp.expand_trig(Nc**2 + Ns**2 - D**2))
+                trig_args = sorted({a.args[0] for a in (raw.atoms(sp.sin, sp.cos) | D.atoms(sp.sin, sp.cos))
+                                    if a.args[0].is_Symbol}, key=sp.default_sort_key)
+                g, back, rel = _to_poly_symbols(raw, trig_args)
                 g = _reduce_pythagoras(g, rel)
-                Dp, _, _ = _to_poly_symbols(D, others)
+                Dp, _, _ = _to_poly_symbols(D, trig_args)
                 Dp = _reduce_pythagoras(Dp, rel)
-                h = sp.cancel(g / Dp)
-                num, den = sp.fraction(h)
-                dummies = {s for pair in rel for s in pair}
-                new = num if not (den.free_symbols & dummies) else g
+                if rotation:
+                    new = g
+                else:
+                    h = sp.cancel(g / Dp)
+                    num, den = sp.fraction(h)
+                    dummies = {s for pair in rel for s in pair}
+                    new = num if not (den.free_symbols & dummies) else g
                 new = sp.expand(sp.factor_terms(new).subs(back))
                 if _is_zero(new):
                     continue
