@@ -93,6 +93,12 @@ def is_angular(expr, joints: list[IKJoint]) -> bool:
     return True
 
 
+def _chop(e):
+    """Float noise such as cos(pi/2) = 6e-17 from a float twist would hide the structure."""
+    tiny = {f: 0 for f in e.atoms(sp.Float) if abs(f) < 1e-12}
+    return sp.expand(e.xreplace(tiny)) if tiny else e
+
+
 def _fmt(v: float) -> str:
     return f"{v:.4g}"
 
@@ -289,7 +295,7 @@ def solve_ik(
     """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring."""
     res = IKResult()
     names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
-    exprs = [sp.sympify(l) - sp.sympify(r) for l, r in equations]
+    exprs = [_chop(sp.sympify(l) - sp.sympify(r)) for l, r in equations]
     res.angular = [is_angular(e, joints) for e in exprs]
     n, m = len(joints), len(exprs)
     target_syms = set(target_symbols)
