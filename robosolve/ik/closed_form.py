@@ -167,10 +167,6 @@ def _tidy(e):
                 e = sp.Mul(-1, sp.expand(-num), sp.Pow(den, -1))
             else:
                 e = num / den
-        if sp.count_ops(e) < 40:
-            t = sp.trigsimp(e)
-            if sp.count_ops(t) <= sp.count_ops(e):
-                e = t
     except Exception:  # pragma: no cover
         pass
     return e
@@ -424,8 +420,9 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
             flush_pending()
             continue
 
-        # 3./4. pairs linear in (cos q, sin q)
+        # 3./4. pairs linear in (cos q, sin q): rotations first (cheap), then eliminations
         cands = []
+        pairs = []
         for q in [u for u in U if rev[u]]:
             lin = []
             for i, e in enumerate(eqs):
@@ -448,6 +445,8 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                             cands.append((0, len(_unknowns_in(Fb, U)), unknowns.index(q), "rotation",
                                           q, i, j, (Fa, Fb)))
                             break
+                pairs.append((q, i, j, Ai, Bi, Ei, Aj, Bj, Ej))
+        for q, i, j, Ai, Bi, Ei, Aj, Bj, Ej in ([] if cands else pairs):
                 D = sp.expand(Ai * Bj - Aj * Bi)
                 if _is_zero(D):
                     continue
@@ -479,6 +478,8 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                 rot = (Ai, Aj, -Ei, -Ej) if nonneg else None
                 cands.append((1, len(_unknowns_in(new, U)), unknowns.index(q), "eliminate", q, i, j,
                               (new, Nc, Ns, D, rot)))
+                if cands[-1][1] <= 1:
+                    break     # an equation in one unknown: the best elimination possible
         if not cands:
             raise NoClosedForm("no elimination pattern applies")
         cands.sort(key=lambda c: c[:3])
@@ -518,11 +519,20 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
     return ClosedForm(unknowns, stages, steps, conditions)
 
 
+def _frac_tex(e):
+    """LaTeX of a fraction with its numerator expanded (no double minus signs)."""
+    num, den = sp.fraction(sp.together(e))
+    if den == 1:
+        return _tex(e)
+    return rf"\frac{{{_tex(sp.expand(num))}}}{{{_tex(den)}}}"
+
+
 def _single_step(st: Stage, name: str) -> Step:
-    eq = [(st.lhs, st.rhs)] if st.rhs is not None else []
+    eq = [(st.lhs, _frac_tex(st.rhs) if st.rule in ("cos", "sin", "phase") else st.rhs)] \
+        if st.rhs is not None else []
     if st.rule == "cos":
         text = f"This equation contains ${name}$ only, through its cosine: two solutions $\\pm$."
-        eq.append((name, r"\pm " + _tex(st.alternatives[0])))
+        eq.append((name, r"\pm \arccos\left(" + _frac_tex(st.rhs) + r"\right)"))
     elif st.rule == "sin":
         text = f"This equation contains ${name}$ only, through its sine: ${name} = \\arcsin K$ or $\\pi - \\arcsin K$."
         eq += [(name, st.alternatives[0]), (name, st.alternatives[1])]

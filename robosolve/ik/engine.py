@@ -22,7 +22,6 @@ from robosolve.errors import SymbolicTimeout as Timeout
 from robosolve.ik import closed_form as cfm
 from robosolve.ik.numeric import (
     DEDUPE_TOL,
-    RESIDUAL_TOL,
     lambdify_system,
     solve_all,
     sort_solutions,
@@ -387,7 +386,7 @@ def solve_ik(
                 continue
             q = {j.name: (wrap_angle(bv.q[j.symbol]) if j.revolute else bv.q[j.symbol] + 0.0) for j in joints}
             vec = np.array([[q[j.name] for j in joints]])
-            if float(np.max(np.abs(system.residual(vec)[0]), initial=0.0)) > RESIDUAL_TOL:
+            if float(np.max(np.abs(system.residual(vec)[0]), initial=0.0)) > system.tol:
                 continue
             if any(_same(q, o, joints) for o in cf_sols):
                 continue

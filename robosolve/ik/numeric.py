@@ -54,6 +54,11 @@ class NumericSystem:
     angular: list[bool]
     scale: float = 1.0          # typical length, for the prismatic start box
 
+    @property
+    def tol(self) -> float:
+        """Residual accepted as a solution: 1e-9, relative for problems with large numbers."""
+        return RESIDUAL_TOL * max(1.0, self.scale * 1e-3)
+
     def residual(self, Q):
         r = self.f(Q)
         if any(self.angular):
@@ -306,7 +311,7 @@ def polish_singular(system: NumericSystem, q, iters=30):
         if np.max(np.abs(step)) < 1e-15:
             break
     f_best = np.max(np.abs(system.residual(best[None])[0]))
-    return best if f_best <= RESIDUAL_TOL else np.asarray(q)
+    return best if f_best <= system.tol else np.asarray(q)
 
 
 DEFAULT_BUDGET = {1: 64, 2: 576, 3: 4096}
@@ -323,7 +328,7 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
         r = system.residual(np.zeros((1, 0)))[0]
         nr = float(np.max(np.abs(r))) if r.size else 0.0
         res.best_residual = nr
-        if nr < RESIDUAL_TOL:
+        if nr < system.tol:
             res.solutions.append(NumericSolution([], nr))
         return res
     starts = start_points(boxes, budget)
@@ -346,7 +351,7 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
             qq, nr = refine(system, Q[i])
             if nr < res.best_residual:
                 res.best_residual, res.best_q = nr, [float(x) for x in qq]
-            if nr > RESIDUAL_TOL:
+            if nr > system.tol:
                 continue
             if any(_close(qq, f, rev) for f in found):
                 continue
@@ -382,7 +387,7 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
         if deficient and not res.family and J.shape[0] == J.shape[1]:
             p = polish_singular(system, qq)
             rp = float(np.max(np.abs(system.residual(p[None])[0])))
-            if rp <= RESIDUAL_TOL:
+            if rp <= system.tol:
                 qq, nr = p, rp
         sols.append(NumericSolution([wrap_angle(float(v)) if rv else _clean(float(v)) for v, rv in zip(qq, rev)],
                                     float(nr), bool(deficient)))
