@@ -431,7 +431,6 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                     if abc is not None and not (_is_zero(abc[0]) and _is_zero(abc[1])):
                         lin.append((i, abc))
             for (i, (Ai, Bi, Ei)), (j, (Aj, Bj, Ej)) in [(x, y) for k, x in enumerate(lin) for y in lin[k + 1:]]:
-                others = [u for u in U if u != q]
                 if not (_is_zero(Ai - Bj) and _is_zero(Aj + Bi)) and _is_zero(Ai + Bj) and _is_zero(Aj - Bi):
                     # a reflection: the first equation with its sign changed is a rotation
                     Ai, Bi, Ei = -Ai, -Bi, -Ei
