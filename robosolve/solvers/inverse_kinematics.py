@@ -150,7 +150,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ans.steps.append(Step(
             "Closed form",
             f"The choices above give {nb} branch{'es' if nb != 1 else ''} (order of solution: {order}; "
-            "each formula may use the joints found before it).",
+            "each formula may use the joints found before it). With the data, branch by branch "
+            "(angles not yet wrapped):",
+            table=_branch_table(cf, values, tex),
         ))
         ans.symbolic["closed_form"] = [{j.name: b[j.symbol] for j in ik_joints} for b in res.closed_form_branches]
     else:
@@ -308,3 +310,23 @@ def _figure(ans, ctx, params, res, ik_joints, question):
         "Inverse kinematics: every solution" if sols else "Unreachable target: the nearest configuration",
         {"drawings": drawings, "labels": labels, "rejected": rejected, "target": target,
          "selected": res.selected_index if res.selected is not None else None, "point": point}))
+
+
+def _branch_table(cf, values, tex):
+    """Each branch of the closed form evaluated with the data (or where it fails)."""
+    stages = cf.stages
+    header = ["branch"] + [f"${tex(st.joint)}$" for st in stages] + ["result"]
+    rows = []
+    for k, bv in enumerate(cfm.evaluate(cf, values), 1):
+        got = bv.q if bv.q is not None else (bv.partial or {})
+        cells = [report_number(got[st.joint]) if st.joint in got else "—" for st in stages]
+        if bv.failure is None:
+            result = "solution"
+        else:
+            idx, joint, ex = bv.failure
+            what = {"acos": "arccos of", "asin": "arcsin of", "sqrt": "square root of",
+                    "atan2": "atan2(0, 0)", "zero": "division by zero", "nan": "undefined"}.get(ex.what, ex.what)
+            val = ex.value if isinstance(ex.value, float) else None
+            result = f"no ${tex(joint)}$: {what}" + (f" {report_number(val)}" if val is not None else "")
+        rows.append([str(k)] + cells + [result])
+    return header, rows
