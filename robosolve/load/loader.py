@@ -160,7 +160,13 @@ def load_problem_text(text: str, file: str = "<input>") -> Problem:
     chk = Checker(source)
     for line, path, key in duplicates:
         chk.issues.append(InputIssue(file, line, path_str(path), f"duplicate key '{key}'"))
-    problem = _ProblemBuilder(chk).build()
+    try:
+        problem = _ProblemBuilder(chk).build()
+    except (RecursionError, MemoryError):
+        chk.issues.append(InputIssue(file, 1, "", "the file is too large or too deeply nested to check"))
+    except Exception as exc:  # a validation bug must still end as a clear message, not a traceback
+        if not chk.issues:
+            chk.issues.append(InputIssue(file, 1, "", f"cannot validate this file ({type(exc).__name__}: {exc})"))
     if chk.issues:
         raise InputError(chk.issues)
     return problem
