@@ -94,3 +94,20 @@ def test_anthropomorphic_dh_four_solutions_against_fkine():
     assert _contains(res.solutions, q_true, ["q1", "q2", "q3"], 1e-9)
     for sol in res.solutions:
         assert np.max(np.abs(robot.fkine([sol["q1"], sol["q2"], sol["q3"]]).t - p)) < 1e-9
+
+
+def test_spherical_wrist_closed_form_from_three_of_six_equations():
+    """ZYZ wrist, orientation given by the approach and normal vectors (6 consistent equations)."""
+    smb = pytest.importorskip("spatialmath.base")
+    from robosolve.core.transforms import rot_y, rot_z
+
+    t4, t5, t6 = sp.symbols("theta4 theta5 theta6")
+    R = (rot_z(t4) * rot_y(t5) * rot_z(t6))[:3, :3]
+    Rn = smb.eul2r([0.4, 1.1, -0.7])
+    eqs = [(R[i, 2], float(Rn[i, 2])) for i in range(3)] + [(R[i, 0], float(Rn[i, 0])) for i in range(3)]
+    res = solve_ik(eqs, [IKJoint(t4), IKJoint(t5), IKJoint(t6)], {})
+    assert res.closed_form is not None and res.closed_form_subset is not None and res.agree
+    assert len(res.solutions) == 2
+    names = ["theta4", "theta5", "theta6"]
+    for flip in (False, True):
+        assert _contains(res.solutions, smb.tr2eul(Rn, flip=flip), names, 1e-9)

@@ -55,6 +55,7 @@ class IKResult:
     closed_form_branches: list[dict] = field(default_factory=list)
     closed_form_values: list[dict] = field(default_factory=list)   # valid branches, evaluated
     closed_form_note: str | None = None
+    closed_form_subset: list | None = None   # over-determined: the equations the closed form uses
     agree: bool | None = None           # closed-form and numeric sets are the same
     reason: str | None = None           # plain text (results.json)
     reason_tex: str | None = None       # with $...$ (report)
@@ -333,7 +334,15 @@ def solve_ik(
         if num.solutions:
             res.notes.append(f"{m} equations for {n} unknowns: they are consistent here, "
                              f"so the solutions satisfy all of them.")
-            _finish(res, num, None, joints, values, select, system)
+            cf_sols = None
+            if closed_form:
+                cf, subset = _closed_form_subset(exprs, joints, names, tex, time_limit_s)
+                if cf is not None:
+                    res.closed_form, res.closed_form_subset = cf, subset
+                    res.closed_form_branches = cf.branches()
+                    cf_sols, _, _ = _cf_solutions(cf, values, joints, system)
+                    res.closed_form_values = cf_sols
+            _finish(res, num, cf_sols, joints, values, select, system)
             return res
         res.status = "overdetermined"
         res.reason = (f"{m} equations for {n} unknown joints: no configuration satisfies all of "
@@ -376,21 +385,7 @@ def solve_ik(
     cf_fail = None
     cf_partial = {}
     if cf is not None:
-        branch_vals = cfm.evaluate(cf, values)
-        cf_sols = []
-        for bv in branch_vals:
-            if bv.q is None:
-                if cf_fail is None:
-                    cf_fail = bv.failure
-                    cf_partial = bv.partial or {}
-                continue
-            q = {j.name: (wrap_angle(bv.q[j.symbol]) if j.revolute else bv.q[j.symbol] + 0.0) for j in joints}
-            vec = np.array([[q[j.name] for j in joints]])
-            if float(np.max(np.abs(system.residual(vec)[0]), initial=0.0)) > system.tol:
-                continue
-            if any(_same(q, o, joints) for o in cf_sols):
-                continue
-            cf_sols.append(q)
+        cf_sols, cf_fail, cf_partial = _cf_solutions(cf, values, joints, system)
         if cf.conditions:
             bad = []
             for c in cf.conditions:
@@ -423,6 +418,49 @@ def solve_ik(
     if res.reason_tex is None:
         res.reason_tex = res.reason
     return res
+
+
+def _cf_solutions(cf, values, joints, system):
+    """Closed-form branches evaluated, wrapped, verified on every equation, deduplicated, sorted."""
+    fail, partial, sols = None, {}, []
+    for bv in cfm.evaluate(cf, values):
+        if bv.q is None:
+            if fail is None:
+                fail, partial = bv.failure, bv.partial or {}
+            continue
+        q = {j.name: (wrap_angle(bv.q[j.symbol]) if j.revolute else bv.q[j.symbol] + 0.0) for j in joints}
+        vec = np.array([[q[j.name] for j in joints]])
+        if float(np.max(np.abs(system.residual(vec)[0]), initial=0.0)) > system.tol:
+            continue
+        if any(_same(q, o, joints) for o in sols):
+            continue
+        sols.append(q)
+    return sort_solutions(sols, get=lambda d: [d[j.name] for j in joints]), fail, partial
+
+
+def _closed_form_subset(exprs, joints, names, tex, time_limit_s, tries=20):
+    """Over-determined but consistent: a closed form from n of the m equations (others checked)."""
+    n = len(joints)
+    budget = time_limit_s or 20.0
+    import time as _time
+
+    start = _time.monotonic()
+    for k, combo in enumerate(itertools.combinations(range(len(exprs)), n)):
+        left = budget - (_time.monotonic() - start)
+        if k >= tries or left <= 0.5:
+            break
+        sub = [exprs[i] for i in combo]
+        if any(not any(j.symbol in e.free_symbols for e in sub) for j in joints):
+            continue
+        try:
+            with time_limit(min(left, 10.0)):
+                cf = cfm.derive(sub, [j.symbol for j in joints], [j.revolute for j in joints], names, tex=tex)
+                cf.branches()
+            return cf, list(combo)
+        except (cfm.NoClosedForm, Timeout, sp.PolynomialError, ValueError, TypeError, ZeroDivisionError,
+                NotImplementedError):
+            continue
+    return None, None
 
 
 def _nearest_reason(res, equations, joints, values, F) -> str:

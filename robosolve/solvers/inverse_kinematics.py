@@ -18,6 +18,7 @@ import sympy as sp
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.ik import closed_form as cfm
 from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
+from robosolve.ik.numeric import wrap_angle
 from robosolve.load.problem import Question
 from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
@@ -143,6 +144,12 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     # -- closed form --------------------------------------------------------
     if res.closed_form is not None:
         cf = res.closed_form
+        if res.closed_form_subset is not None:
+            used = ", ".join(f"`{shown[k][0]}`" for k in res.closed_form_subset)
+            ans.steps.append(Step(
+                "More equations than joints",
+                f"The {m} equations are consistent (a configuration satisfies them all), so {n} of them are enough: "
+                f"the closed form below uses {used}; every branch is then checked on all {m}."))
         for st in cf.steps:
             ans.steps.append(Step(st.title, st.text, equations=list(st.equations)))
         nb = len(res.closed_form_branches)
@@ -152,7 +159,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             f"The choices above give {nb} branch{'es' if nb != 1 else ''} (order of solution: {order}; "
             "each formula may use the joints found before it). With the data, branch by branch "
             "(angles not yet wrapped):",
-            table=_branch_table(cf, values, tex),
+            table=_branch_table(cf, values, tex, res.all_solutions, ik_joints),
         ))
         ans.symbolic["closed_form"] = [{j.name: b[j.symbol] for j in ik_joints} for b in res.closed_form_branches]
     else:
@@ -312,7 +319,7 @@ def _figure(ans, ctx, params, res, ik_joints, question):
          "selected": res.selected_index if res.selected is not None else None, "point": point}))
 
 
-def _branch_table(cf, values, tex):
+def _branch_table(cf, values, tex, solutions, ik_joints):
     """Each branch of the closed form evaluated with the data (or where it fails)."""
     stages = cf.stages
     header = ["branch"] + [f"${tex(st.joint)}$" for st in stages] + ["result"]
@@ -321,7 +328,10 @@ def _branch_table(cf, values, tex):
         got = bv.q if bv.q is not None else (bv.partial or {})
         cells = [report_number(got[st.joint]) if st.joint in got else "—" for st in stages]
         if bv.failure is None:
-            result = "solution"
+            match = [k2 for k2, d in enumerate(solutions, 1)
+                     if all(abs(wrap_angle(d[j.name] - bv.q[j.symbol]) if j.revolute else d[j.name] - bv.q[j.symbol])
+                            < 1e-6 * max(1.0, abs(d[j.name])) for j in ik_joints)]
+            result = f"solution #{match[0]}" if match else "does not satisfy every equation"
         else:
             idx, joint, ex = bv.failure
             what = {"acos": "arccos of", "asin": "arcsin of", "sqrt": "square root of",
