@@ -335,7 +335,7 @@ def solve_ik(
             res.notes.append(f"{m} equations for {n} unknowns: they are consistent here, "
                              f"so the solutions satisfy all of them.")
             cf_sols = None
-            if closed_form:
+            if closed_form and n <= 4:
                 cf, subset = _closed_form_subset(exprs, joints, names, tex, time_limit_s)
                 if cf is not None:
                     res.closed_form, res.closed_form_subset = cf, subset
