@@ -93,3 +93,10 @@ def test_continuum_at_the_base():
     assert any("theta1 can take any value" in n for n in a["notes"])
 
 # The golden outputs of problems/ik-*.yaml are checked by tests/test_cli.py (robosolve batch --check).
+
+
+def test_equation_without_joints():
+    _, ans = _solve("  - {type: inverse_kinematics, id: z0, target: {E.x: 0.7, E.y: 0.4, E.z: 0}}\n"
+                    "  - {type: inverse_kinematics, id: z1, target: {E.x: 0.7, E.y: 0.4, E.z: 1}}\n")
+    assert len(ans["z0"]["numeric"]["solutions"]) == 1 and any("E.z holds" in n for n in ans["z0"]["notes"])
+    assert ans["z1"]["unreachable"] is True and ans["z1"]["reason"].startswith("E.z is 0 whatever the joints")

@@ -291,11 +291,34 @@ def solve_ik(
     latex_names: dict | None = None,
     budget: int | None = None,
     tex=None,
+    labels: list[str] | None = None,
 ) -> IKResult:
     """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring."""
     res = IKResult()
     names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
     exprs = [_chop(sp.sympify(l) - sp.sympify(r)) for l, r in equations]
+    # an equation with no joint in it: the robot cannot change that coordinate
+    qset = {j.symbol for j in joints}
+    constant = [k for k, e in enumerate(exprs) if not (e.free_symbols & qset)]
+    if constant and len(constant) < len(exprs):
+        for k in constant:
+            lhs, rhs = equations[k]
+            try:
+                lv = float(sp.sympify(lhs).evalf(subs=values))
+                rv = float(sp.sympify(rhs).evalf(subs=values))
+            except (TypeError, ValueError):
+                continue
+            if abs(lv - rv) > 1e-9 * max(1.0, abs(rv)):
+                res.status = "unreachable"
+                lab = labels[k] if labels else str(sp.sympify(lhs))
+                res.reason = f"{lab} is {lv:.4g} whatever the joints, but the target asks {rv:.4g}"
+                res.reason_tex = f"`{lab}` is {lv:.4g} whatever the joints, but the target asks {rv:.4g}"
+                return res
+        which = ", ".join(labels[k] if labels else f"equation {k + 1}" for k in constant)
+        res.notes.append(f"{which} {'hold' if len(constant) > 1 else 'holds'} whatever the joints "
+                         f"(no joint in {'them' if len(constant) > 1 else 'it'}): left out")
+        equations = [eq for k, eq in enumerate(equations) if k not in constant]
+        exprs = [e for k, e in enumerate(exprs) if k not in constant]
     res.angular = [is_angular(e, joints) for e in exprs]
     n, m = len(joints), len(exprs)
     target_syms = set(target_symbols)

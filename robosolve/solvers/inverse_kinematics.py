@@ -129,7 +129,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 
     res = solve_ik(equations, ik_joints, values, select=select_num or "limits",
                    time_limit_s=CLOSED_FORM_SECONDS, target_symbols=target_syms,
-                   latex_names=names, tex=tex)
+                   latex_names=names, tex=tex, labels=[t for t, _, _, _ in shown])
 
     if res.status == "redundant":
         return _redundant_answer(ans, res, ik_joints, tex)
