@@ -111,3 +111,44 @@ def test_spherical_wrist_closed_form_from_three_of_six_equations():
     names = ["theta4", "theta5", "theta6"]
     for flip in (False, True):
         assert _contains(res.solutions, smb.tr2eul(Rn, flip=flip), names, 1e-9)
+
+
+@pytest.mark.slow
+def test_puma560_through_the_solver_position_and_tool_vectors():
+    """A PUMA 560 problem file: E, A = E + z6, N = E + x6 as 9 consistent equations -> 8 solutions."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.pipeline import solve_problem
+
+    puma = rtb.models.DH.Puma560()
+    q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]
+    T = puma.fkine(q0).A
+    E, A, N = T[:3, 3], T[:3, 3] + T[:3, 2], T[:3, 3] + T[:3, 0]
+    rows = "\n".join(
+        f"    - {{theta: q{i + 1}, d: {float(L.d)!r}, a: {float(L.a)!r}, alpha: {float(L.alpha)!r}}}"
+        for i, L in enumerate(puma.links))
+    target = ", ".join(f"{p}.{a}: {float(v[k])!r}" for p, v in (("E", E), ("A", A), ("N", N))
+                       for k, a in enumerate("xyz"))
+    text = f"""robosolve: 1
+name: puma-ik
+joints:
+{chr(10).join(f"  - {{name: q{i}, type: revolute}}" for i in range(1, 7))}
+dh:
+  convention: standard
+  rows:
+{rows}
+points:
+  E: {{frame: "6", at: [0, 0, 0]}}
+  A: {{frame: "6", at: [0, 0, 1]}}
+  N: {{frame: "6", at: [1, 0, 0]}}
+questions:
+  - {{type: inverse_kinematics, target: {{{target}}}}}
+"""
+    report = solve_problem(load_problem_text(text, "puma.yaml"))
+    ans = report.answers[0]
+    assert ans.error is None
+    sols = ans.numeric["solutions"]
+    assert len(sols) == 8
+    names = [f"q{i}" for i in range(1, 7)]
+    for conf in ("lun", "luf", "ldn", "ldf", "run", "ruf", "rdn", "rdf"):
+        s = puma.ikine_a(puma.fkine(q0), config=conf)
+        assert _contains(sols, s.q, names, 1e-6), conf
