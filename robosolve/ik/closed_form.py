@@ -157,19 +157,19 @@ def _unknowns_in(e, unknowns):
 
 
 def _tidy(e):
-    """Light simplification for display and smaller expressions."""
+    """Light simplification for display and smaller expressions: one fraction, its numerator
+    expanded, no -(...) around a sum (E.x**2 + E.y**2 - L1**2 - L2**2)/(2*L1*L2)."""
     try:
-        e = sp.factor_terms(sp.together(e))
-        num, den = sp.fraction(e)
+        t = sp.together(e)
+        num, den = sp.fraction(t)
         if den != 1:
-            num = sp.expand(num)
-            if num.could_extract_minus_sign() and sp.expand(-num).is_Add:
-                e = sp.Mul(-1, sp.expand(-num), sp.Pow(den, -1))
-            else:
-                e = num / den
+            return sp.expand(num) / den
+        f = sp.factor_terms(t)
+        if isinstance(f, sp.Mul) and f.args and f.args[0] == -1 and any(isinstance(a, sp.Add) for a in f.args):
+            return sp.expand(t)
+        return f
     except Exception:  # pragma: no cover
-        pass
-    return e
+        return e
 
 
 def _to_poly_symbols(e, qs):
