@@ -221,3 +221,14 @@ def test_closed_form_steps_are_data():
     assert [st.joint for st in cf.stages] == [t2, t1]
     assert len(cf.branches()) == 2
     assert all(isinstance(s.title, str) and s.equations for s in cf.steps)
+
+
+def test_cartesian_robot_linear():
+    d1, d2, d3 = sp.symbols("d1 d2 d3")
+    eqs = [(d2 + L1, x), (-d3, y), (h + d1, z)]
+    joints = [IKJoint(d1, False, (0.0, 1.0)), IKJoint(d2, False, (0.0, 1.0)), IKJoint(d3, False, (0.0, 1.0))]
+    res = solve_ik(eqs, joints, {L1: 0.2, h: 0.5, x: 0.7, y: -0.3, z: 0.9}, target_symbols={x, y, z})
+    assert res.agree and len(res.solutions) == 1 and not res.rejected
+    assert res.solutions[0] == {"d1": pytest.approx(0.4, abs=1e-12), "d2": pytest.approx(0.5, abs=1e-12),
+                                "d3": pytest.approx(0.3, abs=1e-12)}
+    assert all(st.rule in ("linear", "isolate") for st in res.closed_form.stages)
