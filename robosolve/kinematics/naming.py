@@ -94,17 +94,20 @@ def _config(cond: Condition, geo: _Geometry):
         present = [s for s in geo.joints if f.has(s) and s not in fixed]
         if not present:
             return None
-        var = present[-1]
-        g = sp.lambdify(var, f.subs({**geo.params, **{s: q[s] for s in geo.joints if s != var}}))
-        grid = np.linspace(-math.pi, math.pi, 721)
-        vals = np.array([float(g(x)) for x in grid])
-        idx = np.where(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)[0]
-        if not len(idx):
-            return None
         from scipy.optimize import brentq
 
-        i = int(idx[0])
-        q[var] = grid[i] if vals[i] == 0 else brentq(g, grid[i], grid[i + 1])
+        grid = np.linspace(-math.pi, math.pi, 721)
+        for var in reversed(present):
+            g = sp.lambdify(var, f.subs({**geo.params,
+                                         **{s: q[s] for s in geo.joints if s != var}}))
+            vals = np.array([float(g(x)) for x in grid])
+            idx = np.where(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)[0]
+            if len(idx):
+                i = int(idx[0])
+                q[var] = grid[i] if vals[i] == 0 else brentq(g, grid[i], grid[i + 1])
+                break
+        else:
+            return None
     return [q[s] for s in geo.joints]
 
 

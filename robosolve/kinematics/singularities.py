@@ -237,18 +237,33 @@ def _isolate(f, joints, kinds, sample):
 # ---------------------------------------------------------------------------
 # the search
 
+def _factor_tidy(expr):
+    """Factors of expr (with multiplicity dropped): factor the raw expression, tidy each
+    factor (trig identities may reveal products, as in det J of a 2R arm), factor again."""
+    out = []
+    _, raw = sp.factor_list(sp.factor(expr))
+    for fac, _mult in raw:
+        _, again = sp.factor_list(sp.factor(tidy(fac)))
+        for f2, _m2 in again:
+            if f2.could_extract_minus_sign():
+                f2 = -f2
+            if f2 not in out:
+                out.append(f2)
+    return out
+
+
+def factored(expr):
+    """expr as a product of tidied factors (for display)."""
+    coeff, raw = sp.factor_list(sp.factor(expr))
+    out = coeff
+    for fac, mult in raw:
+        out *= sp.factor(tidy(fac)) ** mult
+    return out
+
+
 def _joint_factors(expr, joints):
     """Distinct factors of expr that contain a joint, in a deterministic order."""
-    expr = sp.factor(expr)
-    _, facs = sp.factor_list(expr)
-    out = []
-    for fac, _mult in facs:
-        if any(fac.has(q) for q in joints):
-            fac = tidy(fac)
-            if fac.could_extract_minus_sign():
-                fac = -fac
-            if fac not in out:
-                out.append(fac)
+    out = [f for f in _factor_tidy(expr) if any(f.has(q) for q in joints)]
     return sorted(out, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
 
 
@@ -256,7 +271,7 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0):
     """All conditions making every expression of exprs vanish (given fixed values)."""
     live = []
     for e in exprs:
-        e2 = tidy(sp.sympify(e).subs(fixed)) if fixed else e
+        e2 = factored(sp.sympify(e).subs(fixed)) if fixed else e
         if e2 == 0:
             continue
         if not any(e2.has(q) for q in joints):
@@ -337,11 +352,11 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
     notes: list[str] = []
     minors: list[sp.Expr] = []
     if kind == "det":
-        measure = tidy(measure)
+        measure = factored(measure)
         exprs = [measure]
     else:
         # det(J Jᵀ) (or det(Jᵀ J)) = sum of the squares of the maximal minors
-        minors = [tidy(m) for m in _maximal_minors(j)]
+        minors = [factored(m) for m in _maximal_minors(j)]
         exprs = [m for m in minors if m != 0]
         measure = sp.Add(*[m**2 for m in exprs])
     conds = _search(exprs, joints, kinds, {}, params) if exprs else [Condition()]
@@ -367,6 +382,4 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
             continue
         kept.append(c)
     kept.sort(key=lambda c: _order_key(c, joints, params))
-    if kind == "det":
-        measure = sp.factor(measure) if sp.count_ops(sp.factor(measure)) <= sp.count_ops(measure) else measure
     return SingularityResult(kind=kind, measure=measure, conditions=kept, minors=minors, notes=notes)
