@@ -1,0 +1,110 @@
+"""The task space of a jacobian / statics / ellipsoids question, from the robot model.
+
+Shared by the three solvers: the coordinates S = F(Q) (default the point's x, y, z
+in frame 0), their LaTeX names, the analytic or geometric Jacobian, and the
+time-limited symbolic steps with their numeric fall-back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian, tidy
+
+__all__ = ["TaskSpace", "task_space", "limited", "tidy_limited", "coordinate_latex",
+           "joint_kinds", "position_axes"]
+
+
+@dataclass
+class TaskSpace:
+    coords: list                      # expressions in q (placeholders replaced)
+    labels: list                      # LaTeX names of the coordinates
+    texts: list                       # plain names (E.x, theta1 + theta2, ...)
+    J: sp.Matrix
+    geometric: bool = False
+    default: bool = True              # the point's x, y, z
+    notes: list = field(default_factory=list)
+
+
+def joint_kinds(model) -> dict:
+    return {j.symbol: j.kind for j in model.joints}
+
+
+def limited(ctx, seconds, fn, *args, **kwargs):
+    """Run fn under the context's time limit; (result, None) or (None, timeout message)."""
+    from robosolve.errors import SymbolicTimeout
+
+    try:
+        with ctx.time_limit(seconds):
+            return fn(*args, **kwargs), None
+    except SymbolicTimeout as exc:
+        return None, str(exc)
+
+
+def tidy_limited(ctx, m, seconds):
+    """Tidied matrix, or the raw one past the time limit."""
+    out, _err = limited(ctx, seconds, lambda: sp.Matrix(m).applyfunc(tidy))
+    return out if out is not None else sp.Matrix(m)
+
+
+def coordinate_latex(expr, model) -> str:
+    """LaTeX of a coordinate as the user wrote it (E.x -> E_{x})."""
+    names = getattr(model, "symbol_latex", {}) or {}
+    return sp.latex(expr, symbol_names=names)
+
+
+def position_axes(question, model, coords_raw) -> list | None:
+    """Indices (0, 1, 2 for x, y, z) when every coordinate is a coordinate of the
+    question's point (so the robot can be drawn in the same space), else None."""
+    out = []
+    for c in coords_raw:
+        if not isinstance(c, sp.Symbol) or "." not in c.name:
+            return None
+        pname, axis = c.name.split(".")
+        if pname != question.point:
+            return None
+        out.append("xyz".index(axis))
+    return out
+
+
+def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
+    """Coordinates and Jacobian of the question (analytic, or 6 x n geometric)."""
+    model = ctx.model
+    q = model.q
+    point = question.point
+    if geometric:
+        pframe, _ = model.point_local(point)
+        frame = question.frame or model.problem.last_frame
+        l_point = [_l0_or_zero(model, i, pframe) for i in range(len(q))]
+        l_frame = [_l0_or_zero(model, i, frame) for i in range(len(q))]
+        p0 = model.point0(point)
+        jp = geometric_jacobian(l_point, p0)[:3, :]
+        jw = geometric_jacobian(l_frame, p0)[3:, :]
+        J = tidy_limited(ctx, sp.Matrix.vstack(jp, jw), seconds)
+        coords = list(p0)
+        labels = [f"{point}_{{{a}}}" for a in "xyz"] + [f"\\omega_{{{a}}}" for a in "xyz"]
+        texts = [f"{point}.{a}" for a in "xyz"] + [f"omega_{a}" for a in "xyz"]
+        return TaskSpace(coords, labels, texts, J, geometric=True, default=True)
+    raw = question.options.get("coordinates")
+    default = raw is None
+    if default:
+        p0 = model.point0(point)
+        coords = list(p0)
+        labels = [f"{point}_{{{a}}}" for a in "xyz"]
+        texts = [f"{point}.{a}" for a in "xyz"]
+    else:
+        coords = [model.coordinate(c) for c in raw]
+        labels = [coordinate_latex(c, model) for c in raw]
+        texts = [sp.sstr(c) for c in raw]
+    J = tidy_limited(ctx, analytic_jacobian(coords, q), seconds)
+    return TaskSpace(coords, labels, texts, J, geometric=False, default=default)
+
+
+def _l0_or_zero(model, index, frame):
+    """⁰Lᵢ for the motion of `frame`, zero when joint i does not move it."""
+    chain = model.chain(frame) if frame != "0" else []
+    if not any(index in model.joints_in(f) for f in chain):
+        return sp.zeros(4, 4)
+    return model.L0(index, frame)
