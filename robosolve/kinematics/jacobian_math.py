@@ -26,8 +26,23 @@ __all__ = [
 
 
 def tidy(expr):
-    """Light, predictable simplification of one entry: trigsimp, then factor if shorter."""
+    """Light, predictable simplification of one entry: trigsimp, then factor if shorter.
+    Memoised (the singularity search meets the same factors many times)."""
     expr = sp.sympify(expr)
+    hit = _TIDY_CACHE.get(expr)
+    if hit is not None:
+        return hit
+    out = _tidy(expr)
+    if len(_TIDY_CACHE) > 4096:
+        _TIDY_CACHE.clear()
+    _TIDY_CACHE[expr] = out
+    return out
+
+
+_TIDY_CACHE: dict = {}
+
+
+def _tidy(expr):
     if expr.is_number or not expr.free_symbols:
         return sp.nsimplify(expr) if expr.is_Float else expr
     out = sp.trigsimp(expr)

@@ -30,20 +30,41 @@ _GENERIC = (0.31, 0.57, 0.83, -0.44, 1.07, -0.71, 0.19, 0.93, -0.27, 0.66)
 
 
 class _Geometry:
-    def __init__(self, joints, kinds, l_matrices, point, params):
+    """Numeric joint axes and point. The L matrices are either given (symbolic ⁰Lᵢ) or
+    obtained by central differences of the frames' poses, L = ∂M/∂qᵢ·M⁻¹ (no symbolic
+    simplification needed: naming is numeric)."""
+
+    def __init__(self, joints, kinds, l_matrices, point, params, m0_frames=None):
         self.joints = list(joints)
         self.kinds = kinds
+        mats_in = list(l_matrices) if l_matrices is not None else list(m0_frames)
         syms = set()
-        for m in l_matrices:
+        for m in mats_in:
             syms |= sp.Matrix(m).free_symbols
         syms |= sp.Matrix(list(point)).free_symbols
         syms -= set(self.joints)
         self.params = _sample_params(syms, params)
         sub = {k: v for k, v in self.params.items()}
-        mats = [sp.Matrix(m).subs(sub) for m in l_matrices]
+        mats = [sp.Matrix(m).subs(sub) for m in mats_in]
         pt = sp.Matrix(list(point)).subs(sub)
-        self._l = sp.lambdify([self.joints], mats, "numpy")
         self._p = sp.lambdify([self.joints], pt, "numpy")
+        if l_matrices is not None:
+            self._l = sp.lambdify([self.joints], mats, "numpy")
+        else:
+            m0 = sp.lambdify([self.joints], mats, "numpy")
+            self._l = lambda q: self._fd_l(m0, q)
+
+    def _fd_l(self, m0, q, eps=1e-6):
+        q = np.asarray(q, dtype=float)
+        out = []
+        base = m0(q)
+        for i in range(len(q)):
+            dq = np.zeros(len(q))
+            dq[i] = eps
+            mp = np.asarray(m0(q + dq)[i], dtype=float)
+            mm = np.asarray(m0(q - dq)[i], dtype=float)
+            out.append((mp - mm) / (2 * eps) @ np.linalg.inv(np.asarray(base[i], dtype=float)))
+        return out
 
     def axes(self, q):
         """(joint index, unit direction, a point on the axis) of each revolute joint."""
@@ -123,7 +144,7 @@ def _far_point(geo, q, k, prev):
 
 
 def _stretch(geo, qv, k, prev, scale):
-    grid = np.linspace(-math.pi, math.pi, 361)
+    grid = np.linspace(-math.pi, math.pi, 121)
     dists = []
     for x in grid:
         q2 = list(qv)
@@ -180,11 +201,14 @@ def _names(cond: Condition, geo: _Geometry) -> tuple[str, ...]:
 
 
 def name_conditions(conditions: Sequence[Condition], joints: Sequence[sp.Symbol], kinds: Mapping,
-                    l_matrices: Sequence[sp.Matrix], point, params: Mapping | None = None
-                    ) -> list[Condition]:
-    """The same conditions, each with its geometric names (possibly none)."""
+                    l_matrices: Sequence[sp.Matrix] | None, point, params: Mapping | None = None,
+                    m0_frames: Sequence[sp.Matrix] | None = None) -> list[Condition]:
+    """The same conditions, each with its geometric names (possibly none).
+
+    Give either ``l_matrices`` (⁰Lᵢ of each joint) or ``m0_frames`` (⁰Mᵢ of the frame each
+    joint moves, 4x4; its L is then obtained numerically)."""
     try:
-        geo = _Geometry(joints, kinds, l_matrices, point, dict(params or {}))
+        geo = _Geometry(joints, kinds, l_matrices, point, dict(params or {}), m0_frames)
     except Exception:  # noqa: BLE001 - naming is a courtesy; never fail the answer for it
         return list(conditions)
     out = []

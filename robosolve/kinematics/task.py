@@ -98,7 +98,8 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
         coords = [model.coordinate(c) for c in raw]
         labels = [coordinate_latex(c, model) for c in raw]
         texts = [sp.sstr(c) for c in raw]
-    J = tidy_limited(ctx, analytic_jacobian(coords, q), seconds)
+    # the model's coordinates are already trig-tidied: their derivatives need no more
+    J = analytic_jacobian(coords, q)
     return TaskSpace(coords, labels, texts, J, geometric=False, default=default)
 
 

@@ -105,10 +105,17 @@ def solve(question, ctx: SolveContext) -> Answer:
         ans.symbolic["eigenvalues"] = exact["eigenvalues"]
 
     # -- eigen-decomposition ------------------------------------------------------
-    eqs = [("J", jn), ("A", res.A)]
     if exact is not None:
-        eqs.append(("A", exact["A"]))
-    rows = [[str(i + 1), _num(nu) + (f" = ${sp.latex(exact['eigenvalues'][i])}$" if exact else ""),
+        eqs = [("J", j_exact), ("A", exact["A"])]
+    else:
+        eqs = [("J", jn), ("A", res.A)]
+
+    def exact_tex(i):
+        if exact is None or exact["eigenvalues"][i].is_Integer:
+            return ""
+        return f" = ${sp.latex(exact['eigenvalues'][i])}$"
+
+    rows = [[str(i + 1), _num(nu) + exact_tex(i),
              _vec_tex(vec)] for i, (nu, vec) in enumerate(zip(res.eigenvalues, res.eigenvectors))]
     ans.steps.append(Step(
         "Eigenvalues and unit eigenvectors of A",
@@ -228,7 +235,8 @@ def solve(question, ctx: SolveContext) -> Answer:
             ans.steps.append(Step(
                 "Joint velocities for the desired velocity",
                 f"{how}" + (f". {note}" if note else "") + ":",
-                equations=[("V", v)] + [(sp.latex(j.dot), x) for j, x in zip(model.joints, qd)],
+                equations=[("V", v)] + [(model.symbol_latex.get(j.dot, sp.latex(j.dot)), x)
+                                        for j, x in zip(model.joints, qd)],
             ))
 
     # -- figure -------------------------------------------------------------------------------
@@ -275,5 +283,5 @@ def _figure(question, ctx, ts, res, subs, budgets, units):
     if not panels:
         return None
     data = {"dims": m, "axis_labels": ts.texts, "robot": robot, "end": end, "panels": panels}
-    return FigureSpec(f"{question.id}-ellipsoids", "ellipsoids",
+    return FigureSpec("ellipsoids", "ellipsoids",
                       "Ellipsoids at the configuration of the question", data)

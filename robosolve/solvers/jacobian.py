@@ -150,9 +150,9 @@ def _singularity_steps(ans, question, ctx, ts):
         ))
         intro = ("J loses rank where all its maximal minors vanish together: a factor of one "
                  "minor is solved for a joint and substituted into the others:")
-    conds = name_conditions(res.conditions, model.q, kinds,
-                            [_l0(model, i, question) for i in range(len(model.q))],
-                            model.point0(question.point), params)
+    conds = name_conditions(res.conditions, model.q, kinds, None,
+                            model.point0(question.point), params,
+                            m0_frames=[_joint_pose(model, i) for i in range(len(model.q))])
     ans.symbolic["singularities"] = [c.mapping() for c in conds]
     for note in res.notes:
         ans.note(note)
@@ -176,11 +176,10 @@ def _count_text(conds):
     return f"{k} singular condition{'s' if k != 1 else ''}."
 
 
-def _l0(model, i, question):
-    from robosolve.kinematics.task import _l0_or_zero
-
-    pframe, _ = model.point_local(question.point)
-    return _l0_or_zero(model, i, pframe)
+def _joint_pose(model, i):
+    """⁰M of the frame joint i moves (its L = ∂M/∂qᵢ·M⁻¹ gives the joint's axis)."""
+    frame = model.joint_frame(i)
+    return model.M0(frame) if frame is not None else sp.eye(4)
 
 
 def _within_limits(cond, model, params) -> str:

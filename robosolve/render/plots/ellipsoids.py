@@ -144,11 +144,9 @@ def _draw_3d(ax, spec_data, panel, color):
 
 
 def draw(spec, path):
-    import matplotlib
+    from robosolve.render.plots import save, setup
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = setup()
     data = spec.data
     panels = data["panels"]
     dims = data["dims"]
@@ -163,5 +161,4 @@ def draw(spec, path):
             _draw_2d(ax, data, panel, color)
     fig.suptitle(spec.title)
     fig.tight_layout()
-    fig.savefig(path, dpi=100, metadata={"Software": None})
-    plt.close(fig)
+    save(fig, path)
