@@ -144,8 +144,13 @@ def _singularity_steps(ans, question, ctx, ts):
             "of its singular values, $w = \\sqrt{\\det(J J^T)}$ "
             + ("" if m < n else "(here $\\sqrt{\\det(J^T J)}$) ")
             + "and by the Cauchy–Binet formula $\\det(J J^T)$ is the sum of the squares of the "
-              f"maximal ({min(m, n)}×{min(m, n)}) minors of J:",
-            equations=[(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors)]
+              f"maximal ({min(m, n)}×{min(m, n)}) minors of J"
+            + (":" if len(minors) <= 6 else
+               f" ({len(minors)} minors, {sum(1 for x in minors if x != 0)} not identically zero; "
+               "the first six of these are shown):"),
+            equations=([(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors)]
+                       if len(minors) <= 6 else
+                       [(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors) if mi != 0][:6])
             + [("w", manip)],
         ))
         intro = ("J loses rank where all its maximal minors vanish together: a factor of one "

@@ -113,7 +113,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     ans.steps.append(Step(
         "Result",
         "Joint actions (torques for revolute joints, forces for prismatic ones) that balance "
-        "the load:",
+        "the load; a positive value acts in the direction in which the joint variable grows:",
         equations=[(a, total[i]) for i, a in enumerate(acts)],
     ))
 
