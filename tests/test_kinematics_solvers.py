@@ -155,3 +155,44 @@ def test_time_limit_falls_back_to_numbers(monkeypatch):
     assert a.error is None
     assert any("stopped" in n for n in a.notes)
     assert "det" in a.numeric and "singularities" not in a.symbolic
+
+
+_PUMA = """
+robosolve: 1
+name: r6
+parameters: {a2: 0.4318, a3: 0.0203, d3: 0.15, d4: 0.4318}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+  - {name: q3, type: revolute}
+  - {name: q4, type: revolute}
+  - {name: q5, type: revolute}
+  - {name: q6, type: revolute}
+dh:
+  convention: standard
+  rows:
+    - {theta: q1, d: 0, a: 0, alpha: pi/2}
+    - {theta: q2, d: 0, a: a2, alpha: 0}
+    - {theta: q3, d: d3, a: a3, alpha: -pi/2}
+    - {theta: q4, d: d4, a: 0, alpha: pi/2}
+    - {theta: q5, d: 0, a: 0, alpha: -pi/2}
+    - {theta: q6, d: 0, a: 0, alpha: 0}
+questions:
+  - {type: jacobian, geometric: true, at: {q1: 0.2, q2: 0.5, q3: 0.3, q4: 0.1, q5: 0.7, q6: -0.4}}
+"""
+
+
+@pytest.mark.slow
+def test_six_joints_numeric_fallback_vs_rtb():
+    """Beyond 4 joints the symbolic search may stop at its (shorter) budget; the numeric
+    geometric Jacobian is still given and matches Robotics Toolbox."""
+    rtb = pytest.importorskip("roboticstoolbox")
+    a = solve_problem(load_problem_text(_PUMA)).answers[0]
+    assert a.error is None
+    robot = rtb.DHRobot([rtb.RevoluteDH(alpha=math.pi / 2), rtb.RevoluteDH(a=0.4318),
+                         rtb.RevoluteDH(d=0.15, a=0.0203, alpha=-math.pi / 2),
+                         rtb.RevoluteDH(d=0.4318, alpha=math.pi / 2),
+                         rtb.RevoluteDH(alpha=-math.pi / 2), rtb.RevoluteDH()])
+    q = [0.2, 0.5, 0.3, 0.1, 0.7, -0.4]
+    np.testing.assert_allclose(a.numeric["J"], robot.jacob0(q), atol=1e-12)
+    assert a.numeric["det"] == pytest.approx(np.linalg.det(robot.jacob0(q)), abs=1e-12)

@@ -104,8 +104,26 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
 
 
 def _l0_or_zero(model, index, frame):
-    """⁰Lᵢ for the motion of `frame`, zero when joint i does not move it."""
+    """⁰Lᵢ for the motion of `frame`, zero when joint i does not move it.
+
+    Built from the model's (tidied, cached) poses without simplifying the product: the
+    Jacobian entries are tidied afterwards under the time limit. Small robots use the
+    model's own tidied L (cached and shared with other solvers)."""
     chain = model.chain(frame) if frame != "0" else []
-    if not any(index in model.joints_in(f) for f in chain):
+    frames = [f for f in chain if index in model.joints_in(f)]
+    if not frames:
         return sp.zeros(4, 4)
-    return model.L0(index, frame)
+    if len(model.q) <= 4:
+        return model.L0(index, frame)
+    from robosolve.core.matrices import change_frame
+
+    total = sp.zeros(4, 4)
+    for f in frames:
+        total += change_frame(model.M0(model.frames[f].parent), model.L_local(index, f))
+    return total
+
+
+def symbolic_budget(model, base: float) -> float:
+    """Seconds for one symbolic step: the full budget up to 4 joints (where symbolic answers
+    are required), a quarter of it beyond (the numeric answers are always given)."""
+    return base if len(model.q) <= 4 else base / 4

@@ -11,9 +11,9 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.kinematics.ellipsoids_math import ellipsoids, exact_values, joint_rates
-from robosolve.kinematics.task import limited, position_axes, task_space
+from robosolve.kinematics.task import symbolic_budget, limited, position_axes, task_space
 from robosolve.solvers.base import (
-    SYMBOLIC_SECONDS, Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note)
+    SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note)
 
 
 def _col(labels):
@@ -37,12 +37,19 @@ def _units(question, model, ts):
     return "N or N·m", "m/s or rad/s", "m or rad"
 
 
+SYMBOLIC_SECONDS = _BASE_SECONDS      # per symbolic step (monkeypatched in tests)
+
+
+def _budget(ctx) -> float:
+    return symbolic_budget(ctx.model, SYMBOLIC_SECONDS)
+
+
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
     opts = question.options
     q = model.q
-    ts = task_space(question, ctx, SYMBOLIC_SECONDS)
+    ts = task_space(question, ctx, _budget(ctx))
     J = ts.J
     m, n = J.shape
     subs = ctx.substitutions(question.at)
@@ -98,7 +105,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     j_exact = J.xreplace(subs)
     exact = None
     if not j_exact.free_symbols and not j_exact.has(sp.Float):
-        exact, _err = limited(ctx, min(SYMBOLIC_SECONDS, 10), exact_values, j_exact,
+        exact, _err = limited(ctx, min(_budget(ctx), 10), exact_values, j_exact,
                               kf_s.xreplace(subs), kv_s.xreplace(subs), ka_s.xreplace(subs),
                               [x.xreplace(subs) for x in kq_s])
     if exact is not None:
@@ -278,7 +285,7 @@ def _figure(question, ctx, ts, res, subs, budgets, units):
                                      budgets[2], units[2])):
         if b is None:
             continue
-        panels.append({"key": key, "title": title if m == 2 else title + "oid",
+        panels.append({"key": key, "title": title if m == 2 else title.replace("ellipse", "ellipsoid"),
                        "unit": unit, "lengths": ax.lengths, "directions": ax.directions})
     if not panels:
         return None

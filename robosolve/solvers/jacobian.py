@@ -17,8 +17,8 @@ import sympy as sp
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
-from robosolve.kinematics.task import joint_kinds, limited, task_space, tidy_limited
-from robosolve.solvers.base import SYMBOLIC_SECONDS, Answer, MissingValues, SolveContext, Step
+from robosolve.kinematics.task import symbolic_budget, joint_kinds, limited, task_space, tidy_limited
+from robosolve.solvers.base import SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, MissingValues, SolveContext, Step
 
 
 def _col(labels):
@@ -29,6 +29,13 @@ def _qtex(model):
     return [sp.latex(s) for s in model.q]
 
 
+SYMBOLIC_SECONDS = _BASE_SECONDS      # per symbolic step (monkeypatched in tests)
+
+
+def _budget(ctx) -> float:
+    return symbolic_budget(ctx.model, SYMBOLIC_SECONDS)
+
+
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
@@ -37,7 +44,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     point = question.point
     q = model.q
     qtex = _qtex(model)
-    ts = task_space(question, ctx, SYMBOLIC_SECONDS, geometric=geometric)
+    ts = task_space(question, ctx, _budget(ctx), geometric=geometric)
     J = ts.J
     m, n = J.shape
 
@@ -113,7 +120,7 @@ def _singularity_steps(ans, question, ctx, ts):
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
-    res, err = limited(ctx, SYMBOLIC_SECONDS, find_singularities, J, model.q, kinds, params)
+    res, err = limited(ctx, _budget(ctx), find_singularities, J, model.q, kinds, params)
     if res is None:
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
                  "the numeric answers are given.")
@@ -133,7 +140,7 @@ def _singularity_steps(ans, question, ctx, ts):
     else:
         from robosolve.kinematics.jacobian_math import tidy
 
-        gram, _err = limited(ctx, SYMBOLIC_SECONDS, tidy, res.measure)
+        gram, _err = limited(ctx, _budget(ctx), tidy, res.measure)
         manip = sp.sqrt(gram if gram is not None else res.measure)
         ans.symbolic["manipulability"] = manip
         shape = "wide (redundant)" if m < n else "tall"
@@ -211,7 +218,7 @@ def _com_steps(ans, ctx):
     eqs = []
     for b in model.bodies:
         c0 = model.com0(b)
-        jg = tidy_limited(ctx, c0.jacobian(model.q), SYMBOLIC_SECONDS)
+        jg = tidy_limited(ctx, c0.jacobian(model.q), _budget(ctx))
         out[b.name] = jg
         eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
         eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))

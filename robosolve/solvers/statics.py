@@ -14,12 +14,19 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
-from robosolve.kinematics.task import limited, task_space, tidy_limited
-from robosolve.solvers.base import SYMBOLIC_SECONDS, Answer, SolveContext, Step
+from robosolve.kinematics.task import symbolic_budget, limited, task_space, tidy_limited
+from robosolve.solvers.base import SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, SolveContext, Step
 
 
 def _actuator_tex(model):
     return [sp.latex(j.actuator) for j in model.joints]
+
+
+SYMBOLIC_SECONDS = _BASE_SECONDS      # per symbolic step (monkeypatched in tests)
+
+
+def _budget(ctx) -> float:
+    return symbolic_budget(ctx.model, SYMBOLIC_SECONDS)
 
 
 def solve(question, ctx: SolveContext) -> Answer:
@@ -44,7 +51,7 @@ def solve(question, ctx: SolveContext) -> Answer:
 
     if force is not None or torque is not None:
         geometric = torque is not None
-        ts = task_space(question, ctx, SYMBOLIC_SECONDS, geometric=geometric)
+        ts = task_space(question, ctx, _budget(ctx), geometric=geometric)
         if geometric:
             f = sp.Matrix(force if force is not None else [0, 0, 0])
             tau = sp.Matrix(torque)
@@ -67,7 +74,7 @@ def solve(question, ctx: SolveContext) -> Answer:
                 equations=[("S", sp.Matrix(ts.coords)), ("J = \\frac{\\partial S}{\\partial Q}", ts.J),
                            ("F_s", f)],
             ))
-        part = tidy_limited(ctx, part, SYMBOLIC_SECONDS)
+        part = tidy_limited(ctx, part, _budget(ctx))
         ans.steps.append(Step(
             "Joint actions for the load",
             "",
@@ -80,12 +87,12 @@ def solve(question, ctx: SolveContext) -> Answer:
         jgs, masses, eqs = [], [], []
         for b in model.bodies:
             c0 = model.com0(b)
-            jg = tidy_limited(ctx, c0.jacobian(q), SYMBOLIC_SECONDS)
+            jg = tidy_limited(ctx, c0.jacobian(q), _budget(ctx))
             jgs.append(jg)
             masses.append(b.mass)
             eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
             eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))
-        part = tidy_limited(ctx, balance_weight(jgs, masses, g), SYMBOLIC_SECONDS)
+        part = tidy_limited(ctx, balance_weight(jgs, masses, g), _budget(ctx))
         ans.steps.append(Step(
             "Weight of the bodies",
             "Each body's weight $m_i g$ acts at its centre of mass $G_i$ (from the pseudo-inertia: "
@@ -97,14 +104,14 @@ def solve(question, ctx: SolveContext) -> Answer:
         ))
         # cross-check with the potential energy
         u = sum((-(b.mass * g.dot(model.com0(b))) for b in model.bodies), sp.Integer(0))
-        check, _err = limited(ctx, SYMBOLIC_SECONDS,
+        check, _err = limited(ctx, _budget(ctx),
                               lambda: sp.simplify(sp.Matrix([u.diff(s) for s in q]) - part))
         if check is not None and check != sp.zeros(n, 1):
             ans.note("internal check failed: −ΣJ_Gᵀ m g differs from ∂U/∂q")
         total += part
 
     if (force is not None or torque is not None) and weight:
-        total = tidy_limited(ctx, total, SYMBOLIC_SECONDS)
+        total = tidy_limited(ctx, total, _budget(ctx))
         ans.steps.append(Step("Total", "The loads add up:", equations=[("F_q", total)]))
 
     names = [j.name for j in model.joints]

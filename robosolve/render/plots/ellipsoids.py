@@ -124,6 +124,9 @@ def _draw_3d(ax, spec_data, panel, color):
                 color=color, lw=1.5)
         ax.text(*b, f"{'abc'[k]} = " + (_fmt(ln) if ln is not None else "∞") + f" {panel['unit']}",
                 color=color, fontsize=8)
+    if robot and finite and max(finite) > 0:
+        ax.text2D(0.02, 0.02, f"ellipsoid scale: 1 {panel['unit']} = {_fmt(s)} m",
+                  transform=ax.transAxes, fontsize=8, color="0.3")
     labels = spec_data["axis_labels"]
     unit_axis = "m" if robot else panel["unit"]
     ax.set_xlabel(f"{labels[0]} [{unit_axis}]")
