@@ -57,6 +57,7 @@ def test_geometric_jacobian_vs_rtb_scara():
         np.testing.assert_allclose(np.array(f(q), dtype=float), robot.jacob0(q), atol=1e-12)
 
 
+@pytest.mark.slow
 def test_geometric_jacobian_vs_rtb_anthropomorphic_dh():
     rtb = pytest.importorskip("roboticstoolbox")
     r = anthropomorphic()
@@ -69,6 +70,7 @@ def test_geometric_jacobian_vs_rtb_anthropomorphic_dh():
         np.testing.assert_allclose(np.array(f(q), dtype=float), robot.jacob0(q), atol=1e-12)
 
 
+@pytest.mark.slow
 def test_analytic_equals_geometric_linear_rows():
     r = anthropomorphic()
     JA = analytic_jacobian(r.E, r.q)

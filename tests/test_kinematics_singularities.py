@@ -86,7 +86,7 @@ def test_anthropomorphic_equation_and_names():
     eq = sp.sympify(maps[2].split("=")[0])
     assert sp.simplify(eq - (a2 * sp.cos(t2) + a3 * sp.cos(t2 + t3))) == 0
     _check_rank_loss(r, J, res)
-    named = name_conditions(res.conditions, r.q, r.kinds, r.L0, r.E, r.params)
+    named = name_conditions(res.conditions, r.q, r.kinds, None, r.E, r.params, m0_frames=r.M0)
     assert named[0].names == ("arm stretched at joint 3",)
     assert named[2].names == ("the point lies on the axis of joint 1",)
 
