@@ -186,17 +186,20 @@ def _names(cond: Condition, geo: _Geometry) -> tuple[str, ...]:
                     i in generic and j in generic
                     and _lines_coincide(*generic[i], *generic[j], tol)):
                 names.append(f"the axes of joints {i + 1} and {j + 1} are aligned")
-    # stretched / folded (not when the point is on an axis: that name says more)
-    if not cond.equations and not on:
+    # stretched / folded: an elbow whose axis is parallel to the previous revolute axis
+    if not cond.equations:
         index = {s: k for k, s in enumerate(geo.joints)}
+        by_joint = {i: u for i, u, _a in axes}
+        stretch = []
         for s, _v in cond.values:
             k = index[s]
-            if geo.kinds[s] != "revolute":
+            if geo.kinds[s] != "revolute" or k not in by_joint:
                 continue
             prev = [i for i, _u, _a in axes if i < k]
-            if not prev:
+            if not prev or abs(abs(float(np.dot(by_joint[k], by_joint[prev[-1]]))) - 1) > 1e-9:
                 continue
-            names.extend(_stretch(geo, qv, k, prev[-1], scale))
+            stretch.extend(_stretch(geo, qv, k, prev[-1], scale))
+        names[:0] = stretch
     return tuple(names)
 
 
