@@ -149,8 +149,11 @@ def ellipsoids(j, kf: float = 1.0, kv: float = 1.0, ka: float = 1.0, kq=None) ->
         cond = None
         zero_dirs = [vecs[i] for i, x in enumerate(nu) if x <= 0]
         dirs = "; ".join("(" + ", ".join(f"{_clean(c):.4g}" for c in d) + ")" for d in zero_dirs)
+        why = (f"J has more coordinates ({m}) than joints ({n}), so A = J·Jᵀ (rank ≤ {n}) "
+               f"always has {m - rank} zero eigenvalue(s)" if m > n and rank == n else
+               f"Singular configuration: A = J·Jᵀ has {m - rank} zero eigenvalue(s)")
         notes.append(
-            f"Singular configuration: A = J·Jᵀ has {m - rank} zero eigenvalue(s). The force "
+            f"{why}. The force "
             f"ellipsoid is unbounded along {dirs} (semi-axis reported as null: the structure "
             "balances any force in that direction with zero joint effort), the velocity and "
             "compliance ellipsoids are flat along it (semi-axis 0), and the condition number "
