@@ -59,7 +59,16 @@ def _clean(x: float) -> float:
     return 0.0 if abs(x) < 1e-15 else x
 
 
+def _chop(a: np.ndarray, rel: float = 1e-12) -> np.ndarray:
+    """Zero the entries below rel·max|a|: rounding noise that would differ between machines."""
+    a = np.array(a, dtype=float)
+    m = float(np.max(np.abs(a))) if a.size else 0.0
+    a[np.abs(a) <= rel * m] = 0.0
+    return a
+
+
 def _orient(v: np.ndarray) -> np.ndarray:
+    v = _chop(v)
     m = float(np.max(np.abs(v))) if v.size else 0.0
     for x in v:
         if abs(x) > 1e-9 * m:
@@ -129,7 +138,7 @@ def ellipsoids(j, kf: float = 1.0, kv: float = 1.0, ka: float = 1.0, kq=None) ->
     m, n = j.shape
     kq_m = np.eye(n) if kq is None else (np.diag(np.asarray(kq, dtype=float))
                                          if np.ndim(kq) == 1 else np.asarray(kq, dtype=float))
-    a = j @ j.T
+    a = _chop(j @ j.T, 1e-14)
     notes: list[str] = []
     nu, vecs = eig_sorted(a)                        # ascending ν
     numax = max(nu) if nu else 0.0
@@ -142,7 +151,7 @@ def ellipsoids(j, kf: float = 1.0, kv: float = 1.0, ka: float = 1.0, kq=None) ->
     v_len = [kv * np.sqrt(max(x, 0.0)) for x in nu[::-1]]
     velocity = _axes(v_len, vecs[::-1])
     # compliance: Ks = J Kq Jᵀ, Ka·κ, descending κ
-    ks = j @ kq_m @ j.T
+    ks = _chop(j @ kq_m @ j.T, 1e-14)
     kappa, kvecs = eig_sorted(ks, descending=True)
     compliance = _axes([ka * k for k in kappa], kvecs)
     if singular:
