@@ -244,7 +244,10 @@ def _numeric(ans, question, ctx, J, com):
         if m == n:
             import numpy as np
 
-            det = float(np.linalg.det(np.array(jn, dtype=float)))
+            try:
+                det = float(ctx.numeric(ans.symbolic["det"], subs))   # exact, then rounded
+            except (KeyError, MissingValues, ValueError, TypeError):
+                det = float(np.linalg.det(np.array(jn, dtype=float)))
             det = 0.0 if abs(det) < 1e-12 else det
             ans.numeric["det"] = det
             eqs.append(("\\det J", det))
