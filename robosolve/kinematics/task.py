@@ -14,7 +14,7 @@ import sympy as sp
 from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian, tidy
 
 __all__ = ["TaskSpace", "task_space", "limited", "tidy_limited", "coordinate_latex",
-           "joint_kinds", "position_axes"]
+           "joint_kinds", "position_axes", "joint_l0", "symbolic_budget"]
 
 
 @dataclass
@@ -77,8 +77,8 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
     if geometric:
         pframe, _ = model.point_local(point)
         frame = question.frame or model.problem.last_frame
-        l_point = [_l0_or_zero(model, i, pframe) for i in range(len(q))]
-        l_frame = [_l0_or_zero(model, i, frame) for i in range(len(q))]
+        l_point = [joint_l0(model, i, pframe) for i in range(len(q))]
+        l_frame = [joint_l0(model, i, frame) for i in range(len(q))]
         p0 = model.point0(point)
         jp = geometric_jacobian(l_point, p0)[:3, :]
         jw = geometric_jacobian(l_frame, p0)[3:, :]
@@ -103,7 +103,7 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
     return TaskSpace(coords, labels, texts, J, geometric=False, default=default)
 
 
-def _l0_or_zero(model, index, frame):
+def joint_l0(model, index, frame):
     """⁰Lᵢ for the motion of `frame`, zero when joint i does not move it.
 
     Built from the model's (tidied, cached) poses without simplifying the product: the

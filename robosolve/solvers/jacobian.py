@@ -17,7 +17,8 @@ import sympy as sp
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
-from robosolve.kinematics.task import symbolic_budget, joint_kinds, limited, task_space, tidy_limited
+from robosolve.kinematics.task import (
+    joint_kinds, joint_l0, limited, symbolic_budget, task_space, tidy_limited)
 from robosolve.solvers.base import SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, MissingValues, SolveContext, Step
 
 
@@ -93,9 +94,7 @@ def _geometric_steps(ans, question, ctx, ts):
     model = ctx.model
     point = question.point
     frame = question.frame or model.problem.last_frame
-    from robosolve.kinematics.task import _l0_or_zero
-
-    ls = [_l0_or_zero(model, i, frame) for i in range(len(model.q))]
+    ls = [joint_l0(model, i, frame) for i in range(len(model.q))]
     ans.steps.append(Step(
         "L matrices of the joints in frame 0",
         "$^{0}L_i = \\frac{\\partial\\, {}^{0}M_i}{\\partial q_i}\\,{}^{0}M_i^{-1}$: its 3×3 block is "
@@ -208,8 +207,31 @@ def _within_limits(cond, model, params) -> str:
         except (TypeError, ValueError):
             return "depends on the other joints"
         if not (lo - 1e-12 <= val <= hi + 1e-12):
-            verdicts.append(f"no ({joint.name} outside [{lo:.4g}, {hi:.4g}])")
+            verdicts.append(f"no (${sp.latex(s)} \\notin [{lo:.4g}, {hi:.4g}]$)")
     return "; ".join(verdicts) if verdicts else "yes"
+
+
+def _check_geometric(ans, ctx, question, jn, subs):
+    """Built-in cross-check: the L-matrix columns against ∂P/∂q (central differences)."""
+    import numpy as np
+
+    model = ctx.model
+    try:
+        qv = [float(sp.N(subs[s])) for s in model.q]
+        p = sp.lambdify([model.q], model.point0(question.point).xreplace(
+            {k: v for k, v in subs.items() if k not in model.q}), "numpy")
+    except (KeyError, TypeError, ValueError):
+        return
+    eps = 1e-6
+    fd = []
+    for i in range(len(qv)):
+        a, b = list(qv), list(qv)
+        a[i] += eps
+        b[i] -= eps
+        fd.append((np.array(p(a), dtype=float) - np.array(p(b), dtype=float)).reshape(3) / (2 * eps))
+    err = float(np.max(np.abs(np.array(jn, dtype=float)[:3] - np.column_stack(fd))))
+    if err > 1e-6 * max(1.0, float(np.max(np.abs(jn)))):
+        ans.note(f"internal check failed: the geometric Jacobian differs from dP/dq by {err:.3g}")
 
 
 def _com_steps(ans, ctx):
@@ -240,6 +262,8 @@ def _numeric(ans, question, ctx, J, com):
     eqs = []
     if jn is not None:
         eqs.append(("J", jn))
+        if J.shape[0] == 6 and question.options.get("geometric"):
+            _check_geometric(ans, ctx, question, jn, subs)
         m, n = J.shape
         if m == n:
             import numpy as np
