@@ -196,3 +196,22 @@ def test_six_joints_numeric_fallback_vs_rtb():
     q = [0.2, 0.5, 0.3, 0.1, 0.7, -0.4]
     np.testing.assert_allclose(a.numeric["J"], robot.jacob0(q), atol=1e-12)
     assert a.numeric["det"] == pytest.approx(np.linalg.det(robot.jacob0(q)), abs=1e-12)
+
+
+def test_geometric_self_check_can_fail():
+    from robosolve.model.chain import RobotModel
+    from robosolve.solvers.base import Answer, SolveContext
+    from robosolve.solvers.jacobian import _check_geometric
+
+    prob = load_problem("problems/polar-rrp.yaml")
+    ctx = SolveContext(prob, RobotModel(prob))
+    q = prob.questions[1]
+    good = solve_problem(prob).answers[1].numeric["J"]
+    subs = ctx.substitutions(q.at)
+    ans = Answer(q.type, q.id)
+    _check_geometric(ans, ctx, q, good, subs)
+    assert ans.notes == []
+    bad = [row[:] for row in good]
+    bad[0][1] += 0.01
+    _check_geometric(ans, ctx, q, bad, subs)
+    assert any("internal check failed" in n for n in ans.notes)
