@@ -30,9 +30,10 @@ class TrigAlgebra:
         self.one = ring.one
         self._basis = [s ** 2 + c ** 2 - 1 for s, c in trig.values()]
         self._back = {}
+        syms = dict(zip(ring.gens, ring.symbols))
         for i, (s, c) in trig.items():
-            self._back[s.as_expr()] = sp.sin(q[i])
-            self._back[c.as_expr()] = sp.cos(q[i])
+            self._back[syms[s]] = sp.sin(q[i])
+            self._back[syms[c]] = sp.cos(q[i])
         self.elements = elements
 
     @classmethod
