@@ -363,7 +363,7 @@ class DynamicsEngine:
         return self._cached("rext", build)
 
     # ------------------------------------------------------------------ sympy views
-    def pretty(self, p):
+    def pretty(self, p, light: bool = False):
         """Readable form of a final algebra element (M entries, c coefficients, g, U).
 
         Two candidate forms, the smaller (`count_ops`) wins:
@@ -382,9 +382,15 @@ class DynamicsEngine:
                 if self.simplify else expr
         if not self.simplify:
             return alg.to_expr(p)
-        key = ("pretty", p)
+        key = ("pretty", light, p)
         if key in self._cache:
             return self._cache[key]
+        if light:  # report matrices: the product form, coefficients with common factors out
+            best = self._group(product_terms(alg, p), factor=False) if alg.trig else \
+                self._group([t.as_independent(*self.q) for t in
+                             sp.Add.make_args(sp.expand(alg.to_expr(p)))], factor=False)
+            self._cache[key] = best
+            return best
         expr = sp.expand(alg.to_expr(p))
         cands = [self._group([term.as_independent(*self.q)
                               for term in sp.Add.make_args(expr)])]
@@ -395,7 +401,7 @@ class DynamicsEngine:
         self._cache[key] = best
         return best
 
-    def _group(self, pairs):
+    def _group(self, pairs, factor: bool = True):
         """Σ coef·trig with equal trig factors merged, coefficients factored (small ones)."""
         groups: dict = {}
         for coef, trig in pairs:
@@ -406,13 +412,14 @@ class DynamicsEngine:
             coef = sp.expand(groups[trig])
             if coef == 0:
                 continue
-            coef = sp.factor(coef) if small and sp.count_ops(coef) <= 60 else \
+            coef = sp.factor(coef) if factor and small and sp.count_ops(coef) <= 60 else \
                 sp.factor_terms(coef)
             out.append(coef * trig)
         return sp.Add(*out)
 
     def _view(self, key, m):
-        return self._cached(("view",) + key, lambda: sp.Matrix([[self.pretty(x) for x in row] for row in m]))
+        return self._cached(("view",) + key, lambda: sp.Matrix(
+            [[self.pretty(x, light=True) for x in row] for row in m]))
 
     def rel(self, a: str, b: str) -> sp.Matrix:
         """ᵃM_b for `a` an ancestor of `b` (or a == b)."""
@@ -440,7 +447,8 @@ class DynamicsEngine:
         return self._view(("Mb", b.name), self._rbody_M(b))
 
     def mass_matrix(self) -> sp.Matrix:
-        return self._view(("M",), self._rM())
+        return self._cached(("view", "M"), lambda: sp.Matrix(
+            [[self.pretty(x) for x in row] for row in self._rM()]))
 
     def kinetic_energy(self) -> dict:
         """T_b = ½ Σᵢₖ q̇ᵢ q̇ₖ tr(ᵇLᵢ J ᵇLₖᵀ) = ½ tr(W J Wᵀ)."""
