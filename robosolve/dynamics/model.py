@@ -82,9 +82,11 @@ def dynamics_for(model, seconds: float | None = DYNAMICS_SECONDS) -> Dynamics:
             raise store["dynamics"]
         return store["dynamics"]
     try:
-        with time_limit(seconds or 0):
+        with time_limit(seconds or 0) as token:
             dyn = derive_dynamics(**engine_inputs(model))
     except SymbolicTimeout as exc:
+        if getattr(exc, "token", token) is not token:
+            raise  # an enclosing limit expired: not ours to record
         store["dynamics"] = exc
         raise
     store["dynamics"] = dyn
