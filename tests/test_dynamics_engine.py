@@ -274,3 +274,40 @@ def test_puma560_symbolic_parameters_against_numeric():
     tau_ref = p.rne(q, qd, qdd)
     assert np.allclose(nd.actuators(q, qd, qdd), tau_ref, rtol=1e-9,
                        atol=1e-9 * np.abs(tau_ref).max())
+
+
+def test_tree_two_branches_against_kane():
+    """A base joint carrying two independent arms (a tree): each branch's joint moves only
+    its own bodies."""
+    from robosolve.dynamics import reference as ref
+    from robosolve.dynamics.examples import RobotDef, _joint, _rod, _point
+
+    L1, L2, L3, m1, m2, m3, g, F = sp.symbols("L1 L2 L3 m1 m2 m3 g F", positive=True)
+    j1, j2, j3 = (_joint(f"q{i}", index=i) for i in (1, 2, 3))
+    from robosolve.dynamics.api import LoadSpec
+    r = RobotDef(
+        "tree",
+        [("1", "0", [("Rz", j1.q), ("Tx", L1)]),
+         ("2", "1", [("Ry", j2.q), ("Tx", L2)]),
+         ("3", "1", [("Rz", sp.pi / 2), ("Rx", j3.q), ("Ty", L3)])],
+        [j1, j2, j3],
+        [_rod("base", "1", m1, [-L1, 0, 0], [0, 0, 0]), _rod("left", "2", m2, [-L2, 0, 0], [0, 0, 0]),
+         _point("right", "3", m3, [0, 0, 0])],
+        [0, 0, -g],
+        [LoadSpec("F", "3", force=[0, 0, F], in_frame="0")],
+        {L1: 1, L2: sp.Rational(1, 2), L3: sp.Rational(3, 4), m1: 3, m2: 2, m3: 1,
+         g: sp.Rational(981, 100), F: 5},
+    )
+    d = _derive(r)
+    assert d.mass_matrix[1, 2] == 0  # the branches do not couple
+    model = ref.build(r)
+    mk, fk = ref.kane(model)
+    mk, fk = ref.to_plain(mk, model, r), ref.to_plain(fk, model, r)
+    rhs = d.generalized_forces - d.velocity_terms - d.gravity_terms
+    assert d.engine.course_forces_agree()
+    for seed in range(3):
+        pt = _random_point(d, seed, r.values)
+        assert np.allclose(np.array((mk - d.mass_matrix).xreplace(pt).evalf(), dtype=float), 0,
+                           atol=1e-12)
+        assert np.allclose(np.array((fk - rhs).xreplace(pt).evalf(), dtype=float), 0,
+                           atol=1e-12)

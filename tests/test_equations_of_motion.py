@@ -114,3 +114,21 @@ def test_numeric_only_fallback(monkeypatch, write_problem):
     m1, m2, L1, d2, g, th, d = 4, 2, 1, 0.5, 9.81, math.pi / 6, 0.8
     assert ans.numeric["actuators"]["C1"] == pytest.approx(
         g * math.cos(th) * (m1 * L1 / 2 + m2 * (d - d2 / 2)), rel=1e-12)
+
+
+@pytest.mark.slow
+def test_puma560_problem_against_robotics_toolbox():
+    rtb = pytest.importorskip("roboticstoolbox")
+    ans = _answer("puma560-dynamics")
+    p = rtb.models.DH.Puma560()
+    for link in p.links:
+        link.Jm = 0.0
+    p = p.nofriction(coulomb=True, viscous=True)
+    q = [0.1, 0.7, -0.4, 0.3, 0.9, -0.2]
+    qd = [0.5, -0.3, 0.8, 0.1, -0.6, 0.4]
+    qdd = [1, -0.5, 0.2, 0.7, -1, 0.3]
+    tau = np.array([ans.numeric["actuators"][f"C{i}"] for i in range(1, 7)])
+    ref = p.rne(q, qd, qdd)
+    assert tau == pytest.approx(ref, rel=1e-9, abs=1e-9 * np.abs(ref).max())
+    assert np.array(ans.numeric["mass_matrix"]) == pytest.approx(p.inertia(q), rel=1e-9,
+                                                                 abs=1e-12)

@@ -363,7 +363,7 @@ class DynamicsEngine:
         return self._cached("rext", build)
 
     # ------------------------------------------------------------------ sympy views
-    def pretty(self, p, light: bool = False):
+    def pretty(self, p, light: bool = False, force: bool = False):
         """Readable form of a final algebra element (M entries, c coefficients, g, U).
 
         Two candidate forms, the smaller (`count_ops`) wins:
@@ -380,8 +380,8 @@ class DynamicsEngine:
             return self._group([(c, t) for c, t in (
                 term.as_independent(*self.q) for term in sp.Add.make_args(sp.expand(expr)))]) \
                 if self.simplify else expr
-        if not self.simplify:
-            return alg.to_expr(p)
+        if not self.simplify or (self.n > COMPACT_MAX_JOINTS and not force):
+            return alg.to_expr(p)  # big robots: the canonical polynomial as it is
         key = ("pretty", light, p)
         if key in self._cache:
             return self._cache[key]
@@ -395,7 +395,8 @@ class DynamicsEngine:
         cands = [self._group([term.as_independent(*self.q)
                               for term in sp.Add.make_args(expr)])]
         if alg.trig and any(alg.depends(p, i) for i in alg.trig):
-            cands.append(self._group(fourier_terms(alg, p)))
+            if self.n <= COMPACT_MAX_JOINTS:
+                cands.append(self._group(fourier_terms(alg, p)))
             cands.append(self._group(product_terms(alg, p)))
         best = min(cands, key=sp.count_ops)
         self._cache[key] = best
@@ -448,7 +449,7 @@ class DynamicsEngine:
 
     def mass_matrix(self) -> sp.Matrix:
         return self._cached(("view", "M"), lambda: sp.Matrix(
-            [[self.pretty(x) for x in row] for row in self._rM()]))
+            [[self.pretty(x, force=True) for x in row] for row in self._rM()]))
 
     def kinetic_energy(self) -> dict:
         """T_b = ½ Σᵢₖ q̇ᵢ q̇ₖ tr(ᵇLᵢ J ᵇLₖᵀ) = ½ tr(W J Wᵀ)."""
@@ -473,7 +474,7 @@ class DynamicsEngine:
 
     def gravity_terms(self) -> sp.Matrix:
         return self._cached("g", lambda: sp.Matrix(
-            [self.pretty(x) for x in self._rg()]))
+            [self.pretty(x, force=True) for x in self._rg()]))
 
     def velocity_terms(self) -> sp.Matrix:
         def build():
