@@ -9,8 +9,6 @@ from __future__ import annotations
 
 import weakref
 
-import sympy as sp
-
 from robosolve.dynamics.api import (BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec,
                                     NumericDynamics)
 
