@@ -351,7 +351,7 @@ class DynamicsEngine:
         if not isinstance(alg, TrigAlgebra):
             expr = sp.sympify(p)
             return self._group([(c, t) for c, t in (
-                term.as_independent(*self.q) for term in sp.Add.make_args(sp.expand(expr)))]) \
+                term.as_independent(sp.sin, sp.cos) for term in sp.Add.make_args(sp.expand(expr)))]) \
                 if self.simplify else expr
         if not self.simplify or (self.n > COMPACT_MAX_JOINTS and not force):
             return alg.to_expr(p)  # big robots: the canonical polynomial as it is
@@ -360,12 +360,12 @@ class DynamicsEngine:
             return self._cache[key]
         if light:  # report matrices: the product form, coefficients with common factors out
             best = self._group(product_terms(alg, p), factor=False) if alg.trig else \
-                self._group([t.as_independent(*self.q) for t in
+                self._group([t.as_independent(sp.sin, sp.cos) for t in
                              sp.Add.make_args(sp.expand(alg.to_expr(p)))], factor=False)
             self._cache[key] = best
             return best
         expr = sp.expand(alg.to_expr(p))
-        cands = [self._group([term.as_independent(*self.q)
+        cands = [self._group([term.as_independent(sp.sin, sp.cos)
                               for term in sp.Add.make_args(expr)])]
         if alg.trig and any(alg.depends(p, i) for i in alg.trig):
             if self.n <= COMPACT_MAX_JOINTS:
