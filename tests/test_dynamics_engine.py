@@ -314,3 +314,34 @@ def test_tree_two_branches_against_kane():
                            atol=1e-12)
         assert np.allclose(np.array((fk - rhs).xreplace(pt).evalf(), dtype=float), 0,
                            atol=1e-12)
+
+
+def test_offsets_and_symbolic_angles_against_kane():
+    """Joint angles with offsets and a symbolic fixed twist stay in the cos/sin ring."""
+    from robosolve.dynamics import reference as ref
+    from robosolve.dynamics.examples import RobotDef, _joint, _rod, _point
+
+    L1, L2, m1, m2, g, alpha = sp.symbols("L1 L2 m1 m2 g alpha", positive=True)
+    j1, j2 = _joint("q1", index=1), _joint("q2", index=2)
+    r = RobotDef(
+        "offsets",
+        [("1", "0", [("Rz", j1.q + sp.pi / 3), ("Tx", L1), ("Rx", alpha)]),
+         ("2", "1", [("Rz", j2.q - alpha), ("Tx", L2)])],
+        [j1, j2],
+        [_rod("a", "1", m1, [-L1, 0, 0], [0, 0, 0]), _point("b", "2", m2, [0, 0, 0])],
+        [0, 0, -g], [],
+        {L1: 1, L2: sp.Rational(1, 2), m1: 2, m2: 1, g: sp.Rational(981, 100), alpha: 0.4},
+    )
+    eng = DynamicsEngine(**r.engine_inputs())
+    assert type(eng.alg).__name__ == "TrigAlgebra"
+    d = eng.dynamics()
+    model = ref.build(r)
+    mk, fk = ref.kane(model)
+    mk, fk = ref.to_plain(mk, model, r), ref.to_plain(fk, model, r)
+    rhs = d.generalized_forces - d.velocity_terms - d.gravity_terms
+    for seed in range(3):
+        pt = _random_point(d, seed, r.values)
+        assert np.allclose(np.array((mk - d.mass_matrix).xreplace(pt).evalf(), dtype=float), 0,
+                           atol=1e-12)
+        assert np.allclose(np.array((fk - rhs).xreplace(pt).evalf(), dtype=float), 0,
+                           atol=1e-12)
