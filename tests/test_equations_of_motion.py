@@ -132,16 +132,3 @@ def test_puma560_problem_against_robotics_toolbox():
     assert tau == pytest.approx(ref, rel=1e-9, abs=1e-9 * np.abs(ref).max())
     assert np.array(ans.numeric["mass_matrix"]) == pytest.approx(p.inertia(q), rel=1e-9,
                                                                  abs=1e-12)
-
-
-@pytest.mark.parametrize("name", [
-    "one-link-eom", "rp-vertical-arm", "scara-payload-dynamics",
-    pytest.param("puma560-dynamics", marks=pytest.mark.slow),
-])
-def test_golden_outputs(name):
-    """report.md and results.json are unchanged (tests/golden, `robosolve batch --check`)."""
-    from robosolve import batch
-
-    golden = PROBLEMS.parent / "tests" / "golden"
-    status = batch.run([PROBLEMS / f"{name}.yaml"], golden=golden, jobs=1)
-    assert status == 0
