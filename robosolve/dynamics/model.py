@@ -15,7 +15,7 @@ from robosolve.dynamics.api import (BodySpec, Dynamics, FrameSpec, JointSpec, Lo
 __all__ = ["engine_inputs", "dynamics_for", "numeric_for", "DYNAMICS_SECONDS"]
 
 # Budget of the symbolic derivation before the numeric-only path takes over. The PUMA 560
-# (6 joints, 51 symbolic parameters) takes ~15 s on a 2-core machine.
+# (6 joints, 51 symbolic parameters) takes ~5 s on a 2-core machine.
 DYNAMICS_SECONDS = 90.0
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
