@@ -234,8 +234,16 @@ def test_euler_symbolic_exact_generic():
 
 def test_symbolic_matrix_agrees_with_numeric():
     a, b, c = sp.symbols("a b c", real=True)
-    vals = {a: 0.7, b: -1.1, c: 2.5}
-    r = zyz_matrix(a, b, c) * rpy_matrix(b, c, a)
+    check_symbolic_against_numeric(zyz_matrix(a, b, c), {a: 0.7, b: -1.1, c: 2.5})
+
+
+@pytest.mark.slow
+def test_large_symbolic_matrix_agrees_with_numeric():
+    a, b, c = sp.symbols("a b c", real=True)
+    check_symbolic_against_numeric(zyz_matrix(a, b, c) * rpy_matrix(b, c, a), {a: 0.7, b: -1.1, c: 2.5})
+
+
+def check_symbolic_against_numeric(r, vals):
     rn = f(r.subs(vals))
     for sym_fn, num_fn in ((zyz_symbolic, zyz_numeric), (rpy_symbolic, rpy_numeric)):
         es = sym_fn(r)

@@ -151,8 +151,22 @@ def _rot3_symbolic(m) -> sp.Matrix:
     return a
 
 
+#: Above this operation count a symbolic expression is left as it is: trigsimp
+#: on large expressions takes minutes and rarely makes them readable.
+SIMPLIFY_MAX_OPS = 60
+
+
 def _default_simplify(e):
-    return sp.simplify(e)
+    """The simplification policy: exact numbers fully, small symbolic expressions
+    with trigsimp, large ones untouched (fast and deterministic)."""
+    e = sp.sympify(e)
+    if not e.free_symbols:
+        return sp.simplify(e)
+    if isinstance(e, sp.atan2):
+        return sp.atan2(*(_default_simplify(a) for a in e.args))
+    if sp.count_ops(e) > SIMPLIFY_MAX_OPS:
+        return e
+    return sp.trigsimp(e)
 
 
 def is_zero(e) -> bool:
@@ -166,7 +180,14 @@ def is_zero(e) -> bool:
     if e == 0:
         return False if e.free_symbols else True
     if e.free_symbols:
-        return sp.simplify(e) == 0
+        # identically zero: probe a few deterministic points, then trust them.
+        syms = sorted(e.free_symbols, key=sp.default_sort_key)
+        for k in range(3):
+            pt = {x: sp.Float(0.3 + 0.71 * k + 0.37 * i, 30) for i, x in enumerate(syms)}
+            v = complex(e.evalf(30, subs=pt))
+            if abs(v) > 1e-20:
+                return False
+        return True
     v = complex(e.evalf(30))
     return abs(v) < 1e-25
 
@@ -188,6 +209,9 @@ def _positive_unit(e) -> bool:
 
 def _sym_angle(y, x, simplify):
     """atan2(y, x) for sympy expressions (exact when sympy can evaluate it)."""
+    y, x = sp.sympify(y), sp.sympify(x)
+    if y.free_symbols or x.free_symbols:
+        return sp.atan2(simplify(y), simplify(x))
     return simplify(sp.atan2(y, x))
 
 
@@ -250,7 +274,7 @@ def axis_angle_symbolic(m, simplify: Callable = _default_simplify) -> AxisAngle:
     c = simplify((r.trace() - 1) / 2)
     v = (r - r.T) / 2
     v = sp.Matrix([v[2, 1], v[0, 2], v[1, 0]])
-    s2 = simplify(v.dot(v))
+    s2 = simplify(1 - c**2)  # = |v|^2 for a rotation; far cheaper to simplify
     if is_zero(s2):
         if is_zero(c - 1):
             return AxisAngle(None, sp.Integer(0), "zero", sp.Integer(1), sp.Integer(0))
@@ -299,7 +323,7 @@ def quaternion_symbolic(m, simplify: Callable = _default_simplify) -> list:
     At alpha = pi (eta = 0) eps = u from `axis_angle_symbolic`.
     """
     r = _rot3_symbolic(m)
-    eta = simplify(sp.sqrt(1 + r.trace()) / 2)
+    eta = sp.sqrt(simplify(1 + r.trace())) / 2
     if is_zero(eta) and not r.free_symbols:
         aa = axis_angle_symbolic(r, simplify)
         return [sp.Integer(0)] + list(aa.axis)
@@ -354,7 +378,7 @@ def zyz_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
 def zyz_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
     """ZYZ angles of a sympy rotation; exact singular cases when there are no symbols."""
     r = _rot3_symbolic(m)
-    st = simplify(sp.sqrt(r[0, 2] ** 2 + r[1, 2] ** 2))
+    st = sp.sqrt(simplify(1 - r[2, 2] ** 2))  # = sqrt(r13^2 + r23^2) (unit column)
     exact = not r.free_symbols
     if is_zero(st):
         if _positive_unit(r[2, 2]):
@@ -406,7 +430,7 @@ def rpy_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
 def rpy_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
     """Roll-pitch-yaw of a sympy rotation; exact singular cases when there are no symbols."""
     r = _rot3_symbolic(m)
-    cp = simplify(sp.sqrt(r[0, 0] ** 2 + r[1, 0] ** 2))
+    cp = sp.sqrt(simplify(1 - r[2, 0] ** 2))  # = sqrt(r11^2 + r21^2) (unit column)
     exact = not r.free_symbols
     if is_zero(cp):
         if _positive_unit(-r[2, 0]):
