@@ -1,0 +1,353 @@
+"""Polynomials in cᵢ = cos qᵢ, sᵢ = sin qᵢ (and prismatic qᵢ), reduced modulo sᵢ² + cᵢ² = 1.
+
+This is the engine's fast algebra: every entry of a pose, L matrix or energy of a serial
+robot is such a polynomial, with coefficients in the parameters. sympy's sparse polynomial
+rings multiply and differentiate these in microseconds, and the reduction sᵢ² → 1 − cᵢ²
+(a division by the Gröbner basis {sᵢ² + cᵢ² − 1}) gives a canonical form, so every
+cancellation that `trigsimp` would find through cos² + sin² = 1 happens at once, for free.
+
+`TrigAlgebra.from_inputs` returns None when an input uses a joint in a way that is not a
+polynomial in cos qᵢ, sin qᵢ, qᵢ (e.g. sin(qᵢ/2)); the engine then falls back to sympy
+expressions with small-piece `trigsimp`.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.polys.rings import sring
+
+__all__ = ["TrigAlgebra"]
+
+
+class TrigAlgebra:
+    def __init__(self, ring, q, trig, poly, elements, half):
+        self.ring = ring
+        self.half = half
+        self.q = q
+        self.trig = trig  # joint index -> (s, c) ring generators
+        self.poly = poly  # joint index -> q ring generator
+        self.zero = ring.zero
+        self.one = ring.one
+        self._basis = [s ** 2 + c ** 2 - 1 for s, c in trig.values()]
+        self._back = {}
+        syms = dict(zip(ring.gens, ring.symbols))
+        for i, (s, c) in trig.items():
+            self._back[syms[s]] = sp.sin(q[i])
+            self._back[syms[c]] = sp.cos(q[i])
+        self.elements = elements
+
+    @classmethod
+    def from_inputs(cls, q, exprs):
+        """Build the ring over all input expressions; `None` if one is not polynomial."""
+        exprs = [sp.sympify(e) for e in exprs]
+        qset = set(q)
+        trig_used, poly_used = set(), set()
+        sc = {i: sp.symbols(f"s{i}_ c{i}_", real=True) for i in range(len(q))}
+        rep = {}
+        for i, qi in enumerate(q):
+            rep[sp.sin(qi)] = sc[i][0]
+            rep[sp.cos(qi)] = sc[i][1]
+        converted = []
+        for e in exprs:
+            if e.has(*qset):
+                e2 = e.xreplace(rep)
+                if any(f.has(*qset) for f in e2.atoms(sp.Function)) or any(
+                        p.has(*qset) for p in e2.atoms(sp.Pow) if not p.exp.is_Integer):
+                    e = sp.expand_trig(e)
+                    e2 = e.xreplace(rep)
+                    if any(f.has(*qset) for f in e2.atoms(sp.Function)):
+                        return None
+                e = e2
+            converted.append(e)
+        for e in converted:
+            fs = e.free_symbols
+            for i, qi in enumerate(q):
+                if sc[i][0] in fs or sc[i][1] in fs:
+                    trig_used.add(i)
+                if qi in fs:
+                    poly_used.add(i)
+        gens = []
+        for i in range(len(q)):
+            if i in trig_used:
+                gens += [sc[i][0], sc[i][1]]
+            if i in poly_used:
+                gens.append(q[i])
+        # polynomial in the generators? (joint symbols in denominators are not)
+        if gens and not all(e.is_polynomial(*gens) for e in converted):
+            return None
+        if not gens:
+            gens = [sc[0][1]] if q else [sp.Symbol("c0_")]
+        # the extra 1/2 makes the coefficient domain a field over QQ (Christoffel halves)
+        ring, elements = sring([*converted, sp.Rational(1, 2)], *gens)
+        half = elements.pop()
+        gmap = dict(zip(gens, ring.gens))
+        trig = {i: (gmap[sc[i][0]], gmap[sc[i][1]]) for i in sorted(trig_used)}
+        poly = {i: gmap[q[i]] for i in sorted(poly_used)}
+        return cls(ring, list(q), trig, poly, elements, half)
+
+    def element(self, k):
+        return self.elements[k]
+
+    def from_expr(self, expr):
+        """A new sympy expression (over the input symbols) as a ring element."""
+        expr = sp.sympify(expr)
+        rep = {}
+        syms = dict(zip(self.ring.gens, self.ring.symbols))
+        for i, (s, c) in self.trig.items():
+            rep[sp.sin(self.q[i])] = syms[s]
+            rep[sp.cos(self.q[i])] = syms[c]
+        return self.reduce(self.ring.from_expr(sp.expand(expr.xreplace(rep))))
+
+    # ---------------------------------------------------------------- arithmetic
+    def reduce(self, p):
+        if not self._basis or p == 0:
+            return p
+        return p.rem(self._basis)
+
+    def diff(self, p, i):
+        """∂p/∂qᵢ with d cᵢ = −sᵢ dqᵢ, d sᵢ = cᵢ dqᵢ."""
+        out = self.zero
+        if i in self.poly:
+            out += p.diff(self.poly[i])
+        if i in self.trig:
+            s, c = self.trig[i]
+            out += c * p.diff(s) - s * p.diff(c)
+        return self.reduce(out)
+
+    def depends(self, p, i) -> bool:
+        gens = list(self.trig.get(i, ())) + ([self.poly[i]] if i in self.poly else [])
+        if not gens:
+            return False
+        idx = [self.ring.gens.index(g) for g in gens]
+        return any(m[k] for m in p.keys() for k in idx)
+
+    def matmul(self, a, b):
+        n, m, p = len(a), len(b), len(b[0])
+        out = []
+        for r in range(n):
+            row = []
+            for c in range(p):
+                acc = self.zero
+                for k in range(m):
+                    x, y = a[r][k], b[k][c]
+                    if x and y:
+                        acc += x * y
+                row.append(self.reduce(acc))
+            out.append(row)
+        return out
+
+    def rigid_inverse(self, m):
+        """[Rᵀ, −Rᵀt; 0 1] of a 4x4 pose given as lists."""
+        out = [[self.zero] * 4 for _ in range(4)]
+        for r in range(3):
+            for c in range(3):
+                out[r][c] = m[c][r]
+            out[r][3] = self.reduce(-sum((m[k][r] * m[k][3] for k in range(3)), self.zero))
+        out[3][3] = self.one
+        return out
+
+    def mdiff(self, m, i):
+        return [[self.diff(x, i) for x in row] for row in m]
+
+    def madd(self, a, b):
+        return [[x + y for x, y in zip(ra, rb)] for ra, rb in zip(a, b)]
+
+    def zeros(self, n, m=None):
+        return [[self.zero] * (m or n) for _ in range(n)]
+
+    def eye(self, n):
+        return [[self.one if r == c else self.zero for c in range(n)] for r in range(n)]
+
+    # ---------------------------------------------------------------- conversion
+    def to_expr(self, p):
+        return p.as_expr().xreplace(self._back)
+
+    def to_matrix(self, m):
+        return sp.Matrix([[self.to_expr(x) for x in row] for row in m])
+
+
+class SympyAlgebra:
+    """The same interface on plain sympy expressions (fallback, small-piece trigsimp)."""
+
+    zero = sp.S.Zero
+    one = sp.S.One
+    half = sp.S.Half
+
+    def __init__(self, q, exprs, simplify=True):
+        from robosolve.dynamics.engine import tsimp
+
+        self.q = list(q)
+        self.elements = [sp.sympify(e) for e in exprs]
+        self._simp = tsimp if simplify else (lambda e: e)
+
+    def element(self, k):
+        return self.elements[k]
+
+    def from_expr(self, expr):
+        return sp.sympify(expr)
+
+    def reduce(self, p):
+        return self._simp(p)
+
+    def diff(self, p, i):
+        return self._simp(sp.diff(p, self.q[i]))
+
+    def depends(self, p, i) -> bool:
+        return sp.sympify(p).has(self.q[i])
+
+    def to_expr(self, p):
+        return p
+
+    def to_matrix(self, m):
+        return sp.Matrix(m)
+
+
+for _name in ("matmul", "rigid_inverse", "mdiff", "madd", "zeros", "eye"):
+    setattr(SympyAlgebra, _name, getattr(TrigAlgebra, _name))
+
+
+# ---------------------------------------------------------------------- Fourier form
+def _norm(kind, k):
+    """Canonical key of cos(k·q) / sin(k·q): first non-zero entry of k positive."""
+    for x in k:
+        if x != 0:
+            if x < 0:
+                return kind, tuple(-y for y in k), (-1 if kind == "sin" else 1)
+            return kind, k, 1
+    return kind, k, (0 if kind == "sin" else 1)
+
+
+def _fmul(a: dict, b: dict) -> dict:
+    """Product of two real Fourier series {(kind, k): Fraction}."""
+    from fractions import Fraction
+
+    out: dict = {}
+    half = Fraction(1, 2)
+    for (ka, va), ca in a.items():
+        for (kb, vb), cb in b.items():
+            c = ca * cb * half
+            plus = tuple(x + y for x, y in zip(va, vb))
+            minus = tuple(x - y for x, y in zip(va, vb))
+            if ka == "cos" and kb == "cos":
+                parts = (("cos", minus, c), ("cos", plus, c))
+            elif ka == "sin" and kb == "sin":
+                parts = (("cos", minus, c), ("cos", plus, -c))
+            elif ka == "sin":  # sin a cos b
+                parts = (("sin", plus, c), ("sin", minus, c))
+            else:  # cos a sin b = sin b cos a
+                parts = (("sin", plus, c), ("sin", tuple(-x for x in minus), c))
+            for kind, k, coef in parts:
+                kind, k, sign = _norm(kind, k)
+                if sign == 0:
+                    continue
+                key = (kind, k)
+                out[key] = out.get(key, 0) + sign * coef
+    return {k: v for k, v in out.items() if v != 0}
+
+
+def fourier_dict(alg: TrigAlgebra, p) -> dict:
+    """p as {(kind, k, prismatic exponents): domain coefficient}, kind cos|sin of k·q."""
+    from fractions import Fraction
+
+    ring = alg.ring
+    n = len(alg.q)
+    pos = {}
+    for i, (s, c) in alg.trig.items():
+        pos[i] = (ring.gens.index(s), ring.gens.index(c))
+    poly_pos = [ring.gens.index(g) for g in alg.poly.values()]
+    cache = alg.__dict__.setdefault("_fourier_cache", {})
+    acc: dict = {}
+    dom = ring.domain
+    for monom, coeff in p.terms():
+        tkey = tuple(monom[k] for ij in pos.values() for k in ij)
+        series = cache.get(tkey)
+        if series is None:
+            series = {("cos", (0,) * n): Fraction(1)}
+            for i, (si, ci) in pos.items():
+                e_i = tuple(1 if t == i else 0 for t in range(n))
+                for _ in range(monom[ci]):
+                    series = _fmul(series, {("cos", e_i): Fraction(1)})
+                for _ in range(monom[si]):
+                    series = _fmul(series, {("sin", e_i): Fraction(1)})
+            cache[tkey] = series
+        pkey = tuple(monom[k] for k in poly_pos)
+        for (kind, k), r in series.items():
+            key = (kind, k, pkey)
+            acc[key] = acc.get(key, dom.zero) + coeff * dom.convert(
+                sp.Rational(r.numerator, r.denominator))
+    return {k: v for k, v in acc.items() if v}
+
+
+def _trig(alg, kind, k):
+    if not any(k):
+        return sp.S.One if kind == "cos" else sp.S.Zero
+    arg = sp.Add(*[kk * alg.q[i] for i, kk in enumerate(k)])
+    return sp.cos(arg) if kind == "cos" else sp.sin(arg)
+
+
+def _mono(alg, pkey):
+    return sp.Mul(*[q ** e for q, e in zip([alg.q[i] for i in alg.poly], pkey)])
+
+
+def fourier_terms(alg: TrigAlgebra, p):
+    """p as Σ coeff · {cos|sin}(k·q) · (prismatic monomial): list of (coeff, trig) pairs.
+
+    Products of cosines and sines become cosines and sines of sums of angles (the form
+    `trigsimp` reaches, e.g. cos(2θ₂ + θ₃)), at the cost of a dictionary walk.
+    """
+    dom = alg.ring.domain
+    return [(dom.to_sympy(c) * _mono(alg, pkey), _trig(alg, kind, k))
+            for (kind, k, pkey), c in fourier_dict(alg, p).items()]
+
+
+def product_terms(alg: TrigAlgebra, p):
+    """The Fourier form folded back into short products (the textbook look):
+
+    * cos A + cos B with equal coefficients -> 2 cos((A+B)/2) cos((A−B)/2), and
+      sin A + sin B -> 2 sin((A+B)/2) cos((A−B)/2), when the half sums are whole;
+    * cos 2x -> 2 cos²x − 1 and sin 2x -> 2 sin x cos x.
+
+    E.g. L2 L3 m3 (cos θ3 + cos(2θ2 + θ3))/2 -> L2 L3 m3 cos θ2 cos(θ2 + θ3).
+    """
+    dom = alg.ring.domain
+    terms = fourier_dict(alg, p)
+    out = []
+    by_coef: dict = {}
+    for key in sorted(terms):
+        kind, k, pkey = key
+        if any(k):
+            by_coef.setdefault((kind, pkey, terms[key]), []).append(k)
+    used = set()
+    for (kind, pkey, coef), ks in sorted(by_coef.items(), key=lambda x: (x[0][0], x[0][1],
+                                                                         str(x[0][2]))):
+        free = list(ks)
+        while len(free) >= 2:
+            a = free.pop(0)
+            partner = next((b for b in free if all((x + y) % 2 == 0 for x, y in zip(a, b))),
+                           None)
+            if partner is None:
+                continue
+            free.remove(partner)
+            b = partner
+            u = tuple((x + y) // 2 for x, y in zip(a, b))
+            v = tuple((x - y) // 2 for x, y in zip(a, b))
+            used.add((kind, a, pkey))
+            used.add((kind, b, pkey))
+            first = _trig(alg, kind, u)
+            second = _trig(alg, "cos", v)
+            out.append((2 * dom.to_sympy(coef) * _mono(alg, pkey), first * second))
+    for (kind, k, pkey), coef in terms.items():
+        if (kind, k, pkey) in used:
+            continue
+        c = dom.to_sympy(coef)
+        mono = _mono(alg, pkey)
+        if any(k) and all(x % 2 == 0 for x in k):
+            h = tuple(x // 2 for x in k)
+            if kind == "cos":
+                out.append((2 * c * mono, _trig(alg, "cos", h) ** 2))
+                out.append((-c * mono, sp.S.One))
+            else:
+                out.append((2 * c * mono, _trig(alg, "sin", h) * _trig(alg, "cos", h)))
+        else:
+            out.append((c * mono, _trig(alg, kind, k)))
+    return out
