@@ -166,7 +166,7 @@ def _default_simplify(e):
         return sp.atan2(*(_default_simplify(a) for a in e.args))
     if sp.count_ops(e) > SIMPLIFY_MAX_OPS:
         return e
-    return sp.trigsimp(e)
+    return sp.trigsimp(sp.expand(e))
 
 
 def is_zero(e) -> bool:
