@@ -152,3 +152,28 @@ def test_not_a_rotation_is_an_error_not_a_traceback(write_problem):
     """)
     report = solve_file(path)
     assert all(a.error for a in report.answers)
+
+
+def test_displacement_expressed_in_another_frame(write_problem):
+    path = write_problem("""
+        robosolve: 1
+        name: in-frame
+        parameters: {L1: 1}
+        joints:
+          - {name: theta1, type: revolute}
+        frames:
+          "1": {parent: "0", pose: "Rz(theta1) Tx(L1)"}
+        questions:
+          - type: displacement
+            from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+            to: [[0, -1, 0, 1], [1, 0, 0, 0], [0, 0, 1, 2], [0, 0, 0, 1]]
+            frame: "1"
+            at: {theta1: pi/2}
+    """)
+    a = solve_file(path).answers[0]
+    m0k = np.array([[0, -1, 0, 0], [1, 0, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]], dtype=float)
+    q0 = np.array([[0, -1, 0, 1], [1, 0, 0, 0], [0, 0, 1, 2], [0, 0, 0, 1]], dtype=float)
+    qk = np.linalg.inv(m0k) @ q0 @ m0k
+    np.testing.assert_allclose(a.numeric["Q"], qk, atol=1e-12)
+    axis_consistent(a.numeric, qk)
+    assert a.numeric["h"] == pytest.approx(2.0) and a.numeric["alpha"] == pytest.approx(math.pi / 2)

@@ -291,6 +291,8 @@ def axis_angle_symbolic(m, simplify: Callable = _default_simplify) -> AxisAngle:
         raise ValueError("not a rotation matrix: R - R^T = 0 but trace(R) is neither 3 nor -1")
     s = simplify(sp.sqrt(s2))
     alpha = _sym_angle(s, c, simplify)
+    if not r.free_symbols:  # alpha in [0, pi]: acos(cos alpha) is as valid; keep the shorter
+        alpha = min((alpha, sp.acos(c)), key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
     u = [simplify(x / s) for x in v]
     case = "generic" if r.free_symbols else "general"
     return AxisAngle(u, alpha, case, c, s)
