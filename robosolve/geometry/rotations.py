@@ -160,6 +160,9 @@ def _default_simplify(e):
     """The simplification policy: exact numbers fully, small symbolic expressions
     with trigsimp, large ones untouched (fast and deterministic)."""
     e = sp.sympify(e)
+    floats = e.atoms(sp.Float)
+    if floats:  # inexact input: drop round-off terms (2.8e-17*h) before anything else
+        e = e.xreplace({x: sp.Integer(0) for x in floats if abs(x) < 1e-13})
     if not e.free_symbols:
         return sp.simplify(e)
     if isinstance(e, sp.atan2):
@@ -219,6 +222,8 @@ def _wrap_symbolic(a):
     """Wrap an exact angle (no free symbols) into (-pi, pi]; leave others alone."""
     if a.free_symbols:
         return a
+    if a.atoms(sp.Float):  # inexact input: a float, not "float + pi"
+        return sp.Float(wrap_angle(_num(a)), 15)
     v = _num(a)
     k = 0
     while v - 2 * math.pi * k > math.pi + 1e-15:

@@ -61,7 +61,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     try:
         with ctx.time_limit():
             hx = helical_symbolic(q)
-        sym = _layout(hx)
+        sym = {k: _tidy(v) for k, v in _layout(hx).items()}
         ans.symbolic.update({k: v for k, v in sym.items() if k != "Q"})
         steps.append(_formula_step(hx))
         sym_case = hx.case
@@ -184,3 +184,11 @@ def _figure_data(hn, m1, m2, mk, expressed) -> dict:
         "axis": None if hn.axis is None else {"u": hn.axis, "point": hn.point},
         "alpha": hn.angle, "h": hn.h, "case": hn.case,
     }
+
+
+def _tidy(v):
+    if v is None:
+        return None
+    if isinstance(v, list):
+        return [_default_simplify(x) for x in v]
+    return _default_simplify(v)
