@@ -45,7 +45,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return ans
     q0 = displacement_matrix(m01, m02)
     q = express_in_frame(q0, m0k) if m0k is not None else q0
-    q = q.applyfunc(_default_simplify)
+    try:
+        with ctx.time_limit(10.0):
+            q = q.applyfunc(_default_simplify)
+    except SymbolicTimeout:
+        pass
     f = frame_tex(expressed)
 
     steps = [Step(
