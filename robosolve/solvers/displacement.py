@@ -9,6 +9,8 @@ Engines: robosolve.geometry.helical (formulas and special cases there).
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import sympy as sp
 
@@ -66,7 +68,10 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         with ctx.time_limit():
             hx = helical_symbolic(q)
         sym = {k: _tidy(v) for k, v in _layout(hx).items()}
-        ans.symbolic.update({k: v for k, v in sym.items() if k != "Q"})
+        ans.symbolic.update(sym)
+        hx = dataclasses.replace(hx, axis=sym["u"], angle=sym["alpha"], h=sym["h"], point=sym["P"],
+                                 pitch=sym["pitch"], cos_alpha=_tidy(hx.cos_alpha),
+                                 sin_alpha=_tidy(hx.sin_alpha))
         steps.append(_formula_step(hx))
         sym_case = hx.case
         for n in hx.notes:

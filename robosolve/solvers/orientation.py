@@ -34,7 +34,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         frame = question.frame
         subs = {s: v for s, v in question.at.items() if s in set(ctx.model.q)}
         r = ctx.model.M0(frame)[:3, :3].xreplace(subs)
-        where = f"The rotation is the orientation block of {m_name('0', frame)}."
+        where = f"The rotation is the orientation block of ${m_name('0', frame)}$."
     try:
         with ctx.time_limit(10.0):
             r = r.applyfunc(_default_simplify)
