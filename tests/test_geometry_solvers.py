@@ -177,3 +177,14 @@ def test_displacement_expressed_in_another_frame(write_problem):
     np.testing.assert_allclose(a.numeric["Q"], qk, atol=1e-12)
     axis_consistent(a.numeric, qk)
     assert a.numeric["h"] == pytest.approx(2.0) and a.numeric["alpha"] == pytest.approx(math.pi / 2)
+
+
+def test_helical_axis_figures_draw(answers, tmp_path):
+    pytest.importorskip("matplotlib")
+    from robosolve.render.plots import draw
+
+    for name in ("scara-move", "half-turn", "translation"):
+        spec = answers[name].figures[0]
+        out = tmp_path / f"{name}.png"
+        draw(spec, out)
+        assert out.stat().st_size > 10_000

@@ -24,6 +24,12 @@ def draw(spec, path):
     span = float(np.max(np.ptp(origins, axis=0))) if len(origins) > 1 else 1.0
     scale = max(span, 1e-3) * 0.25 if span > 0 else 0.5
     pts = [o for o in origins]
+    labels: dict = {}  # frames drawn at the same origin share one label ("0 = initial")
+    for fr in d["frames"]:
+        key = tuple(np.round(np.array(fr["origin"], dtype=float), 9))
+        labels[key] = (labels[key] + " = " if key in labels else "") + fr["name"]
+    for key, text in labels.items():
+        ax.text(*key, f" {text}", fontsize=9)
     for k, fr in enumerate(d["frames"]):
         o = np.array(fr["origin"], dtype=float)
         style, lw = FRAME_STYLE.get(fr["name"], (":", 0.8))
@@ -31,7 +37,6 @@ def draw(spec, path):
             e = o + scale * np.array(fr["axes"][c], dtype=float)
             ax.plot([o[0], e[0]], [o[1], e[1]], [o[2], e[2]], style, color=colour, lw=2 * lw)
             pts.append(e)
-        ax.text(*o, f" {fr['name']}", fontsize=9)
     axis = d.get("axis")
     if axis is not None and axis.get("point") is not None:
         p = np.array(axis["point"], dtype=float)
