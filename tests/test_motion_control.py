@@ -54,9 +54,9 @@ def reference(plan, law, kp, kd, duration, start=None):
                 tau = pin.rnea(model, data, x, v, ades + kd * ed + kp * e)
             return np.concatenate([v, pin.aba(model, data, x, v, tau)])
 
-        sol = solve_ivp(f, (a, b), y, method="DOP853", rtol=1e-13, atol=1e-15, dense_output=True)
+        sol = solve_ivp(f, (a, b), y, method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True)
         y = sol.y[:, -1]
-        ts = np.linspace(a, b, 100001)
+        ts = np.linspace(a, b, 40001)
         errs.append(plan.evaluate(ts, k=k)[0] - sol.sol(ts)[:2])
     e = np.hstack(errs)
     return np.abs(e).max(axis=1), e[:, -1]
