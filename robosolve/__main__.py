@@ -1,0 +1,3 @@
+from robosolve.cli import main
+
+main()

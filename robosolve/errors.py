@@ -1,0 +1,46 @@
+"""Every exception robosolve raises on purpose, and the exit statuses.
+
+Only the CLI turns these into messages and exit codes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+EXIT_OK = 0          # every question answered (an unreachable IK target is an answer)
+EXIT_ANSWER_ERROR = 1  # some question answered with `error` (or a golden mismatch)
+EXIT_INPUT = 2       # invalid input or usage
+
+
+class RobosolveError(Exception):
+    """Base class of robosolve's own errors."""
+
+
+@dataclass(frozen=True)
+class InputIssue:
+    """One problem of a problem file: where it is and what is wrong."""
+
+    file: str
+    line: int
+    path: str
+    message: str
+
+    def __str__(self) -> str:
+        where = f"{self.path}: " if self.path else ""
+        return f"{self.file}:{self.line}: {where}{self.message}"
+
+
+class InputError(RobosolveError):
+    """A problem file is invalid; carries every issue found, in file order."""
+
+    def __init__(self, issues: list[InputIssue]):
+        self.issues = sorted(issues, key=lambda i: (i.file, i.line, i.path, i.message))
+        super().__init__("\n".join(str(i) for i in self.issues))
+
+
+class SymbolicTimeout(RobosolveError):
+    """A symbolic step exceeded its time limit (the solver then answers numerically)."""
+
+
+class SolverError(RobosolveError):
+    """A question cannot be answered; the message becomes the answer's `error`."""

@@ -1,0 +1,1 @@
+"""Stage 1 of the pipeline: problem file (YAML) -> validated `Problem`."""

@@ -1,0 +1,684 @@
+"""Problem file (YAML, format 1) -> validated `Problem`, or every issue at once.
+
+Each check appends an `InputIssue` (file, line, path, message) and carries on,
+so one run reports every problem of the file (spec §4).
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import sympy as sp
+
+from robosolve.errors import InputError, InputIssue
+from robosolve.load import questions as qschema
+from robosolve.load.expressions import (
+    RESERVED, ExpressionError, Namespace, did_you_mean,
+)
+from robosolve.load.problem import (
+    PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
+)
+from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml
+
+NAME_RE = re.compile(r"^[a-z0-9_-]+$")
+IDENT_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+PYTHON_KEYWORDS = {
+    "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
+    "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global",
+    "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise",
+    "return", "try", "while", "with", "yield",
+}
+TOP_KEYS = ("robosolve", "name", "title", "description", "parameters", "joints", "frames",
+            "dh", "points", "gravity", "bodies", "forces", "questions")
+POSE_OPS = ("Tx", "Ty", "Tz", "Rx", "Ry", "Rz")
+DH_KEYS = ("theta", "d", "a", "alpha")
+MDH_KEYS = ("alpha", "a", "theta", "d")
+
+
+def path_str(path) -> str:
+    out = ""
+    for p in path:
+        if isinstance(p, int):
+            out += f"[{p}]"
+        else:
+            out += ("." if out else "") + str(p)
+    return out
+
+
+def type_name(value) -> str:
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "a boolean"
+    if isinstance(value, (int, float)):
+        return "a number"
+    if isinstance(value, str):
+        return "a string"
+    if isinstance(value, list):
+        return "a list"
+    if isinstance(value, dict):
+        return "a mapping"
+    return type(value).__name__
+
+
+class Checker:
+    """Collects issues against a parsed source; helpers return None on failure."""
+
+    def __init__(self, source: Source):
+        self.src = source
+        self.issues: list[InputIssue] = []
+
+    def error(self, path, message: str):
+        self.issues.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
+
+    # -- shapes ---------------------------------------------------------
+    def mapping(self, path, value, allowed, required=(), what="keys") -> bool:
+        if not isinstance(value, dict):
+            self.error(path, f"expected a mapping, got {type_name(value)}")
+            return False
+        for key in value:
+            if key not in allowed:
+                self.error(path + (key,), f"unknown key '{key}'"
+                           + did_you_mean(key, allowed)
+                           + f" (expected one of: {', '.join(allowed)})")
+        for key in required:
+            if key not in value:
+                self.error(path, f"missing required key '{key}'")
+        return True
+
+    def string(self, path, value, pattern=None, hint="") -> str | None:
+        if not isinstance(value, str):
+            self.error(path, f"expected a string, got {type_name(value)}")
+            return None
+        if pattern is not None and not pattern.match(value):
+            self.error(path, f"invalid value {value!r}{hint}")
+            return None
+        return value
+
+    def boolean(self, path, value) -> bool | None:
+        if not isinstance(value, bool):
+            self.error(path, f"expected true or false, got {type_name(value)}")
+            return None
+        return value
+
+    def expr(self, path, value, ns: Namespace):
+        if value is None or isinstance(value, (list, dict)):
+            self.error(path, f"expected a number or an expression, got {type_name(value)}")
+            return None
+        try:
+            return ns.parse(value)
+        except ExpressionError as exc:
+            self.error(path, str(exc))
+            return None
+
+    def vector(self, path, value, ns: Namespace, length=3):
+        if not isinstance(value, list) or (length is not None and len(value) != length):
+            n = f"{length} " if length else ""
+            self.error(path, f"expected a list of {n}numbers or expressions, got "
+                       + (f"{len(value)} items" if isinstance(value, list) else type_name(value)))
+            return None
+        items = [self.expr(path + (i,), v, ns) for i, v in enumerate(value)]
+        if any(i is None for i in items):
+            return None
+        return sp.Matrix(items)
+
+    def matrix(self, path, value, ns: Namespace, shapes=((4, 4),)):
+        ok_shape = (isinstance(value, list) and value and all(isinstance(r, list) for r in value)
+                    and (len(value), len(value[0])) in shapes
+                    and all(len(r) == len(value[0]) for r in value))
+        if not ok_shape:
+            want = " or ".join(f"{r}x{c}" for r, c in shapes)
+            self.error(path, f"expected a {want} matrix (a list of rows)")
+            return None
+        rows = [[self.expr(path + (i, j), v, ns) for j, v in enumerate(r)] for i, r in enumerate(value)]
+        if any(v is None for r in rows for v in r):
+            return None
+        return sp.Matrix(rows)
+
+
+# ----------------------------------------------------------------------
+def load_problem(file) -> Problem:
+    """Read and validate a problem file. Raises InputError with every issue."""
+    name = str(file)
+    try:
+        raw = Path(file).read_bytes()
+    except OSError as exc:
+        raise InputError([InputIssue(name, 1, "", f"cannot read the file: {exc.strerror or exc}")])
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError([InputIssue(name, 1, "", "the file is not UTF-8 text")])
+    return load_problem_text(text, name)
+
+
+def load_problem_text(text: str, file: str = "<input>") -> Problem:
+    try:
+        source, duplicates = parse_yaml(text, file)
+    except YamlProblem as exc:
+        raise InputError([InputIssue(file, exc.line, "", exc.message)])
+    chk = Checker(source)
+    for line, path, key in duplicates:
+        chk.issues.append(InputIssue(file, line, path_str(path), f"duplicate key '{key}'"))
+    problem = _ProblemBuilder(chk).build()
+    if chk.issues:
+        raise InputError(chk.issues)
+    return problem
+
+
+class _ProblemBuilder:
+    def __init__(self, chk: Checker):
+        self.chk = chk
+        self.data = chk.src.data
+        self.file = chk.src.file
+
+    def build(self) -> Problem | None:
+        chk, data = self.chk, self.data
+        if not isinstance(data, dict):
+            chk.error((), f"the top level must be a mapping (with `robosolve: 1`), got {type_name(data)}")
+            return None
+        chk.mapping((), data, TOP_KEYS, required=("robosolve", "name", "questions"))
+        if "robosolve" in data and (data["robosolve"] != 1 or isinstance(data["robosolve"], bool)):
+            chk.error(("robosolve",), f"unsupported format version {data['robosolve']!r} (expected 1)")
+        name = None
+        if "name" in data:
+            name = chk.string(("name",), data["name"], NAME_RE, " (expected lowercase letters, digits, '_' or '-')")
+        title = chk.string(("title",), data["title"]) if data.get("title") is not None else None
+        description = (chk.string(("description",), data["description"])
+                       if data.get("description") is not None else None)
+
+        self.parameters = self._parameters(data.get("parameters"))
+        self.joints = self._joints(data.get("joints"))
+        self.names = self._names()
+        self.ns = Namespace(self.names, what="name")
+        self.frames = self._frames(data.get("frames"), data.get("dh"))
+        self.points = self._points(data.get("points"))
+        self.ns_points = Namespace(self.names, self.points.keys(), what="name")
+        gravity, gravity_given = self._gravity(data.get("gravity"))
+        bodies = self._bodies(data.get("bodies"))
+        forces = self._forces(data.get("forces"))
+        has_robot = bool(self.joints) or bool(self.frames)
+        self.problem = Problem(
+            file=self.file, name=name or "problem", title=title, description=description,
+            parameters=self.parameters, joints=self.joints, frames=self.frames,
+            points=self.points, gravity=gravity, gravity_given=gravity_given,
+            bodies=bodies, forces=forces, questions=[], names=self.names, has_robot=has_robot,
+        )
+        self.problem.questions = qschema.load_questions(self, data.get("questions"))
+        return self.problem
+
+    # -- parameters -----------------------------------------------------
+    def _parameters(self, value) -> dict:
+        chk = self.chk
+        if value is None:
+            return {}
+        if not isinstance(value, dict):
+            chk.error(("parameters",), f"expected a mapping name: value, got {type_name(value)}")
+            return {}
+        names = []
+        for key in value:
+            if not IDENT_RE.match(key) or key in PYTHON_KEYWORDS:
+                chk.error(("parameters", key), f"invalid parameter name '{key}' (expected a name like L1 or m_2)")
+            elif key in RESERVED:
+                chk.error(("parameters", key), f"'{key}' is reserved (a function, a constant or time)")
+            else:
+                names.append(key)
+        # First pass with plain real symbols, to resolve values and detect cycles.
+        plain = {n: sp.Symbol(n, real=True) for n in names}
+        ns = Namespace(plain, what="parameter")
+        raw = {}
+        for n in names:
+            v = value[n]
+            if v is None:
+                raw[n] = None
+                continue
+            e = chk.expr(("parameters", n), v, ns)
+            if e is not None:
+                raw[n] = e
+        order = self._parameter_order(raw, plain)
+        numeric = {}
+        for n in order:
+            e = raw.get(n)
+            if e is None:
+                continue
+            v = e.xreplace({plain[k]: numeric[k] for k in numeric if k in plain})
+            if v.free_symbols:
+                continue          # depends on a null parameter: stays symbolic
+            try:
+                fv = complex(sp.N(v))
+            except (TypeError, ValueError):
+                chk.error(("parameters", n), "value is not a finite number")
+                continue
+            if abs(fv.imag) > 1e-12 or fv.real != fv.real or abs(fv.real) == float("inf"):
+                chk.error(("parameters", n), f"value {v} is not a finite real number")
+                continue
+            numeric[n] = v
+        # Final symbols: positive when the value is a positive number (helps sqrt/atan2).
+        final = {}
+        for n in names:
+            nv = numeric.get(n)
+            positive = nv is not None and float(sp.N(nv)) > 0
+            final[n] = sp.Symbol(n, positive=True) if positive else sp.Symbol(n, real=True)
+        swap = {plain[n]: final[n] for n in names}
+        return {final[n]: (raw[n].xreplace(swap) if raw.get(n) is not None else None) for n in names}
+
+    def _parameter_order(self, raw, plain):
+        order, state = [], {}
+
+        def visit(n, stack):
+            if state.get(n) == "done":
+                return
+            if state.get(n) == "active":
+                cycle = " -> ".join(stack[stack.index(n):] + [n])
+                self.chk.error(("parameters", n), f"parameters depend on each other in a cycle: {cycle}")
+                raw[n] = None
+                return
+            state[n] = "active"
+            e = raw.get(n)
+            if e is not None:
+                for s in sorted(e.free_symbols, key=lambda s: s.name):
+                    if s.name in raw:
+                        visit(s.name, stack + [n])
+            state[n] = "done"
+            order.append(n)
+
+        for n in raw:
+            visit(n, [])
+        return order
+
+    # -- joints ---------------------------------------------------------
+    def _joints(self, value) -> list:
+        chk = self.chk
+        if value is None:
+            return []
+        if not isinstance(value, list):
+            chk.error(("joints",), f"expected a list of joints, got {type_name(value)}")
+            return []
+        taken = {s.name for s in self.parameters} | RESERVED
+        joints, seen = [], set()
+        for i, item in enumerate(value):
+            path = ("joints", i)
+            if not chk.mapping(path, item, ("name", "type", "limits", "actuator"), required=("name", "type")):
+                continue
+            name = chk.string(path + ("name",), item.get("name"), IDENT_RE, " (expected a name like theta1)") \
+                if "name" in item else None
+            kind = item.get("type")
+            if "type" in item and kind not in (REVOLUTE, PRISMATIC):
+                chk.error(path + ("type",), f"unknown joint type {kind!r}"
+                          + (did_you_mean(kind, (REVOLUTE, PRISMATIC)) if isinstance(kind, str) else "")
+                          + " (expected revolute or prismatic)")
+                kind = None
+            if name is None or kind is None:
+                continue
+            if name in taken or name in seen or name in PYTHON_KEYWORDS:
+                chk.error(path + ("name",), f"name '{name}' is already used")
+                continue
+            seen.add(name)
+            n = len(joints) + 1
+            default_act = f"C{n}" if kind == REVOLUTE else f"F{n}"
+            act = item.get("actuator", default_act)
+            if "actuator" in item:
+                act = chk.string(path + ("actuator",), act, IDENT_RE, " (expected a name like C1)")
+            if act is None:
+                continue
+            joints.append(Joint(
+                index=len(joints), name=name, kind=kind,
+                symbol=sp.Symbol(name, real=True), dot=sp.Symbol(f"{name}_dot", real=True),
+                ddot=sp.Symbol(f"{name}_ddot", real=True), actuator=sp.Symbol(act, real=True),
+                limits=None, line=chk.src.line(path),
+            ))
+            joints[-1]._raw_limits = item.get("limits")
+        # derived names must not collide with anything
+        all_names = {s.name for s in self.parameters} | RESERVED
+        for j in joints:
+            for derived, where in ((f"{j.name}_dot", "name"), (f"{j.name}_ddot", "name"),
+                                   (j.actuator.name, "actuator")):
+                if derived in all_names:
+                    chk.error(("joints", j.index, where),
+                              f"'{derived}' (of joint {j.name}) is already used")
+                all_names.add(derived)
+        pns = Namespace({s.name: s for s in self.parameters}, what="parameter")
+        for j in joints:
+            raw = j._raw_limits
+            if raw is None:
+                continue
+            path = ("joints", j.index, "limits")
+            if not isinstance(raw, list) or len(raw) != 2:
+                chk.error(path, "expected [lower, upper]")
+                continue
+            lo, hi = chk.expr(path + (0,), raw[0], pns), chk.expr(path + (1,), raw[1], pns)
+            if lo is None or hi is None:
+                continue
+            try:
+                vals = self._values()
+                flo, fhi = float(sp.N(lo.xreplace(vals))), float(sp.N(hi.xreplace(vals)))
+                if not flo < fhi:
+                    chk.error(path, f"lower limit {lo} is not below upper limit {hi}")
+                    continue
+            except (TypeError, ValueError):
+                pass
+            j.limits = (lo, hi)
+        return joints
+
+    def _values(self) -> dict:
+        """Numeric values of the parameters that have one (for sanity checks)."""
+        vals, pending = {}, dict(self.parameters)
+        for _ in range(len(pending) + 1):
+            for s, e in list(pending.items()):
+                if e is None:
+                    pending.pop(s)
+                    continue
+                v = e.xreplace(vals)
+                if not v.free_symbols:
+                    vals[s] = v
+                    pending.pop(s)
+        return vals
+
+    def _names(self) -> dict:
+        names = {s.name: s for s in self.parameters}
+        for j in self.joints:
+            names[j.name] = j.symbol
+            names[j.dot.name] = j.dot
+            names[j.ddot.name] = j.ddot
+            names[j.actuator.name] = j.actuator
+        names["t"] = sp.Symbol("t", real=True)
+        return names
+
+    # -- frames ---------------------------------------------------------
+    def _frames(self, frames_value, dh_value) -> dict:
+        chk = self.chk
+        frames: dict[str, Frame] = {}
+        if dh_value is not None:
+            self._dh_table(dh_value, frames)
+        if frames_value is not None:
+            if not isinstance(frames_value, dict):
+                chk.error(("frames",), f"expected a mapping frame name: definition, got {type_name(frames_value)}")
+            else:
+                for key, item in frames_value.items():
+                    self._frame(str(key), item, frames, from_dh=dh_value is not None)
+        if frames:
+            used = set()
+            for f in frames.values():
+                exprs = [e for _, e in f.factors] if f.kind == "pose" else (
+                    list(f.matrix) if f.kind == "matrix" else list(f.factors))
+                for e in exprs:
+                    used |= e.free_symbols
+            for j in self.joints:
+                if j.symbol not in used:
+                    chk.error(("joints", j.index, "name"), f"joint '{j.name}' does not appear in any frame")
+        return frames
+
+    def _dh_table(self, value, frames):
+        chk = self.chk
+        if not chk.mapping(("dh",), value, ("convention", "rows"), required=("rows",)):
+            return
+        conv = value.get("convention", "standard")
+        if conv not in ("standard", "modified"):
+            chk.error(("dh", "convention"), f"unknown convention {conv!r} (expected standard or modified)")
+            return
+        rows = value.get("rows")
+        if not isinstance(rows, list) or not rows:
+            chk.error(("dh", "rows"), "expected a non-empty list of rows")
+            return
+        keys = DH_KEYS if conv == "standard" else MDH_KEYS
+        for i, row in enumerate(rows):
+            path = ("dh", "rows", i)
+            if not chk.mapping(path, row, keys, required=keys):
+                continue
+            vals = [chk.expr(path + (k,), row[k], self.ns) for k in keys if k in row]
+            if len(vals) != 4 or any(v is None for v in vals):
+                continue
+            name = str(i + 1)
+            frames[name] = Frame(name, str(i), "dh" if conv == "standard" else "mdh",
+                                 factors=vals, line=chk.src.line(path))
+
+    def _frame(self, name, item, frames, from_dh):
+        chk = self.chk
+        path = ("frames", name)
+        if name == "0":
+            chk.error(path, "frame '0' is the fixed base frame and is never listed")
+            return
+        if name in frames:
+            chk.error(path, f"frame '{name}' is already defined" + (" by the dh table" if from_dh else ""))
+            return
+        if not chk.mapping(path, item, ("parent", "pose", "matrix", "dh", "mdh")):
+            return
+        given = [k for k in ("pose", "matrix", "dh", "mdh") if k in item]
+        if len(given) != 1:
+            chk.error(path, "expected exactly one of pose, matrix, dh, mdh"
+                      + (f" (got {', '.join(given)})" if given else ""))
+            return
+        default_parent = list(frames)[-1] if frames else "0"
+        parent = str(item.get("parent", default_parent))
+        if parent != "0" and parent not in frames:
+            chk.error(path + ("parent",), f"unknown parent frame '{parent}'"
+                      + did_you_mean(parent, list(frames) + ["0"])
+                      + " (a parent must be '0' or a frame defined before)")
+            return
+        kind = given[0]
+        line = chk.src.line(path)
+        if kind == "pose":
+            factors = self._pose(path + ("pose",), item["pose"])
+            if factors is not None:
+                frames[name] = Frame(name, parent, "pose", factors=factors, line=line)
+        elif kind == "matrix":
+            m = chk.matrix(path + ("matrix",), item["matrix"], self.ns)
+            if m is not None:
+                if list(m[3, :]) != [0, 0, 0, 1]:
+                    chk.error(path + ("matrix",), "the last row of a pose matrix must be [0, 0, 0, 1]")
+                    return
+                frames[name] = Frame(name, parent, "matrix", matrix=m, line=line)
+        else:
+            keys = DH_KEYS if kind == "dh" else MDH_KEYS
+            if not chk.mapping(path + (kind,), item[kind], keys, required=keys):
+                return
+            vals = [chk.expr(path + (kind, k), item[kind][k], self.ns) for k in keys if k in item[kind]]
+            if len(vals) == 4 and all(v is not None for v in vals):
+                frames[name] = Frame(name, parent, kind, factors=vals, line=line)
+
+    def _pose(self, path, text):
+        chk = self.chk
+        if not isinstance(text, str):
+            chk.error(path, f"expected a string of elementary motions like 'Rz(theta1) Tx(L1)', got {type_name(text)}")
+            return None
+        factors, i, n = [], 0, len(text)
+        while i < n:
+            c = text[i]
+            if c.isspace() or c == "*":
+                i += 1
+                continue
+            op = text[i:i + 2]
+            if op not in POSE_OPS:
+                word = re.match(r"[A-Za-z_0-9]*", text[i:]).group(0) or text[i]
+                chk.error(path, f"unknown elementary motion '{word}'" + did_you_mean(word, POSE_OPS)
+                          + " (expected Tx Ty Tz Rx Ry Rz, e.g. 'Tz(h) Rz(theta1)')")
+                return None
+            j = i + 2
+            while j < n and text[j].isspace():
+                j += 1
+            if j >= n or text[j] != "(":
+                chk.error(path, f"expected '(' after {op}")
+                return None
+            depth, k = 0, j
+            while k < n:
+                if text[k] == "(":
+                    depth += 1
+                elif text[k] == ")":
+                    depth -= 1
+                    if depth == 0:
+                        break
+                k += 1
+            if depth != 0:
+                chk.error(path, f"unbalanced parentheses in {text!r}")
+                return None
+            inner = text[j + 1:k]
+            try:
+                e = self.ns.parse_text(inner)
+            except ExpressionError as exc:
+                chk.error(path, str(exc))
+                return None
+            factors.append((op, e))
+            i = k + 1
+        if not factors:
+            chk.error(path, "empty pose (write e.g. 'Tx(0)' for a frame that coincides with its parent)")
+            return None
+        return factors
+
+    # -- points, gravity, bodies, forces ---------------------------------
+    def _frame_ref(self, path, value, allow_base=True) -> str | None:
+        if value is None or isinstance(value, (list, dict, bool)):
+            self.chk.error(path, f"expected a frame name, got {type_name(value)}")
+            return None
+        name = str(value)
+        if name == "0" and allow_base:
+            return name
+        if name not in self.frames:
+            known = list(self.frames) + (["0"] if allow_base else [])
+            self.chk.error(path, f"unknown frame '{name}'" + did_you_mean(name, known)
+                           + (f" (known: {', '.join(known)})" if known else " (no frames are defined)"))
+            return None
+        return name
+
+    def _points(self, value) -> dict:
+        chk = self.chk
+        points: dict[str, Point] = {}
+        taken = set(self.names) | RESERVED
+        if value is not None:
+            if not isinstance(value, dict):
+                chk.error(("points",), f"expected a mapping point name: {{frame, at}}, got {type_name(value)}")
+            else:
+                for name, item in value.items():
+                    path = ("points", name)
+                    if not IDENT_RE.match(name) or name in PYTHON_KEYWORDS:
+                        chk.error(path, f"invalid point name '{name}'")
+                        continue
+                    if name in taken:
+                        chk.error(path, f"point name '{name}' is already used by a parameter or joint")
+                        continue
+                    if not chk.mapping(path, item, ("frame", "at"), required=("frame",)):
+                        continue
+                    frame = self._frame_ref(path + ("frame",), item.get("frame")) if "frame" in item else None
+                    at = self.chk.vector(path + ("at",), item.get("at", [0, 0, 0]), self.ns)
+                    if frame is not None and at is not None:
+                        points[name] = Point(name, frame, at, line=chk.src.line(path))
+        if "E" not in points and "E" not in taken:
+            points["E"] = Point("E", self.last_frame(), sp.zeros(3, 1), line=1, implicit=True)
+        return points
+
+    def last_frame(self) -> str:
+        return list(self.frames)[-1] if self.frames else "0"
+
+    def _gravity(self, value):
+        if value is None:
+            g = self.names.get("g")
+            if g is not None and g in self.parameters:
+                return sp.Matrix([0, 0, -g]), False
+            return None, False
+        vec = self.chk.vector(("gravity",), value, Namespace({s.name: s for s in self.parameters},
+                                                             what="parameter"))
+        return vec, True
+
+    def _bodies(self, value) -> list:
+        chk = self.chk
+        if value is None:
+            return []
+        if not isinstance(value, list):
+            chk.error(("bodies",), f"expected a list of bodies, got {type_name(value)}")
+            return []
+        out, seen = [], set()
+        kinds = ("point", "rod", "com", "pseudo_inertia")
+        for i, item in enumerate(value):
+            path = ("bodies", i)
+            if not chk.mapping(path, item, ("name", "frame", "mass") + kinds + ("inertia",),
+                               required=("name", "frame")):
+                continue
+            name = chk.string(path + ("name",), item.get("name")) if "name" in item else None
+            if name is not None and name in seen:
+                chk.error(path + ("name",), f"body name '{name}' is already used")
+                name = None
+            seen.add(name)
+            frame = self._frame_ref(path + ("frame",), item.get("frame")) if "frame" in item else None
+            given = [k for k in kinds if k in item]
+            if len(given) != 1:
+                chk.error(path, "expected exactly one mass distribution: point, rod, com or pseudo_inertia"
+                          + (f" (got {', '.join(given)})" if given else ""))
+                continue
+            kind = given[0]
+            if "inertia" in item and kind != "com":
+                chk.error(path + ("inertia",), "inertia goes with com (the inertia tensor about the centre of mass)")
+                continue
+            mass = None
+            if kind != "pseudo_inertia":
+                if "mass" not in item:
+                    chk.error(path, "missing required key 'mass'")
+                    continue
+                mass = chk.expr(path + ("mass",), item["mass"], self.ns)
+                if mass is None:
+                    continue
+            elif "mass" in item:
+                chk.error(path + ("mass",), "the mass is the [4,4] entry of pseudo_inertia: do not give both")
+                continue
+            data = {}
+            if kind == "point":
+                data["at"] = chk.vector(path + ("point",), item["point"], self.ns)
+            elif kind == "rod":
+                rod = item["rod"]
+                if chk.mapping(path + ("rod",), rod, ("from", "to"), required=("from", "to")) \
+                        and "from" in rod and "to" in rod:
+                    data["from"] = chk.vector(path + ("rod", "from"), rod["from"], self.ns)
+                    data["to"] = chk.vector(path + ("rod", "to"), rod["to"], self.ns)
+                else:
+                    data["from"] = None
+            elif kind == "com":
+                data["com"] = chk.vector(path + ("com",), item["com"], self.ns)
+                data["inertia"] = (chk.matrix(path + ("inertia",), item["inertia"], self.ns, shapes=((3, 3),))
+                                   if "inertia" in item else sp.zeros(3, 3))
+                if data["inertia"] is not None and data["inertia"] != data["inertia"].T:
+                    chk.error(path + ("inertia",), "the inertia tensor must be symmetric")
+                    data["inertia"] = None
+            else:
+                data["J"] = chk.matrix(path + ("pseudo_inertia",), item["pseudo_inertia"], self.ns)
+                if data["J"] is not None and data["J"] != data["J"].T:
+                    chk.error(path + ("pseudo_inertia",), "the pseudo-inertia matrix must be symmetric")
+                    data["J"] = None
+                if data["J"] is not None:
+                    mass = data["J"][3, 3]
+            if name is None or frame is None or any(v is None for v in data.values()):
+                continue
+            out.append(Body(name, frame, mass, kind, data, line=chk.src.line(path)))
+        return out
+
+    def _forces(self, value) -> list:
+        chk = self.chk
+        if value is None:
+            return []
+        if not isinstance(value, list):
+            chk.error(("forces",), f"expected a list of forces, got {type_name(value)}")
+            return []
+        out, seen = [], set()
+        for i, item in enumerate(value):
+            path = ("forces", i)
+            if not chk.mapping(path, item, ("name", "frame", "at", "force", "torque", "in"),
+                               required=("frame",)):
+                continue
+            name = item.get("name", f"force{i + 1}")
+            name = chk.string(path + ("name",), name) if "name" in item else name
+            if name is not None and name in seen:
+                chk.error(path + ("name",), f"force name '{name}' is already used")
+                continue
+            seen.add(name)
+            frame = self._frame_ref(path + ("frame",), item.get("frame"), allow_base=False) \
+                if "frame" in item else None
+            in_frame = self._frame_ref(path + ("in",), item["in"]) if "in" in item else frame
+            at = chk.vector(path + ("at",), item.get("at", [0, 0, 0]), self.ns)
+            if "force" not in item and "torque" not in item:
+                chk.error(path, "expected a force, a torque, or both")
+                continue
+            force = chk.vector(path + ("force",), item["force"], self.ns) if "force" in item else None
+            torque = chk.vector(path + ("torque",), item["torque"], self.ns) if "torque" in item else None
+            if ("force" in item and force is None) or ("torque" in item and torque is None):
+                continue
+            if name is None or frame is None or in_frame is None or at is None:
+                continue
+            out.append(Force(name, frame, at, force, torque, in_frame, line=chk.src.line(path)))
+        return out

@@ -1,0 +1,358 @@
+"""Validation of the `questions:` list: keys of every type, parsed options, ids.
+
+Questions are validated for every type of the spec, whether or not its solver
+exists yet; the solver then finds `question.options` already parsed (sympy
+expressions, joint mappings keyed by joint name in joint order).
+"""
+
+from __future__ import annotations
+
+import re
+
+from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
+from robosolve.load.problem import Question
+
+ID_RE = re.compile(r"^[A-Za-z0-9_-]+$")
+COMMON_KEYS = ("type", "id", "at", "point", "frame")
+SHAPES = ("bang-bang", "trapezoidal", "quintic")
+LAWS = ("p", "pd", "pd_gravity", "computed_torque")
+
+# type -> {option key: validator name}
+TYPES = {
+    "position": {},
+    "velocity_acceleration": {},
+    "jacobian": {"coordinates": "coordinates", "geometric": "bool", "bodies": "bool"},
+    "statics": {"force": "exprs", "torque": "vector3", "weight": "bool", "coordinates": "coordinates"},
+    "ellipsoids": {"coordinates": "coordinates", "budgets": "budgets",
+                   "joint_compliance": "exprs", "velocity": "exprs"},
+    "inverse_kinematics": {"target": "equations", "velocity": "equations", "select": "select"},
+    "motion_profile": {"from": "joint_values", "to": "joint_values", "max_acceleration": "joint_values",
+                       "shape": "shape", "max_velocity": "joint_values"},
+    "equations_of_motion": {},
+    "joint_torques": {"profile": "profile_ref"},
+    "p_control": {"profile": "profile_ref", "gains": "joint_values", "law": "law",
+                  "gains_d": "joint_values", "start": "joint_values", "duration": "expr"},
+    "displacement": {"from": "pose_or_config", "to": "pose_or_config"},
+    "orientation": {"matrix": "rotation_matrix"},
+    "dof": {"bodies": "count", "joints_1dof": "count", "joints_2dof": "count",
+            "joints_3dof": "count", "space": "space"},
+}
+REQUIRED = {
+    "ellipsoids": ("at",),
+    "inverse_kinematics": ("target",),
+    "motion_profile": ("from", "to", "max_acceleration"),
+    "p_control": ("gains",),
+    "displacement": ("from", "to"),
+    "dof": ("bodies",),
+}
+DYNAMICS_TYPES = ("equations_of_motion", "joint_torques", "p_control")
+
+
+def load_questions(builder, value) -> list:
+    chk = builder.chk
+    if value is None:
+        if isinstance(builder.data, dict) and "questions" in builder.data:
+            chk.error(("questions",), "expected a non-empty list of questions")
+        return []
+    if not isinstance(value, list) or not value:
+        chk.error(("questions",), "expected a non-empty list of questions")
+        return []
+    ql = _QuestionLoader(builder)
+    questions = []
+    for i, item in enumerate(value):
+        q = ql.load(i, item)
+        if q is not None:
+            questions.append(q)
+    ql.assign_ids(questions, value)
+    ql.check_references(questions)
+    return questions
+
+
+class _QuestionLoader:
+    def __init__(self, b):
+        self.b = b
+        self.chk = b.chk
+        self.params_ns = Namespace({s.name: s for s in b.parameters}, what="parameter")
+        self.joint_names = [j.name for j in b.joints]
+
+    # ------------------------------------------------------------------
+    def load(self, i, item):
+        chk, b = self.chk, self.b
+        path = ("questions", i)
+        if not isinstance(item, dict):
+            chk.error(path, f"expected a mapping with a `type`, got {type(item).__name__}")
+            return None
+        qtype = item.get("type")
+        if qtype not in TYPES:
+            if "type" not in item:
+                chk.error(path, "missing required key 'type'")
+            else:
+                chk.error(path + ("type",), f"unknown question type {qtype!r}"
+                          + (did_you_mean(qtype, TYPES) if isinstance(qtype, str) else "")
+                          + f" (expected one of: {', '.join(TYPES)})")
+            return None
+        schema = TYPES[qtype]
+        n_before = len(chk.issues)
+        chk.mapping(path, item, COMMON_KEYS + tuple(schema), required=REQUIRED.get(qtype, ()))
+        q = Question(type=qtype, id="", index=i, line=chk.src.line(path))
+        if "id" in item:
+            ident = item["id"]
+            if not isinstance(ident, str) or not ID_RE.match(ident):
+                chk.error(path + ("id",), "expected an id of letters, digits, '_' or '-'")
+            else:
+                q.id = ident
+        q.frame = b.last_frame()
+        if "frame" in item:
+            f = b._frame_ref(path + ("frame",), item["frame"])
+            if f is not None:
+                q.frame, q.frame_given = f, True
+        if "point" in item:
+            p = item["point"]
+            if not isinstance(p, str) or p not in b.points:
+                chk.error(path + ("point",), f"unknown point {p!r}"
+                          + (did_you_mean(p, b.points) if isinstance(p, str) else "")
+                          + (f" (known: {', '.join(b.points)})" if b.points else ""))
+            else:
+                q.point, q.point_given = p, True
+        if "at" in item:
+            q.at = self.at(path + ("at",), item["at"])
+        for key, kind in schema.items():
+            if key in item:
+                v = getattr(self, "v_" + kind)(path + (key,), item[key], q)
+                if v is not None:
+                    q.options[key] = v
+        self.type_rules(path, item, q)
+        return q if len(chk.issues) == n_before else q
+
+    def type_rules(self, path, item, q):
+        chk, b = self.chk, self.b
+        t, opts = q.type, q.options
+        needs_robot = t not in ("dof", "displacement", "orientation")
+        if t == "displacement" and any(isinstance(item.get(k), dict) for k in ("from", "to")):
+            needs_robot = True
+        if t == "orientation" and "matrix" not in item:
+            needs_robot = True
+        if needs_robot and not b.problem.has_robot:
+            chk.error(path + ("type",), f"a {t} question needs a robot: define joints and frames")
+        if needs_robot and t != "orientation" and t != "displacement" and not b.joints:
+            if b.problem.has_robot:
+                chk.error(path + ("type",), f"a {t} question needs joints")
+        if t == "orientation" and "matrix" in item and "frame" in item:
+            chk.error(path, "give either matrix or frame (with at), not both")
+        if t == "jacobian" and opts.get("geometric") and "coordinates" in item:
+            chk.error(path + ("geometric",), "geometric: true cannot be combined with coordinates")
+        ncoord = len(opts["coordinates"]) if "coordinates" in opts else 3
+        if t == "statics":
+            if not any(k in item for k in ("force", "torque")) and not opts.get("weight"):
+                chk.error(path, "expected force, torque or weight: true")
+            if "force" in opts and len(opts["force"]) != ncoord:
+                chk.error(path + ("force",), f"expected {ncoord} components (one per coordinate), "
+                          f"got {len(opts['force'])}")
+            if "torque" in opts and "coordinates" in item:
+                chk.error(path + ("torque",), "a torque needs the default coordinates (the point's x, y, z)")
+        if t == "ellipsoids":
+            if "velocity" in opts and len(opts["velocity"]) != ncoord:
+                chk.error(path + ("velocity",), f"expected {ncoord} components (one per coordinate), "
+                          f"got {len(opts['velocity'])}")
+            if "joint_compliance" in opts and len(opts["joint_compliance"]) != len(b.joints):
+                chk.error(path + ("joint_compliance",),
+                          f"expected {len(b.joints)} values (one per joint), got {len(opts['joint_compliance'])}")
+        if t == "motion_profile":
+            shape = opts.get("shape", "bang-bang")
+            if shape == "trapezoidal" and "max_velocity" not in item:
+                chk.error(path, "a trapezoidal profile needs max_velocity")
+            if shape != "trapezoidal" and "max_velocity" in item:
+                chk.error(path + ("max_velocity",), "max_velocity goes with shape: trapezoidal")
+            for key in ("max_acceleration", "max_velocity"):
+                for name, v in opts.get(key, {}).items():
+                    if v.is_number and not v.is_positive:
+                        chk.error(path + (key, name), f"must be positive, got {v}")
+        if t == "p_control":
+            law = opts.get("law", "p")
+            if law != "p" and "gains_d" not in item:
+                chk.error(path, f"law {law} needs gains_d")
+            if law == "p" and "gains_d" in item:
+                chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
+        if t == "dof":
+            if opts.get("space", "planar") == "planar" and "joints_3dof" in item:
+                chk.error(path + ("joints_3dof",), "3-DOF joints exist only with space: spatial")
+        if t in DYNAMICS_TYPES or (t == "statics" and opts.get("weight")):
+            if b.problem.gravity is None:
+                chk.error(path + ("type",), "this question uses gravity: declare g in parameters "
+                          "(the default gravity is [0, 0, -g]) or give gravity")
+            if not b.problem.bodies and t != "statics":
+                chk.error(path + ("type",), "this question needs bodies (masses)")
+            if t == "statics" and not b.problem.bodies:
+                chk.error(path + ("weight",), "weight: true needs bodies (masses)")
+
+    # -- ids and references --------------------------------------------
+    def assign_ids(self, questions, raw):
+        chk = self.chk
+        counts: dict[str, int] = {}
+        for q in questions:
+            if not q.id:
+                counts[q.type] = counts.get(q.type, 0) + 1
+                q.id = q.type if counts[q.type] == 1 else f"{q.type}-{counts[q.type]}"
+        seen = {}
+        for q in questions:
+            if q.id in seen:
+                chk.error(("questions", q.index, "id"), f"duplicate question id '{q.id}' "
+                          f"(also questions[{seen[q.id]}])")
+            else:
+                seen[q.id] = q.index
+
+    def check_references(self, questions):
+        chk = self.chk
+        profiles = [q for q in questions if q.type == "motion_profile"]
+        for q in questions:
+            if q.type not in ("joint_torques", "p_control"):
+                continue
+            ref = q.options.get("profile")
+            if ref is None:
+                if not profiles:
+                    chk.error(("questions", q.index), "needs a motion_profile question (none in the file)")
+                else:
+                    q.options["profile"] = profiles[0].id
+            elif ref not in [p.id for p in profiles]:
+                chk.error(("questions", q.index, "profile"), f"no motion_profile question with id '{ref}'"
+                          + did_you_mean(ref, [p.id for p in profiles]))
+
+    # -- validators ---------------------------------------------------
+    def at(self, path, value):
+        chk, b = self.chk, self.b
+        if not isinstance(value, dict):
+            chk.error(path, f"expected a mapping of joint or parameter values, got {type(value).__name__}")
+            return {}
+        allowed = {}
+        for j in b.joints:
+            allowed[j.name], allowed[j.dot.name], allowed[j.ddot.name] = j.symbol, j.dot, j.ddot
+        for s in b.parameters:
+            allowed[s.name] = s
+        out = {}
+        for key, v in value.items():
+            if key not in allowed:
+                chk.error(path + (key,), f"unknown joint or parameter '{key}'" + did_you_mean(key, allowed))
+                continue
+            e = chk.expr(path + (key,), v, self.params_ns)
+            if e is not None:
+                out[allowed[key]] = e
+        return out
+
+    def v_bool(self, path, value, q):
+        return self.chk.boolean(path, value)
+
+    def v_expr(self, path, value, q):
+        return self.chk.expr(path, value, self.params_ns)
+
+    def v_exprs(self, path, value, q):
+        v = self.chk.vector(path, value, self.b.ns, length=None)
+        return list(v) if v is not None else None
+
+    def v_vector3(self, path, value, q):
+        v = self.chk.vector(path, value, self.b.ns, length=3)
+        return list(v) if v is not None else None
+
+    def v_coordinates(self, path, value, q):
+        if not isinstance(value, list) or not value:
+            self.chk.error(path, "expected a non-empty list of coordinate expressions (e.g. [E.x, E.y])")
+            return None
+        out = [self.chk.expr(path + (i,), v, self.b.ns_points) for i, v in enumerate(value)]
+        return None if any(e is None for e in out) else out
+
+    def v_budgets(self, path, value, q):
+        if not self.chk.mapping(path, value, ("force", "velocity", "compliance")):
+            return None
+        out = {}
+        for k, v in value.items():
+            if k in ("force", "velocity", "compliance"):
+                e = self.chk.expr(path + (k,), v, self.params_ns)
+                if e is not None:
+                    out[k] = e
+        return out
+
+    def v_equations(self, path, value, q):
+        chk = self.chk
+        if not isinstance(value, dict) or not value:
+            chk.error(path, "expected a mapping coordinate expression: value (e.g. {E.x: 1.2, E.y: 0.3})")
+            return None
+        out = []
+        for key, v in value.items():
+            try:
+                lhs = self.b.ns_points.parse_text(str(key))
+            except ExpressionError as exc:
+                chk.error(path + (key,), str(exc))
+                continue
+            rhs = chk.expr(path + (key,), v, self.params_ns)
+            if rhs is not None:
+                out.append((str(key), lhs, rhs))
+        return out if len(out) == len(value) else None
+
+    def v_joint_values(self, path, value, q, require_all=True):
+        chk = self.chk
+        if not isinstance(value, dict):
+            chk.error(path, "expected a mapping joint: value")
+            return None
+        for key in value:
+            if key not in self.joint_names:
+                chk.error(path + (key,), f"unknown joint '{key}'" + did_you_mean(key, self.joint_names)
+                          + f" (joints: {', '.join(self.joint_names)})")
+        missing = [n for n in self.joint_names if n not in value]
+        if require_all and missing:
+            chk.error(path, f"missing joint(s) {', '.join(missing)} (give a value for every joint)")
+        out = {}
+        for n in self.joint_names:
+            if n in value:
+                e = chk.expr(path + (n,), value[n], self.params_ns)
+                if e is not None:
+                    out[n] = e
+        return out
+
+    def v_select(self, path, value, q):
+        if value == "limits":
+            return "limits"
+        if isinstance(value, dict):
+            return self.v_joint_values(path, value, q)
+        self.chk.error(path, "expected 'limits' or a configuration (mapping joint: value)")
+        return None
+
+    def v_shape(self, path, value, q):
+        return self._choice(path, value, SHAPES)
+
+    def v_law(self, path, value, q):
+        return self._choice(path, value, LAWS)
+
+    def v_space(self, path, value, q):
+        return self._choice(path, value, ("planar", "spatial"))
+
+    def _choice(self, path, value, choices):
+        if value not in choices:
+            self.chk.error(path, f"unknown value {value!r}"
+                           + (did_you_mean(value, choices) if isinstance(value, str) else "")
+                           + f" (expected one of: {', '.join(choices)})")
+            return None
+        return value
+
+    def v_profile_ref(self, path, value, q):
+        if not isinstance(value, str):
+            self.chk.error(path, "expected the id of a motion_profile question")
+            return None
+        return value
+
+    def v_count(self, path, value, q):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+            self.chk.error(path, "expected a whole number >= 0")
+            return None
+        if value > 10_000:
+            self.chk.error(path, "unreasonably large count (at most 10000)")
+            return None
+        return value
+
+    def v_pose_or_config(self, path, value, q):
+        if isinstance(value, dict):
+            return {"config": self.v_joint_values(path, value, q)}
+        m = self.chk.matrix(path, value, self.params_ns, shapes=((4, 4),))
+        return {"matrix": m} if m is not None else None
+
+    def v_rotation_matrix(self, path, value, q):
+        return self.chk.matrix(path, value, self.params_ns, shapes=((3, 3), (4, 4)))
+

@@ -1,0 +1,127 @@
+"""Read YAML into plain Python data plus the line of every key and item.
+
+PyYAML's composer gives nodes with marks; we convert them ourselves so that
+(1) every value keeps its line for error messages, (2) alias bombs and absurd
+nesting are stopped by a node budget instead of exhausting memory, and
+(3) duplicate keys are reported instead of silently overwritten.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import yaml
+
+MAX_FILE_BYTES = 1_000_000
+MAX_NODES = 100_000
+MAX_DEPTH = 40
+
+Path = tuple  # of str keys and int indices
+
+
+@dataclass
+class Source:
+    """Parsed YAML: `data` plus the 1-based line of each path."""
+
+    data: object
+    lines: dict = field(default_factory=dict)
+    file: str = "<input>"
+
+    def line(self, path: Path) -> int:
+        """Line of `path`, or of its nearest ancestor that has one."""
+        p = tuple(path)
+        while p:
+            if p in self.lines:
+                return self.lines[p]
+            p = p[:-1]
+        return self.lines.get((), 1)
+
+
+class YamlProblem(Exception):
+    def __init__(self, line: int, message: str):
+        self.line = line
+        self.message = message
+        super().__init__(message)
+
+
+class _Converter:
+    def __init__(self):
+        self.nodes = 0
+        self.lines: dict = {}
+        self.duplicates: list[tuple[int, Path, str]] = []
+        self._scalar_loader = yaml.SafeLoader("")
+
+    def convert(self, node, path: Path, depth: int):
+        self.nodes += 1
+        if self.nodes > MAX_NODES:
+            raise YamlProblem(node.start_mark.line + 1,
+                              f"the file expands to more than {MAX_NODES} values "
+                              "(aliases repeated too often?)")
+        if depth > MAX_DEPTH:
+            raise YamlProblem(node.start_mark.line + 1,
+                              f"nesting deeper than {MAX_DEPTH} levels")
+        if isinstance(node, yaml.MappingNode):
+            out: dict = {}
+            for key_node, value_node in node.value:
+                if not isinstance(key_node, yaml.ScalarNode):
+                    raise YamlProblem(key_node.start_mark.line + 1,
+                                      "a key must be a plain name, not a list or mapping")
+                if key_node.tag == "tag:yaml.org,2002:merge":
+                    raise YamlProblem(key_node.start_mark.line + 1,
+                                      "merge keys ('<<') are not supported")
+                key = self._scalar(key_node)
+                if isinstance(key, float) or key is None or isinstance(key, bool):
+                    key = key_node.value
+                key = str(key) if not isinstance(key, str) else key
+                kpath = path + (key,)
+                if key in out:
+                    self.duplicates.append((key_node.start_mark.line + 1, kpath, key))
+                self.lines[kpath] = key_node.start_mark.line + 1
+                out[key] = self.convert(value_node, kpath, depth + 1)
+            return out
+        if isinstance(node, yaml.SequenceNode):
+            out_list = []
+            for i, item in enumerate(node.value):
+                ipath = path + (i,)
+                self.lines[ipath] = item.start_mark.line + 1
+                out_list.append(self.convert(item, ipath, depth + 1))
+            return out_list
+        return self._scalar(node)
+
+    def _scalar(self, node):
+        try:
+            return self._scalar_loader.construct_object(node, deep=True)
+        except Exception as exc:  # e.g. an integer with too many digits
+            raise YamlProblem(node.start_mark.line + 1, f"invalid value {node.value[:40]!r}: {exc}")
+
+
+def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int, Path, str]]]:
+    """Parse YAML text. Raises YamlProblem for syntax errors and resource limits.
+
+    Returns the Source and the duplicate keys found (line, path, key).
+    """
+    if len(text.encode("utf-8", "replace")) > MAX_FILE_BYTES:
+        raise YamlProblem(1, f"file larger than {MAX_FILE_BYTES} bytes")
+    try:
+        documents = list(yaml.compose_all(text, Loader=yaml.SafeLoader))
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        line = mark.line + 1 if mark else 1
+        what = exc.problem or exc.context or "syntax error"
+        raise YamlProblem(line, f"YAML syntax error: {what}") from None
+    except yaml.YAMLError as exc:
+        raise YamlProblem(1, f"YAML error: {exc}") from None
+    except RecursionError:
+        raise YamlProblem(1, f"nesting deeper than {MAX_DEPTH} levels") from None
+    if len(documents) > 1:
+        raise YamlProblem(documents[1].start_mark.line + 1,
+                          "more than one YAML document in the file ('---')")
+    if not documents or documents[0] is None:
+        raise YamlProblem(1, "the file is empty (expected a mapping with `robosolve: 1`)")
+    conv = _Converter()
+    try:
+        data = conv.convert(documents[0], (), 0)
+    except RecursionError:
+        raise YamlProblem(1, f"nesting deeper than {MAX_DEPTH} levels") from None
+    conv.lines[()] = documents[0].start_mark.line + 1
+    return Source(data, conv.lines, file), conv.duplicates

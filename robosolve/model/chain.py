@@ -1,0 +1,303 @@
+"""The symbolic robot: frames, points, L/W/H matrices, bodies' pseudo-inertia.
+
+`RobotModel` is built once per problem and memoises everything it derives, so
+solvers share one chain product, one set of L matrices, and so on.
+
+Conventions (spec §3, ERRATA §D.1-4): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
+and H_0j = Mddot_0j M_0j^-1, both expressed in frame 0; the L matrix of joint i
+is dM/dq_i M^-1 moved to frame 0. Time derivatives use the chain rule with the
+symbols q, q_dot, q_ddot (no sympy Functions of t: faster and printable).
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import sympy as sp
+
+from robosolve.core import matrices as mx
+from robosolve.core.simplify import tidy, tidy_matrix
+from robosolve.core.transforms import ELEMENTARY, dh_modified, dh_standard, rigid_inverse
+from robosolve.load.expressions import point_symbol
+from robosolve.load.problem import Body, Problem
+
+
+def elementary_latex(op: str, arg) -> str:
+    """LaTeX of one factor of a pose string, e.g. R_z(\\theta_1)."""
+    return f"{'T' if op[0] == 'T' else 'R'}_{{{op[1]}}}\\left({sp.latex(arg)}\\right)"
+
+
+class RobotModel:
+    """Symbolic kinematics and mass model of a problem's robot."""
+
+    def __init__(self, problem: Problem):
+        self.problem = problem
+        self.joints = problem.joints
+        self.q = [j.symbol for j in self.joints]
+        self.qd = [j.dot for j in self.joints]
+        self.qdd = [j.ddot for j in self.joints]
+        self.frames = problem.frames
+        self.parameters = problem.parameters
+        self.gravity = problem.gravity
+        self.bodies = problem.bodies
+        self.forces = problem.forces
+        self.points = problem.points
+        self._m0: dict[str, sp.Matrix] = {"0": sp.eye(4)}
+        self._w0: dict[str, sp.Matrix] = {"0": sp.zeros(4, 4)}
+        self._h0: dict[str, sp.Matrix] = {"0": sp.zeros(4, 4)}
+        self._cache: dict = {}
+
+    # -- frames -------------------------------------------------------
+    def frame_names(self) -> list[str]:
+        return list(self.frames)
+
+    def parent(self, frame: str) -> str | None:
+        return None if frame == "0" else self.frames[frame].parent
+
+    def chain(self, frame: str) -> list[str]:
+        """Frames from the base (excluded) down to `frame` (included)."""
+        out = []
+        while frame != "0":
+            out.append(frame)
+            frame = self.frames[frame].parent
+        return out[::-1]
+
+    def local_factors(self, frame: str) -> list[tuple[str, sp.Matrix]]:
+        """The elementary matrices of a frame's pose, with their LaTeX names."""
+        f = self.frames[frame]
+        if f.kind == "pose":
+            return [(elementary_latex(op, arg), ELEMENTARY[op](arg)) for op, arg in f.factors]
+        if f.kind == "matrix":
+            return [("M", f.matrix)]
+        if f.kind == "dh":
+            th, d, a, al = f.factors
+            return [(f"DH({sp.latex(th)}, {sp.latex(d)}, {sp.latex(a)}, {sp.latex(al)})",
+                     dh_standard(th, d, a, al))]
+        al, a, th, d = f.factors
+        return [(f"MDH({sp.latex(al)}, {sp.latex(a)}, {sp.latex(th)}, {sp.latex(d)})",
+                 dh_modified(al, a, th, d))]
+
+    def M_local(self, frame: str) -> sp.Matrix:
+        """Pose of `frame` in its parent (the product of its elementary factors)."""
+        key = ("M_local", frame)
+        if key not in self._cache:
+            m = sp.eye(4)
+            for _, factor in self.local_factors(frame):
+                m = m * factor
+            self._cache[key] = tidy_matrix(m)
+        return self._cache[key]
+
+    def M0(self, frame: str) -> sp.Matrix:
+        """Pose of `frame` in frame 0: M_0p * M_p,frame (memoised, trig-tidied)."""
+        if frame not in self._m0:
+            parent = self.frames[frame].parent
+            self._m0[frame] = tidy_matrix(self.M0(parent) * self.M_local(frame))
+        return self._m0[frame]
+
+    def M0_inverse(self, frame: str) -> sp.Matrix:
+        return rigid_inverse(self.M0(frame))
+
+    def intermediate_origins(self, frame: str) -> list[sp.Matrix]:
+        """Origins after each translation factor of a pose (for drawing links)."""
+        f = self.frames[frame]
+        base = self.M0(f.parent)
+        out = []
+        if f.kind == "pose":
+            m = base
+            for op, arg in f.factors:
+                m = m * ELEMENTARY[op](arg)
+                if op[0] == "T":
+                    out.append(m[:3, 3])
+        return out[:-1] if out and out[-1] == self.M0(frame)[:3, 3] else out
+
+    # -- points and coordinates ---------------------------------------
+    def point_local(self, name: str):
+        p = self.points[name]
+        return p.frame, p.at
+
+    def point0(self, name: str) -> sp.Matrix:
+        """Coordinates of point `name` in frame 0 (3x1)."""
+        key = ("point0", name)
+        if key not in self._cache:
+            frame, at = self.point_local(name)
+            hp = self.M0(frame) * sp.Matrix([*at, 1])
+            self._cache[key] = sp.Matrix([tidy(e) for e in hp[:3, 0]])
+        return self._cache[key]
+
+    def coordinate(self, expr):
+        """Replace the placeholders P.x, P.y, P.z by the point's coordinates in frame 0."""
+        expr = sp.sympify(expr)
+        subs = {}
+        for s in expr.free_symbols:
+            if "." in s.name:
+                pname, axis = s.name.split(".")
+                subs[s] = self.point0(pname)["xyz".index(axis)]
+        return expr.xreplace(subs) if subs else expr
+
+    # -- time derivatives ---------------------------------------------
+    def time_derivative(self, expr):
+        """d/dt of an expression of q and q_dot (chain rule)."""
+        expr = sp.sympify(expr)
+        if isinstance(expr, sp.MatrixBase):
+            return expr.applyfunc(self.time_derivative)
+        out = 0
+        for q, qd, qdd in zip(self.q, self.qd, self.qdd):
+            if expr.has(q):
+                out += sp.diff(expr, q) * qd
+            if expr.has(qd):
+                out += sp.diff(expr, qd) * qdd
+        return out
+
+    # -- L, W, H ------------------------------------------------------
+    def joints_in(self, frame: str) -> list[int]:
+        """Indices of the joints whose variable appears in the frame's local pose."""
+        free = self.M_local(frame).free_symbols
+        return [j.index for j in self.joints if j.symbol in free]
+
+    def joint_frame(self, index: int) -> str | None:
+        """The first frame (file order) whose local pose contains joint `index`."""
+        for f in self.frames:
+            if index in self.joints_in(f):
+                return f
+        return None
+
+    def L_local(self, index: int, frame: str | None = None) -> sp.Matrix:
+        """L of joint `index` in the parent of the frame it moves: dM/dq M^-1."""
+        frame = frame or self.joint_frame(index)
+        key = ("L_local", index, frame)
+        if key not in self._cache:
+            self._cache[key] = mx.l_matrix(self.M_local(frame), self.joints[index].symbol)
+        return self._cache[key]
+
+    def L0(self, index: int, frame: str | None = None) -> sp.Matrix:
+        """L of joint `index` in frame 0, for the motion of `frame` (default: the
+        frame the joint moves). Sums the contributions of every frame of the chain
+        whose pose contains the joint (one, for an ordinary serial robot)."""
+        frame = frame or self.joint_frame(index)
+        key = ("L0", index, frame)
+        if key not in self._cache:
+            total = sp.zeros(4, 4)
+            for f in self.chain(frame):
+                if index in self.joints_in(f):
+                    total += mx.change_frame(self.M0(self.frames[f].parent), self.L_local(index, f))
+            self._cache[key] = tidy_matrix(total)
+        return self._cache[key]
+
+    def W_local(self, frame: str) -> sp.Matrix:
+        """Velocity of `frame` relative to its parent, expressed in the parent."""
+        key = ("W_local", frame)
+        if key not in self._cache:
+            w = sp.zeros(4, 4)
+            for i in self.joints_in(frame):
+                w += self.L_local(i, frame) * self.joints[i].dot
+            self._cache[key] = w
+        return self._cache[key]
+
+    def H_local(self, frame: str) -> sp.Matrix:
+        """Acceleration of `frame` relative to its parent, in the parent: Mddot M^-1."""
+        key = ("H_local", frame)
+        if key not in self._cache:
+            m = self.M_local(frame)
+            mdd = self.time_derivative(self.time_derivative(m))
+            self._cache[key] = tidy_matrix(mdd * rigid_inverse(m))
+        return self._cache[key]
+
+    def W_relative0(self, frame: str) -> sp.Matrix:
+        """0W_{p,frame}: the relative velocity matrix moved to frame 0."""
+        key = ("W_rel0", frame)
+        if key not in self._cache:
+            self._cache[key] = tidy_matrix(mx.change_frame(self.M0(self.frames[frame].parent),
+                                                           self.W_local(frame)))
+        return self._cache[key]
+
+    def H_relative0(self, frame: str) -> sp.Matrix:
+        key = ("H_rel0", frame)
+        if key not in self._cache:
+            self._cache[key] = tidy_matrix(mx.change_frame(self.M0(self.frames[frame].parent),
+                                                           self.H_local(frame)))
+        return self._cache[key]
+
+    def W0(self, frame: str) -> sp.Matrix:
+        """Rivals: W_0j = W_0p + 0W_pj (every term in frame 0)."""
+        if frame not in self._w0:
+            parent = self.frames[frame].parent
+            self._w0[frame] = tidy_matrix(self.W0(parent) + self.W_relative0(frame))
+        return self._w0[frame]
+
+    def H0(self, frame: str) -> sp.Matrix:
+        """Coriolis: H_0j = H_0p + 2 W_0p 0W_pj + 0H_pj (every term in frame 0)."""
+        if frame not in self._h0:
+            parent = self.frames[frame].parent
+            h = self.H0(parent) + 2 * self.W0(parent) * self.W_relative0(frame) + self.H_relative0(frame)
+            self._h0[frame] = tidy_matrix(h)
+        return self._h0[frame]
+
+    def auxiliary(self, point: str) -> sp.Matrix:
+        """0_aM: the auxiliary frame with origin at the point and the axes of frame 0."""
+        m = sp.eye(4)
+        m[:3, 3] = self.point0(point)
+        return m
+
+    def W_aux(self, frame: str, point: str) -> sp.Matrix:
+        """aW = a_0M W_0 0_aM; its last column is the velocity of the point."""
+        a = self.auxiliary(point)
+        return tidy_matrix(rigid_inverse(a) * self.W0(frame) * a)
+
+    def H_aux(self, frame: str, point: str) -> sp.Matrix:
+        a = self.auxiliary(point)
+        return tidy_matrix(rigid_inverse(a) * self.H0(frame) * a)
+
+    # -- bodies ---------------------------------------------------------
+    def body(self, name: str) -> Body:
+        for b in self.bodies:
+            if b.name == name:
+                return b
+        raise KeyError(name)
+
+    def J_local(self, body: Body) -> sp.Matrix:
+        """Pseudo-inertia of a body in its own frame."""
+        d = body.data
+        if body.kind == "point":
+            return mx.pseudo_inertia_point(body.mass, d["at"])
+        if body.kind == "rod":
+            return mx.pseudo_inertia_rod(body.mass, d["from"], d["to"])
+        if body.kind == "com":
+            return mx.pseudo_inertia_from_com(body.mass, d["com"], d["inertia"])
+        return d["J"]
+
+    def J0(self, body: Body) -> sp.Matrix:
+        """Pseudo-inertia in frame 0: M J M^T."""
+        key = ("J0", body.name)
+        if key not in self._cache:
+            m = self.M0(body.frame)
+            self._cache[key] = tidy_matrix(m * self.J_local(body) * m.T)
+        return self._cache[key]
+
+    def com_local(self, body: Body) -> sp.Matrix:
+        j = self.J_local(body)
+        return sp.Matrix([sp.cancel(j[i, 3] / j[3, 3]) for i in range(3)])
+
+    def com0(self, body: Body) -> sp.Matrix:
+        """Centre of mass of a body in frame 0."""
+        hp = self.M0(body.frame) * sp.Matrix([*self.com_local(body), 1])
+        return sp.Matrix([tidy(e) for e in hp[:3, 0]])
+
+    # -- convenience -----------------------------------------------------
+    @cached_property
+    def symbol_latex(self) -> dict:
+        """LaTeX names of the problem's symbols: theta1_dot -> \\dot{\\theta}_{1}."""
+        out = {}
+        for j in self.joints:
+            base = sp.latex(j.symbol)
+            out[j.dot] = f"\\dot{{{base}}}" if "_" not in base else _accent(base, "dot")
+            out[j.ddot] = f"\\ddot{{{base}}}" if "_" not in base else _accent(base, "ddot")
+        for name in self.points:
+            for axis in "xyz":
+                out[point_symbol(name, axis)] = f"{name}_{{{axis}}}"
+        return out
+
+
+def _accent(base: str, accent: str) -> str:
+    """\\theta_{1} -> \\dot{\\theta}_{1}."""
+    head, _, sub = base.partition("_")
+    return f"\\{accent}{{{head}}}_{sub}"

@@ -1,0 +1,1 @@
+"""Stage 4: Markdown, JSON and figures from answers. Renderers never compute physics."""

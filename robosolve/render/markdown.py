@@ -1,0 +1,169 @@
+"""report.md: the problem's data, then each question worked out step by step.
+
+LaTeX uses only what GitHub's math renderer supports: `$...$` inline and
+`$$...$$` display blocks on their own lines, `\\left[\\begin{matrix}` matrices.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from robosolve.render.numbers import report_number
+
+TYPE_TITLES = {
+    "position": "Position (direct kinematics)",
+    "velocity_acceleration": "Velocity and acceleration",
+    "jacobian": "Jacobian and singular configurations",
+    "statics": "Statics",
+    "ellipsoids": "Force, velocity and compliance ellipsoids",
+    "inverse_kinematics": "Inverse kinematics",
+    "motion_profile": "Motion profile",
+    "equations_of_motion": "Equations of motion",
+    "joint_torques": "Actuator torques along the profile",
+    "p_control": "Closed-loop control",
+    "displacement": "Rigid displacement (helical axis)",
+    "orientation": "Orientation representations",
+    "dof": "Degrees of freedom",
+}
+
+
+class Tex:
+    """LaTeX of sympy objects and plain numbers with the problem's symbol names."""
+
+    def __init__(self, symbol_names: dict):
+        self.names = symbol_names
+
+    def __call__(self, v) -> str:
+        if isinstance(v, str):
+            return v
+        if isinstance(v, bool):
+            return "\\text{true}" if v else "\\text{false}"
+        if v is None:
+            return "\\text{—}"
+        if isinstance(v, (int, float)):
+            return report_number(v)
+        if isinstance(v, (list, tuple)):
+            if v and all(isinstance(r, (list, tuple)) for r in v):
+                rows = [" & ".join(self(x) for x in r) for r in v]
+            else:
+                rows = [self(x) for x in v]
+            return "\\left[\\begin{matrix}" + " \\\\ ".join(rows) + "\\end{matrix}\\right]"
+        if isinstance(v, dict):
+            return ",\\quad ".join(f"{self(k) if not isinstance(k, str) else _text(k)} = {self(x)}"
+                                   for k, x in v.items())
+        return sp.latex(v, symbol_names=self.names)
+
+
+def _text(s: str) -> str:
+    return "\\text{" + s.replace("_", "\\_") + "}"
+
+
+def display(tex: str) -> str:
+    return f"$$\n{tex}\n$$"
+
+
+def render_table(header, rows) -> str:
+    def cell(x):
+        return str(x).replace("|", "\\|").replace("\n", " ")
+    out = ["| " + " | ".join(cell(h) for h in header) + " |",
+           "| " + " | ".join("---" for _ in header) + " |"]
+    out += ["| " + " | ".join(cell(c) for c in r) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def render_data(problem, model, tex: Tex) -> list[str]:
+    out = ["## Data"]
+    if problem.parameters:
+        rows = [(f"${tex(s)}$", "null (symbolic)" if v is None else f"${tex(v)}$")
+                for s, v in problem.parameters.items()]
+        out += ["### Parameters", render_table(("symbol", "value"), rows)]
+    if problem.joints:
+        rows = []
+        for j in problem.joints:
+            lim = "—" if j.limits is None else f"$[{tex(j.limits[0])}, {tex(j.limits[1])}]$"
+            rows.append((j.index + 1, f"${tex(j.symbol)}$", j.kind, lim, f"${tex(j.actuator)}$"))
+        out += ["### Joints", render_table(("#", "variable", "type", "limits", "actuator"), rows)]
+    if problem.frames and model is not None:
+        rows = []
+        for name, f in problem.frames.items():
+            factors = model.local_factors(name)
+            pose = " ".join(t for t, _ in factors) if f.kind == "pose" else (
+                "explicit matrix" if f.kind == "matrix" else f"${factors[0][0]}$ ({f.kind})")
+            if f.kind == "pose":
+                pose = f"${pose}$"
+            rows.append((name, f.parent, pose))
+        out += ["### Frames", "Each pose is applied in the current (moving) frame, left to right.",
+                render_table(("frame", "parent", "pose in parent"), rows)]
+    if problem.points:
+        rows = [(p.name, p.frame, f"${tex(list(p.at))}$" + (" (default: origin of the last frame)"
+                                                              if p.implicit else ""))
+                for p in problem.points.values()]
+        out += ["### Points", render_table(("point", "frame", "coordinates in its frame"), rows)]
+    if problem.gravity is not None and (problem.bodies or problem.gravity_given):
+        out += [f"Gravity in frame 0: ${tex(list(problem.gravity))}$."]
+    if problem.bodies:
+        rows = []
+        for b in problem.bodies:
+            d = b.data
+            if b.kind == "point":
+                dist = f"point mass at ${tex(list(d['at']))}$"
+            elif b.kind == "rod":
+                dist = f"uniform rod from ${tex(list(d['from']))}$ to ${tex(list(d['to']))}$"
+            elif b.kind == "com":
+                dist = f"centre of mass ${tex(list(d['com']))}$, inertia ${tex(d['inertia'])}$"
+            else:
+                dist = f"pseudo-inertia ${tex(d['J'])}$"
+            rows.append((b.name, b.frame, f"${tex(b.mass)}$", dist))
+        out += ["### Bodies", render_table(("body", "frame", "mass", "distribution"), rows)]
+    if problem.forces:
+        rows = []
+        for f in problem.forces:
+            rows.append((f.name, f.frame, f"${tex(list(f.at))}$",
+                         f"${tex(list(f.force))}$" if f.force is not None else "—",
+                         f"${tex(list(f.torque))}$" if f.torque is not None else "—", f.in_frame))
+        out += ["### External forces",
+                render_table(("name", "acts on frame", "at (in its frame)", "force", "torque",
+                              "components in frame"), rows)]
+    return out
+
+
+def render_step(step, tex: Tex) -> list[str]:
+    out = [f"#### {step.title}"]
+    if step.text:
+        out.append(step.text)
+    for lhs, value in step.equations:
+        out.append(display(f"{lhs} = {tex(value)}" if lhs else tex(value)))
+    if step.table:
+        header, rows = step.table
+        out.append(render_table(header, rows))
+    return out
+
+
+def render_answer(index: int, answer, figure_paths: list[str], tex: Tex) -> list[str]:
+    title = TYPE_TITLES.get(answer.type, answer.type)
+    out = [f"## {index}. {title} — `{answer.id}`"]
+    if answer.error is not None:
+        out.append(f"**Not answered:** {answer.error}")
+        return out
+    for step in answer.steps:
+        out += render_step(step, tex)
+    for path in figure_paths:
+        out.append(f"![{answer.id}]({path})")
+    if answer.notes:
+        out.append("**Notes**")
+        out += [f"- {n}" for n in answer.notes]
+    return out
+
+
+def render_report(report, figure_paths: dict) -> str:
+    problem, model = report.problem, report.model
+    tex = Tex(model.symbol_latex if model is not None else {})
+    out = [f"# {problem.title or problem.name}"]
+    if problem.description:
+        out.append(problem.description.strip())
+    out.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
+               "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
+    out += render_data(problem, model, tex)
+    for i, answer in enumerate(report.answers, 1):
+        out += render_answer(i, answer, figure_paths.get(answer.id, []), tex)
+    return "\n\n".join(out) + "\n"

@@ -1,0 +1,76 @@
+"""results.json exactly as the spec's §2 lays it out."""
+
+from __future__ import annotations
+
+import json
+
+import sympy as sp
+
+from robosolve.render.numbers import json_number
+
+
+def symbolic_value(v):
+    """sympy objects -> str() strings (lists of rows for matrices), recursively."""
+    if isinstance(v, sp.MatrixBase):
+        return [[str(e) for e in v.row(i)] for i in range(v.rows)]
+    if isinstance(v, dict):
+        return {str(k): symbolic_value(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [symbolic_value(x) for x in v]
+    if v is None or isinstance(v, bool):
+        return v
+    if isinstance(v, str):
+        return v
+    return str(sp.sympify(v))
+
+
+def numeric_value(v):
+    if isinstance(v, dict):
+        return {str(k): numeric_value(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [numeric_value(x) for x in v]
+    if isinstance(v, str):
+        return v
+    return json_number(v)
+
+
+def answer_record(answer, figure_paths: list[str]) -> dict:
+    rec: dict = {"type": answer.type}
+    for k, v in answer.extra.items():
+        rec[k] = numeric_value(v) if not isinstance(v, (sp.Basic, sp.MatrixBase)) else symbolic_value(v)
+    if answer.error is not None:
+        rec["error"] = answer.error
+    rec["symbolic"] = symbolic_value(answer.symbolic)
+    rec["numeric"] = numeric_value(answer.numeric)
+    rec["figures"] = list(figure_paths)
+    rec["notes"] = list(answer.notes)
+    return rec
+
+
+def results_document(report, figure_paths: dict) -> dict:
+    return {
+        "format": 1,
+        "problem": report.problem.name,
+        "answers": {a.id: answer_record(a, figure_paths.get(a.id, [])) for a in report.answers},
+    }
+
+
+def dumps(value, indent: int = 0) -> str:
+    """JSON with 2-space indentation, but lists of scalars (vectors, matrix rows) on one line."""
+    pad, inner = "  " * indent, "  " * (indent + 1)
+    if isinstance(value, dict):
+        if not value:
+            return "{}"
+        items = [f"{inner}{json.dumps(str(k), ensure_ascii=False)}: {dumps(v, indent + 1)}"
+                 for k, v in value.items()]
+        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+    if isinstance(value, list):
+        if all(not isinstance(v, (list, dict)) for v in value):
+            return "[" + ", ".join(json.dumps(v, ensure_ascii=False) for v in value) + "]"
+        items = [inner + dumps(v, indent + 1) for v in value]
+        return "[\n" + ",\n".join(items) + "\n" + pad + "]"
+    return json.dumps(value, ensure_ascii=False)
+
+
+def render_results_json(report, figure_paths: dict) -> str:
+    return dumps(results_document(report, figure_paths)) + "\n"

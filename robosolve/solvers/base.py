@@ -1,0 +1,200 @@
+"""What a solver receives (SolveContext) and returns (Answer).
+
+A solver is a module `robosolve.solvers.<type>` with `solve(question, ctx) -> Answer`.
+It does no I/O: the derivation is returned as `Step`s, figures as `FigureSpec`s
+(plain numbers), and the renderers turn them into Markdown, JSON and PNG.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from dataclasses import dataclass, field
+import sympy as sp
+
+from robosolve.core.timing import time_limit
+from robosolve.load.problem import Problem, Question
+
+# Default budget of one symbolic step before a solver falls back to numbers.
+SYMBOLIC_SECONDS = 30.0
+
+
+@dataclass
+class Step:
+    """One step of the worked solution.
+
+    `text` is Markdown (inline LaTeX with $...$); each equation is rendered as a
+    display formula `lhs = value` (value: a sympy object, or a LaTeX string);
+    `table` is (header, rows) of strings.
+    """
+
+    title: str
+    text: str = ""
+    equations: list = field(default_factory=list)
+    table: tuple | None = None
+
+
+@dataclass
+class FigureSpec:
+    """A figure to draw: `kind` names the module robosolve.render.plots.<kind>."""
+
+    name: str
+    kind: str
+    title: str
+    data: dict
+
+
+@dataclass
+class Answer:
+    """The answer to one question, in the layout of results.json (spec §2)."""
+
+    type: str
+    id: str
+    symbolic: dict = field(default_factory=dict)
+    numeric: dict = field(default_factory=dict)
+    steps: list = field(default_factory=list)
+    figures: list = field(default_factory=list)
+    notes: list = field(default_factory=list)
+    extra: dict = field(default_factory=dict)     # keys beside `type` (e.g. unreachable, reason)
+    error: str | None = None
+
+    def note(self, text: str):
+        if text not in self.notes:
+            self.notes.append(text)
+
+
+class MissingValues(Exception):
+    """Numeric evaluation needs values that are not given (null parameters, joints)."""
+
+    def __init__(self, names):
+        self.names = sorted(set(names))
+        super().__init__(", ".join(self.names))
+
+
+class SolveContext:
+    """Shared state of one problem's solve: the model and numeric helpers."""
+
+    def __init__(self, problem: Problem, model=None):
+        self.problem = problem
+        self.model = model
+        self.answers: dict[str, Answer] = {}      # earlier answers, by question id
+        self.shared: dict = {}                    # solver-to-solver cache (e.g. dynamics)
+
+    # -- numbers ---------------------------------------------------------
+    def parameter_values(self, overrides: dict | None = None) -> dict:
+        """Parameter symbol -> exact value, resolving expressions of other parameters."""
+        raw = dict(self.problem.parameters)
+        for s, v in (overrides or {}).items():
+            if s in raw:
+                raw[s] = v
+        values: dict = {}
+        pending = {s: e for s, e in raw.items() if e is not None}
+        for _ in range(len(pending) + 1):
+            progressed = False
+            for s, e in list(pending.items()):
+                v = e.xreplace(values)
+                if not (v.free_symbols & set(raw)):
+                    values[s] = v
+                    pending.pop(s)
+                    progressed = True
+            if not progressed:
+                break
+        return values
+
+    def substitutions(self, at: dict | None = None) -> dict:
+        """Parameters and the question's `at` values (joints, rates, overrides)."""
+        at = at or {}
+        values = self.parameter_values({s: v for s, v in at.items() if s in self.problem.parameters})
+        out = dict(values)
+        for s, v in at.items():
+            if s not in self.problem.parameters:
+                out[s] = v.xreplace(values)
+        return out
+
+    def missing(self, obj, subs: dict) -> list[str]:
+        free = _free_symbols(obj)
+        return sorted(s.name for s in free if s not in subs)
+
+    def numeric(self, obj, subs: dict):
+        """Evaluate a sympy object (expr, matrix, list, dict) to floats.
+
+        Raises MissingValues naming every symbol without a value.
+        """
+        missing = self.missing(obj, subs)
+        if missing:
+            raise MissingValues(missing)
+        return _to_float(obj, subs)
+
+    def try_numeric(self, answer: Answer, key: str, obj, subs: dict, what: str | None = None):
+        """answer.numeric[key] = numeric(obj), or a note naming what is missing."""
+        try:
+            answer.numeric[key] = self.numeric(obj, subs)
+            return answer.numeric[key]
+        except MissingValues as exc:
+            answer.note(missing_note(what or key, exc.names, self.problem))
+            return None
+
+    @staticmethod
+    def time_limit(seconds: float = SYMBOLIC_SECONDS):
+        return time_limit(seconds)
+
+    @staticmethod
+    @contextlib.contextmanager
+    def no_limit():
+        yield
+
+
+def missing_note(what: str, names, problem: Problem) -> str:
+    nulls = [n for n in names if any(s.name == n and v is None for s, v in problem.parameters.items())]
+    others = [n for n in names if n not in nulls]
+    parts = []
+    if nulls:
+        parts.append("the null parameter" + ("s " if len(nulls) > 1 else " ") + ", ".join(nulls))
+    if others:
+        parts.append(", ".join(others) + " (give " + ("them" if len(others) > 1 else "it") + " in `at`)")
+    return f"numeric {what} omitted: it needs " + " and ".join(parts)
+
+
+def _free_symbols(obj) -> set:
+    if isinstance(obj, dict):
+        out = set()
+        for v in obj.values():
+            out |= _free_symbols(v)
+        return out
+    if isinstance(obj, (list, tuple)):
+        out = set()
+        for v in obj:
+            out |= _free_symbols(v)
+        return out
+    if isinstance(obj, (sp.Basic, sp.MatrixBase)):
+        return set(obj.free_symbols)
+    return set()
+
+
+def _to_float(obj, subs):
+    if isinstance(obj, dict):
+        return {k: _to_float(v, subs) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_to_float(v, subs) for v in obj]
+    if isinstance(obj, sp.MatrixBase):
+        return [[_scalar(e, subs) for e in obj.row(i)] for i in range(obj.rows)]
+    if obj is None:
+        return None
+    return _scalar(obj, subs)
+
+
+def _scalar(e, subs) -> float:
+    if isinstance(e, (int, float)):
+        return float(e)
+    v = sp.sympify(e).xreplace(subs).evalf(17)
+    try:
+        return _clean(float(v))
+    except TypeError:
+        c = complex(v)
+        if abs(c.imag) > 1e-9 * max(1.0, abs(c.real)):
+            raise ValueError(f"complex value {c}") from None
+        return _clean(c.real)
+
+
+def _clean(x: float) -> float:
+    return 0.0 if x == 0 else x
+

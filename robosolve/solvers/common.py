@@ -1,0 +1,60 @@
+"""Helpers shared by solvers: LaTeX names of matrices, robot drawings, joint values."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from robosolve.solvers.base import MissingValues, SolveContext
+
+
+def frame_tex(name: str) -> str:
+    return name if name.isdigit() else f"\\mathrm{{{name}}}"
+
+
+def m_name(i: str, j: str, letter: str = "M") -> str:
+    """{}^{i}M_{j}: pose of frame j in frame i."""
+    return f"{{}}^{{{frame_tex(i)}}}{letter}_{{{frame_tex(j)}}}"
+
+
+def rel_name(base: str, i: str, j: str, letter: str) -> str:
+    """{}^{base}W_{i,j}: relative motion of j in i, expressed in base."""
+    return f"{{}}^{{{frame_tex(base)}}}{letter}_{{{frame_tex(i)},{frame_tex(j)}}}"
+
+
+def joint_values(ctx: SolveContext, subs: dict, rates: bool = False) -> list | None:
+    """Numeric joint values (q, or q and q_dot) when all are given."""
+    model = ctx.model
+    syms = model.q + (model.qd if rates else [])
+    if any(s not in subs for s in syms):
+        return None
+    return [float(sp.N(subs[s])) for s in syms]
+
+
+def robot_drawing(ctx: SolveContext, subs: dict) -> dict | None:
+    """Numbers to draw the robot: link polylines, frame origins and axes, points.
+
+    None when some joint or parameter value is missing.
+    """
+    model = ctx.model
+    frames = model.frame_names()
+    try:
+        origins = {"0": [0.0, 0.0, 0.0]}
+        axes = {"0": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]}
+        links = []
+        for f in frames:
+            m = ctx.numeric(model.M0(f), subs)
+            origins[f] = [m[0][3], m[1][3], m[2][3]]
+            axes[f] = [[m[r][c] for r in range(3)] for c in range(3)]    # columns: x, y, z axes
+            path = [origins[model.frames[f].parent]]
+            for p in model.intermediate_origins(f):
+                path.append(ctx.numeric(list(p), subs))
+            path.append(origins[f])
+            links.append(path)
+        points = {name: ctx.numeric(list(model.point0(name)), subs) for name in model.points}
+    except MissingValues:
+        return None
+    return {
+        "frames": [{"name": f, "origin": origins[f], "axes": axes[f]} for f in ["0", *frames]],
+        "links": links,
+        "points": [{"name": n, "at": p} for n, p in points.items()],
+    }

@@ -1,0 +1,74 @@
+"""Question 1: pose of a frame in frame 0 (the chain product) and position of a point."""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from robosolve.load.problem import Question
+from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
+from robosolve.solvers.common import frame_tex, m_name, robot_drawing
+
+
+def solve(question: Question, ctx: SolveContext) -> Answer:
+    model = ctx.model
+    frame, point = question.frame, question.point
+    ans = Answer(question.type, question.id)
+    chain = model.chain(frame)
+
+    elementary = Step(
+        "Elementary rototranslations",
+        "Each frame's pose in its parent is the product of elementary motions, each applied "
+        "in the current (moving) frame, so the factors multiply left to right.",
+    )
+    for f in chain:
+        parent = model.frames[f].parent
+        factors = model.local_factors(f)
+        lhs = m_name(parent, f)
+        if len(factors) > 1:
+            lhs += " = " + " ".join(tex for tex, _ in factors)
+        elementary.equations.append((lhs, model.M_local(f)))
+    ans.steps.append(elementary)
+
+    if len(chain) > 1:
+        product = " \\, ".join(m_name(model.frames[f].parent, f) for f in chain)
+        ans.steps.append(Step(
+            "Chain product",
+            f"The pose of frame {frame} in frame 0 is the product along the chain "
+            "(trigonometric products collected).",
+            equations=[(f"{m_name('0', frame)} = {product}", model.M0(frame))],
+        ))
+    m0 = model.M0(frame) if frame != "0" else sp.eye(4)
+
+    pframe, pat = model.point_local(point)
+    p0 = model.point0(point)
+    ans.steps.append(Step(
+        f"Position of point {point}",
+        f"Point {point} is fixed in frame {pframe} at ${sp.latex(tuple(pat))}$; in frame 0, "
+        f"with homogeneous coordinates:",
+        equations=[(f"{{}}^{{0}}{point} = {m_name('0', pframe)} \\, {{}}^{{{frame_tex(pframe)}}}{point}",
+                    p0)],
+    ))
+
+    ans.symbolic["M"] = m0
+    ans.symbolic["position"] = list(p0)
+    ans.symbolic["chain"] = [model.M_local(f) for f in chain]
+
+    if question.at or not (m0.free_symbols - set(ctx.problem.parameters)):
+        subs = ctx.substitutions(question.at)
+        ctx.try_numeric(ans, "M", m0, subs, "M")
+        ctx.try_numeric(ans, "position", list(p0), subs, "position")
+        ctx.try_numeric(ans, "chain", [model.M_local(f) for f in chain], subs, "chain")
+        drawing = robot_drawing(ctx, subs)
+        if drawing is not None:
+            drawing["highlight"] = point
+            ans.figures.append(FigureSpec("robot", "robot", f"Robot at the given configuration ({point} marked)",
+                                          drawing))
+        if "position" in ans.numeric:
+            x, y, z = ans.numeric["position"]
+            ans.steps.append(Step(
+                "Numeric values",
+                "With the data and the configuration of the question:",
+                equations=[(m_name("0", frame), ans.numeric["M"]),
+                           (f"{{}}^{{0}}{point}", [x, y, z])],
+            ))
+    return ans

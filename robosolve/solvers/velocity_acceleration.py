@@ -1,0 +1,136 @@
+"""Question 2: velocity and acceleration matrices W and H, the auxiliary frame,
+and the velocity and acceleration of a point.
+
+W by Rivals' theorem and H by Coriolis' theorem, every term in frame 0
+(ERRATA §D.2-3); the L matrices are generated from M (dM/dq M^-1, §D.4).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from robosolve.core.simplify import tidy
+from robosolve.core.transforms import vex
+from robosolve.load.problem import Question
+from robosolve.solvers.base import Answer, SolveContext, Step
+from robosolve.solvers.common import frame_tex, m_name, rel_name
+
+
+def angular_acceleration(h: sp.Matrix) -> sp.Matrix:
+    """alpha from H = Wdot + W^2: the rotation block of W^2 is symmetric, that of
+    Wdot is [alpha], so alpha = vex of the antisymmetric part of H's rotation block."""
+    r = h[:3, :3]
+    return (vex(r) - vex(r.T)).applyfunc(lambda e: tidy(e / 2))
+
+
+def solve(question: Question, ctx: SolveContext) -> Answer:
+    model = ctx.model
+    frame, point = question.frame, question.point
+    ans = Answer(question.type, question.id)
+    chain = model.chain(frame)
+
+    # L matrices
+    lstep = Step(
+        "L matrices of the joints",
+        "For joint $i$, moving frame $j$ relative to its parent $p$: "
+        "${}^{p}L = \\partial\\, {}^{p}M_{j} / \\partial q_i \\cdot {}^{p}M_{j}^{-1}$, "
+        "then moved to frame 0 with ${}^{0}L = {}^{0}M_{p}\\, {}^{p}L\\, {}^{0}M_{p}^{-1}$.",
+    )
+    for f in chain:
+        parent = model.frames[f].parent
+        for i in model.joints_in(f):
+            j = model.joints[i]
+            q = sp.latex(j.symbol)
+            lstep.equations.append((f"{{}}^{{{frame_tex(parent)}}}L_{{{q}}}", model.L_local(i, f)))
+            if parent != "0":
+                lstep.equations.append((f"{{}}^{{0}}L_{{{q}}} = {m_name('0', parent)}\\,"
+                                        f"{{}}^{{{frame_tex(parent)}}}L_{{{q}}}\\,{m_name('0', parent)}^{{-1}}",
+                                        model.L0(i, f)))
+    ans.steps.append(lstep)
+
+    # Rivals
+    rstep = Step(
+        "Velocity matrices (Rivals' theorem)",
+        "Every term is expressed in frame 0: "
+        "${}^{0}W_{0,j} = {}^{0}W_{0,p} + {}^{0}W_{p,j}$ with ${}^{0}W_{p,j} = \\sum {}^{0}L_i\\, \\dot q_i$ "
+        "over the joints that move frame $j$ relative to its parent.",
+    )
+    for f in chain:
+        parent = model.frames[f].parent
+        rstep.equations.append((rel_name("0", parent, f, "W"), model.W_relative0(f)))
+        if parent != "0":
+            rstep.equations.append((f"{rel_name('0', '0', f, 'W')} = {rel_name('0', '0', parent, 'W')} + "
+                                    f"{rel_name('0', parent, f, 'W')}", model.W0(f)))
+    ans.steps.append(rstep)
+
+    # Coriolis
+    cstep = Step(
+        "Acceleration matrices (Coriolis' theorem)",
+        "${}^{0}H_{0,j} = {}^{0}H_{0,p} + 2\\,{}^{0}W_{0,p}\\,{}^{0}W_{p,j} + {}^{0}H_{p,j}$, every term in "
+        "frame 0; the relative term is ${}^{0}H_{p,j} = {}^{0}L\\,\\ddot q + {}^{0}L^2\\,\\dot q^2$ for one "
+        "joint (in general $\\ddot M M^{-1}$ moved to frame 0). $H = \\dot W + W^2$ "
+        "(not $\\dot W\\, W^2$: ERRATA item 43).",
+    )
+    for f in chain:
+        parent = model.frames[f].parent
+        cstep.equations.append((rel_name("0", parent, f, "H"), model.H_relative0(f)))
+        if parent != "0":
+            cstep.equations.append((
+                f"{rel_name('0', '0', f, 'H')} = {rel_name('0', '0', parent, 'H')} + "
+                f"2\\,{rel_name('0', '0', parent, 'W')}\\,{rel_name('0', parent, f, 'W')} + "
+                f"{rel_name('0', parent, f, 'H')}", model.H0(f)))
+    ans.steps.append(cstep)
+
+    w0 = model.W0(frame) if frame != "0" else sp.zeros(4, 4)
+    h0 = model.H0(frame) if frame != "0" else sp.zeros(4, 4)
+    pframe, _ = model.point_local(point)
+    w_aux, h_aux = model.W_aux(frame, point), model.H_aux(frame, point)
+    p0 = model.point0(point)
+    # The point's own frame carries it (it may differ from the question's frame).
+    w_p = model.W_aux(pframe, point) if pframe != frame else w_aux
+    h_p = model.H_aux(pframe, point) if pframe != frame else h_aux
+    velocity = w_p[:3, 3]
+    acceleration = h_p[:3, 3]
+    omega = vex(w0[:3, :3])
+    alpha = angular_acceleration(h0)
+
+    ans.steps.append(Step(
+        f"Auxiliary frame at {point}",
+        "The last column of $W$ is the velocity of the body point passing through $O_0$, not of "
+        f"{point}. The auxiliary frame $a$ has its origin at {point} and the axes of frame 0: "
+        "${}^{a}W = {}^{a}M_{0}\\,{}^{0}W\\,{}^{0}M_{a}$, whose last column is the velocity of the "
+        "point (and likewise for $H$).",
+        equations=[(m_name("0", "a"), model.auxiliary(point)),
+                   (f"{{}}^{{a}}W_{{0,{frame_tex(frame)}}}", w_aux),
+                   (f"{{}}^{{a}}H_{{0,{frame_tex(frame)}}}", h_aux)],
+    ))
+    if pframe != frame:
+        ans.note(f"point {point} is fixed in frame {pframe}: its velocity and acceleration use the motion "
+                 f"of frame {pframe}; W_aux and H_aux are those of frame {frame}")
+    ans.steps.append(Step(
+        f"Velocity and acceleration of {point}",
+        "Read from the last columns of ${}^{a}W$ and ${}^{a}H$; the angular velocity "
+        "$\\omega$ is the vector of the skew block of $W$, the angular acceleration that of "
+        "the antisymmetric part of $H$'s rotation block.",
+        equations=[(f"\\dot{{{point}}}", velocity), (f"\\ddot{{{point}}}", acceleration),
+                   ("\\omega", omega), ("\\dot\\omega", alpha)],
+    ))
+
+    ans.symbolic.update({
+        "W": w0, "H": h0, "W_aux": w_aux, "H_aux": h_aux,
+        "velocity": list(velocity), "acceleration": list(acceleration),
+        "angular_velocity": list(omega), "angular_acceleration": list(alpha),
+    })
+    if question.at:
+        subs = ctx.substitutions(question.at)
+        for key, what in (("W", "W"), ("H", "H"), ("W_aux", "W_aux"), ("H_aux", "H_aux"),
+                          ("velocity", "velocity"), ("acceleration", "acceleration"),
+                          ("angular_velocity", "angular velocity"),
+                          ("angular_acceleration", "angular acceleration")):
+            ctx.try_numeric(ans, key, ans.symbolic[key], subs, what)
+        shown = [(lhs, ans.numeric[k]) for lhs, k in (
+            (f"\\dot{{{point}}}", "velocity"), (f"\\ddot{{{point}}}", "acceleration"),
+            ("\\omega", "angular_velocity"), ("\\dot\\omega", "angular_acceleration")) if k in ans.numeric]
+        if shown:
+            ans.steps.append(Step("Numeric values", "At the configuration of the question:", equations=shown))
+    return ans
