@@ -1,0 +1,581 @@
+"""Equations of motion by the course's matrix method, engineered to stay small.
+
+The course (seed §6, ERRATA §D.5-9):
+
+* Tⱼ = ½ tr(⁰W₀ⱼ ⁰Jⱼ ⁰W₀ⱼᵀ), Uⱼ = −tr(⁰H_g ⁰Jⱼ), ℒ = Σ(Tⱼ − Uⱼ);
+* fᵢ = (Σ_{j≥i} ⁰Φⱼ) ⊗ ⁰Lᵢ;
+* d/dt ∂ℒ/∂q̇ᵢ − ∂ℒ/∂qᵢ = fᵢ.
+
+How it is kept compact (same formulas, other frame and order of operations):
+
+* With W₀ⱼ = Σᵢ ⁰Lᵢⱼ q̇ᵢ (⁰Lᵢⱼ = ∂M₀ⱼ/∂qᵢ·M₀ⱼ⁻¹), T = ½ Σᵢₖ q̇ᵢ q̇ₖ Σⱼ tr(⁰Lᵢⱼ ⁰Jⱼ ⁰Lₖⱼᵀ),
+  so the mass matrix is M_ik = Σⱼ tr(⁰Lᵢⱼ ⁰Jⱼ ⁰Lₖⱼᵀ), built entry by entry.
+* The trace is invariant when every factor is moved to the body frame j:
+  tr(⁰L ⁰J ⁰Lᵀ) = tr(ᵇL ʲJ ᵇLᵀ) with ᵇLᵢⱼ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ = M_fj⁻¹ (A_f⁻¹ ∂A_f/∂qᵢ) M_fj,
+  which depends only on the joints between joint i and body j (small entries), and ʲJ is
+  the body's own pseudo-inertia (constant).
+* Every small matrix is trig-simplified as soon as it is formed (relative poses, body-frame
+  L matrices); never one big `simplify` at the end.
+* The Lagrange derivatives are taken on M(q) and U(q) directly:
+  d/dt ∂ℒ/∂q̇ − ∂ℒ/∂q = M q̈ + c + g with c from the Christoffel symbols of M and g = ∂U/∂q,
+  which is the same expression as differentiating ℒ, term by term, but on small pieces.
+* Generalized forces of external loads: Φ ⊗ L is frame invariant, so it is computed in the
+  body frame, Φ_b ⊗ ᵇLᵢⱼ; the actuator of joint i contributes exactly its own value
+  (own action on its link, reaction on the previous link: they cancel for every other joint).
+"""
+
+from __future__ import annotations
+
+from typing import Mapping
+
+import sympy as sp
+
+from robosolve.core.matrices import action_matrix, pseudo_scalar_product
+from robosolve.core.transforms import rigid_inverse, skew, vex
+from robosolve.dynamics.api import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
+
+__all__ = ["DynamicsEngine", "tsimp"]
+
+BASE = "0"
+COMPACT_MAX_JOINTS = 4  # robots up to this size get the sum-of-angles compaction
+
+
+def tsimp(expr):
+    """Trig-simplify a *small* expression (cheap canonical form otherwise)."""
+    expr = sp.sympify(expr)
+    if expr.is_number or not expr.has(sp.sin, sp.cos):
+        return sp.expand(expr)
+    out = sp.trigsimp(sp.expand(expr))
+    return out
+
+
+def _msimp(m: sp.Matrix) -> sp.Matrix:
+    return m.applyfunc(tsimp)
+
+
+def _trace_product(a: sp.Matrix, j: sp.Matrix, b: sp.Matrix):
+    """tr(A J Bᵀ) = Σ A[r,s] J[s,t] B[r,t], skipping zeros."""
+    terms = []
+    for r in range(4):
+        for s in range(4):
+            ars = a[r, s]
+            if ars == 0:
+                continue
+            for t in range(4):
+                jst = j[s, t]
+                if jst == 0:
+                    continue
+                brt = b[r, t]
+                if brt == 0:
+                    continue
+                terms.append(ars * jst * brt)
+    return sp.Add(*terms)
+
+
+class DynamicsEngine:
+    """Holds the chain and caches every intermediate matrix (also used by the report).
+
+    The core quantities (relative poses, body-frame L matrices, M, U, c, g, external
+    forces) are computed in a :class:`TrigAlgebra` (polynomials in cos qᵢ, sin qᵢ reduced by
+    cos² + sin² = 1) when the inputs allow it, else on sympy expressions with small-piece
+    `trigsimp`. Public methods return sympy objects.
+    """
+
+    def __init__(self, frames, joints, bodies, gravity, loads=(), *, simplify=True,
+                 subs: Mapping | None = None, algebra: str = "auto"):
+        rep = {sp.sympify(k): sp.sympify(v) for k, v in (subs or {}).items()}
+        self._rep = rep
+        self.simplify = simplify
+        self.joints: list[JointSpec] = list(joints)
+        self.n = len(self.joints)
+        self.q = [j.q for j in self.joints]
+        self.qd = [j.qd for j in self.joints]
+        self.qdd = [j.qdd for j in self.joints]
+        self.frames: dict[str, FrameSpec] = {}
+        self.order: list[str] = []
+        for f in frames:
+            if f.parent != BASE and f.parent not in self.frames:
+                raise ValueError(f"frame {f.name!r}: parent {f.parent!r} must be listed before it")
+            if f.name == BASE or f.name in self.frames:
+                raise ValueError(f"frame {f.name!r} is defined twice")
+            self.frames[f.name] = FrameSpec(f.name, f.parent, self._sub(sp.Matrix(f.local)))
+            self.order.append(f.name)
+        self.bodies: list[BodySpec] = [
+            BodySpec(b.name, b.frame, self._sub(sp.Matrix(b.J))) for b in bodies]
+        self.gravity = self._sub(sp.Matrix(list(gravity)))
+        self.loads: list[LoadSpec] = []
+        for ld in loads:
+            def vec(v):
+                return None if v is None else list(self._sub(sp.Matrix(list(v))))
+            self.loads.append(LoadSpec(ld.name, ld.frame, vec(ld.force), vec(ld.point),
+                                       vec(ld.torque), ld.in_frame))
+        for name in [b.frame for b in self.bodies] + [ld.frame for ld in self.loads] + \
+                [ld.in_frame for ld in self.loads if ld.in_frame]:
+            if name != BASE and name not in self.frames:
+                raise ValueError(f"unknown frame {name!r}")
+        self._cache: dict = {}
+        self._setup_algebra(algebra)
+
+    # ------------------------------------------------------------------ algebra
+    def _setup_algebra(self, algebra):
+        from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra
+
+        exprs, self._slot = [], {}
+
+        def put(key, values):
+            self._slot[key] = len(exprs)
+            exprs.extend(values)
+
+        for name in self.order:
+            put(("A", name), list(self.local(name)))
+        for b in self.bodies:
+            put(("J", b.name), list(b.J))
+        put(("grav",), list(self.gravity))
+        for k, ld in enumerate(self.loads):
+            put(("F", k), ld.force or [0, 0, 0])
+            put(("P", k), ld.point or [0, 0, 0])
+            put(("C", k), ld.torque or [0, 0, 0])
+        alg = None
+        if algebra in ("auto", "trig"):
+            alg = TrigAlgebra.from_inputs(self.q, exprs)
+        if alg is None:
+            alg = SympyAlgebra(self.q, exprs, simplify=self.simplify)
+        self.alg = alg
+
+    def _elems(self, key, n):
+        k = self._slot[key]
+        return [self.alg.element(k + t) for t in range(n)]
+
+    def _mat4(self, key):
+        e = self._elems(key, 16)
+        return [e[4 * r:4 * r + 4] for r in range(4)]
+
+    # ------------------------------------------------------------------ helpers
+    def _sub(self, obj):
+        return obj.xreplace(self._rep) if self._rep else obj
+
+    def _s(self, expr):
+        return tsimp(expr) if self.simplify else expr
+
+    def _ms(self, m):
+        return m.applyfunc(self._s)
+
+    def _cached(self, key, fn):
+        if key not in self._cache:
+            self._cache[key] = fn()
+        return self._cache[key]
+
+    def path(self, name: str) -> list[str]:
+        """Frames from the base's first child down to `name` (inclusive)."""
+        out = []
+        while name != BASE:
+            out.append(name)
+            name = self.frames[name].parent
+        return out[::-1]
+
+    def local(self, name: str) -> sp.Matrix:
+        return self.frames[name].local
+
+    def moving(self, name: str) -> list[int]:
+        """Indices of the joints that move frame `name` (all on its path to the base)."""
+        if name == BASE:
+            return []
+        return self._cached(("moving", name), lambda: [
+            i for i in range(self.n)
+            if any(self.local(f).has(self.q[i]) for f in self.path(name))])
+
+    def joint_frame(self, i: int) -> str | None:
+        """The first frame whose local pose contains joint i (the joint's link)."""
+        q = self.q[i]
+        for name in self.order:
+            if self.local(name).has(q):
+                return name
+        return None
+
+    # ------------------------------------------------------------------ core (algebra)
+    def _rrel(self, a: str, b: str):
+        """ᵃM_b as algebra elements, `a` an ancestor of `b`."""
+        if a == b:
+            return self.alg.eye(4)
+        return self._cached(("rrel", a, b), lambda: self.alg.matmul(
+            self._rrel(a, self.frames[b].parent), self._mat4(("A", b))))
+
+    def _rS(self, name: str, i: int):
+        """A_f⁻¹ ∂A_f/∂qᵢ (joint i's L in the frame it moves)."""
+        def build():
+            a = self._mat4(("A", name))
+            return self.alg.matmul(self.alg.rigid_inverse(a), self.alg.mdiff(a, i))
+        return self._cached(("rS", name, i), build)
+
+    def _rLb(self, i: int, name: str):
+        """ᵇLᵢⱼ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ = Σ_f M_fj⁻¹ (A_f⁻¹ ∂A_f/∂qᵢ) M_fj."""
+        def build():
+            alg = self.alg
+            total = alg.zeros(4)
+            for f in self.path(name):
+                if not self.local(f).has(self.q[i]):
+                    continue
+                r = self._rrel(f, name)
+                term = alg.matmul(alg.matmul(alg.rigid_inverse(r), self._rS(f, i)), r)
+                total = alg.madd(total, term)
+            return [[alg.reduce(x) for x in row] for row in total]
+        return self._cached(("rLb", i, name), build)
+
+    def _rbody_M(self, b: BodySpec):
+        """Mass matrix of one body: tr(ᵇLᵢ ʲJ ᵇLₖᵀ)."""
+        def build():
+            alg = self.alg
+            jm = self._mat4(("J", b.name))
+            out = alg.zeros(self.n)
+            idx = self.moving(b.frame)
+            lbs = {i: self._rLb(i, b.frame) for i in idx}
+            # ᵇLᵢ J once per i, then the trace with ᵇLₖ
+            lj = {i: alg.matmul(lbs[i], jm) for i in idx}
+            for a_, i in enumerate(idx):
+                for k in idx[a_:]:
+                    acc = alg.zero
+                    for r in range(4):
+                        for t in range(4):
+                            x, y = lj[i][r][t], lbs[k][r][t]
+                            if x != 0 and y != 0:
+                                acc += x * y
+                    out[i][k] = out[k][i] = alg.reduce(acc)
+            return out
+        return self._cached(("rMb", b.name), build)
+
+    def _rM(self):
+        def build():
+            alg = self.alg
+            out = alg.zeros(self.n)
+            for b in self.bodies:
+                mb = self._rbody_M(b)
+                out = alg.madd(out, mb)
+            return [[alg.reduce(x) for x in row] for row in out]
+        return self._cached("rM", build)
+
+    def _rU(self):
+        """U_b = −tr(⁰H_g ⁰J_b) = −(g, 0)·(M₀ⱼ · ʲJ[:, 4]) (the only column the trace uses)."""
+        def build():
+            alg = self.alg
+            grav = self._elems(("grav",), 3)
+            out = {}
+            for b in self.bodies:
+                m0 = self._rrel(BASE, b.frame)
+                jm = self._mat4(("J", b.name))
+                acc = alg.zero
+                for r in range(3):
+                    if grav[r] == 0:
+                        continue
+                    for k in range(4):
+                        if m0[r][k] != 0 and jm[k][3] != 0:
+                            acc -= grav[r] * m0[r][k] * jm[k][3]
+                out[b.name] = alg.reduce(acc)
+            return out
+        return self._cached("rU", build)
+
+    def _rg(self):
+        def build():
+            alg = self.alg
+            u = sum(self._rU().values(), alg.zero)
+            return [alg.diff(u, i) for i in range(self.n)]
+        return self._cached("rg", build)
+
+    def _rc(self):
+        """Christoffel coefficients: cᵢ = Σ_{j≤k} coef[i][(j,k)] q̇ⱼ q̇ₖ."""
+        def build():
+            alg = self.alg
+            m = self._rM()
+            n = self.n
+            dm = {}
+
+            def d(i, j, k):
+                key = (min(i, j), max(i, j), k)
+                if key not in dm:
+                    dm[key] = alg.diff(m[i][j], k)
+                return dm[key]
+
+            out = []
+            for i in range(n):
+                coefs = {}
+                for j in range(n):
+                    for k in range(j, n):
+                        if j == k:
+                            coef = d(i, j, j) - alg.half * d(j, j, i)
+                        else:
+                            coef = d(i, j, k) + d(i, k, j) - d(j, k, i)
+                        coef = alg.reduce(coef)
+                        if coef != 0:
+                            coefs[(j, k)] = coef
+                out.append(coefs)
+            return out
+        return self._cached("rc", build)
+
+    def _rload_phi(self, k: int):
+        """Φ of load k in the body frame of its frame (components rotated from `in`)."""
+        def build():
+            alg = self.alg
+            ld = self.loads[k]
+            f, p, c = (self._elems((key, k), 3) for key in ("F", "P", "C"))
+            src = ld.in_frame or ld.frame
+            if src != ld.frame:
+                m_f = self._rrel(BASE, ld.frame)
+                m_s = self._rrel(BASE, src) if src != BASE else alg.eye(4)
+                rot = [[alg.reduce(sum((m_f[t][r] * m_s[t][col] for t in range(3)), alg.zero))
+                        for col in range(3)] for r in range(3)]
+                f = [alg.reduce(sum((rot[r][t] * f[t] for t in range(3)), alg.zero))
+                     for r in range(3)]
+                c = [alg.reduce(sum((rot[r][t] * c[t] for t in range(3)), alg.zero))
+                     for r in range(3)]
+            phi = alg.zeros(4)
+            p4 = [*p, alg.one]
+            f4 = [*f, alg.zero]
+            for r in range(4):
+                for col in range(4):
+                    phi[r][col] = f4[r] * p4[col] - p4[r] * f4[col]
+            # + [C]
+            phi[0][1] -= c[2]
+            phi[0][2] += c[1]
+            phi[1][0] += c[2]
+            phi[1][2] -= c[0]
+            phi[2][0] -= c[1]
+            phi[2][1] += c[0]
+            return [[alg.reduce(x) for x in row] for row in phi]
+        return self._cached(("rPhi", k), build)
+
+    def _rext(self):
+        """Generalized forces of the loads: Σ Φ_b ⊗ ᵇLᵢⱼ (frame invariant, ERRATA §D.6)."""
+        from robosolve.core.matrices import _PSP_ENTRIES
+
+        def build():
+            alg = self.alg
+            out = []
+            for i in range(self.n):
+                acc = alg.zero
+                for k, ld in enumerate(self.loads):
+                    if i not in self.moving(ld.frame):
+                        continue
+                    phi, lb = self._rload_phi(k), self._rLb(i, ld.frame)
+                    for r, col in _PSP_ENTRIES:
+                        acc += phi[r][col] * lb[r][col]
+                out.append(alg.reduce(acc))
+            return out
+        return self._cached("rext", build)
+
+    # ------------------------------------------------------------------ sympy views
+    def pretty(self, p):
+        """Readable form of a final algebra element (M entries, c coefficients, g, U).
+
+        Two candidate forms, the smaller (`count_ops`) wins:
+        the canonical polynomial in cos qᵢ, sin qᵢ (sin² eliminated), and its Fourier form
+        (products turned into cosines / sines of sums of angles, e.g. cos(2θ₂ + θ₃)); in
+        both the terms are grouped by their trig factor with the parameter coefficient
+        factored. No `trigsimp`: both forms come from the polynomial in microseconds.
+        """
+        from robosolve.dynamics.trigpoly import TrigAlgebra, fourier_terms
+
+        alg = self.alg
+        if not isinstance(alg, TrigAlgebra):
+            expr = sp.sympify(p)
+            return self._group([(c, t) for c, t in (
+                term.as_independent(*self.q) for term in sp.Add.make_args(sp.expand(expr)))]) \
+                if self.simplify else expr
+        if not self.simplify:
+            return alg.to_expr(p)
+        key = ("pretty", p)
+        if key in self._cache:
+            return self._cache[key]
+        expr = sp.expand(alg.to_expr(p))
+        cands = [self._group([term.as_independent(*self.q)
+                              for term in sp.Add.make_args(expr)])]
+        if alg.trig and any(alg.depends(p, i) for i in alg.trig):
+            cands.append(self._group(fourier_terms(alg, p)))
+        best = min(cands, key=sp.count_ops)
+        self._cache[key] = best
+        return best
+
+    def _group(self, pairs):
+        """Σ coef·trig with equal trig factors merged, coefficients factored (small ones)."""
+        groups: dict = {}
+        for coef, trig in pairs:
+            groups[trig] = groups.get(trig, 0) + coef
+        out = []
+        small = self.n <= COMPACT_MAX_JOINTS
+        for trig in sorted(groups, key=sp.default_sort_key):
+            coef = sp.expand(groups[trig])
+            if coef == 0:
+                continue
+            coef = sp.factor(coef) if small and sp.count_ops(coef) <= 60 else \
+                sp.factor_terms(coef)
+            out.append(coef * trig)
+        return sp.Add(*out)
+
+    def _view(self, key, m):
+        return self._cached(("view",) + key, lambda: sp.Matrix([[self.pretty(x) for x in row] for row in m]))
+
+    def rel(self, a: str, b: str) -> sp.Matrix:
+        """ᵃM_b for `a` an ancestor of `b` (or a == b)."""
+        return self._view(("rel", a, b), self._rrel(a, b))
+
+    def M0(self, name: str) -> sp.Matrix:
+        return self.rel(BASE, name) if name != BASE else sp.eye(4)
+
+    def twist_local(self, name: str, i: int) -> sp.Matrix:
+        return self._view(("S", name, i), self._rS(name, i))
+
+    def Lb(self, i: int, name: str) -> sp.Matrix:
+        """ᵇLᵢⱼ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ, the L matrix of joint i seen in body frame `name`."""
+        return self._view(("Lb", i, name), self._rLb(i, name))
+
+    def L0(self, i: int, name: str | None = None) -> sp.Matrix:
+        """⁰Lᵢ = ∂M₀ⱼ/∂qᵢ·M₀ⱼ⁻¹ (frame j = the joint's own frame by default)."""
+        name = name or self.joint_frame(i)
+        if name is None:
+            return sp.zeros(4, 4)
+
+        def build():
+            alg = self.alg
+            m = self._rrel(BASE, name)
+            return alg.matmul(alg.matmul(m, self._rLb(i, name)), alg.rigid_inverse(m))
+        return self._view(("L0", i, name), self._cached(("rL0", i, name), build))
+
+    def body_mass_matrix(self, b: BodySpec) -> sp.Matrix:
+        return self._view(("Mb", b.name), self._rbody_M(b))
+
+    def mass_matrix(self) -> sp.Matrix:
+        return self._view(("M",), self._rM())
+
+    def kinetic_energy(self) -> dict:
+        """T_b = ½ Σᵢₖ q̇ᵢ q̇ₖ tr(ᵇLᵢ J ᵇLₖᵀ) = ½ tr(W J Wᵀ)."""
+        def build():
+            out = {}
+            for b in self.bodies:
+                mb = self._rbody_M(b)
+                terms = []
+                for i in range(self.n):
+                    for k in range(i, self.n):
+                        if mb[i][k] != 0:
+                            w = 1 if i != k else sp.Rational(1, 2)
+                            terms.append(w * self.qd[i] * self.qd[k] *
+                                         self.pretty(mb[i][k]))
+                out[b.name] = sp.Add(*terms)
+            return out
+        return self._cached("T", build)
+
+    def potential_energy(self) -> dict:
+        return self._cached("U", lambda: {k: self.pretty(v)
+                                          for k, v in self._rU().items()})
+
+    def gravity_terms(self) -> sp.Matrix:
+        return self._cached("g", lambda: sp.Matrix(
+            [self.pretty(x) for x in self._rg()]))
+
+    def velocity_terms(self) -> sp.Matrix:
+        def build():
+            out = []
+            for coefs in self._rc():
+                out.append(sp.Add(*[self.pretty(v) * self.qd[j] * self.qd[k]
+                                    for (j, k), v in coefs.items()]))
+            return sp.Matrix(out)
+        return self._cached("c", build)
+
+    def external_forces(self) -> sp.Matrix:
+        return self._cached("ext", lambda: sp.Matrix(
+            [self.pretty(x) for x in self._rext()]))
+
+    def hg(self) -> sp.Matrix:
+        """⁰H_g: the gravity vector in the last column (ERRATA §D.9)."""
+        out = sp.zeros(4, 4)
+        out[:3, 3] = self.gravity
+        return out
+
+    def J0(self, b: BodySpec) -> sp.Matrix:
+        """⁰J = M₀ⱼ ʲJ M₀ⱼᵀ (for the report; energies use the body frame)."""
+        def build():
+            alg = self.alg
+            m = self._rrel(BASE, b.frame)
+            mt = [list(r) for r in zip(*m)]
+            return alg.matmul(alg.matmul(m, self._mat4(("J", b.name))), mt)
+        return self._view(("J0", b.name), self._cached(("rJ0", b.name), build))
+
+    def W0(self, name: str) -> sp.Matrix:
+        """⁰W₀ⱼ = Σᵢ ⁰Lᵢⱼ q̇ᵢ (for the report)."""
+        return self._cached(("W0", name), lambda: sp.Matrix(sp.Add(*[
+            self.L0(i, name) * self.qd[i] for i in self.moving(name)] or [sp.zeros(4, 4)]))
+            if self.moving(name) else sp.zeros(4, 4))
+
+    def load_in_body(self, load: LoadSpec) -> sp.Matrix:
+        k = self.loads.index(load)
+        return self._view(("Phi_load", k), self._rload_phi(k))
+
+    # ------------------------------------------------------------------ actions
+    def actuator_action(self, i: int) -> sp.Matrix:
+        """Φ of actuator i on its link, in the joint's frame: a pure torque along the
+        joint axis (revolute) or a force along it through the frame origin (prismatic),
+        scaled so that Φ ⊗ L = actuator."""
+        name = self.joint_frame(i)
+        s = self.twist_local(name, i)
+        w = vex(s[:3, :3])
+        a = self.joints[i].actuator
+        if any(x != 0 for x in w):
+            return self._ms(skew(a * w / (w.T * w)[0, 0]).row_join(sp.zeros(3, 1))
+                            .col_join(sp.zeros(1, 4)))
+        v = s[:3, 3]
+        return self._ms(action_matrix(list(a * v / (v.T * v)[0, 0]), [0, 0, 0]))
+
+    def link_of(self, name: str) -> str | None:
+        """The frame of the link that frame `name` belongs to: the nearest frame (itself
+        or an ancestor) whose local pose contains a joint; None for frames fixed to the base."""
+        for f in reversed(self.path(name)):
+            if any(self.local(f).has(q) for q in self.q):
+                return f
+        return None
+
+    def link_actions0(self) -> dict[str, sp.Matrix]:
+        """⁰Φ of each link (keyed by its joint frame): +own actuator, −next actuators'
+        reactions, external loads on any frame of the link (ERRATA §D.5)."""
+        def build():
+            out: dict[str, sp.Matrix] = {}
+            for i in range(self.n):
+                f = self.joint_frame(i)
+                if f is None:
+                    continue
+                m = self.M0(f)
+                phi0 = m * self.actuator_action(i) * m.T
+                out[f] = out.get(f, sp.zeros(4, 4)) + phi0
+                parent_link = self.link_of(self.frames[f].parent) if \
+                    self.frames[f].parent != BASE else None
+                if parent_link is not None:
+                    out[parent_link] = out.get(parent_link, sp.zeros(4, 4)) - phi0
+            for load in self.loads:
+                link = self.link_of(load.frame)
+                if link is None:
+                    continue
+                m = self.M0(load.frame)
+                out[link] = out.get(link, sp.zeros(4, 4)) + m * self.load_in_body(load) * m.T
+            return {k: self._ms(v) for k, v in out.items()}
+        return self._cached("Phi0", build)
+
+    def course_generalized_forces(self) -> sp.Matrix:
+        """fᵢ = (Σ_{links j moved by joint i} ⁰Φⱼ) ⊗ ⁰Lᵢⱼ, literally (for the report)."""
+        phis = self.link_actions0()
+        out = []
+        for i in range(self.n):
+            terms = []
+            for link, phi in phis.items():
+                if i in self.moving(link):
+                    terms.append(pseudo_scalar_product(phi, self.L0(i, link)))
+            out.append(self._s(sp.Add(*terms)))
+        return sp.Matrix(out)
+
+    # ------------------------------------------------------------------ result
+    def dynamics(self) -> Dynamics:
+        return Dynamics(
+            joints=self.joints,
+            mass_matrix=self.mass_matrix(),
+            velocity_terms=self.velocity_terms(),
+            gravity_terms=self.gravity_terms(),
+            external_forces=self.external_forces(),
+            kinetic_energy=self.kinetic_energy(),
+            potential_energy=dict(self.potential_energy()),
+            engine=self,
+        )
