@@ -59,21 +59,27 @@ def symbolic_dynamics(ctx: SolveContext, seconds: float | None = None):
     return dyn
 
 
-def numeric_dynamics(ctx: SolveContext, subs: dict):
-    """Dynamics with the parameter values substituted first (much faster to derive).
+def numeric_engine(ctx: SolveContext, subs: dict):
+    """FastDynamics for the simulation and the torque samples.
 
-    Reuses the symbolic Dynamics when another question already derived it.
+    From the symbolic Dynamics (cached, shared with equations_of_motion) when it
+    can be derived in time; otherwise from the engine's numeric-only path.  (The
+    engine's ``subs=`` derivation is not used: in this version it leaves internal
+    cos/sin symbols in the result.)
     """
-    from robosolve.dynamics.api import Dynamics, derive_dynamics
+    from robosolve.motion.numeric import FastDynamics
 
-    dyn = ctx.shared.get(SYMBOLIC_KEY)
-    if isinstance(dyn, Dynamics):
-        return dyn
+    dyn = symbolic_dynamics(ctx)
+    if dyn is not None:
+        return fast_dynamics(dyn, subs), dyn
     key = (NUMERIC_KEY, tuple(sorted((str(k), str(v)) for k, v in subs.items())))
     if key not in ctx.shared:
+        from robosolve.dynamics.api import numeric_dynamics
+
         params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
-        ctx.shared[key] = derive_dynamics(*_specs(ctx.model), subs=params)
-    return ctx.shared[key]
+        nd = numeric_dynamics(*_specs(ctx.model), subs=params)
+        ctx.shared[key] = FastDynamics.from_callables(nd.n, nd.mass, nd.velocity_terms, nd.gravity, nd.external)
+    return ctx.shared[key], None
 
 
 def fast_dynamics(dyn, subs: dict):
