@@ -36,6 +36,17 @@ LAW_TEXT = {
 }
 
 
+ANSWER_DIGITS = 6
+
+
+def _sig(x: float, scale: float | None = None) -> float:
+    """x with ANSWER_DIGITS significant digits; below 1e-9 of ``scale`` it is 0 (noise)."""
+    x = float(x)
+    if scale is not None and abs(x) <= 1e-9 * abs(float(scale)):
+        return 0.0
+    return float(f"{x:.{ANSWER_DIGITS}g}") + 0.0
+
+
 def _unit(kind: str) -> str:
     return "rad" if kind == "revolute" else "m"
 
@@ -96,9 +107,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     except RuntimeError as exc:
         raise SolverError(str(exc)) from None
 
-    ans.numeric["max_error"] = {n: float(res.max_error[i]) for i, n in enumerate(names)}
-    ans.numeric["final_error"] = {n: float(res.final_error[i]) + 0.0 for i, n in enumerate(names)}
-    ans.numeric["t_max_error"] = {n: float(res.t_max_error[i]) for i, n in enumerate(names)}
+    # The simulation is accurate to ~1e-6 relative (tests: 1e-4 required); more digits would be
+    # noise that differs between machines, so the answers keep ANSWER_DIGITS significant digits.
+    ans.numeric["max_error"] = {n: _sig(res.max_error[i]) for i, n in enumerate(names)}
+    ans.numeric["final_error"] = {n: _sig(res.final_error[i], scale=res.max_error[i]) for i, n in enumerate(names)}
+    ans.numeric["t_max_error"] = {n: _sig(res.t_max_error[i]) for i, n in enumerate(names)}
     rows = [[f"${syms[i]}$", f"{report_number(res.max_error[i])} {_unit(j.kind)}",
              report_number(res.t_max_error[i]), f"{report_number(res.final_error[i])} {_unit(j.kind)}"]
             for i, j in enumerate(joints)]
