@@ -115,7 +115,7 @@ def run(files, out=None, jobs=0, golden=None, update=False) -> int:
                     print(line)
                 if diffs:
                     status = max(status, EXIT_ANSWER_ERROR)
-                    console.print(f"golden check: differences found (rerun with --update to accept them)",
+                    console.print("golden check: differences found (rerun with --update to accept them)",
                                   markup=False)
                 else:
                     console.print(f"golden check: {len(names)} problems identical", markup=False)

@@ -38,8 +38,17 @@ class InputError(RobosolveError):
         super().__init__("\n".join(str(i) for i in self.issues))
 
 
-class SymbolicTimeout(RobosolveError):
-    """A symbolic step exceeded its time limit (the solver then answers numerically)."""
+class SymbolicTimeout(BaseException):
+    """A symbolic step exceeded its time limit (the solver then answers numerically).
+
+    A BaseException, so that sympy's internal `except Exception` blocks cannot
+    swallow it; `token` identifies the `time_limit` block that expired, so an inner
+    block never mistakes an outer block's expiry for its own.
+    """
+
+    def __init__(self, message: str = "", token: object = None):
+        super().__init__(message)
+        self.token = token
 
 
 class SolverError(RobosolveError):

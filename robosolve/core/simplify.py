@@ -12,15 +12,24 @@ from robosolve.core.timing import time_limit
 from robosolve.errors import SymbolicTimeout
 
 
+# Above this size trigsimp costs seconds and rarely pays: the entry is left as is.
+MAX_TIDY_OPS = 300
+
+
 def tidy(expr, seconds: float = 5.0):
-    """trigsimp of one expression, or the expression unchanged past `seconds`."""
+    """trigsimp of one expression, or the expression unchanged past `seconds`
+    (or when it is too large to be worth it)."""
     expr = sp.sympify(expr)
     if expr.is_Atom or not expr.has(sp.sin, sp.cos):
         return sp.expand(expr) if expr.is_Add or expr.is_Mul else expr
+    if sp.count_ops(expr) > MAX_TIDY_OPS:
+        return expr
     try:
-        with time_limit(seconds):
+        with time_limit(seconds) as token:
             return sp.trigsimp(sp.expand(expr))
-    except SymbolicTimeout:
+    except SymbolicTimeout as exc:
+        if exc.token is not token:
+            raise          # an enclosing step's time is up
         return expr
 
 

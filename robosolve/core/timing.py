@@ -17,27 +17,32 @@ from robosolve.errors import SymbolicTimeout
 
 @contextlib.contextmanager
 def time_limit(seconds: float):
-    """Raise SymbolicTimeout if the block runs longer than `seconds`."""
+    """Raise SymbolicTimeout if the block runs longer than `seconds`.
+
+    Yields a token: `exc.token is token` tells whether this block expired (and
+    not an enclosing one, whose expiry must propagate).
+    """
+    token = object()
     usable = (seconds and seconds > 0 and hasattr(signal, "setitimer")
               and threading.current_thread() is threading.main_thread())
     if not usable:
-        yield
+        yield token
         return
 
     def on_alarm(signum, frame):
-        raise SymbolicTimeout(f"symbolic step exceeded {seconds:g} s")
+        raise SymbolicTimeout(f"symbolic step exceeded {seconds:g} s", token)
 
     previous = signal.signal(signal.SIGALRM, on_alarm)
     remaining, _ = signal.getitimer(signal.ITIMER_REAL)
     if remaining and remaining < seconds:
         # an outer limit is shorter: keep it
         signal.signal(signal.SIGALRM, previous)
-        yield
+        yield token
         return
     start = time.monotonic()
     signal.setitimer(signal.ITIMER_REAL, seconds)
     try:
-        yield
+        yield token
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, previous)

@@ -46,7 +46,7 @@ def point_symbol(point: str, axis: str) -> sp.Symbol:
 
 
 def did_you_mean(name: str, candidates) -> str:
-    close = difflib.get_close_matches(name, sorted(candidates), n=1, cutoff=0.6)
+    close = difflib.get_close_matches(name, sorted(candidates), n=1, cutoff=0.5)
     return f" (did you mean '{close[0]}'?)" if close else ""
 
 

@@ -388,6 +388,7 @@ class _ProblemBuilder:
     def _frames(self, frames_value, dh_value) -> dict:
         chk = self.chk
         frames: dict[str, Frame] = {}
+        n_issues = len(chk.issues)
         if dh_value is not None:
             self._dh_table(dh_value, frames)
         if frames_value is not None:
@@ -396,7 +397,7 @@ class _ProblemBuilder:
             else:
                 for key, item in frames_value.items():
                     self._frame(str(key), item, frames, from_dh=dh_value is not None)
-        if frames:
+        if frames and len(chk.issues) == n_issues:   # (no cascade after a bad frame)
             used = set()
             for f in frames.values():
                 exprs = [e for _, e in f.factors] if f.kind == "pose" else (

@@ -10,6 +10,8 @@ import math
 
 JSON_DIGITS = 12
 REPORT_DIGITS = 6
+# Round-off of exact zeros (cos(pi/2) = 6.1e-17) is shown as 0.
+ZERO = 1e-13
 
 
 def json_number(x):
@@ -20,6 +22,8 @@ def json_number(x):
     x = float(x)
     if not math.isfinite(x):
         return None
+    if abs(x) < ZERO:
+        return 0.0
     r = float(f"{x:.{JSON_DIGITS}g}")
     return 0.0 if r == 0 else r
 
@@ -34,6 +38,8 @@ def report_number(x) -> str:
     x = float(x)
     if not math.isfinite(x):
         return "∞" if x > 0 else ("−∞" if x < 0 else "NaN")
+    if abs(x) < ZERO:
+        return "0"
     s = f"{x:.{REPORT_DIGITS}g}"
     if s in ("-0", "-0.0"):
         s = "0"

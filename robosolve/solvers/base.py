@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.timing import time_limit
-from robosolve.load.problem import Problem, Question
+from robosolve.load.problem import Problem
 
 # Default budget of one symbolic step before a solver falls back to numbers.
 SYMBOLIC_SECONDS = 30.0

@@ -4,15 +4,28 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.errors import SymbolicTimeout
 from robosolve.load.problem import Question
-from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
+from robosolve.model.numeric import NumericChain
+from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, m_name, robot_drawing
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
+    ans = Answer(question.type, question.id)
+    try:
+        with ctx.time_limit():
+            symbolic_part(question, ctx, ans)
+    except SymbolicTimeout:
+        ans.steps, ans.symbolic = [], {}
+        ans.note("the symbolic chain product was cut short by its time limit; numeric answers only")
+    numeric_part(question, ctx, ans)
+    return ans
+
+
+def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     model = ctx.model
     frame, point = question.frame, question.point
-    ans = Answer(question.type, question.id)
     chain = model.chain(frame)
 
     elementary = Step(
@@ -53,22 +66,28 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ans.symbolic["position"] = list(p0)
     ans.symbolic["chain"] = [model.M_local(f) for f in chain]
 
-    if question.at or not (m0.free_symbols - set(ctx.problem.parameters)):
-        subs = ctx.substitutions(question.at)
-        ctx.try_numeric(ans, "M", m0, subs, "M")
-        ctx.try_numeric(ans, "position", list(p0), subs, "position")
-        ctx.try_numeric(ans, "chain", [model.M_local(f) for f in chain], subs, "chain")
-        drawing = robot_drawing(ctx, subs)
-        if drawing is not None:
-            drawing["highlight"] = point
-            ans.figures.append(FigureSpec("robot", "robot", f"Robot at the given configuration ({point} marked)",
-                                          drawing))
-        if "position" in ans.numeric:
-            x, y, z = ans.numeric["position"]
-            ans.steps.append(Step(
-                "Numeric values",
-                "With the data and the configuration of the question:",
-                equations=[(m_name("0", frame), ans.numeric["M"]),
-                           (f"{{}}^{{0}}{point}", [x, y, z])],
-            ))
-    return ans
+
+def numeric_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
+    model = ctx.model
+    frame, point = question.frame, question.point
+    subs = ctx.substitutions(question.at)
+    chain = NumericChain(model, subs)
+    try:
+        ans.numeric["M"] = chain.M0(frame).tolist()
+        ans.numeric["position"] = chain.point0(point).tolist()
+        ans.numeric["chain"] = [ctx.numeric(model.M_local(f), subs) for f in model.chain(frame)]
+    except MissingValues as exc:
+        ans.numeric.clear()
+        ans.note(missing_note("pose and position", exc.names, ctx.problem))
+        return
+    drawing = robot_drawing(ctx, subs)
+    if drawing is not None:
+        drawing["highlight"] = point
+        ans.figures.append(FigureSpec("robot", "robot", f"Robot at the given configuration ({point} marked)",
+                                      drawing))
+    ans.steps.append(Step(
+        "Numeric values",
+        "With the data and the configuration of the question:",
+        equations=[(m_name("0", frame), ans.numeric["M"]),
+                   (f"{{}}^{{0}}{point}", ans.numeric["position"])],
+    ))

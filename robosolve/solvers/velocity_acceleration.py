@@ -7,12 +7,15 @@ W by Rivals' theorem and H by Coriolis' theorem, every term in frame 0
 
 from __future__ import annotations
 
+import numpy as np
 import sympy as sp
 
 from robosolve.core.simplify import tidy
 from robosolve.core.transforms import vex
+from robosolve.errors import SymbolicTimeout
 from robosolve.load.problem import Question
-from robosolve.solvers.base import Answer, SolveContext, Step
+from robosolve.model.numeric import NumericChain, rigid_inverse
+from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, m_name, rel_name
 
 
@@ -24,9 +27,68 @@ def angular_acceleration(h: sp.Matrix) -> sp.Matrix:
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
+    ans = Answer(question.type, question.id)
+    try:
+        with ctx.time_limit():
+            symbolic_part(question, ctx, ans)
+    except SymbolicTimeout:
+        ans.steps = []
+        ans.symbolic = {}
+        ans.note("the symbolic derivation was cut short by its time limit; numeric answers only")
+    if question.at:
+        numeric_part(question, ctx, ans)
+    return ans
+
+
+def numeric_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
+    """Numeric answers from the numeric chain (products done in numpy)."""
     model = ctx.model
     frame, point = question.frame, question.point
-    ans = Answer(question.type, question.id)
+    chain = NumericChain(model, ctx.substitutions(question.at))
+    pframe, _ = model.point_local(point)
+
+    def aux(mat, p):
+        a = np.eye(4)
+        a[:3, 3] = p
+        return rigid_inverse(a) @ mat @ a
+
+    def velocity():
+        w, p = chain.W0(frame), chain.point0(point)
+        return {"W": w, "W_aux": aux(w, p), "velocity": aux(chain.W0(pframe), p)[:3, 3],
+                "angular_velocity": np.array([w[2, 1], w[0, 2], w[1, 0]])}
+
+    def acceleration():
+        h, p = chain.H0(frame), chain.point0(point)
+        r = (h[:3, :3] - h[:3, :3].T) / 2
+        return {"H": h, "H_aux": aux(h, p), "acceleration": aux(chain.H0(pframe), p)[:3, 3],
+                "angular_acceleration": np.array([r[2, 1], r[0, 2], r[1, 0]])}
+
+    subs = chain.subs
+    for group, what, needed in ((velocity, "velocities", model.q + model.qd),
+                                (acceleration, "accelerations", model.q + model.qd + model.qdd)):
+        missing = sorted(s.name for s in needed if s not in subs)
+        if missing:
+            ans.note(missing_note(what, missing, ctx.problem))
+            continue
+        try:
+            values = group()
+        except MissingValues as exc:
+            ans.note(missing_note(what, exc.names, ctx.problem))
+            continue
+        for key, v in values.items():
+            ans.numeric[key] = [[float(x) for x in row] for row in v] if v.ndim == 2 else [float(x) for x in v]
+    order = ["W", "H", "W_aux", "H_aux", "velocity", "acceleration", "angular_velocity", "angular_acceleration"]
+    ans.numeric = {k: ans.numeric[k] for k in order if k in ans.numeric}
+    shown = [(lhs, ans.numeric[k]) for lhs, k in (
+        (f"\\dot{{{point}}}", "velocity"), (f"\\ddot{{{point}}}", "acceleration"),
+        ("\\omega", "angular_velocity"), ("\\dot\\omega", "angular_acceleration")) if k in ans.numeric]
+    if shown:
+        ans.steps.append(Step("Numeric values", "At the configuration of the question:", equations=shown))
+
+
+def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
+    model = ctx.model
+    frame, point = question.frame, question.point
     chain = model.chain(frame)
 
     # L matrices
@@ -85,7 +147,6 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     h0 = model.H0(frame) if frame != "0" else sp.zeros(4, 4)
     pframe, _ = model.point_local(point)
     w_aux, h_aux = model.W_aux(frame, point), model.H_aux(frame, point)
-    p0 = model.point0(point)
     # The point's own frame carries it (it may differ from the question's frame).
     w_p = model.W_aux(pframe, point) if pframe != frame else w_aux
     h_p = model.H_aux(pframe, point) if pframe != frame else h_aux
@@ -121,16 +182,3 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         "velocity": list(velocity), "acceleration": list(acceleration),
         "angular_velocity": list(omega), "angular_acceleration": list(alpha),
     })
-    if question.at:
-        subs = ctx.substitutions(question.at)
-        for key, what in (("W", "W"), ("H", "H"), ("W_aux", "W_aux"), ("H_aux", "H_aux"),
-                          ("velocity", "velocity"), ("acceleration", "acceleration"),
-                          ("angular_velocity", "angular velocity"),
-                          ("angular_acceleration", "angular acceleration")):
-            ctx.try_numeric(ans, key, ans.symbolic[key], subs, what)
-        shown = [(lhs, ans.numeric[k]) for lhs, k in (
-            (f"\\dot{{{point}}}", "velocity"), (f"\\ddot{{{point}}}", "acceleration"),
-            ("\\omega", "angular_velocity"), ("\\dot\\omega", "angular_acceleration")) if k in ans.numeric]
-        if shown:
-            ans.steps.append(Step("Numeric values", "At the configuration of the question:", equations=shown))
-    return ans

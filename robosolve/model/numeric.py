@@ -1,0 +1,78 @@
+"""The chain evaluated with numbers: M, W, H of every frame at one configuration.
+
+Only the small local matrices (M, L, H of each frame in its parent) are symbolic;
+products, Rivals and Coriolis are done in numpy. This gives every numeric answer
+even when a symbolic product is too large (robots with many joints), and an
+independent route to cross-check the symbolic one.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+
+def _num(obj, subs) -> np.ndarray:
+    m = sp.Matrix(obj).xreplace(subs).evalf(17)
+    missing = sorted(s.name for s in m.free_symbols)
+    if missing:
+        from robosolve.solvers.base import MissingValues
+
+        raise MissingValues(missing)
+    return np.array(m.tolist(), dtype=float)
+
+
+def rigid_inverse(m: np.ndarray) -> np.ndarray:
+    out = np.eye(4)
+    out[:3, :3] = m[:3, :3].T
+    out[:3, 3] = -m[:3, :3].T @ m[:3, 3]
+    return out
+
+
+class NumericChain:
+    """M0, W0, H0 of each frame at the substitutions `subs` (lazy per quantity)."""
+
+    def __init__(self, model, subs: dict):
+        self.model = model
+        self.subs = subs
+        self._m = {"0": np.eye(4)}
+        self._w = {"0": np.zeros((4, 4))}
+        self._h = {"0": np.zeros((4, 4))}
+
+    def M0(self, frame: str) -> np.ndarray:
+        if frame not in self._m:
+            parent = self.model.frames[frame].parent
+            self._m[frame] = self.M0(parent) @ _num(self.model.M_local(frame), self.subs)
+        return self._m[frame]
+
+    def _moved(self, frame: str, a: np.ndarray) -> np.ndarray:
+        mp = self.M0(self.model.frames[frame].parent)
+        return mp @ a @ rigid_inverse(mp)
+
+    def W0(self, frame: str) -> np.ndarray:
+        if frame not in self._w:
+            parent = self.model.frames[frame].parent
+            self._w[frame] = self.W0(parent) + self._moved(frame, _num(self.model.W_local(frame), self.subs))
+        return self._w[frame]
+
+    def H0(self, frame: str) -> np.ndarray:
+        if frame not in self._h:
+            parent = self.model.frames[frame].parent
+            w_rel = self._moved(frame, _num(self.model.W_local(frame), self.subs))
+            h_rel = self._moved(frame, _num(self.model.H_local(frame), self.subs))
+            self._h[frame] = self.H0(parent) + 2 * self.W0(parent) @ w_rel + h_rel
+        return self._h[frame]
+
+    def point0(self, name: str) -> np.ndarray:
+        frame, at = self.model.point_local(name)
+        p = _num(sp.Matrix([*at, 1]), self.subs)[:, 0]
+        return (self.M0(frame) @ p)[:3]
+
+    def L0(self, index: int, frame: str | None = None) -> np.ndarray:
+        model = self.model
+        frame = frame or model.joint_frame(index)
+        total = np.zeros((4, 4))
+        for f in model.chain(frame):
+            if index in model.joints_in(f):
+                total += self._moved(f, _num(model.L_local(index, f), self.subs))
+        return total
