@@ -371,7 +371,7 @@ class DynamicsEngine:
         both the terms are grouped by their trig factor with the parameter coefficient
         factored. No `trigsimp`: both forms come from the polynomial in microseconds.
         """
-        from robosolve.dynamics.trigpoly import TrigAlgebra, fourier_terms
+        from robosolve.dynamics.trigpoly import TrigAlgebra, fourier_terms, product_terms
 
         alg = self.alg
         if not isinstance(alg, TrigAlgebra):
@@ -389,6 +389,7 @@ class DynamicsEngine:
                               for term in sp.Add.make_args(expr)])]
         if alg.trig and any(alg.depends(p, i) for i in alg.trig):
             cands.append(self._group(fourier_terms(alg, p)))
+            cands.append(self._group(product_terms(alg, p)))
         best = min(cands, key=sp.count_ops)
         self._cache[key] = best
         return best

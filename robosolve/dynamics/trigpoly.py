@@ -30,9 +30,10 @@ class TrigAlgebra:
         self.one = ring.one
         self._basis = [s ** 2 + c ** 2 - 1 for s, c in trig.values()]
         self._back = {}
+        syms = dict(zip(ring.gens, ring.symbols))
         for i, (s, c) in trig.items():
-            self._back[s.as_expr()] = sp.sin(q[i])
-            self._back[c.as_expr()] = sp.cos(q[i])
+            self._back[syms[s]] = sp.sin(q[i])
+            self._back[syms[c]] = sp.cos(q[i])
         self.elements = elements
 
     @classmethod
@@ -231,12 +232,8 @@ def _fmul(a: dict, b: dict) -> dict:
     return {k: v for k, v in out.items() if v != 0}
 
 
-def fourier_terms(alg: TrigAlgebra, p):
-    """p as Σ coeff · {cos|sin}(k·q) · (prismatic monomial): list of (coeff_expr, trig_expr).
-
-    Products of cosines and sines become cosines and sines of sums of angles (the form
-    `trigsimp` reaches, e.g. cos(2θ₂ + θ₃)), at the cost of a dictionary walk.
-    """
+def fourier_dict(alg: TrigAlgebra, p) -> dict:
+    """p as {(kind, k, prismatic exponents): domain coefficient}, kind cos|sin of k·q."""
     from fractions import Fraction
 
     ring = alg.ring
@@ -244,7 +241,7 @@ def fourier_terms(alg: TrigAlgebra, p):
     pos = {}
     for i, (s, c) in alg.trig.items():
         pos[i] = (ring.gens.index(s), ring.gens.index(c))
-    poly_pos = {i: ring.gens.index(g) for i, g in alg.poly.items()}
+    poly_pos = [ring.gens.index(g) for g in alg.poly.values()]
     cache = alg.__dict__.setdefault("_fourier_cache", {})
     acc: dict = {}
     dom = ring.domain
@@ -260,17 +257,84 @@ def fourier_terms(alg: TrigAlgebra, p):
                 for _ in range(monom[si]):
                     series = _fmul(series, {("sin", e_i): Fraction(1)})
             cache[tkey] = series
-        pkey = tuple(monom[k] for k in poly_pos.values())
+        pkey = tuple(monom[k] for k in poly_pos)
         for (kind, k), r in series.items():
             key = (kind, k, pkey)
             acc[key] = acc.get(key, dom.zero) + coeff * dom.convert(
                 sp.Rational(r.numerator, r.denominator))
+    return {k: v for k, v in acc.items() if v}
+
+
+def _trig(alg, kind, k):
+    if not any(k):
+        return sp.S.One if kind == "cos" else sp.S.Zero
+    arg = sp.Add(*[kk * alg.q[i] for i, kk in enumerate(k)])
+    return sp.cos(arg) if kind == "cos" else sp.sin(arg)
+
+
+def _mono(alg, pkey):
+    return sp.Mul(*[q ** e for q, e in zip([alg.q[i] for i in alg.poly], pkey)])
+
+
+def fourier_terms(alg: TrigAlgebra, p):
+    """p as Σ coeff · {cos|sin}(k·q) · (prismatic monomial): list of (coeff, trig) pairs.
+
+    Products of cosines and sines become cosines and sines of sums of angles (the form
+    `trigsimp` reaches, e.g. cos(2θ₂ + θ₃)), at the cost of a dictionary walk.
+    """
+    dom = alg.ring.domain
+    return [(dom.to_sympy(c), _trig(alg, kind, k) * _mono(alg, pkey))
+            for (kind, k, pkey), c in fourier_dict(alg, p).items()]
+
+
+def product_terms(alg: TrigAlgebra, p):
+    """The Fourier form folded back into short products (the textbook look):
+
+    * cos A + cos B with equal coefficients -> 2 cos((A+B)/2) cos((A−B)/2), and
+      sin A + sin B -> 2 sin((A+B)/2) cos((A−B)/2), when the half sums are whole;
+    * cos 2x -> 2 cos²x − 1 and sin 2x -> 2 sin x cos x.
+
+    E.g. L2 L3 m3 (cos θ3 + cos(2θ2 + θ3))/2 -> L2 L3 m3 cos θ2 cos(θ2 + θ3).
+    """
+    dom = alg.ring.domain
+    terms = fourier_dict(alg, p)
     out = []
-    for (kind, k, pkey), coeff in acc.items():
-        if not coeff:
+    by_coef: dict = {}
+    for key in sorted(terms):
+        kind, k, pkey = key
+        if any(k):
+            by_coef.setdefault((kind, pkey, terms[key]), []).append(k)
+    used = set()
+    for (kind, pkey, coef), ks in sorted(by_coef.items(), key=lambda x: (x[0][0], x[0][1],
+                                                                         str(x[0][2]))):
+        free = list(ks)
+        while len(free) >= 2:
+            a = free.pop(0)
+            partner = next((b for b in free if all((x + y) % 2 == 0 for x, y in zip(a, b))),
+                           None)
+            if partner is None:
+                continue
+            free.remove(partner)
+            b = partner
+            u = tuple((x + y) // 2 for x, y in zip(a, b))
+            v = tuple((x - y) // 2 for x, y in zip(a, b))
+            used.add((kind, a, pkey))
+            used.add((kind, b, pkey))
+            first = _trig(alg, kind, u)
+            second = _trig(alg, "cos", v)
+            out.append((2 * dom.to_sympy(coef), first * second * _mono(alg, pkey)))
+    for (kind, k, pkey), coef in terms.items():
+        if (kind, k, pkey) in used:
             continue
-        arg = sp.Add(*[kk * alg.q[i] for i, kk in enumerate(k)])
-        trig = sp.S.One if not any(k) else (sp.cos(arg) if kind == "cos" else sp.sin(arg))
-        mono = sp.Mul(*[alg.q[i] ** e for i, e in zip(poly_pos, pkey)])
-        out.append((dom.to_sympy(coeff), trig * mono))
+        c = dom.to_sympy(coef)
+        mono = _mono(alg, pkey)
+        if any(k) and all(x % 2 == 0 for x in k):
+            h = tuple(x // 2 for x in k)
+            if kind == "cos":
+                out.append((2 * c, _trig(alg, "cos", h) ** 2 * mono))
+                out.append((-c, mono))
+            else:
+                out.append((2 * c, _trig(alg, "sin", h) * _trig(alg, "cos", h) * mono))
+        else:
+            out.append((c, _trig(alg, kind, k) * mono))
     return out
