@@ -131,6 +131,7 @@ class DynamicsEngine:
         for b in self.bodies:
             put(("J", b.name), list(b.J))
         put(("grav",), list(self.gravity))
+        put(("act",), [j.actuator for j in self.joints])  # actuator symbols in the domain
         for k, ld in enumerate(self.loads):
             put(("F", k), ld.force or [0, 0, 0])
             put(("P", k), ld.point or [0, 0, 0])
@@ -362,7 +363,7 @@ class DynamicsEngine:
         return self._cached("rext", build)
 
     # ------------------------------------------------------------------ sympy views
-    def pretty(self, p):
+    def pretty(self, p, light: bool = False):
         """Readable form of a final algebra element (M entries, c coefficients, g, U).
 
         Two candidate forms, the smaller (`count_ops`) wins:
@@ -381,9 +382,15 @@ class DynamicsEngine:
                 if self.simplify else expr
         if not self.simplify:
             return alg.to_expr(p)
-        key = ("pretty", p)
+        key = ("pretty", light, p)
         if key in self._cache:
             return self._cache[key]
+        if light:  # report matrices: the product form, coefficients with common factors out
+            best = self._group(product_terms(alg, p), factor=False) if alg.trig else \
+                self._group([t.as_independent(*self.q) for t in
+                             sp.Add.make_args(sp.expand(alg.to_expr(p)))], factor=False)
+            self._cache[key] = best
+            return best
         expr = sp.expand(alg.to_expr(p))
         cands = [self._group([term.as_independent(*self.q)
                               for term in sp.Add.make_args(expr)])]
@@ -394,7 +401,7 @@ class DynamicsEngine:
         self._cache[key] = best
         return best
 
-    def _group(self, pairs):
+    def _group(self, pairs, factor: bool = True):
         """Σ coef·trig with equal trig factors merged, coefficients factored (small ones)."""
         groups: dict = {}
         for coef, trig in pairs:
@@ -405,13 +412,14 @@ class DynamicsEngine:
             coef = sp.expand(groups[trig])
             if coef == 0:
                 continue
-            coef = sp.factor(coef) if small and sp.count_ops(coef) <= 60 else \
+            coef = sp.factor(coef) if factor and small and sp.count_ops(coef) <= 60 else \
                 sp.factor_terms(coef)
             out.append(coef * trig)
         return sp.Add(*out)
 
     def _view(self, key, m):
-        return self._cached(("view",) + key, lambda: sp.Matrix([[self.pretty(x) for x in row] for row in m]))
+        return self._cached(("view",) + key, lambda: sp.Matrix(
+            [[self.pretty(x, light=True) for x in row] for row in m]))
 
     def rel(self, a: str, b: str) -> sp.Matrix:
         """ᵃM_b for `a` an ancestor of `b` (or a == b)."""
@@ -433,17 +441,14 @@ class DynamicsEngine:
         if name is None:
             return sp.zeros(4, 4)
 
-        def build():
-            alg = self.alg
-            m = self._rrel(BASE, name)
-            return alg.matmul(alg.matmul(m, self._rLb(i, name)), alg.rigid_inverse(m))
-        return self._view(("L0", i, name), self._cached(("rL0", i, name), build))
+        return self._view(("L0", i, name), self._rL0(i, name))
 
     def body_mass_matrix(self, b: BodySpec) -> sp.Matrix:
         return self._view(("Mb", b.name), self._rbody_M(b))
 
     def mass_matrix(self) -> sp.Matrix:
-        return self._view(("M",), self._rM())
+        return self._cached(("view", "M"), lambda: sp.Matrix(
+            [[self.pretty(x) for x in row] for row in self._rM()]))
 
     def kinetic_energy(self) -> dict:
         """T_b = ½ Σᵢₖ q̇ᵢ q̇ₖ tr(ᵇLᵢ J ᵇLₖᵀ) = ½ tr(W J Wᵀ)."""
@@ -513,15 +518,19 @@ class DynamicsEngine:
         """Φ of actuator i on its link, in the joint's frame: a pure torque along the
         joint axis (revolute) or a force along it through the frame origin (prismatic),
         scaled so that Φ ⊗ L = actuator."""
-        name = self.joint_frame(i)
-        s = self.twist_local(name, i)
-        w = vex(s[:3, :3])
-        a = self.joints[i].actuator
-        if any(x != 0 for x in w):
-            return self._ms(skew(a * w / (w.T * w)[0, 0]).row_join(sp.zeros(3, 1))
-                            .col_join(sp.zeros(1, 4)))
-        v = s[:3, 3]
-        return self._ms(action_matrix(list(a * v / (v.T * v)[0, 0]), [0, 0, 0]))
+        def build():
+            name = self.joint_frame(i)
+            s = self.alg.to_matrix(self._rS(name, i))
+            w = vex(s[:3, :3])
+            a = self.joints[i].actuator
+            if any(x != 0 for x in w):
+                out = sp.zeros(4, 4)
+                out[:3, :3] = skew(a * w / sp.expand((w.T * w)[0, 0]))
+                return out.applyfunc(sp.expand)
+            v = s[:3, 3]
+            return action_matrix(list(a * v / sp.expand((v.T * v)[0, 0])), [0, 0, 0]) \
+                .applyfunc(sp.expand)
+        return self._cached(("Phi_act", i), build)
 
     def link_of(self, name: str) -> str | None:
         """The frame of the link that frame `name` belongs to: the nearest frame (itself
@@ -531,42 +540,83 @@ class DynamicsEngine:
                 return f
         return None
 
-    def link_actions0(self) -> dict[str, sp.Matrix]:
-        """⁰Φ of each link (keyed by its joint frame): +own actuator, −next actuators'
-        reactions, external loads on any frame of the link (ERRATA §D.5)."""
+    def _rlink_actions0(self) -> dict:
+        """⁰Φ of each link (keyed by its joint frame), as algebra matrices."""
         def build():
-            out: dict[str, sp.Matrix] = {}
+            alg = self.alg
+            out: dict = {}
+
+            def add(link, m, phi_local, sign):
+                mt = [list(r) for r in zip(*m)]
+                phi0 = alg.matmul(alg.matmul(m, phi_local), mt)
+                cur = out.get(link, alg.zeros(4))
+                out[link] = [[x + sign * y for x, y in zip(rc, rp)]
+                             for rc, rp in zip(cur, phi0)]
+
             for i in range(self.n):
                 f = self.joint_frame(i)
                 if f is None:
                     continue
-                m = self.M0(f)
-                phi0 = m * self.actuator_action(i) * m.T
-                out[f] = out.get(f, sp.zeros(4, 4)) + phi0
-                parent_link = self.link_of(self.frames[f].parent) if \
-                    self.frames[f].parent != BASE else None
+                phi = [[alg.from_expr(x) for x in row] for row in
+                       self.actuator_action(i).tolist()]
+                m = self._rrel(BASE, f)
+                add(f, m, phi, 1)
+                parent = self.frames[f].parent
+                parent_link = self.link_of(parent) if parent != BASE else None
                 if parent_link is not None:
-                    out[parent_link] = out.get(parent_link, sp.zeros(4, 4)) - phi0
-            for load in self.loads:
+                    add(parent_link, m, phi, -1)
+            for k, load in enumerate(self.loads):
                 link = self.link_of(load.frame)
-                if link is None:
-                    continue
-                m = self.M0(load.frame)
-                out[link] = out.get(link, sp.zeros(4, 4)) + m * self.load_in_body(load) * m.T
-            return {k: self._ms(v) for k, v in out.items()}
-        return self._cached("Phi0", build)
+                if link is not None:
+                    add(link, self._rrel(BASE, load.frame), self._rload_phi(k), 1)
+            order = {f: t for t, f in enumerate(self.order)}
+            return {k: [[alg.reduce(x) for x in row] for row in out[k]]
+                    for k in sorted(out, key=order.get)}
+        return self._cached("rPhi0", build)
+
+    def link_actions0(self) -> dict[str, sp.Matrix]:
+        """⁰Φ of each link: +own actuator, −next actuators' reactions, external loads on
+        any frame of the link (ERRATA §D.5)."""
+        return {k: self._view(("Phi0", k), v) for k, v in self._rlink_actions0().items()}
+
+    def _rL0(self, i: int, name: str):
+        def build():
+            alg = self.alg
+            m = self._rrel(BASE, name)
+            return alg.matmul(alg.matmul(m, self._rLb(i, name)), alg.rigid_inverse(m))
+        return self._cached(("rL0", i, name), build)
+
+    def _rcourse_f(self):
+        from robosolve.core.matrices import _PSP_ENTRIES
+
+        def build():
+            alg = self.alg
+            out = []
+            for i in range(self.n):
+                acc = alg.zero
+                for link, phi in self._rlink_actions0().items():
+                    if i in self.moving(link):
+                        l0 = self._rL0(i, link)
+                        for r, c in _PSP_ENTRIES:
+                            acc += phi[r][c] * l0[r][c]
+                out.append(alg.reduce(acc))
+            return out
+        return self._cached("rcourse_f", build)
 
     def course_generalized_forces(self) -> sp.Matrix:
         """fᵢ = (Σ_{links j moved by joint i} ⁰Φⱼ) ⊗ ⁰Lᵢⱼ, literally (for the report)."""
-        phis = self.link_actions0()
-        out = []
+        return sp.Matrix([self.pretty(x) for x in self._rcourse_f()])
+
+    def course_forces_agree(self) -> bool:
+        """The literal course formula equals actuator + external forces, exactly."""
+        alg = self.alg
+        lit = self._rcourse_f()
+        ext = self._rext()
         for i in range(self.n):
-            terms = []
-            for link, phi in phis.items():
-                if i in self.moving(link):
-                    terms.append(pseudo_scalar_product(phi, self.L0(i, link)))
-            out.append(self._s(sp.Add(*terms)))
-        return sp.Matrix(out)
+            act = alg.from_expr(self.joints[i].actuator)
+            if alg.reduce(lit[i] - act - ext[i]) != 0:
+                return False
+        return True
 
     # ------------------------------------------------------------------ result
     def dynamics(self) -> Dynamics:

@@ -88,6 +88,16 @@ class TrigAlgebra:
     def element(self, k):
         return self.elements[k]
 
+    def from_expr(self, expr):
+        """A new sympy expression (over the input symbols) as a ring element."""
+        expr = sp.sympify(expr)
+        rep = {}
+        syms = dict(zip(self.ring.gens, self.ring.symbols))
+        for i, (s, c) in self.trig.items():
+            rep[sp.sin(self.q[i])] = syms[s]
+            rep[sp.cos(self.q[i])] = syms[c]
+        return self.reduce(self.ring.from_expr(sp.expand(expr.xreplace(rep))))
+
     # ---------------------------------------------------------------- arithmetic
     def reduce(self, p):
         if not self._basis or p == 0:
@@ -172,6 +182,9 @@ class SympyAlgebra:
 
     def element(self, k):
         return self.elements[k]
+
+    def from_expr(self, expr):
+        return sp.sympify(expr)
 
     def reduce(self, p):
         return self._simp(p)

@@ -1,0 +1,116 @@
+"""The bridge between a problem's `RobotModel` and the dynamics engine (one derivation per
+model, shared by `equations_of_motion`, `joint_torques` and the control solvers).
+
+    dyn = dynamics_for(model)                 # Dynamics (symbolic), cached per model
+    nd, note = numeric_for(model, subs)       # NumericDynamics; numeric-only fallback
+"""
+
+from __future__ import annotations
+
+import weakref
+
+import sympy as sp
+
+from robosolve.dynamics.api import (BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec,
+                                    NumericDynamics)
+
+__all__ = ["engine_inputs", "dynamics_for", "numeric_for", "DYNAMICS_SECONDS"]
+
+# Budget of the symbolic derivation before the numeric-only path takes over. The PUMA 560
+# (6 joints, 51 symbolic parameters) takes ~15 s on a 2-core machine.
+DYNAMICS_SECONDS = 90.0
+
+_CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _ordered_frames(model) -> list[str]:
+    """Frames with every parent before its children (file order otherwise)."""
+    names = list(model.frame_names())
+    done, out = {"0"}, []
+    while len(out) < len(names):
+        progressed = False
+        for f in names:
+            if f not in done and model.frames[f].parent in done:
+                out.append(f)
+                done.add(f)
+                progressed = True
+        if not progressed:
+            raise ValueError("frames do not form a tree rooted at frame 0")
+    return out
+
+
+def engine_inputs(model) -> dict:
+    """The engine's plain inputs from a RobotModel."""
+    frames = [FrameSpec(f, model.frames[f].parent, model.M_local(f))
+              for f in _ordered_frames(model)]
+    joints = [JointSpec(j.name, j.symbol, j.dot, j.ddot, j.actuator,
+                        "revolute" if j.is_revolute else "prismatic")
+              for j in model.joints]
+    bodies = [BodySpec(b.name, b.frame, model.J_local(b)) for b in model.bodies]
+    loads = []
+    for f in model.forces:
+        loads.append(LoadSpec(
+            f.name, f.frame,
+            force=list(f.force) if f.force is not None else None,
+            point=list(f.at) if f.at is not None else None,
+            torque=list(f.torque) if f.torque is not None else None,
+            in_frame=f.in_frame))
+    return dict(frames=frames, joints=joints, bodies=bodies, gravity=list(model.gravity),
+                loads=loads)
+
+
+def _store(model) -> dict:
+    try:
+        return _CACHE.setdefault(model, {})
+    except TypeError:  # not weak-referenceable: cache on the object itself
+        return model.__dict__.setdefault("_dynamics_cache", {})
+
+
+def dynamics_for(model, seconds: float | None = DYNAMICS_SECONDS) -> Dynamics:
+    """Symbolic equations of motion of the model's robot (cached).
+
+    Raises robosolve.errors.SymbolicTimeout past `seconds` (the failure is cached too, so
+    the next solver goes straight to the numeric path).
+    """
+    from robosolve.core.timing import time_limit
+    from robosolve.dynamics.api import derive_dynamics
+    from robosolve.errors import SymbolicTimeout
+
+    store = _store(model)
+    if "dynamics" in store:
+        if isinstance(store["dynamics"], SymbolicTimeout):
+            raise store["dynamics"]
+        return store["dynamics"]
+    try:
+        with time_limit(seconds or 0):
+            dyn = derive_dynamics(**engine_inputs(model))
+    except SymbolicTimeout as exc:
+        store["dynamics"] = exc
+        raise
+    store["dynamics"] = dyn
+    return dyn
+
+
+def numeric_for(model, subs: dict, seconds: float | None = DYNAMICS_SECONDS
+                ) -> tuple[NumericDynamics, str | None]:
+    """NumericDynamics with the values `subs` (parameters); a note when the symbolic
+    derivation was cut short and the numeric-only path answered."""
+    from robosolve.dynamics.api import numeric_dynamics
+    from robosolve.errors import SymbolicTimeout
+
+    joint_syms = set(model.q) | set(model.qd) | set(model.qdd)
+    subs = {k: v for k, v in subs.items() if k not in joint_syms}
+    key = ("numeric", tuple(sorted((str(k), str(v)) for k, v in subs.items())))
+    store = _store(model)
+    if key in store:
+        return store[key]
+    try:
+        dyn = dynamics_for(model, seconds)
+        out = (dyn.numeric(subs), None)
+    except SymbolicTimeout:
+        nd = numeric_dynamics(**engine_inputs(model), subs=subs)
+        out = (nd, "the symbolic equations of motion took too long: the numeric values come "
+                   "from the numeric-only path (mass matrix and velocity terms assembled "
+                   "numerically from the body-frame L matrices)")
+    store[key] = out
+    return out
