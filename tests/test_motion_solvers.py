@@ -110,3 +110,20 @@ def test_profile_that_failed_gives_an_error_answer():
     # a still joint in a trapezoidal profile (Robotics Toolbox crashes on it)
     assert ans["prof"].numeric["durations"]["theta2"] == 0
     assert ans["joint_torques"].error is None
+
+
+def test_numeric_only_path_when_the_symbolic_derivation_times_out(monkeypatch):
+    qs = "  - {type: joint_torques}\n  - {type: p_control, gains: {theta1: 500, theta2: 500}}\n"
+    sym = run(qs)
+    import robosolve.motion.adapter as adapter
+    monkeypatch.setattr(adapter, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    import robosolve.solvers.joint_torques as jt
+    monkeypatch.setattr(jt, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    num = run(qs)
+    assert "profiles" not in num["joint_torques"].symbolic
+    assert any("numerically" in n for n in num["joint_torques"].notes)
+    for act in ("C1", "C2"):
+        assert num["joint_torques"].numeric["actuators"][act]["peak"] == pytest.approx(
+            sym["joint_torques"].numeric["actuators"][act]["peak"], rel=1e-9)
+    for key in ("max_error", "final_error"):
+        assert num["p_control"].numeric[key] == pytest.approx(sym["p_control"].numeric[key], rel=1e-4, abs=1e-12)

@@ -41,7 +41,20 @@ def _specs(model):
 
 
 def symbolic_dynamics(ctx: SolveContext, seconds: float | None = None):
-    """The symbolic Dynamics (parameters kept), or None when it takes too long."""
+    """The symbolic Dynamics (parameters kept), or None when it takes too long.
+
+    Uses the dynamics helper's ``dynamics_for(model)`` (cached per model, shared with
+    equations_of_motion) when it exists; otherwise derives it here.
+    """
+    try:
+        from robosolve.dynamics.model import dynamics_for
+    except ImportError:                      # older engine without the model bridge
+        dynamics_for = None
+    if dynamics_for is not None:
+        try:
+            return dynamics_for(ctx.model) if seconds is None else dynamics_for(ctx.model, seconds)
+        except SymbolicTimeout:
+            return None
     from robosolve.dynamics.api import Dynamics, derive_dynamics
 
     dyn = ctx.shared.get(SYMBOLIC_KEY)
@@ -60,12 +73,11 @@ def symbolic_dynamics(ctx: SolveContext, seconds: float | None = None):
 
 
 def numeric_engine(ctx: SolveContext, subs: dict):
-    """FastDynamics for the simulation and the torque samples.
+    """(FastDynamics, Dynamics or None) for the simulation and the torque samples.
 
-    From the symbolic Dynamics (cached, shared with equations_of_motion) when it
-    can be derived in time; otherwise from the engine's numeric-only path.  (The
-    engine's ``subs=`` derivation is not used: in this version it leaves internal
-    cos/sin symbols in the result.)
+    From the symbolic Dynamics (cached, shared with equations_of_motion) when it can be
+    derived in time; otherwise from the engine's numeric-only path (callables).
+    Raises ValueError naming the parameters without a value.
     """
     from robosolve.motion.numeric import FastDynamics
 
@@ -77,6 +89,9 @@ def numeric_engine(ctx: SolveContext, subs: dict):
         from robosolve.dynamics.api import numeric_dynamics
 
         params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
+        missing = sorted(s.name for s, v in ctx.problem.parameters.items() if v is None and s not in params)
+        if missing:
+            raise ValueError("no value for " + ", ".join(missing))
         nd = numeric_dynamics(*_specs(ctx.model), subs=params)
         ctx.shared[key] = FastDynamics.from_callables(nd.n, nd.mass, nd.velocity_terms, nd.gravity, nd.external)
     return ctx.shared[key], None
