@@ -53,7 +53,8 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
         mid = (a + b) / 2
         for s in j.segments:
             if float(s.t0) <= float(mid) <= float(s.t1):
-                return s.position, sp.diff(s.position, t), sp.diff(s.position, t, 2)
+                # small polynomials: factored rates read as the course writes them, a (T - t)
+                return s.position, sp.factor(sp.diff(s.position, t)), sp.factor(sp.diff(s.position, t, 2))
         return j.start, sp.S(0), sp.S(0)
 
     def rest(at_end: bool):

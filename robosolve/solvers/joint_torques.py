@@ -72,7 +72,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                 "Closed form along the profile",
                 "On each interval between switching instants the profile is a polynomial in $t$; substituting "
                 "$q(t)$, $\\dot q(t)$, $\\ddot q(t)$ and the data gives each actuator as a function of time. "
-                "Before 0 and after T the actuators hold the arm at rest against gravity.",
+                "Before 0 and after T the actuators hold the arm at rest (against gravity and the external forces).",
                 equations=eqs,
             ))
             ans.symbolic["profiles"] = {act_names[i]: pw[i] for i in range(len(joints))}
