@@ -249,8 +249,11 @@ def _pick_max(values: Sequence[sp.Expr]) -> sp.Expr:
 
 
 def _nice(e):
-    """Exact values as sympy builds them (no blanket simplify: it is slow and unstable)."""
-    return sp.sympify(e)
+    """Exact numbers with their radicals collected (radsimp: fast); never a blanket simplify."""
+    e = sp.sympify(e)
+    if e.is_number and not e.is_Rational and not e.has(sp.Float):
+        return sp.radsimp(e)
+    return e
 
 
 def synchronize(
