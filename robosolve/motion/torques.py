@@ -85,11 +85,31 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
     return pieces, pw
 
 
+def golden_max(f, lo: float, hi: float, iterations: int = 64) -> float:
+    """Golden-section search for the maximum of a unimodal f on [lo, hi].
+
+    (Plain Python on purpose: scipy.optimize costs ~0.6 s to import, more than the whole
+    torque question.)  64 iterations shrink the bracket by 0.618^64 ~ 4e-14.
+    """
+    r = (5 ** 0.5 - 1) / 2
+    a, b = lo, hi
+    c, d = b - r * (b - a), a + r * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(iterations):
+        if fc >= fd:
+            b, d, fd = d, c, fc
+            c = b - r * (b - a)
+            fc = f(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + r * (b - a)
+            fd = f(d)
+    return (a + b) / 2
+
+
 def torques_along(profile: SyncProfile, dyn: FastDynamics, names: Sequence[str],
                   samples_per_interval: int = 241) -> TorqueResult:
     """Sample tau(t) on every interval (closed at both ends) and find the signed peaks."""
-    from scipy.optimize import minimize_scalar
-
     plan = profile.numeric_plan()
     n = dyn.n
     ts_all, vals_all, intervals = [], [], []
@@ -113,11 +133,10 @@ def torques_along(profile: SyncProfile, dyn: FastDynamics, names: Sequence[str],
             j = int(np.argmax(np.abs(tau[i])))
             cand, tc = float(tau[i, j]), float(ts[j])
             if 0 < j < ts.size - 1:
-                res = minimize_scalar(lambda s: -abs(at(s, i)), bounds=(ts[j - 1], ts[j + 1]),
-                                      method="bounded", options={"xatol": 1e-12 * max(1.0, b)})
-                v = at(float(res.x), i)
+                x = golden_max(lambda s: abs(at(s, i)), float(ts[j - 1]), float(ts[j + 1]))
+                v = at(x, i)
                 if abs(v) > abs(cand):
-                    cand, tc = v, float(res.x)
+                    cand, tc = v, x
             mag = abs(cand)
             cur = best[i]
             tol = 1e-12 * max(mag, cur[0], 1e-300)
