@@ -21,7 +21,7 @@ def draw(spec, path):
     plt = setup()
     d = spec.data
     js = d["joints"]
-    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False, layout="constrained")
+    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False)
     for k, j in enumerate(js):
         c = COLOURS[k % len(COLOURS)]
         ax = axes[k, 0]
@@ -40,4 +40,5 @@ def draw(spec, path):
     for ax in axes[-1]:
         ax.set_xlabel("t (s)")
     fig.suptitle(spec.title)
+    fig.subplots_adjust(wspace=0.32)
     save(fig, path)

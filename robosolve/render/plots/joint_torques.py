@@ -14,7 +14,7 @@ def draw(spec, path):
     plt = setup()
     d = spec.data
     acts = d["actuators"]
-    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.4 * len(acts) + 0.8), sharex=True, squeeze=False, layout="constrained")
+    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.4 * len(acts) + 0.8), sharex=True, squeeze=False)
     for k, (ax, a) in enumerate(zip(axes[:, 0], acts)):
         ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.6)
         mark_switches(ax, d["switches"], d["T"])
