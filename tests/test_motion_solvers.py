@@ -127,3 +127,55 @@ def test_numeric_only_path_when_the_symbolic_derivation_times_out(monkeypatch):
             sym["joint_torques"].numeric["actuators"][act]["peak"], rel=1e-9)
     for key in ("max_error", "final_error"):
         assert num["p_control"].numeric[key] == pytest.approx(sym["p_control"].numeric[key], rel=1e-4, abs=1e-12)
+
+
+SCARA_QUESTIONS = """
+questions:
+  - {type: motion_profile, id: prof, shape: trapezoidal, from: {theta1: 0, theta2: 0, l: 0},
+     to: {theta1: pi/2, theta2: pi/2, l: 1/5}, max_acceleration: {theta1: 2, theta2: 3, l: 1},
+     max_velocity: {theta1: 1, theta2: 1, l: 1/2}}
+  - {type: joint_torques}
+  - {type: p_control, law: pd, gains: {theta1: 300, theta2: 300, l: 300},
+     gains_d: {theta1: 20, theta2: 20, l: 20}}
+"""
+
+
+def test_scara_prismatic_three_joints_symbolic_vs_numeric_only(monkeypatch):
+    # the compiled 3-joint closed loop (M solved by symbolic LU) against the engine's
+    # numeric-only M, c, g with numpy solves; and the prismatic joint's holding force
+    from pathlib import Path
+
+    base = (Path(__file__).resolve().parent.parent / "problems" / "scara-rrp.yaml").read_text()
+    text = base[:base.index("questions:")] + SCARA_QUESTIONS
+
+    def solve_all():
+        return {a.id: a for a in solve_problem(load_problem_text(text)).answers}
+
+    sym = solve_all()
+    f3 = sym["joint_torques"].numeric["actuators"]["F3"]
+    # l is measured downwards (M23 = Tz(-l)): the actuator holds the payload (m3 g = 19.62 N)
+    # and brakes its descent at 1 m/s^2 at the end: -m3 (g + a) = -21.62 N
+    assert f3["peak"] == pytest.approx(-2 * (9.81 + 1), rel=1e-12)
+    import robosolve.motion.adapter as adapter
+    import robosolve.solvers.joint_torques as jt
+    monkeypatch.setattr(adapter, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    monkeypatch.setattr(jt, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    num = solve_all()
+    for act in ("C1", "C2", "F3"):
+        assert num["joint_torques"].numeric["actuators"][act]["peak"] == pytest.approx(
+            sym["joint_torques"].numeric["actuators"][act]["peak"], rel=1e-9)
+    for key in ("max_error", "final_error"):
+        assert num["p_control"].numeric[key] == pytest.approx(sym["p_control"].numeric[key], rel=1e-4, abs=1e-12)
+
+
+def test_figures_are_drawn(tmp_path):
+    from robosolve.pipeline import write_outputs
+
+    report = solve_problem(load_problem_text(ARM % ("5", PROFILE + """  - {type: joint_torques}
+  - {type: p_control, law: pd, gains: {theta1: 300, theta2: 300}, gains_d: {theta1: 20, theta2: 20}}
+""")))
+    out = write_outputs(report, tmp_path / "out")
+    names = sorted(p.name for p in (out / "figures").iterdir())
+    assert names == ["joint_torques-torques.png", "p_control-effort.png", "p_control-tracking.png",
+                     "prof-profile.png"]
+    assert all(a.notes == [] for a in report.answers)          # no "could not be drawn" note
