@@ -38,10 +38,10 @@ def symbolic():
     rep3 = {f1: q1, f2: q2}
     eqs = [sp.expand(e.subs(rep).subs(rep2).subs(rep3)) for e in eqs]
     qdd = [ddq1, ddq2]
-    M = sp.Matrix(2, 2, lambda i, j: sp.simplify(eqs[i].coeff(qdd[j])))
+    M = sp.Matrix(2, 2, lambda i, j: eqs[i].coeff(qdd[j]))
     rest = [sp.expand(e - sum(M[i, j] * qdd[j] for j in range(2))) for i, e in enumerate(eqs)]
-    gv = sp.Matrix([sp.simplify(r.subs({dq1: 0, dq2: 0})) for r in rest])
-    c = sp.Matrix([sp.simplify(r - gr) for r, gr in zip(rest, gv)])
+    gv = sp.Matrix([r.subs({dq1: 0, dq2: 0}) for r in rest])
+    c = sp.Matrix([sp.expand(r - gr) for r, gr in zip(rest, gv)])
     params = {L1: VALUES["L1"], m1: VALUES["m1"], m2: VALUES["m2"], I1: VALUES["I1"], I2: VALUES["I2"],
               g: VALUES["g"], lc1: LC["lc1"], lc2: LC["lc2"]}
     return M, c, gv, [q1, q2], [dq1, dq2], qdd, params

@@ -70,8 +70,9 @@ def _check(res, ref):
 
 
 def test_pd_against_pinocchio(arm, plan):
-    res = simulate(arm, plan, "pd", [400, 300], [40, 20], duration=1.0)
-    _check(res, reference(plan, "pd", [400, 300], [40, 20], 1.0))
+    # 1.2 s: crosses the switching instant T/2 = 1 s
+    res = simulate(arm, plan, "pd", [400, 300], [40, 20], duration=1.2)
+    _check(res, reference(plan, "pd", [400, 300], [40, 20], 1.2))
 
 
 @pytest.mark.slow
