@@ -195,3 +195,12 @@ def test_file_errors(tmp_path):
     with pytest.raises(InputError) as exc:
         load_problem(bad)
     assert "not UTF-8" in str(exc.value)
+
+
+def test_matrix_frame_must_be_a_rototranslation():
+    text = GOOD.replace('"2": {pose: "Tx(d2)"}', '"2": {matrix: [[1, 0, 0, d2], [0, 2, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}')
+    out = issues(text)
+    assert any("frames.2.matrix: not a rototranslation" in o for o in out)
+    ok = GOOD.replace('"2": {pose: "Tx(d2)"}',
+                      '"2": {matrix: [[cos(d2), -sin(d2), 0, 0], [sin(d2), cos(d2), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}')
+    load_problem_text(ok, "f.yaml")

@@ -160,7 +160,13 @@ def load_problem_text(text: str, file: str = "<input>") -> Problem:
     chk = Checker(source)
     for line, path, key in duplicates:
         chk.issues.append(InputIssue(file, line, path_str(path), f"duplicate key '{key}'"))
-    problem = _ProblemBuilder(chk).build()
+    try:
+        problem = _ProblemBuilder(chk).build()
+    except (RecursionError, MemoryError):
+        chk.issues.append(InputIssue(file, 1, "", "the file is too large or too deeply nested to check"))
+    except Exception as exc:  # a validation bug must still end as a clear message, not a traceback
+        if not chk.issues:
+            chk.issues.append(InputIssue(file, 1, "", f"cannot validate this file ({type(exc).__name__}: {exc})"))
     if chk.issues:
         raise InputError(chk.issues)
     return problem
@@ -468,6 +474,10 @@ class _ProblemBuilder:
                 if list(m[3, :]) != [0, 0, 0, 1]:
                     chk.error(path + ("matrix",), "the last row of a pose matrix must be [0, 0, 0, 1]")
                     return
+                if not self._is_rigid(m):
+                    chk.error(path + ("matrix",), "not a rototranslation: the 3x3 rotation block must be "
+                              "orthonormal with determinant 1 (checked at sample joint values)")
+                    return
                 frames[name] = Frame(name, parent, "matrix", matrix=m, line=line)
         else:
             keys = DH_KEYS if kind == "dh" else MDH_KEYS
@@ -476,6 +486,24 @@ class _ProblemBuilder:
             vals = [chk.expr(path + (kind, k), item[kind][k], self.ns) for k in keys if k in item[kind]]
             if len(vals) == 4 and all(v is not None for v in vals):
                 frames[name] = Frame(name, parent, kind, factors=vals, line=line)
+
+    def _is_rigid(self, m) -> bool:
+        """Numeric check of a pose matrix at a few deterministic joint values."""
+        import numpy as np
+
+        from robosolve.core.transforms import is_rototranslation
+
+        values = self._values()
+        free = sorted((m.free_symbols - set(values)), key=lambda s: s.name)
+        for k in range(3):
+            sample = {s: sp.Float(0.3 + 0.7 * k + 0.11 * i) for i, s in enumerate(free)}
+            try:
+                a = np.array(m.xreplace(values).xreplace(sample).evalf().tolist(), dtype=float)
+            except (TypeError, ValueError):
+                return True     # cannot be evaluated (e.g. complex): leave it to the solvers
+            if not is_rototranslation(a, tol=1e-9):
+                return False
+        return True
 
     def _pose(self, path, text):
         chk = self.chk

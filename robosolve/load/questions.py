@@ -83,7 +83,7 @@ class _QuestionLoader:
             chk.error(path, f"expected a mapping with a `type`, got {type(item).__name__}")
             return None
         qtype = item.get("type")
-        if qtype not in TYPES:
+        if not isinstance(qtype, str) or qtype not in TYPES:
             if "type" not in item:
                 chk.error(path, "missing required key 'type'")
             else:

@@ -241,7 +241,7 @@ class RobotModel:
         if frame not in self._h0:
             parent = self.frames[frame].parent
             h = self.H0(parent) + 2 * self.W0(parent) * self.W_relative0(frame) + self.H_relative0(frame)
-            self._h0[frame] = tidy_matrix(h)
+            self._h0[frame] = h.applyfunc(sp.expand)
         return self._h0[frame]
 
     def auxiliary(self, point: str) -> sp.Matrix:
