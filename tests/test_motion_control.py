@@ -54,7 +54,7 @@ def reference(plan, law, kp, kd, duration, start=None, method="DOP853"):
                 tau = pin.rnea(model, data, x, v, ades + kd * ed + kp * e)
             return np.concatenate([v, pin.aba(model, data, x, v, tau)])
 
-        sol = solve_ivp(f, (a, b), y, method=method, rtol=1e-12 if method == "DOP853" else 1e-11, atol=1e-14, dense_output=True)
+        sol = solve_ivp(f, (a, b), y, method=method, rtol=1e-10, atol=1e-13, dense_output=True)
         y = sol.y[:, -1]
         ts = np.linspace(a, b, 40001)
         errs.append(plan.evaluate(ts, k=k)[0] - sol.sol(ts)[:2])
