@@ -96,3 +96,16 @@ def test_closed_form_is_exact_with_exact_inputs():
     t = prof.t
     assert sp.simplify(pieces[0][0] - (m * L ** 2 * sp.pi / 3 + m * g * L / 2 * sp.cos(sp.pi * t ** 2 / 2))) == 0
     assert pw[0].subs(t, 5) == 0            # held vertical at the end: no gravity torque
+
+
+def test_jump_table(arm):
+    robot = rtb_robot()
+    prof = synchronize(["q1", "q2"], [0, 0], [1, 1], [2, 2])
+    res = torques_along(prof, arm["dyn"], ["C1", "C2"])
+    T = float(prof.T)
+    assert [j[0] for j in res.jumps] == [0.0, pytest.approx(T / 2), pytest.approx(T)]
+    # before 0 and after T: the static holding torques (rne at rest)
+    assert np.allclose(res.jumps[0][1], robot.rne(np.zeros(2), np.zeros(2), np.zeros(2)))
+    assert np.allclose(res.jumps[-1][2], robot.rne(np.ones(2), np.zeros(2), np.zeros(2)))
+    # just after 0: the acceleration +a starts
+    assert np.allclose(res.jumps[0][2], robot.rne(np.zeros(2), np.zeros(2), np.full(2, 1.0)))

@@ -33,6 +33,7 @@ class TorqueResult:
     values: np.ndarray                     # (n, N)
     breaks: list[float]                    # switching instants inside (0, T)
     intervals: list[tuple[float, float]]   # the intervals [a, b] of the pieces
+    jumps: list = None                     # [(t, values just before, values just after)] at 0, switches, T
     profiles: list[sp.Expr] | None = None  # piecewise closed forms in t, when symbolic
     pieces: list[list[sp.Expr]] | None = None   # per actuator, one expression per interval
 
@@ -147,7 +148,18 @@ def torques_along(profile: SyncProfile, dyn: FastDynamics, names: Sequence[str],
         tau = dyn.inverse_many(Q, QD, QDD)
         ts_all, vals_all = [np.array([0.0])], [tau]
         best = [(abs(float(tau[i, 0])), float(tau[i, 0]), 0.0) for i in range(n)]
+    # one-sided values at every switching instant (the arm holds still before 0 and after T)
+    hold0 = dyn.inverse(plan.start, np.zeros(n), np.zeros(n))
+    hold1 = dyn.inverse(plan.hold, np.zeros(n), np.zeros(n))
+    jumps = []
+    if intervals:
+        edges = [iv[0] for iv in intervals] + [intervals[-1][1]]
+        for k, s in enumerate(edges):
+            before = hold0 if k == 0 else vals_all[k - 1][:, -1]
+            after = hold1 if k == len(edges) - 1 else vals_all[k][:, 0]
+            jumps.append((float(s), [float(x) for x in before], [float(x) for x in after]))
     return TorqueResult(
+        jumps=jumps,
         names=list(names),
         peaks=[b[1] for b in best],
         t_peaks=[b[2] for b in best],

@@ -102,6 +102,16 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         "actuator jumps, and the larger of the two one-sided values counts.",
         table=(["actuator", "peak", "at t (s)"], rows),
     ))
+    if res.jumps:
+        header = ["t (s)"] + [f"${sp.latex(j.actuator)}$ before → after" for j in joints]
+        jrows = [[report_number(t)] + [f"{report_number(b[i])} → {report_number(a[i])}" for i in range(len(joints))]
+                 for t, b, a in res.jumps]
+        ans.steps.append(Step(
+            "Jumps at the switching instants",
+            "Where a joint acceleration jumps, so does $M(q)\\,\\ddot q$ and the actuators with it (velocities "
+            "and positions are continuous). Before 0 and after T the values are the holding forces at rest.",
+            table=(header, jrows),
+        ))
     ans.figures.append(FigureSpec(
         "torques", "joint_torques", f"Actuators along the profile (T = {report_number(float(prof.T))} s)",
         {"t": [float(f"{x:.12g}") for x in res.t],
