@@ -107,5 +107,5 @@ def test_jump_table(arm):
     # before 0 and after T: the static holding torques (rne at rest)
     assert np.allclose(res.jumps[0][1], robot.rne(np.zeros(2), np.zeros(2), np.zeros(2)))
     assert np.allclose(res.jumps[-1][2], robot.rne(np.ones(2), np.zeros(2), np.zeros(2)))
-    # just after 0: the acceleration +a starts
-    assert np.allclose(res.jumps[0][2], robot.rne(np.zeros(2), np.zeros(2), np.full(2, 1.0)))
+    # just after 0: the acceleration +a = 4|D|/T^2 = 2 starts
+    assert np.allclose(res.jumps[0][2], robot.rne(np.zeros(2), np.zeros(2), np.full(2, 2.0)))
