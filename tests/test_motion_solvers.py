@@ -179,3 +179,16 @@ def test_figures_are_drawn(tmp_path):
     assert names == ["joint_torques-torques.png", "p_control-effort.png", "p_control-tracking.png",
                      "prof-profile.png"]
     assert all(a.notes == [] for a in report.answers)          # no "could not be drawn" note
+
+
+def test_null_acceleration_limit_keeps_the_profile_symbolic():
+    text = (ARM % ("5", """  - {type: motion_profile, id: prof, from: {theta1: 0, theta2: 0}, to: {theta1: pi/2, theta2: -pi/3},
+     max_acceleration: {theta1: a1, theta2: 3}}
+  - {type: joint_torques}
+  - {type: p_control, gains: {theta1: 50, theta2: 50}}
+""")).replace("F: 5,", "F: 5, a1: ~,")
+    ans = {a.id: a for a in solve_problem(load_problem_text(text)).answers}
+    assert all(a.error is None for a in ans.values())
+    assert "Max" in str(ans["prof"].symbolic["T"]) and "T" not in ans["prof"].numeric
+    assert ans["joint_torques"].notes == ["numeric torques omitted: it needs the null parameter a1"]
+    assert ans["p_control"].notes == ["numeric simulation omitted: it needs the null parameter a1"]

@@ -17,7 +17,7 @@ from robosolve.load.problem import Question
 from robosolve.motion.adapter import numeric_engine, profile_for, symbolic_dynamics
 from robosolve.motion.torques import closed_form_pieces, torques_along
 from robosolve.render.numbers import report_number
-from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
+from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
 CLOSED_FORM_SECONDS = 20.0
 
@@ -79,7 +79,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 
     # -- numeric: samples and signed peaks
     if not prof.T.is_number:
-        ans.note("numeric torques omitted: the profile's duration is not a number")
+        ans.note(missing_note("torques", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
         return ans
     try:
         fast, _ = numeric_engine(ctx, subs)

@@ -16,7 +16,7 @@ from robosolve.load.problem import Question
 from robosolve.motion.adapter import numeric_engine, profile_for
 from robosolve.motion.control import simulate
 from robosolve.render.numbers import report_number
-from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
+from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
 SAMPLES = 2001
 
@@ -71,7 +71,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     names = [j.name for j in joints]
     law = opts.get("law", "p")
     if not prof.T.is_number:
-        raise SolverError("the profile's duration is not a number (a null parameter?)")
+        ans.note(missing_note("simulation", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
+        return ans
 
     kp = [_float(ctx, opts["gains"][n], subs, f"gains.{n}") for n in names]
     kd = [_float(ctx, opts["gains_d"][n], subs, f"gains_d.{n}") for n in names] if "gains_d" in opts else None
