@@ -130,3 +130,10 @@ def test_effort_and_samples(arm, plan):
 def test_bad_law(arm, plan):
     with pytest.raises(ValueError, match="unknown control law"):
         simulate(arm, plan, "pid", [1, 1])
+
+
+def test_time_budget_explains_the_oscillation(arm, plan):
+    from robosolve.motion.control import SimulationTooLong
+
+    with pytest.raises(SimulationTooLong, match="oscillates at up to .* Hz"):
+        simulate(arm, plan, "p", [5e6, 5e6], time_limit=0.05)

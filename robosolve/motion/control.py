@@ -25,7 +25,16 @@ import numpy as np
 from robosolve.motion.numeric import FastDynamics
 from robosolve.motion.profiles import NumericPlan
 
-__all__ = ["LAWS", "ControlResult", "simulate"]
+__all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT"]
+
+# Wall-clock budget of one simulation (s).  An undamped P loop on a very light link (a
+# PUMA wrist: inertia 1e-4 kg m^2, Kp = 5000 -> 1 kHz) must resolve every oscillation and
+# could run for many minutes: it is stopped with an explanation instead of hanging.
+TIME_LIMIT = 60.0
+
+
+class SimulationTooLong(RuntimeError):
+    """The closed-loop simulation exceeded its time budget."""
 
 LAWS = ("p", "pd", "pd_gravity", "computed_torque")
 
@@ -97,7 +106,8 @@ def _law_torque(law, kp, kd, e, ed, qdd_d, m, c, g):
 
 def simulate(dyn: FastDynamics, plan: NumericPlan, law: str, kp, kd=None, start=None,
              duration: float | None = None, samples: int = 801,
-             rtol: float = RTOL, atol=None, method: str = "LSODA") -> ControlResult:
+             rtol: float = RTOL, atol=None, method: str = "LSODA",
+             time_limit: float | None = TIME_LIMIT) -> ControlResult:
     """Simulate the closed loop from ``start`` at rest (default: the profile's start).
 
     ``kp``, ``kd``: per-joint gains (sequences of n floats; kd defaults to 0).
@@ -124,6 +134,9 @@ def simulate(dyn: FastDynamics, plan: NumericPlan, law: str, kp, kd=None, start=
 
     if atol is None:
         atol = np.concatenate([np.full(n, ATOL_ERROR), np.full(n, ATOL_RATE)])
+    import time
+
+    deadline = None if not time_limit else time.monotonic() + time_limit
     fast = dyn.closed_loop(law, kp, kd)
     sols = []
     nfev = 0
@@ -141,6 +154,7 @@ def simulate(dyn: FastDynamics, plan: NumericPlan, law: str, kp, kd=None, start=
                 qdd = np.linalg.solve(m, tau + f - c - g)
                 return np.concatenate([ed, ades - qdd])
 
+        rhs = _guarded(rhs, deadline, lambda: _too_long(dyn, law, kp, kd, q_start, duration, time_limit))
         sol = solve_ivp(rhs, (a, b), y, method=method, rtol=rtol, atol=atol, dense_output=True)
         if not sol.success:
             sol = solve_ivp(rhs, (a, b), y, method="Radau", rtol=rtol, atol=atol, dense_output=True)
@@ -201,6 +215,40 @@ def simulate(dyn: FastDynamics, plan: NumericPlan, law: str, kp, kd=None, start=
     q = q_des - err
     return ControlResult(law, duration, grid, q, q_des, err, effort, max_err, t_max, final,
                          breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method)
+
+
+def _guarded(rhs, deadline, message):
+    """rhs that raises SimulationTooLong once the deadline has passed (checked every 500 calls)."""
+    if deadline is None:
+        return rhs
+    import time
+
+    count = [0]
+
+    def guarded(t, yy):
+        count[0] += 1
+        if count[0] % 500 == 0 and time.monotonic() > deadline:
+            raise SimulationTooLong(message())
+        return rhs(t, yy)
+
+    return guarded
+
+
+def _too_long(dyn, law, kp, kd, q0, duration, limit) -> str:
+    """Explain a simulation that ran out of time: the fastest closed-loop oscillation."""
+    msg = f"the closed-loop simulation did not finish in {limit:g} s"
+    try:
+        m, _c, _g, _f = dyn.terms(np.asarray(q0, dtype=float), np.zeros(dyn.n))
+        stiff = np.diag(kp) if law != "computed_torque" else m @ np.diag(kp)
+        w = np.sqrt(np.max(np.abs(np.linalg.eigvals(np.linalg.solve(m, stiff)))))
+        cycles = w * duration / (2 * np.pi)
+        msg += (f": with these gains the arm oscillates at up to {w / (2 * np.pi):.3g} Hz "
+                f"(about {cycles:.3g} oscillations over {duration:g} s, each of which must be resolved)")
+        if law == "p":
+            msg += "; lower the gains of the light joints, or add damping (law: pd)"
+    except Exception:
+        pass
+    return msg
 
 
 def _fast_rhs(fast, a: float, coeffs: list, n: int):

@@ -105,7 +105,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     plan = prof.numeric_plan()
     try:
         res = simulate(fast, plan, law, kp, kd, start=start, duration=duration, samples=SAMPLES)
-    except RuntimeError as exc:
+    except RuntimeError as exc:          # SimulationTooLong or an integration failure
         raise SolverError(str(exc)) from None
 
     # The simulation is accurate to ~1e-6 relative (tests: 1e-4 required); more digits would be
