@@ -16,21 +16,37 @@ from robosolve.errors import SymbolicTimeout
 MAX_TIDY_OPS = 300
 
 
+_MEMO: dict = {}
+_MEMO_SIZE = 20_000
+
+
 def tidy(expr, seconds: float = 5.0):
     """trigsimp of one expression, or the expression unchanged past `seconds`
-    (or when it is too large to be worth it)."""
+    (or when it is too large to be worth it). Memoised: chain products and
+    points re-tidy the same entries many times."""
     expr = sp.sympify(expr)
+    hit = _MEMO.get(expr)
+    if hit is not None:
+        return hit
+    out, complete = _tidy(expr, seconds)
+    if complete and len(_MEMO) < _MEMO_SIZE:
+        _MEMO[expr] = out
+        _MEMO[out] = out
+    return out
+
+
+def _tidy(expr, seconds: float):
     if expr.is_Atom or not expr.has(sp.sin, sp.cos):
-        return sp.expand(expr) if expr.is_Add or expr.is_Mul else expr
+        return (sp.expand(expr) if expr.is_Add or expr.is_Mul else expr), True
     if sp.count_ops(expr) > MAX_TIDY_OPS:
-        return expr
+        return expr, True
     try:
         with time_limit(seconds) as token:
-            return sp.trigsimp(sp.expand(expr))
+            return sp.trigsimp(sp.expand(expr)), True
     except SymbolicTimeout as exc:
         if exc.token is not token:
             raise          # an enclosing step's time is up
-        return expr
+        return expr, False
 
 
 def tidy_matrix(m: sp.Matrix, seconds: float = 5.0) -> sp.Matrix:

@@ -4,3 +4,6 @@ from robosolve.dynamics.api import (  # noqa: F401
     BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec, NumericDynamics, derive_dynamics,
     numeric_dynamics,
 )
+
+__all__ = ["BodySpec", "Dynamics", "FrameSpec", "JointSpec", "LoadSpec", "NumericDynamics",
+           "derive_dynamics", "numeric_dynamics"]

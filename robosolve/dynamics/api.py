@@ -23,6 +23,18 @@ Inputs are plain sympy objects (no dependency on the loader):
   ``actuators(q, qd, qdd)`` (lambdified with cse), and ``numeric_dynamics(...)`` for the
   numeric-only path (no symbolic M; big robots).
 
+From a problem's RobotModel (what solvers use; one derivation per model, cached):
+
+    from robosolve.dynamics.model import dynamics_for, numeric_for
+    dyn = dynamics_for(model)            # Dynamics; raises SymbolicTimeout past 90 s
+    nd, note = numeric_for(model, subs)  # NumericDynamics from parameter values; falls back
+                                         # to the numeric-only path (note says so)
+    nd.actuators(q, qd, qdd), nd.forward(q, qd, tau), nd.mass(q), nd.gravity(q) ...
+
+`subs` must give every parameter the equations use (null parameters -> ValueError naming
+them); joint symbols in it are ignored. Actuator order = joint order; for a chain
+f_i = actuator_i + external_i.
+
 Conventions: spec §3 and ERRATA §D items 5-9 (see ``robosolve/dynamics/engine.py``).
 """
 

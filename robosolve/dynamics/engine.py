@@ -14,8 +14,10 @@ How it is kept compact (same formulas, other frame and order of operations):
   tr(⁰L ⁰J ⁰Lᵀ) = tr(ᵇL ʲJ ᵇLᵀ) with ᵇLᵢⱼ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ = M_fj⁻¹ (A_f⁻¹ ∂A_f/∂qᵢ) M_fj,
   which depends only on the joints between joint i and body j (small entries), and ʲJ is
   the body's own pseudo-inertia (constant).
-* Every small matrix is trig-simplified as soon as it is formed (relative poses, body-frame
-  L matrices); never one big `simplify` at the end.
+* Every entry is a polynomial in cos qᵢ, sin qᵢ (and prismatic qᵢ) with the parameters as
+  coefficients, kept reduced modulo cos² + sin² = 1 in a sympy sparse polynomial ring
+  (trigpoly.py): exact, canonical, fast; no `trigsimp` in the derivation. The final
+  entries are shown in the shortest of three equivalent forms (`pretty`).
 * The Lagrange derivatives are taken on M(q) and U(q) directly:
   d/dt ∂ℒ/∂q̇ − ∂ℒ/∂q = M q̈ + c + g with c from the Christoffel symbols of M and g = ∂U/∂q,
   which is the same expression as differentiating ℒ, term by term, but on small pieces.
@@ -30,8 +32,8 @@ from typing import Mapping
 
 import sympy as sp
 
-from robosolve.core.matrices import action_matrix, pseudo_scalar_product
-from robosolve.core.transforms import rigid_inverse, skew, vex
+from robosolve.core.matrices import action_matrix
+from robosolve.core.transforms import skew, vex
 from robosolve.dynamics.api import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
 
 __all__ = ["DynamicsEngine", "tsimp"]
@@ -47,29 +49,6 @@ def tsimp(expr):
         return sp.expand(expr)
     out = sp.trigsimp(sp.expand(expr))
     return out
-
-
-def _msimp(m: sp.Matrix) -> sp.Matrix:
-    return m.applyfunc(tsimp)
-
-
-def _trace_product(a: sp.Matrix, j: sp.Matrix, b: sp.Matrix):
-    """tr(A J Bᵀ) = Σ A[r,s] J[s,t] B[r,t], skipping zeros."""
-    terms = []
-    for r in range(4):
-        for s in range(4):
-            ars = a[r, s]
-            if ars == 0:
-                continue
-            for t in range(4):
-                jst = j[s, t]
-                if jst == 0:
-                    continue
-                brt = b[r, t]
-                if brt == 0:
-                    continue
-                terms.append(ars * jst * brt)
-    return sp.Add(*terms)
 
 
 class DynamicsEngine:
@@ -154,12 +133,6 @@ class DynamicsEngine:
     # ------------------------------------------------------------------ helpers
     def _sub(self, obj):
         return obj.xreplace(self._rep) if self._rep else obj
-
-    def _s(self, expr):
-        return tsimp(expr) if self.simplify else expr
-
-    def _ms(self, m):
-        return m.applyfunc(self._s)
 
     def _cached(self, key, fn):
         if key not in self._cache:
@@ -363,7 +336,7 @@ class DynamicsEngine:
         return self._cached("rext", build)
 
     # ------------------------------------------------------------------ sympy views
-    def pretty(self, p, light: bool = False):
+    def pretty(self, p, light: bool = False, force: bool = False):
         """Readable form of a final algebra element (M entries, c coefficients, g, U).
 
         Two candidate forms, the smaller (`count_ops`) wins:
@@ -378,24 +351,25 @@ class DynamicsEngine:
         if not isinstance(alg, TrigAlgebra):
             expr = sp.sympify(p)
             return self._group([(c, t) for c, t in (
-                term.as_independent(*self.q) for term in sp.Add.make_args(sp.expand(expr)))]) \
+                term.as_independent(sp.sin, sp.cos) for term in sp.Add.make_args(sp.expand(expr)))]) \
                 if self.simplify else expr
-        if not self.simplify:
-            return alg.to_expr(p)
+        if not self.simplify or (self.n > COMPACT_MAX_JOINTS and not force):
+            return alg.to_expr(p)  # big robots: the canonical polynomial as it is
         key = ("pretty", light, p)
         if key in self._cache:
             return self._cache[key]
         if light:  # report matrices: the product form, coefficients with common factors out
             best = self._group(product_terms(alg, p), factor=False) if alg.trig else \
-                self._group([t.as_independent(*self.q) for t in
+                self._group([t.as_independent(sp.sin, sp.cos) for t in
                              sp.Add.make_args(sp.expand(alg.to_expr(p)))], factor=False)
             self._cache[key] = best
             return best
         expr = sp.expand(alg.to_expr(p))
-        cands = [self._group([term.as_independent(*self.q)
+        cands = [self._group([term.as_independent(sp.sin, sp.cos)
                               for term in sp.Add.make_args(expr)])]
         if alg.trig and any(alg.depends(p, i) for i in alg.trig):
-            cands.append(self._group(fourier_terms(alg, p)))
+            if self.n <= COMPACT_MAX_JOINTS:
+                cands.append(self._group(fourier_terms(alg, p)))
             cands.append(self._group(product_terms(alg, p)))
         best = min(cands, key=sp.count_ops)
         self._cache[key] = best
@@ -448,7 +422,7 @@ class DynamicsEngine:
 
     def mass_matrix(self) -> sp.Matrix:
         return self._cached(("view", "M"), lambda: sp.Matrix(
-            [[self.pretty(x) for x in row] for row in self._rM()]))
+            [[self.pretty(x, force=True) for x in row] for row in self._rM()]))
 
     def kinetic_energy(self) -> dict:
         """T_b = ½ Σᵢₖ q̇ᵢ q̇ₖ tr(ᵇLᵢ J ᵇLₖᵀ) = ½ tr(W J Wᵀ)."""
@@ -473,7 +447,7 @@ class DynamicsEngine:
 
     def gravity_terms(self) -> sp.Matrix:
         return self._cached("g", lambda: sp.Matrix(
-            [self.pretty(x) for x in self._rg()]))
+            [self.pretty(x, force=True) for x in self._rg()]))
 
     def velocity_terms(self) -> sp.Matrix:
         def build():

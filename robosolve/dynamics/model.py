@@ -9,15 +9,13 @@ from __future__ import annotations
 
 import weakref
 
-import sympy as sp
-
 from robosolve.dynamics.api import (BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec,
                                     NumericDynamics)
 
 __all__ = ["engine_inputs", "dynamics_for", "numeric_for", "DYNAMICS_SECONDS"]
 
 # Budget of the symbolic derivation before the numeric-only path takes over. The PUMA 560
-# (6 joints, 51 symbolic parameters) takes ~15 s on a 2-core machine.
+# (6 joints, 51 symbolic parameters) takes ~5 s on a 2-core machine.
 DYNAMICS_SECONDS = 90.0
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
@@ -82,9 +80,11 @@ def dynamics_for(model, seconds: float | None = DYNAMICS_SECONDS) -> Dynamics:
             raise store["dynamics"]
         return store["dynamics"]
     try:
-        with time_limit(seconds or 0):
+        with time_limit(seconds or 0) as token:
             dyn = derive_dynamics(**engine_inputs(model))
     except SymbolicTimeout as exc:
+        if getattr(exc, "token", token) is not token:
+            raise  # an enclosing limit expired: not ours to record
         store["dynamics"] = exc
         raise
     store["dynamics"] = dyn

@@ -48,13 +48,18 @@ def lambdify_dynamics(dyn: Dynamics, subs: Mapping) -> NumericDynamics:
     fg = _lambdify([q], list(g))
     fe = _lambdify([q], list(ext))
     ft = _lambdify([q, qd, qdd], list(tau))
+    def floats(v):
+        # plain Python floats: the math module is much faster on them than on numpy scalars
+        return v.tolist() if isinstance(v, np.ndarray) else [float(x) for x in v]
+
     return NumericDynamics(
         n=n,
-        mass=lambda qv: np.array(fm(qv), dtype=float),
-        velocity_terms=lambda qv, qdv: np.array(fc(qv, qdv), dtype=float),
-        gravity=lambda qv: np.array(fg(qv), dtype=float),
-        external=lambda qv: np.array(fe(qv), dtype=float),
-        actuators_fn=lambda qv, qdv, qddv: np.array(ft(qv, qdv, qddv), dtype=float),
+        mass=lambda qv: np.array(fm(floats(qv)), dtype=float),
+        velocity_terms=lambda qv, qdv: np.array(fc(floats(qv), floats(qdv)), dtype=float),
+        gravity=lambda qv: np.array(fg(floats(qv)), dtype=float),
+        external=lambda qv: np.array(fe(floats(qv)), dtype=float),
+        actuators_fn=lambda qv, qdv, qddv: np.array(
+            ft(floats(qv), floats(qdv), floats(qddv)), dtype=float),
     )
 
 

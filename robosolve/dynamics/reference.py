@@ -31,7 +31,6 @@ class MechanicsModel:
 def build(robot, actuators: bool = True) -> MechanicsModel:
     import sympy.physics.mechanics as me
 
-    t = me.dynamicsymbols._t
     names = [j.name for j in robot.joints]
     q = [me.dynamicsymbols(n) for n in names]
     u = [me.dynamicsymbols(n + "_u") for n in names]

@@ -296,7 +296,7 @@ def fourier_terms(alg: TrigAlgebra, p):
     `trigsimp` reaches, e.g. cos(2θ₂ + θ₃)), at the cost of a dictionary walk.
     """
     dom = alg.ring.domain
-    return [(dom.to_sympy(c), _trig(alg, kind, k) * _mono(alg, pkey))
+    return [(dom.to_sympy(c) * _mono(alg, pkey), _trig(alg, kind, k))
             for (kind, k, pkey), c in fourier_dict(alg, p).items()]
 
 
@@ -335,7 +335,7 @@ def product_terms(alg: TrigAlgebra, p):
             used.add((kind, b, pkey))
             first = _trig(alg, kind, u)
             second = _trig(alg, "cos", v)
-            out.append((2 * dom.to_sympy(coef), first * second * _mono(alg, pkey)))
+            out.append((2 * dom.to_sympy(coef) * _mono(alg, pkey), first * second))
     for (kind, k, pkey), coef in terms.items():
         if (kind, k, pkey) in used:
             continue
@@ -344,10 +344,10 @@ def product_terms(alg: TrigAlgebra, p):
         if any(k) and all(x % 2 == 0 for x in k):
             h = tuple(x // 2 for x in k)
             if kind == "cos":
-                out.append((2 * c, _trig(alg, "cos", h) ** 2 * mono))
-                out.append((-c, mono))
+                out.append((2 * c * mono, _trig(alg, "cos", h) ** 2))
+                out.append((-c * mono, sp.S.One))
             else:
-                out.append((2 * c, _trig(alg, "sin", h) * _trig(alg, "cos", h) * mono))
+                out.append((2 * c * mono, _trig(alg, "sin", h) * _trig(alg, "cos", h)))
         else:
-            out.append((c, _trig(alg, kind, k) * mono))
+            out.append((c * mono, _trig(alg, kind, k)))
     return out

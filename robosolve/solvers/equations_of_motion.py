@@ -19,6 +19,8 @@ from robosolve.solvers.common import frame_tex, m_name
 
 # Largest expression (count_ops) written out in a report step; bigger ones are named only.
 SHOW_OPS = 400
+# Beyond this many joints the report skips the frame-0 matrices (J, W, Φ in frame 0).
+BIG_JOINTS = 4
 
 
 def _show(expr, limit: int = SHOW_OPS):
@@ -82,11 +84,17 @@ def _steps_inertia(ans, model, eng):
         "$\\int x^2 dm$, $\\int xy\\,dm$, …, the last column $m\\,x_G, m\\,y_G, m\\,z_G, m$. "
         "In frame 0: ${}^{0}J = {}^{0}M_j\\,{}^{j}J\\,{}^{0}M_j^T$.",
     )
+    big = eng.n > BIG_JOINTS
     for b in eng.bodies:
         fb = frame_tex(b.frame)
         step.equations.append((f"{{}}^{{{fb}}}J_{{\\mathrm{{{b.name}}}}}", b.J))
+        if big:
+            continue
         step.equations.append((f"{{}}^{{0}}J_{{\\mathrm{{{b.name}}}}} = {m_name('0', b.frame)}\\,"
                                f"{{}}^{{{fb}}}J\\,{m_name('0', b.frame)}^T", _show(eng.J0(b))))
+    if big:
+        step.text += (" With more than four joints ${}^{0}J$ is long and is not written out: "
+                      "the energies below are computed in each body's own frame.")
     ans.steps.append(step)
 
 
@@ -104,6 +112,9 @@ def _steps_velocity(ans, model, eng):
     for b in eng.bodies:
         if b.frame not in frames:
             frames.append(b.frame)
+    if eng.n > BIG_JOINTS:
+        frames = []
+        step.text += " (The $W$ matrices of a robot with more than four joints are not written out.)"
     for fr in frames:
         step.equations.append((f"{{}}^{{0}}W_{{0,{frame_tex(fr)}}}", _show(eng.W0(fr))))
     ans.steps.append(step)
@@ -158,13 +169,20 @@ def _steps_actions(ans, model, eng, dyn):
         "A_{24}B_{24} + A_{34}B_{34}$ (ERRATA item 92)."
     )
     step = Step("Matrices of actions and generalized forces", text)
-    phis = eng.link_actions0()
-    for link, phi in phis.items():
-        step.equations.append((f"{{}}^{{0}}\\Phi_{{{frame_tex(link)}}}", _show(phi)))
+    if n > BIG_JOINTS:
+        for i in range(n):
+            step.equations.append((f"\\Phi_{{\\text{{actuator }}{i + 1}}}\\;(\\text{{in frame "
+                                   f"{eng.joint_frame(i)}}})", eng.actuator_action(i)))
+        for load in eng.loads:
+            step.equations.append((f"{{}}^{{{frame_tex(load.frame)}}}\\Phi_{{\\mathrm{{{load.name}}}}}",
+                                   eng.load_in_body(load)))
+    else:
+        for link, phi in eng.link_actions0().items():
+            step.equations.append((f"{{}}^{{0}}\\Phi_{{{frame_tex(link)}}}", _show(phi)))
     f = dyn.generalized_forces
     for i in range(n):
         step.equations.append((f"f_{{{i + 1}}}", f[i]))
-    if not eng.course_forces_agree():  # pragma: no cover - an internal consistency check
+    if n <= BIG_JOINTS and not eng.course_forces_agree():  # pragma: no cover - an internal consistency check
         ans.note("the literal course formula (Σ Φ) ⊗ L differs from actuator + external forces")
     ans.steps.append(step)
 

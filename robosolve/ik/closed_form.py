@@ -1,0 +1,632 @@
+"""Closed-form inverse kinematics by the eliminations of an exam solution.
+
+The unknowns are solved one at a time; each solved joint is a *stage* with
+one or two alternatives (expressions in the known symbols: parameters, target
+symbols and the joints solved before it).  Branches are the products of the
+alternatives, so the symbolic work is done once whatever the number of
+solutions.  Rules, tried in this order on the remaining equations (each
+``e = 0``):
+
+1. an equation with one unknown:
+   revolute ``a cos q + b sin q + c = 0`` gives ``cos q = K`` (q = +-acos K),
+   ``sin q = K`` (q = asin K, pi - asin K), ``tan q = -a/b`` (two atan2) or
+   ``q = atan2(b, a) +- acos(-c / sqrt(a^2 + b^2))``; prismatic: linear or
+   quadratic in q;
+2. an unknown that appears linearly with a known coefficient (``theta1 +
+   theta2 + theta3 = phi``, ``z = h - l``) is isolated and substituted;
+3. a pair of equations that is a rotation by q of a vector (u, w),
+   ``(e_i, e_j) = Rot(q)(u, w) - (X, Y)``: the combination ``-X sin q + Y cos q
+   = w`` has q as its only unknown (shoulder angle of an anthropomorphic arm,
+   polar robots);
+4. a pair linear in (cos q, sin q): Cramer gives cos q = C/D, sin q = S/D,
+   ``C^2 + S^2 = D^2`` eliminates q (the cos theta2 formula of a 2R arm), and q
+   is recovered later as atan2(S, C).
+
+Everything is plain sympy; `derive` should run under a time limit.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+
+class NoClosedForm(Exception):
+    """No rule applies: the caller answers numerically."""
+
+
+@dataclass
+class Stage:
+    """One solved joint: its alternatives and how they were obtained."""
+
+    joint: sp.Symbol
+    alternatives: list[sp.Expr]
+    rule: str                         # cos, sin, tan, phase, linear, quadratic, atan2, isolate
+    equation: sp.Expr | None = None   # the equation (= 0) it came from
+    lhs: str | None = None            # e.g. r"\cos\theta_2" for the step display
+    rhs: sp.Expr | None = None        # the value of lhs (K of cos q = K)
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass
+class Step:
+    """A derivation step as data (the solver renders it)."""
+
+    title: str
+    text: str
+    equations: list[tuple[str, object]] = field(default_factory=list)
+
+
+@dataclass
+class ClosedForm:
+    unknowns: list[sp.Symbol]
+    stages: list[Stage]
+    steps: list[Step]
+    conditions: list[sp.Expr]         # target compatibility: each must be 0
+
+    def branches(self) -> list[dict]:
+        """Every combination of alternatives: mapping joint -> expression.
+
+        An expression may contain the joints found before it (see `order`);
+        auxiliary quantities are substituted."""
+        out = [dict()]
+        for st in self.stages:
+            new = []
+            for b in out:
+                for alt in st.alternatives:
+                    nb = dict(b)
+                    nb[st.joint] = alt
+                    new.append(nb)
+            out = new
+        aux = [st.joint for st in self.stages if st.rule == "aux"]
+        result = []
+        for b in out:
+            e = {}
+            for st in self.stages:
+                val = b[st.joint]
+                if aux:
+                    val = val.subs({a: e[a] for a in aux if a in e})
+                e[st.joint] = val
+            result.append({q: e[q] for q in self.unknowns})
+        return result
+
+    def order(self) -> list[sp.Symbol]:
+        """The joints in the order they are found (an expression may use earlier ones)."""
+        return [st.joint for st in self.stages if st.rule != "aux"]
+
+    def branch_labels(self) -> list[list[int]]:
+        labels = [[]]
+        for st in self.stages:
+            labels = [b + [k] for b in labels for k in range(len(st.alternatives))]
+        return labels
+
+
+# ---------------------------------------------------------------------------
+# helpers
+
+def _is_zero(e) -> bool:
+    """Exact zero test: trig of every symbol to (c, s) with c^2 + s^2 = 1, then expand."""
+    e = sp.expand(e)
+    if e == 0:
+        return True
+    syms = sorted(e.free_symbols, key=sp.default_sort_key)
+    # quick numeric rejection at two fixed points
+    for k in (1, 2):
+        vals = {s: sp.Float(0.3 + 0.17 * k * (i + 1) + 0.011 * i * i) for i, s in enumerate(syms)}
+        try:
+            v = complex(e.evalf(subs=vals))
+            if abs(v) > 1e-8:
+                return False
+        except (TypeError, ValueError):
+            break
+    g = sp.expand(sp.expand_trig(e))
+    args = sorted({a.args[0] for a in g.atoms(sp.sin, sp.cos) if a.args[0].is_Symbol}, key=sp.default_sort_key)
+    g, _, rel = _to_poly_symbols(g, args)
+    return _reduce_pythagoras(g, rel) == 0
+
+
+def _cs(q):
+    # plain symbols with reserved names: equal across calls (Dummies are not)
+    return sp.Symbol("_c__" + q.name), sp.Symbol("_s__" + q.name)
+
+
+def trig_linear(expr, q):
+    """(a, b, c) with expr = a cos q + b sin q + c, free of q; None otherwise."""
+    e = sp.expand(sp.expand_trig(expr))
+    C, S = _cs(q)
+    e = e.subs({sp.cos(q): C, sp.sin(q): S})
+    if e.has(q):
+        return None
+    try:
+        p = sp.Poly(e, C, S)
+    except sp.PolynomialError:
+        return None
+    if p.total_degree() > 1:
+        return None
+    a = p.coeff_monomial(C)
+    b = p.coeff_monomial(S)
+    c = p.coeff_monomial(1)
+    return a, b, c
+
+
+def _unknowns_in(e, unknowns):
+    fs = e.free_symbols
+    return [q for q in unknowns if q in fs]
+
+
+def _tidy(e):
+    """Light simplification for display and smaller expressions: one fraction, its numerator
+    expanded, no -(...) around a sum (E.x**2 + E.y**2 - L1**2 - L2**2)/(2*L1*L2)."""
+    try:
+        t = sp.together(e)
+        num, den = sp.fraction(t)
+        if den != 1:
+            return sp.expand(num) / den
+        f = sp.factor_terms(t)
+        if isinstance(f, sp.Mul) and f.args and f.args[0] == -1 and any(isinstance(a, sp.Add) for a in f.args):
+            return sp.expand(t)
+        return f
+    except Exception:  # pragma: no cover
+        return e
+
+
+def _to_poly_symbols(e, qs):
+    """Replace cos/sin of each joint by dummy symbols (after expanding)."""
+    e = sp.expand(sp.expand_trig(e))
+    rep, back, rel = {}, {}, []
+    for q in qs:
+        C, S = _cs(q)
+        rep[sp.cos(q)] = C
+        rep[sp.sin(q)] = S
+        back[C] = sp.cos(q)
+        back[S] = sp.sin(q)
+        rel.append((C, S))
+    return sp.expand(e.subs(rep)), back, rel
+
+
+def _reduce_pythagoras(e, rel):
+    for C, S in rel:
+        if e.has(S):
+            e = sp.expand(sp.rem(e, S**2 + C**2 - 1, S))
+    return e
+
+
+# ---------------------------------------------------------------------------
+# rules
+
+def _solve_single(e, q, revolute, latex_q):
+    """Stage for equation e(q) = 0 with q the only unknown, or None."""
+    if revolute:
+        abc = trig_linear(e, q)
+        if abc is None:
+            return None
+        a, b, c = abc
+        za, zb, zc = _is_zero(a), _is_zero(b), _is_zero(c)
+        if za and zb:
+            return None
+        if zb:
+            K = _tidy(-c / a)
+            return Stage(q, [sp.acos(K), -sp.acos(K)], "cos", e, rf"\cos {latex_q}", K)
+        if za:
+            K = _tidy(-c / b)
+            return Stage(q, [sp.asin(K), sp.pi - sp.asin(K)], "sin", e, rf"\sin {latex_q}", K)
+        if zc:
+            a, b = _tidy(a), _tidy(b)
+            return Stage(q, [sp.atan2(-a, b), sp.atan2(a, -b)], "tan", e, rf"\tan {latex_q}", _tidy(-a / b))
+        a, b, c = _tidy(a), _tidy(b), _tidy(c)
+        r = sp.sqrt(a**2 + b**2)
+        phi = sp.atan2(b, a)
+        K = _tidy(-c / r)
+        return Stage(q, [phi + sp.acos(K), phi - sp.acos(K)], "phase", e,
+                     rf"\cos({latex_q} - \varphi)", K, {"phi": phi, "a": a, "b": b, "c": c})
+    ee = sp.expand(e)
+    try:
+        p = sp.Poly(ee, q)
+    except sp.PolynomialError:
+        return None
+    if any(cf.has(q) for cf in p.all_coeffs()):
+        return None
+    d = p.degree()
+    if d == 1:
+        c1, c0 = p.all_coeffs()
+        return Stage(q, [_tidy(-c0 / c1)], "linear", e, latex_q, _tidy(-c0 / c1))
+    if d == 2:
+        a, b, c = [_tidy(x) for x in p.all_coeffs()]
+        disc = _tidy(b**2 - 4 * a * c)
+        if _is_zero(b):
+            root = _tidy(sp.sqrt(-c / a))
+            return Stage(q, [root, -root], "quadratic", e, latex_q + "^2", _tidy(-c / a), {"disc": -c / a})
+        return Stage(q, [_tidy((-b + sp.sqrt(disc)) / (2 * a)), _tidy((-b - sp.sqrt(disc)) / (2 * a))],
+                     "quadratic", e, latex_q, None, {"disc": disc})
+    return None
+
+
+def _isolate_linear(e, unknowns, revolute_of):
+    """(q, expr) if e is linear in some unknown q with a known coefficient (q not in trig)."""
+    for q in reversed(unknowns):
+        if q not in e.free_symbols:
+            continue
+        ee = sp.expand(e)
+        coeff = ee.coeff(q, 1)
+        if coeff == 0 or _unknowns_in(coeff, unknowns):
+            continue
+        rest = sp.expand(ee - coeff * q)
+        if rest.has(q):
+            continue
+        return q, _tidy(-rest / coeff)
+    return None
+
+
+_TEX = [sp.latex]
+
+
+def _tex(e):
+    return _TEX[0](e)
+
+
+def derive(equations, unknowns, revolute, latex_names=None, angular=None, tex=None) -> ClosedForm:
+    """Closed-form solution of equations (each an expression = 0) for `unknowns`.
+
+    `tex` renders sympy objects in the step texts (default sympy.latex).
+    Raises NoClosedForm when no rule applies.  Run it under a time limit.
+    """
+    _TEX[0] = tex or sp.latex
+    try:
+        return _derive(equations, unknowns, revolute, latex_names)
+    finally:
+        _TEX[0] = sp.latex
+
+
+def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
+    unknowns = list(unknowns)
+    rev = dict(zip(unknowns, revolute))
+    names = latex_names or {q: sp.latex(q) for q in unknowns}
+    eqs = [sp.expand(sp.sympify(e)) for e in equations]
+    U = list(unknowns)           # still unknown and present in the equations
+    pending = []                 # (q, kind, data): recovered once its dependencies are known
+    stages: list[Stage] = []
+    steps: list[Step] = []
+    conditions: list[sp.Expr] = []
+
+    def unknown_now():
+        return U + [p[0] for p in pending]
+
+    def flush_pending():
+        changed = True
+        while changed:
+            changed = False
+            for item in list(pending):
+                q, kind, data = item
+                others = [u for u in unknown_now() if u != q]
+                if kind == "atan2":
+                    S, C, D, rot = data
+                    if _unknowns_in(S, others) or _unknowns_in(C, others) or _unknowns_in(D, others):
+                        continue
+                    if rot is not None:
+                        u_, w_, X, Y = [_tidy(v) for v in rot]
+                        alt = sp.atan2(Y, X) - sp.atan2(w_, u_)
+                        stages.append(Stage(q, [alt], "atan2", None, names[q], alt,
+                                            {"S": S, "C": C, "D": D, "rot": (u_, w_, X, Y)}))
+                        steps.append(Step(
+                            f"${names[q]}$ from the two equations it was eliminated from",
+                            f"These two equations say that the vector $({_tex(X)},\\ {_tex(Y)})$ is the "
+                            f"vector $({_tex(u_)},\\ {_tex(w_)})$ rotated by ${names[q]}$: "
+                            f"${names[q]}$ is the difference of their directions (one value per branch).",
+                            [(names[q], alt)]))
+                    else:
+                        alt = sp.atan2(_tidy(S / D), _tidy(C / D))
+                        stages.append(Stage(q, [alt], "atan2", None, names[q], alt,
+                                            {"S": S, "C": C, "D": D}))
+                        steps.append(Step(
+                            f"${names[q]}$ from the two equations it was eliminated from",
+                            f"With the joints found so far, $\\cos {names[q]}$ and $\\sin {names[q]}$ follow "
+                            f"from the linear system (Cramer), and the angle from atan2 (one value per branch).",
+                            [(rf"\cos {names[q]}", _tidy(C / D)), (rf"\sin {names[q]}", _tidy(S / D)),
+                             (names[q], alt)]))
+                else:  # isolate
+                    expr = data
+                    if _unknowns_in(expr, others):
+                        continue
+                    stages.append(Stage(q, [expr], "isolate", None, names[q], expr))
+                pending.remove(item)
+                changed = True
+
+    aux_count = [0]
+    taken = set().union(*[e.free_symbols for e in eqs]) if eqs else set()
+
+    def introduce_aux():
+        """Name the known part of an equation when it involves solved joints (r = x c1 + y s1)."""
+        nonlocal eqs
+        solved = {st.joint for st in stages if st.rule != "aux"}
+        out = []
+        for e in eqs:
+            e = sp.expand(e)
+            unk = set(unknown_now())
+            known = sp.Add(*[t for t in sp.Add.make_args(e) if not (t.free_symbols & unk)])
+            if (known.free_symbols & solved) and sp.count_ops(known) > 2 and known != e \
+                    and len(_unknowns_in(e, list(unk))) > 1:
+                sign = -1 if known.could_extract_minus_sign() else 1
+                aux_count[0] += 1
+                while sp.Symbol(f"rho_{aux_count[0]}") in taken:
+                    aux_count[0] += 1
+                r = sp.Symbol(f"rho_{aux_count[0]}")
+                definition = _tidy(sign * known)
+                stages.append(Stage(r, [definition], "aux", None, _tex(r), definition))
+                steps.append(Step(f"Auxiliary quantity ${_tex(r)}$",
+                                  "A known combination, named to keep the next steps short.",
+                                  [(_tex(r), definition)]))
+                e = sp.expand(e - known + sign * r)
+            out.append(e)
+        eqs = out
+
+    guard = 0
+    while U:
+        guard += 1
+        if guard > 50:
+            raise NoClosedForm("too many elimination steps")
+        # equations with no unknown left: compatibility conditions on the target
+        keep = []
+        for e in eqs:
+            if not _unknowns_in(e, U):
+                if not _is_zero(e):
+                    conditions.append(e)
+            else:
+                keep.append(e)
+        eqs = keep
+        if not eqs:
+            raise NoClosedForm("fewer independent equations than unknowns")
+
+        # 1. an equation with a single unknown
+        done = False
+        for idx, e in sorted(enumerate(eqs), key=lambda t: (len(_unknowns_in(t[1], U)), t[0])):
+            us = _unknowns_in(e, U)
+            if len(us) != 1:
+                continue
+            q = us[0]
+            st = _solve_single(e, q, rev[q], names[q])
+            if st is None:
+                continue
+            stages.append(st)
+            steps.append(_single_step(st, names[q]))
+            U.remove(q)
+            eqs.pop(idx)
+            done = True
+            break
+        if done:
+            flush_pending()
+            introduce_aux()
+            continue
+
+        # 2. linear isolation
+        for idx, e in sorted(enumerate(eqs), key=lambda t: (len(_unknowns_in(t[1], U)), t[0])):
+            iso = _isolate_linear(e, U, rev)
+            if iso is None:
+                continue
+            q, expr = iso
+            steps.append(Step(
+                f"${names[q]}$ appears linearly",
+                f"The equation ${_tex(e)} = 0$ gives ${names[q]}$ directly; it is substituted "
+                f"into the other equations.",
+                [(names[q], expr)]))
+            eqs.pop(idx)
+            eqs = [sp.expand(x.subs(q, expr)) for x in eqs]
+            U.remove(q)
+            pending.append((q, "isolate", expr))
+            done = True
+            break
+        if done:
+            flush_pending()
+            continue
+
+        # 3./4. pairs linear in (cos q, sin q): rotations first (cheap), then eliminations
+        cands = []
+        pairs = []
+        for q in [u for u in U if rev[u]]:
+            lin = []
+            for i, e in enumerate(eqs):
+                if q in e.free_symbols:
+                    abc = trig_linear(e, q)
+                    if abc is not None and not (_is_zero(abc[0]) and _is_zero(abc[1])):
+                        lin.append((i, abc))
+            for (i, (Ai, Bi, Ei)), (j, (Aj, Bj, Ej)) in [(x, y) for k, x in enumerate(lin) for y in lin[k + 1:]]:
+                if not (_is_zero(Ai - Bj) and _is_zero(Aj + Bi)) and _is_zero(Ai + Bj) and _is_zero(Aj - Bi):
+                    # a reflection: the first equation with its sign changed is a rotation
+                    Ai, Bi, Ei = -Ai, -Bi, -Ei
+                # 3. rotation structure: (A_i, B_i, A_j, B_j) = (u, -w, w, u)
+                if _is_zero(Ai - Bj) and _is_zero(Aj + Bi):
+                    u_, w_ = Ai, Aj
+                    F1 = sp.expand(-sp.cos(q) * Ei - sp.sin(q) * Ej - u_)
+                    F2 = sp.expand(sp.sin(q) * Ei - sp.cos(q) * Ej - w_)
+                    for Fa, Fb in ((F2, F1), (F1, F2)):
+                        if _unknowns_in(Fa, U) == [q] and _solve_single(Fa, q, True, names[q]) is not None:
+                            cands.append((0, len(_unknowns_in(Fb, U)), unknowns.index(q), "rotation",
+                                          q, i, j, (Fa, Fb)))
+                            break
+                pairs.append((q, i, j, Ai, Bi, Ei, Aj, Bj, Ej))
+        for q, i, j, Ai, Bi, Ei, Aj, Bj, Ej in ([] if cands else pairs):
+                D = sp.expand(Ai * Bj - Aj * Bi)
+                if _is_zero(D):
+                    continue
+                Nc = sp.expand(Bi * Ej - Bj * Ei)
+                Ns = sp.expand(Aj * Ei - Ai * Ej)
+                rotation = _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
+                if rotation:
+                    # (X, Y) = Rot(q)(u, w): Nc^2 + Ns^2 = D (X^2 + Y^2) and D = u^2 + w^2
+                    raw = sp.expand(sp.expand_trig(Ei**2 + Ej**2 - D))
+                else:
+                    raw = sp.expand(sp.expand_trig(Nc**2 + Ns**2 - D**2))
+                trig_args = sorted({a.args[0] for a in (raw.atoms(sp.sin, sp.cos) | D.atoms(sp.sin, sp.cos))
+                                    if a.args[0].is_Symbol}, key=sp.default_sort_key)
+                g, back, rel = _to_poly_symbols(raw, trig_args)
+                g = _reduce_pythagoras(g, rel)
+                Dp, _, _ = _to_poly_symbols(D, trig_args)
+                Dp = _reduce_pythagoras(Dp, rel)
+                if rotation:
+                    new = g
+                else:
+                    h = sp.cancel(g / Dp)
+                    num, den = sp.fraction(h)
+                    dummies = {s for pair in rel for s in pair}
+                    new = num if not (den.free_symbols & dummies) else g
+                new = sp.expand(sp.factor_terms(new).subs(back))
+                if _is_zero(new):
+                    continue
+                nonneg = _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
+                rot = (Ai, Aj, -Ei, -Ej) if nonneg else None
+                cands.append((1, len(_unknowns_in(new, U)), unknowns.index(q), "eliminate", q, i, j,
+                              (new, Nc, Ns, D, rot)))
+                if cands[-1][1] <= 1:
+                    break     # an equation in one unknown: the best elimination possible
+        if not cands:
+            raise NoClosedForm("no elimination pattern applies")
+        cands.sort(key=lambda c: c[:3])
+        _, _, _, kind, q, i, j, data = cands[0]
+        ei, ej = eqs[i], eqs[j]
+        rest = [e for k, e in enumerate(eqs) if k not in (i, j)]
+        if kind == "rotation":
+            Fa, Fb = data
+            steps.append(Step(
+                f"${names[q]}$ by a rotation of two equations",
+                f"The two equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ rotate a vector by "
+                f"${names[q]}$; combining them with $\\cos {names[q]}$ and $\\sin {names[q]}$ leaves an "
+                f"equation in ${names[q]}$ alone and one without it.",
+                [("0", _tidy(Fa)), ("0", _tidy(Fb))]))
+            eqs = [Fa, Fb] + rest
+        else:
+            new, Nc, Ns, D, rot = data
+            steps.append(Step(
+                f"Eliminate ${names[q]}$ with $\\cos^2 + \\sin^2 = 1$",
+                f"The equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ are linear in "
+                f"$\\cos {names[q]}$ and $\\sin {names[q]}$. Solving for them (Cramer) and imposing "
+                f"$\\cos^2 {names[q]} + \\sin^2 {names[q]} = 1$ removes ${names[q]}$:",
+                [("0", _tidy(new))]))
+            U.remove(q)
+            pending.append((q, "atan2", (Ns, Nc, D, rot)))
+            eqs = [new] + rest
+        flush_pending()
+        introduce_aux()
+
+    flush_pending()
+    if pending:
+        raise NoClosedForm("an eliminated joint could not be recovered")
+    # equations left over with every unknown solved are further conditions
+    for e in eqs:
+        if not _is_zero(e):
+            conditions.append(e)
+    return ClosedForm(unknowns, stages, steps, conditions)
+
+
+def _frac_tex(e):
+    """LaTeX of a fraction with its numerator expanded (no double minus signs)."""
+    num, den = sp.fraction(sp.together(e))
+    if den == 1:
+        return _tex(e)
+    return rf"\frac{{{_tex(sp.expand(num))}}}{{{_tex(den)}}}"
+
+
+def _single_step(st: Stage, name: str) -> Step:
+    eq = [(st.lhs, _frac_tex(st.rhs) if st.rule in ("cos", "sin", "phase") else st.rhs)] \
+        if st.rhs is not None else []
+    if st.rule == "cos":
+        text = f"This equation contains ${name}$ only, through its cosine: two solutions $\\pm$."
+        eq.append((name, r"\pm \arccos\left(" + _frac_tex(st.rhs) + r"\right)"))
+    elif st.rule == "sin":
+        text = f"This equation contains ${name}$ only, through its sine: ${name} = \\arcsin K$ or $\\pi - \\arcsin K$."
+        eq += [(name, st.alternatives[0]), (name, st.alternatives[1])]
+    elif st.rule == "tan":
+        text = f"This equation is $a\\cos {name} + b\\sin {name} = 0$: two solutions, $\\pi$ apart."
+        eq += [(name, st.alternatives[0]), (name, st.alternatives[1])]
+    elif st.rule == "phase":
+        text = (f"This equation is $a\\cos {name} + b\\sin {name} + c = 0$; with "
+                f"$\\varphi = \\operatorname{{atan2}}(b, a)$ it becomes "
+                f"$\\sqrt{{a^2+b^2}}\\cos({name} - \\varphi) = -c$: two solutions.")
+        eq += [(name, st.alternatives[0]), (name, st.alternatives[1])]
+    elif st.rule == "quadratic":
+        text = f"This equation is quadratic in ${name}$: two roots."
+        eq += [(name, a) for a in st.alternatives]
+    else:
+        text = f"This equation is linear in ${name}$."
+    return Step(f"${name}$", f"From ${_tex(_tidy(st.equation))} = 0$. " + text, eq)
+
+
+# ---------------------------------------------------------------------------
+# numeric evaluation of the branches
+
+class DomainFailure(Exception):
+    def __init__(self, what, value):
+        super().__init__(what)
+        self.what, self.value = what, value
+
+
+CLAMP = 1e-9
+
+
+def _acos(x):
+    if abs(x) > 1 + CLAMP:
+        raise DomainFailure("acos", x)
+    return math.acos(max(-1.0, min(1.0, x)))
+
+
+def _asin(x):
+    if abs(x) > 1 + CLAMP:
+        raise DomainFailure("asin", x)
+    return math.asin(max(-1.0, min(1.0, x)))
+
+
+def _sqrt(x):
+    if x < -CLAMP:
+        raise DomainFailure("sqrt", x)
+    return math.sqrt(max(0.0, x))
+
+
+def _atan2(y, x):
+    if abs(x) < 1e-12 and abs(y) < 1e-12:
+        raise DomainFailure("atan2", (y, x))
+    return math.atan2(y, x)
+
+
+_MODULE = {"acos": _acos, "asin": _asin, "sqrt": _sqrt, "atan2": _atan2}
+
+
+@dataclass
+class BranchValue:
+    label: list[int]
+    q: dict | None
+    failure: tuple | None = None      # (stage index, joint, DomainFailure)
+    partial: dict | None = None       # values found before the failure
+
+
+def evaluate(cf: ClosedForm, values: dict) -> list[BranchValue]:
+    """Evaluate every branch numerically. `values` maps every other symbol to a float."""
+    known = dict(values)
+    out = []
+    funcs = []
+    for k, st in enumerate(cf.stages):
+        prev = [s.joint for s in cf.stages[:k]]
+        fl = []
+        for alt in st.alternatives:
+            syms = sorted((alt.free_symbols - set(prev)), key=sp.default_sort_key)
+            args = prev + syms
+            fl.append((sp.lambdify(args, alt, modules=[_MODULE, "math"]), syms))
+        funcs.append(fl)
+    for label in cf.branch_labels():
+        q = {}
+        fail = None
+        for k, (st, alt_k) in enumerate(zip(cf.stages, label)):
+            f, syms = funcs[k][alt_k]
+            try:
+                args = [q[s.joint] for s in cf.stages[:k]] + [float(known[s]) for s in syms]
+                v = float(f(*args))
+                if not math.isfinite(v):
+                    raise DomainFailure("nan", v)
+            except DomainFailure as ex:
+                fail = (k, st.joint, ex)
+                break
+            except (ZeroDivisionError, ValueError, OverflowError) as ex:
+                fail = (k, st.joint, DomainFailure("zero", str(ex)))
+                break
+            q[st.joint] = v
+        out.append(BranchValue(label, None if fail else q, fail, dict(q)))
+    return out

@@ -1,0 +1,224 @@
+"""Names for singular conditions, found geometrically (numerically) at the condition.
+
+Rules, checked at a representative configuration of the condition (the condition's
+joint values, the other joints at fixed generic values, the parameters at their
+values or at generic positive samples):
+
+* the point lies on the axis of a revolute joint → "the point lies on the axis of
+  joint i" (a shoulder singularity for an arm; for a polar robot d = 0 puts it on
+  the axes of joints 1 and 2);
+* two revolute axes coincide (not everywhere) → "the axes of joints i and j are
+  aligned" (the wrist singularity of a spherical wrist);
+* a revolute joint k of the condition sets the distance from the point to the axis
+  of the previous revolute joint to its maximum → "arm stretched at joint k", to its
+  minimum → "arm folded at joint k".
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import sympy as sp
+
+from robosolve.kinematics.singularities import Condition, _sample_params
+
+__all__ = ["name_conditions"]
+
+_GENERIC = (0.31, 0.57, 0.83, -0.44, 1.07, -0.71, 0.19, 0.93, -0.27, 0.66)
+
+
+class _Geometry:
+    """Numeric joint axes and point. The L matrices are either given (symbolic ⁰Lᵢ) or
+    obtained by central differences of the frames' poses, L = ∂M/∂qᵢ·M⁻¹ (no symbolic
+    simplification needed: naming is numeric)."""
+
+    def __init__(self, joints, kinds, l_matrices, point, params, m0_frames=None):
+        self.joints = list(joints)
+        self.kinds = kinds
+        mats_in = list(l_matrices) if l_matrices is not None else list(m0_frames)
+        syms = set()
+        for m in mats_in:
+            syms |= sp.Matrix(m).free_symbols
+        syms |= sp.Matrix(list(point)).free_symbols
+        syms -= set(self.joints)
+        self.params = _sample_params(syms, params)
+        sub = {k: v for k, v in self.params.items()}
+        mats = [sp.Matrix(m).subs(sub) for m in mats_in]
+        pt = sp.Matrix(list(point)).subs(sub)
+        self._p = sp.lambdify([self.joints], pt, "numpy")
+        if l_matrices is not None:
+            self._l = sp.lambdify([self.joints], mats, "numpy")
+        else:
+            m0 = sp.lambdify([self.joints], mats, "numpy")
+            self._l = lambda q: self._fd_l(m0, q)
+
+    def _fd_l(self, m0, q, eps=1e-6):
+        q = np.asarray(q, dtype=float)
+        out = []
+        base = m0(q)
+        for i in range(len(q)):
+            dq = np.zeros(len(q))
+            dq[i] = eps
+            mp = np.asarray(m0(q + dq)[i], dtype=float)
+            mm = np.asarray(m0(q - dq)[i], dtype=float)
+            out.append((mp - mm) / (2 * eps) @ np.linalg.inv(np.asarray(base[i], dtype=float)))
+        return out
+
+    def axes(self, q):
+        """(joint index, unit direction, a point on the axis) of each revolute joint."""
+        out = []
+        for i, m in enumerate(self._l(q)):
+            m = np.asarray(m, dtype=float)
+            if self.kinds[self.joints[i]] != "revolute":
+                continue
+            u = np.array([m[2, 1], m[0, 2], m[1, 0]])
+            n = np.linalg.norm(u)
+            if n < 1e-12:
+                continue
+            u = u / n
+            t = m[:3, 3] / n
+            out.append((i, u, np.cross(u, t)))
+        return out
+
+    def point(self, q):
+        return np.asarray(self._p(q), dtype=float).reshape(3)
+
+
+def _dist_point_line(p, u, a):
+    d = p - a
+    return float(np.linalg.norm(d - np.dot(d, u) * u))
+
+
+def _lines_coincide(u1, a1, u2, a2, tol):
+    return abs(abs(np.dot(u1, u2)) - 1) < 1e-9 and _dist_point_line(a2, u1, a1) < tol
+
+
+def _config(cond: Condition, geo: _Geometry):
+    """Numeric joint vector for the condition, or None."""
+    q = {s: _GENERIC[i % len(_GENERIC)] for i, s in enumerate(geo.joints)}
+    fixed = dict(cond.values)
+    for _ in range(len(fixed) + 1):       # values may depend on other joints
+        for s, v in fixed.items():
+            try:
+                val = complex(sp.sympify(v).evalf(subs={**geo.params, **q}))
+            except (TypeError, ValueError):
+                return None
+            if abs(val.imag) > 1e-9:
+                return None
+            q[s] = val.real
+    if cond.equations:
+        if len(cond.equations) != 1:
+            return None
+        f = cond.equations[0]
+        present = [s for s in geo.joints if f.has(s) and s not in fixed]
+        if not present:
+            return None
+        from scipy.optimize import brentq
+
+        grid = np.linspace(-math.pi, math.pi, 721)
+        for var in reversed(present):
+            g = sp.lambdify(var, f.subs({**geo.params,
+                                         **{s: q[s] for s in geo.joints if s != var}}))
+            vals = np.array([float(g(x)) for x in grid])
+            idx = np.where(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)[0]
+            if len(idx):
+                i = int(idx[0])
+                q[var] = grid[i] if vals[i] == 0 else brentq(g, grid[i], grid[i + 1])
+                break
+        else:
+            return None
+    return [q[s] for s in geo.joints]
+
+
+def _far_point(geo, q, k, prev):
+    """The point whose distance to the axis of joint `prev` measures the reach at joint k:
+    the next revolute axis when it is parallel to that axis (planar chains), else the point."""
+    axes = {i: (u, a) for i, u, a in geo.axes(q)}
+    u_prev, a_prev = axes[prev]
+    later = [i for i in sorted(axes) if i > k]
+    if later and abs(abs(np.dot(axes[later[0]][0], u_prev)) - 1) < 1e-9:
+        return axes[later[0]][1], u_prev, a_prev
+    return geo.point(q), u_prev, a_prev
+
+
+def _stretch(geo, qv, k, prev, scale):
+    grid = np.linspace(-math.pi, math.pi, 121)
+    dists = []
+    for x in grid:
+        q2 = list(qv)
+        q2[k] = x
+        dists.append(_dist_point_line(*_far_point(geo, q2, k, prev)))
+    d0 = _dist_point_line(*_far_point(geo, qv, k, prev))
+    lo, hi = min(dists), max(dists)
+    if hi - lo < 1e-7 * scale:
+        return []
+    if d0 >= hi - 1e-6 * scale:
+        return [f"arm stretched at joint {k + 1}"]
+    if d0 <= lo + 1e-6 * scale:
+        return [f"arm folded at joint {k + 1}"]
+    return []
+
+
+def _names(cond: Condition, geo: _Geometry) -> tuple[str, ...]:
+    qv = _config(cond, geo)
+    if qv is None:
+        return ()
+    p = geo.point(qv)
+    axes = geo.axes(qv)
+    scale = max(1.0, float(np.linalg.norm(p)), *(float(np.linalg.norm(a)) for _, _, a in axes))
+    tol = 1e-7 * scale
+    names: list[str] = []
+    on = [i + 1 for i, u, a in axes if _dist_point_line(p, u, a) < tol]
+    if on:
+        which = (f"axis of joint {on[0]}" if len(on) == 1
+                 else "axes of joints " + ", ".join(map(str, on[:-1])) + f" and {on[-1]}")
+        names.append(f"the point lies on the {which}")
+    # aligned axes (only where they are not aligned in general)
+    q_generic = [_GENERIC[i % len(_GENERIC)] for i in range(len(geo.joints))]
+    generic = {i: (u, a) for i, u, a in geo.axes(q_generic)}
+    for x in range(len(axes)):
+        for y in range(x + 1, len(axes)):
+            i, ui, ai = axes[x]
+            j, uj, aj = axes[y]
+            if _lines_coincide(ui, ai, uj, aj, tol) and not (
+                    i in generic and j in generic
+                    and _lines_coincide(*generic[i], *generic[j], tol)):
+                names.append(f"the axes of joints {i + 1} and {j + 1} are aligned")
+    # stretched / folded: an elbow whose axis is parallel to the previous revolute axis
+    if not cond.equations:
+        index = {s: k for k, s in enumerate(geo.joints)}
+        by_joint = {i: u for i, u, _a in axes}
+        stretch = []
+        for s, _v in cond.values:
+            k = index[s]
+            if geo.kinds[s] != "revolute" or k not in by_joint:
+                continue
+            prev = [i for i, _u, _a in axes if i < k]
+            if not prev or abs(abs(float(np.dot(by_joint[k], by_joint[prev[-1]]))) - 1) > 1e-9:
+                continue
+            stretch.extend(_stretch(geo, qv, k, prev[-1], scale))
+        names[:0] = stretch
+    return tuple(names)
+
+
+def name_conditions(conditions: Sequence[Condition], joints: Sequence[sp.Symbol], kinds: Mapping,
+                    l_matrices: Sequence[sp.Matrix] | None, point, params: Mapping | None = None,
+                    m0_frames: Sequence[sp.Matrix] | None = None) -> list[Condition]:
+    """The same conditions, each with its geometric names (possibly none).
+
+    Give either ``l_matrices`` (⁰Lᵢ of each joint) or ``m0_frames`` (⁰Mᵢ of the frame each
+    joint moves, 4x4; its L is then obtained numerically)."""
+    try:
+        geo = _Geometry(joints, kinds, l_matrices, point, dict(params or {}), m0_frames)
+    except Exception:  # noqa: BLE001 - naming is a courtesy; never fail the answer for it
+        return list(conditions)
+    out = []
+    for c in conditions:
+        try:
+            names = _names(c, geo)
+        except Exception:  # noqa: BLE001
+            names = ()
+        out.append(Condition(values=c.values, equations=c.equations, factor=c.factor, names=names))
+    return out

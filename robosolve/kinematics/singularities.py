@@ -1,0 +1,385 @@
+"""Singular configurations of a Jacobian, found symbolically.
+
+Method (what a teacher does by hand, made systematic):
+
+* square J: factor det J; every factor that contains a joint is solved for a joint;
+* non-square J: J loses rank when all its maximal minors vanish (Cauchy–Binet:
+  det(J Jᵀ) is the sum of their squares). The smallest minor is factored and each
+  factor solved for a joint; the value is substituted into the other minors and the
+  search goes on with the remaining joints, so a condition may fix several joints
+  (a planar 3R arm is singular only when θ2 and θ3 are both 0 or π).
+
+Values: a revolute joint gets every value in (−π, π] (complete: a factor in sin/cos
+of one joint is also solved as a polynomial system in c = cos q, s = sin q with
+c² + s² = 1, whose solutions map one-to-one onto (−π, π] through atan2); a
+prismatic joint every real value. A factor in which no joint can be isolated
+(its solution would depend non-linearly on other joints) becomes an equation
+string ``"expr = 0"``. Parameters are assumed generic (non-zero): a factor free of
+joints, such as L1*L2, never vanishes.
+
+The functions here never time themselves; the caller wraps them in its time limit.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from robosolve.kinematics.jacobian_math import rank_measure, tidy
+
+__all__ = ["Condition", "SingularityResult", "find_singularities", "wrap_angle"]
+
+_TWO_PI = 2 * sp.pi
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One singular condition: joint values (in joint order) and/or equations."""
+
+    values: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    equations: tuple[sp.Expr, ...] = ()
+    factor: sp.Expr | None = None
+    names: tuple[str, ...] = ()
+
+    def mapping(self) -> dict[str, str] | str:
+        """The spec's layout: {joint: "value"} or an equation string."""
+        if self.equations:
+            eqs = [f"{sp.sstr(e)} = 0" for e in self.equations]
+            eqs += [f"{q} = {sp.sstr(v)}" for q, v in self.values]
+            return ", ".join(eqs)
+        return {str(q): sp.sstr(v) for q, v in self.values}
+
+    def latex(self) -> str:
+        parts = [f"{sp.latex(q)} = {sp.latex(v)}" for q, v in self.values]
+        parts = [f"{sp.latex(e)} = 0" for e in self.equations] + parts
+        return r",\ ".join(parts)
+
+
+@dataclass
+class SingularityResult:
+    kind: str                      # 'det' (square J) or 'gram' (det(J Jᵀ) / det(Jᵀ J))
+    measure: sp.Expr               # det J, or det(J Jᵀ), simplified and factored
+    conditions: list[Condition]
+    minors: list[sp.Expr] = field(default_factory=list)   # non-square only
+    notes: list[str] = field(default_factory=list)
+
+
+# ---------------------------------------------------------------------------
+# angles
+
+def wrap_angle(value):
+    """Bring an exact angle into (−π, π]; expressions with symbols are returned as is."""
+    v = sp.sympify(value)
+    if v.free_symbols:
+        return v
+    try:
+        fv = float(v)
+    except (TypeError, ValueError):
+        return v
+    k = math.ceil((fv - math.pi) / (2 * math.pi) - 1e-12)
+    return sp.nsimplify(v - k * _TWO_PI) if k else v
+
+
+def _wrap_linear(value, joints):
+    """θ = (linear combination of joints) + constant: wrap the constant part."""
+    v = sp.expand(value)
+    const = v.subs({q: 0 for q in joints})
+    if const.free_symbols:
+        return v
+    return (v - const) + wrap_angle(const)
+
+
+def _is_linear_in(expr, joints) -> bool:
+    try:
+        poly = sp.Poly(expr, *joints)
+    except sp.PolynomialError:
+        return False
+    return poly.total_degree() <= 1 and all(not c.free_symbols for c in poly.coeffs())
+
+
+# ---------------------------------------------------------------------------
+# numeric helpers
+
+def _numeric(expr, subs) -> complex | None:
+    try:
+        val = complex(sp.sympify(expr).evalf(30, subs=subs))
+    except (TypeError, ValueError):
+        return None
+    if not (math.isfinite(val.real) and math.isfinite(val.imag)):
+        return None
+    return val
+
+
+def _is_real_value(value, params: Mapping) -> bool | None:
+    """True/False when the value can be evaluated with the parameters, else None."""
+    value = sp.sympify(value)
+    if value.free_symbols - set(params):
+        return None
+    val = _numeric(value, dict(params))
+    if val is None:
+        return None
+    return abs(val.imag) <= 1e-9 * max(1.0, abs(val.real))
+
+
+def _sample_params(symbols, params: Mapping) -> dict:
+    """Given parameter values, plus distinct positive samples for the others."""
+    out = {}
+    for i, s in enumerate(sorted(symbols, key=sp.default_sort_key)):
+        out[s] = params.get(s) if params.get(s) is not None else 0.7 + 0.13 * i
+    return out
+
+
+# ---------------------------------------------------------------------------
+# solving one factor for one joint
+
+def _pretty_atan2(s_val, c_val, sample):
+    """atan2(s, c) as acos/asin where the branch is clear, else atan2."""
+    s_val, c_val = sp.simplify(s_val), sp.simplify(c_val)
+    direct = sp.atan2(s_val, c_val)
+    if not direct.has(sp.atan2):
+        return direct
+    syms = (s_val.free_symbols | c_val.free_symbols)
+    sub = _sample_params(syms, sample)
+    sn, cn = _numeric(s_val, sub), _numeric(c_val, sub)
+    if sn is None or cn is None or abs(sn.imag) > 1e-12 or abs(cn.imag) > 1e-12:
+        return direct
+    sn, cn = sn.real, cn.real
+    root_c = math.sqrt(max(0.0, 1 - cn * cn))
+    if abs(abs(sn) - root_c) < 1e-9:
+        return sp.acos(c_val) if sn >= 0 else -sp.acos(c_val)
+    return direct
+
+
+def _solve_revolute(f, q, sample):
+    """Every q in (−π, π] with f(q) = 0 (f a function of q and parameters), or None."""
+    try:
+        sol = sp.solveset(f, q, sp.Interval.Lopen(-sp.pi, sp.pi))
+    except (NotImplementedError, ValueError, TypeError):
+        sol = None
+    if isinstance(sol, sp.FiniteSet) and all(not v.has(q) for v in sol):
+        return [wrap_angle(v) for v in sol]
+    # polynomial system in c = cos q, s = sin q
+    c, s = sp.Dummy("c"), sp.Dummy("s")
+    g = sp.expand_trig(sp.expand(f.rewrite(sp.cos, sp.sin) if f.has(sp.tan) else f))
+    g = g.subs({sp.cos(q): c, sp.sin(q): s})
+    if g.has(q):
+        return None
+    g = sp.together(g)
+    g = sp.numer(g)
+    try:
+        sols = sp.solve([g, c**2 + s**2 - 1], [c, s], dict=True)
+    except (NotImplementedError, ValueError, TypeError):
+        return None
+    out = []
+    for d in sols:
+        if c not in d or s not in d:
+            return None      # a free branch: f vanishes identically along a family
+        out.append(wrap_angle(_pretty_atan2(d[s], d[c], sample)))
+    return out
+
+
+def _solve_prismatic(f, q):
+    try:
+        sols = sp.solve(f, q)
+    except (NotImplementedError, ValueError, TypeError):
+        return None
+    out = []
+    for v in sols:
+        if v.is_number and not v.is_real:
+            continue
+        out.append(sp.simplify(v) if sp.count_ops(v) < 40 else v)
+    return out
+
+
+def _isolate(f, joints, kinds, sample):
+    """(joint, [values]) solving factor f = 0, or None when no joint can be isolated."""
+    present = [q for q in joints if f.has(q)]
+    if len(present) == 1:
+        q = present[0]
+        vals = (_solve_revolute(f, q, sample) if kinds[q] == "revolute"
+                else _solve_prismatic(f, q))
+        if vals is not None:
+            return q, vals
+        return None
+    # a prismatic joint appearing linearly: q = expression of the others
+    for q in reversed(present):
+        if kinds[q] != "prismatic":
+            continue
+        try:
+            poly = sp.Poly(f, q)
+        except sp.PolynomialError:
+            continue
+        if poly.degree() == 1:
+            a, b = poly.all_coeffs()
+            return q, [tidy(-b / a)]
+    # revolute joints through a single angle α = linear combination of joints:
+    # solve g(α) = 0 in (−π, π], then isolate the last joint of α
+    args = {a.args[0] for a in f.atoms(sp.sin, sp.cos, sp.tan)}
+    if len(args) == 1:
+        alpha = args.pop()
+        if _is_linear_in(alpha, present) and all(kinds[q] == "revolute" for q in present):
+            u = sp.Dummy("u")
+            g = f.subs(alpha, u)
+            if not any(g.has(q) for q in present):
+                vals = _solve_revolute(g, u, sample)
+                q = [p for p in present if alpha.has(p)][-1]
+                coeff = sp.Poly(alpha, *present).coeff_monomial(q)
+                if vals is not None and coeff in (1, -1):
+                    rest = alpha - coeff * q
+                    return q, [_wrap_linear(sp.expand((v - rest) / coeff), present) for v in vals]
+    return None
+
+
+# ---------------------------------------------------------------------------
+# the search
+
+def _factor_tidy(expr):
+    """Factors of expr (with multiplicity dropped): factor the raw expression, tidy each
+    factor (trig identities may reveal products, as in det J of a 2R arm), factor again."""
+    out = []
+    _, raw = sp.factor_list(sp.factor(expr))
+    for fac, _mult in raw:
+        _, again = sp.factor_list(sp.factor(tidy(fac)))
+        for f2, _m2 in again:
+            if f2.could_extract_minus_sign():
+                f2 = -f2
+            if f2 not in out:
+                out.append(f2)
+    return out
+
+
+def factored(expr):
+    """expr as a product of tidied factors (for display)."""
+    coeff, raw = sp.factor_list(sp.factor(expr))
+    out = coeff
+    for fac, mult in raw:
+        out *= sp.factor(tidy(fac)) ** mult
+    return out
+
+
+def _joint_factors(expr, joints):
+    """Distinct factors of expr that contain a joint, in a deterministic order."""
+    out = [f for f in _factor_tidy(expr) if any(f.has(q) for q in joints)]
+    return sorted(out, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
+
+
+def _search(exprs, joints, kinds, fixed, sample, depth=0):
+    """All conditions making every expression of exprs vanish (given fixed values)."""
+    live = []
+    for e in exprs:
+        e2 = factored(sp.sympify(e).subs(fixed)) if fixed else e
+        if e2 == 0:
+            continue
+        if not any(e2.has(q) for q in joints):
+            return []                # a non-zero parameter expression: never singular here
+        live.append(e2)
+    if not live:
+        return [Condition(values=tuple(fixed.items()))]
+    live.sort(key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
+    first, rest = live[0], live[1:]
+    free = [q for q in joints if q not in fixed]
+    results = []
+    for fac in _joint_factors(first, free):
+        iso = _isolate(fac, free, kinds, sample)
+        if iso is None or depth > len(joints):
+            eqs = (fac,) + tuple(rest)
+            results.append(Condition(values=tuple(fixed.items()), equations=eqs, factor=fac))
+            continue
+        q, vals = iso
+        for v in vals:
+            sub = dict(fixed)
+            sub[q] = v
+            for cond in _search(rest, joints, kinds, sub, sample, depth + 1):
+                results.append(Condition(values=cond.values, equations=cond.equations,
+                                         factor=cond.factor if cond.factor is not None else fac))
+    return results
+
+
+def _maximal_minors(j: sp.Matrix):
+    r, c = j.shape
+    k = min(r, c)
+    minors = []
+    for rows in itertools.combinations(range(r), k):
+        for cols in itertools.combinations(range(c), k):
+            minors.append(j.extract(list(rows), list(cols)).det(method="berkowitz"))
+    return minors
+
+
+def _order_key(cond: Condition, joints, sample):
+    key = [1 if cond.equations else 0]
+    idx = {q: i for i, q in enumerate(joints)}
+    for q, v in sorted(cond.values, key=lambda qv: idx[qv[0]]):
+        val = _numeric(v, _sample_params(sp.sympify(v).free_symbols, sample))
+        num = val.real if val is not None else math.inf
+        key.append((idx[q], round(num, 9), sp.sstr(v)))
+    key.append(tuple(sp.sstr(e) for e in cond.equations))
+    return (key[0], tuple(key[1:-1]), key[-1])
+
+
+def _canonical(cond: Condition, joints):
+    idx = {q: i for i, q in enumerate(joints)}
+    vals = tuple(sorted(cond.values, key=lambda qv: idx[qv[0]]))
+    return Condition(values=vals, equations=cond.equations, factor=cond.factor, names=cond.names)
+
+
+def _subsumed(small: Condition, big: Condition) -> bool:
+    """True when `big` is a special case of `small` (same values on small's joints)."""
+    if small.equations or big.equations or small is big:
+        return False
+    sv, bv = dict(small.values), dict(big.values)
+    if len(sv) >= len(bv):
+        return False
+    return all(q in bv and sp.simplify(bv[q] - v) == 0 for q, v in sv.items())
+
+
+def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping,
+                       params: Mapping | None = None) -> SingularityResult:
+    """Singular configurations of J(q).
+
+    ``kinds`` maps each joint symbol to 'revolute' or 'prismatic'; ``params`` maps
+    parameter symbols to numbers (or None) and is used only to choose between
+    equivalent closed forms, to order the results and to drop values that are not
+    real for the given parameters (with a note).
+    """
+    j = sp.Matrix(j)
+    joints = list(joints)
+    params = dict(params or {})
+    kind, measure = rank_measure(j)
+    notes: list[str] = []
+    minors: list[sp.Expr] = []
+    if kind == "det":
+        measure = factored(measure)
+        exprs = [measure]
+    else:
+        # det(J Jᵀ) (or det(Jᵀ J)) = sum of the squares of the maximal minors
+        minors = [factored(m) for m in _maximal_minors(j)]
+        exprs = [m for m in minors if m != 0]
+        measure = sp.Add(*[m**2 for m in exprs])
+    conds = _search(exprs, joints, kinds, {}, params) if exprs else [Condition()]
+    if not exprs:
+        notes.append("J has rank below full in every configuration (all maximal minors vanish).")
+    conds = [_canonical(c, joints) for c in conds]
+    # drop duplicates and special cases of more general conditions
+    unique: list[Condition] = []
+    seen = set()
+    for c in conds:
+        key = (tuple((q, sp.sstr(v)) for q, v in c.values), tuple(map(sp.sstr, c.equations)))
+        if key not in seen:
+            seen.add(key)
+            unique.append(c)
+    unique = [c for c in unique if not any(_subsumed(o, c) for o in unique)]
+    # values that are not real for the given parameters
+    kept = []
+    for c in unique:
+        bad = [(q, v) for q, v in c.values if _is_real_value(v, params) is False]
+        if bad:
+            notes.append("no real configuration for the given parameters: "
+                         + ", ".join(f"{q} = {sp.sstr(v)}" for q, v in bad))
+            continue
+        kept.append(c)
+    kept.sort(key=lambda c: _order_key(c, joints, params))
+    return SingularityResult(kind=kind, measure=measure, conditions=kept, minors=minors, notes=notes)

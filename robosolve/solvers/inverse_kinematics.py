@@ -1,0 +1,342 @@
+"""Question 6: inverse kinematics — every solution, closed form where it exists.
+
+The target is a set of equations `coordinate = value`. The derivation is the
+exam's (elimination, cos θ = K, atan2), done by `robosolve.ik.closed_form`;
+the numeric set comes from a deterministic multi-start search
+(`robosolve.ik.numeric`) and the two must agree. Joint limits reject solutions
+(listed with the limit they break), `select` picks one, `velocity` gives q̇
+there. An unreachable target is an answer: `solutions: []`, `unreachable`,
+`reason`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import sympy as sp
+
+from robosolve.errors import SolverError, SymbolicTimeout
+from robosolve.ik import closed_form as cfm
+from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
+from robosolve.ik.numeric import wrap_angle
+from robosolve.load.problem import Question
+from robosolve.render.numbers import report_number
+from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
+from robosolve.solvers.common import robot_drawing
+
+CLOSED_FORM_SECONDS = 20.0
+
+
+def _is_point_coordinate(e) -> bool:
+    return isinstance(e, sp.Symbol) and "." in e.name
+
+
+def _angle_text(v: float, revolute: bool) -> str:
+    if not revolute:
+        return report_number(v)
+    return f"{report_number(v)} ({report_number(math.degrees(v))}°)"
+
+
+def solve(question: Question, ctx: SolveContext) -> Answer:
+    model = ctx.model
+    if model is None or not model.joints:
+        raise SolverError("inverse kinematics needs a robot (joints and frames)")
+    ans = Answer(question.type, question.id)
+    opts = question.options
+    joints = model.joints
+    names = {j.symbol: sp.latex(j.symbol) for j in joints}
+    symnames = dict(model.symbol_latex)
+
+    def tex(e):
+        return sp.latex(e, symbol_names=symnames)
+
+    subs = ctx.substitutions({s: v for s, v in question.at.items() if s in ctx.problem.parameters})
+    params = {s: v for s, v in subs.items()}
+
+    # -- the equations ----------------------------------------------------
+    equations, target_syms, shown = [], set(), []
+    values: dict = {}
+    missing: set = set()
+    for text, lhs, rhs in opts["target"]:
+        lhs_q = model.coordinate(lhs)
+        if _is_point_coordinate(lhs):
+            # keep the target coordinate as a symbol (E.x) in the closed form
+            rhs_sym = lhs
+            target_syms.add(lhs)
+            try:
+                values[lhs] = ctx.numeric(rhs, params)
+            except MissingValues as exc:
+                missing |= set(exc.names)
+        else:
+            rhs_sym = rhs
+        equations.append((lhs_q, rhs_sym))
+        shown.append((text, lhs_q, rhs_sym, rhs))
+    q_syms = {j.symbol for j in joints}
+    for lhs_q, rhs_sym in equations:
+        for s in (sp.sympify(lhs_q).free_symbols | sp.sympify(rhs_sym).free_symbols):
+            if s in q_syms or s in target_syms:
+                continue
+            if s in params:
+                try:
+                    values[s] = ctx.numeric(s, params)
+                except MissingValues as exc:
+                    missing |= set(exc.names)
+            else:
+                missing.add(s.name)
+
+    ik_joints, limit_notes = [], []
+    for j in joints:
+        lim = None
+        if j.limits is not None:
+            try:
+                lo, hi = ctx.numeric(list(j.limits), params)
+                lim = (float(lo), float(hi))
+            except MissingValues as exc:
+                limit_notes.append(f"the limits of {j.name} need {', '.join(exc.names)}: not applied")
+        ik_joints.append(IKJoint(j.symbol, j.is_revolute, lim))
+    for n_ in limit_notes:
+        ans.note(n_)
+
+    n, m = len(joints), len(equations)
+    eq_step = Step(
+        "Equations of the target",
+        "Each coordinate of the target, written with the direct kinematics, gives one equation "
+        f"in the joint variables: {m} equation{'s' if m != 1 else ''} for {n} unknown joint"
+        f"{'s' if n != 1 else ''}."
+        + (" Point coordinates such as $E_{x}$ on the right stand for the target values, given below."
+           if target_syms else ""),
+        equations=[(tex(l), r) for _, l, r, _ in shown],
+    )
+    from robosolve.ik.engine import is_angular
+    ang = [is_angular(sp.sympify(l) - sp.sympify(r), ik_joints) for l, r in equations]
+    if any(ang):
+        eq_step.text += (" An equation that is a sum of angles (an orientation) is satisfied modulo "
+                         "$2\\pi$.")
+    if target_syms:
+        eq_step.table = (("target", "value"), [(f"${tex(s)}$", report_number(values[s]))
+                                                for s in sorted(target_syms, key=sp.default_sort_key)
+                                                if s in values])
+    ans.steps.append(eq_step)
+
+    if missing:
+        _symbolic_only(ans, ctx, equations, ik_joints, names, tex, sorted(missing))
+        return ans
+
+    select = opts.get("select", "limits")
+    select_num = None
+    if isinstance(select, dict):
+        select_num = {k: ctx.numeric(v, params) for k, v in select.items()}
+
+    res = solve_ik(equations, ik_joints, values, select=select_num or "limits",
+                   time_limit_s=CLOSED_FORM_SECONDS, target_symbols=target_syms,
+                   latex_names=names, tex=tex, labels=[t for t, _, _, _ in shown])
+
+    if res.status == "redundant":
+        return _redundant_answer(ans, res, ik_joints, tex)
+    if res.status == "overdetermined":
+        parts = []
+        for sub in res.subsets:
+            keys = ", ".join(shown[k][0] for k in sub["equations"])
+            cnt = "infinitely many" if sub["family"] else str(len(sub["solutions"]))
+            parts.append(f"{{{keys}}}: {cnt} solution{'s' if cnt != '1' else ''}")
+        raise SolverError(res.reason + " " + "; ".join(parts) + ".")
+
+    # -- closed form --------------------------------------------------------
+    if res.closed_form is not None:
+        cf = res.closed_form
+        if res.closed_form_subset is not None:
+            used = ", ".join(f"`{shown[k][0]}`" for k in res.closed_form_subset)
+            ans.steps.append(Step(
+                "More equations than joints",
+                f"The {m} equations are consistent (a configuration satisfies them all), so {n} of them are enough: "
+                f"the closed form below uses {used}; every branch is then checked on all {m}."))
+        for st in cf.steps:
+            ans.steps.append(Step(st.title, st.text, equations=list(st.equations)))
+        nb = len(res.closed_form_branches)
+        order = ", ".join(f"${names[q]}$" for q in cf.order())
+        ans.steps.append(Step(
+            "Closed form",
+            f"The choices above give {nb} branch{'es' if nb != 1 else ''} (order of solution: {order}; "
+            "each formula may use the joints found before it). With the data, branch by branch "
+            "(angles not yet wrapped):",
+            table=_branch_table(cf, values, tex, res.all_solutions, ik_joints),
+        ))
+        ans.symbolic["closed_form"] = [{j.name: b[j.symbol] for j in ik_joints} for b in res.closed_form_branches]
+    else:
+        ans.steps.append(Step("Closed form", (res.closed_form_note or "no closed form")
+                              + ": the solutions below are numeric only."))
+        if res.closed_form_note and "within" in res.closed_form_note:
+            ans.note(res.closed_form_note + "; solutions found numerically")
+
+    # -- numeric solutions ----------------------------------------------------
+    box = ", ".join(
+        f"${names[j.symbol]}$ in " + ("(−π, π]" if j.revolute else
+                                       (f"[{report_number(j.limits[0])}, {report_number(j.limits[1])}] and beyond"
+                                        if j.limits else "a wide interval"))
+        for j in ik_joints)
+    header = ["#"] + [f"${names[j.symbol]}$" for j in ik_joints] + ["joint limits"]
+    rows = []
+    rejected = {id(d): b for d, b in res.rejected}
+    for k, d in enumerate(res.all_solutions, 1):
+        status = "inside" if id(d) not in rejected else "rejected: " + "; ".join(rejected[id(d)])
+        rows.append([str(k)] + [_angle_text(d[j.name], j.revolute) for j in ik_joints] + [status])
+    text = (f"Numerically, a multi-start Newton search ({box}) refined to machine precision finds "
+            f"{len(res.all_solutions)} distinct solution{'s' if len(res.all_solutions) != 1 else ''}, "
+            "each checked with the direct kinematics (residual below $10^{-9}$); angles wrapped into "
+            "(−π, π].")
+    if res.closed_form is not None and res.agree is not None:
+        text += (" The closed form gives the same set." if res.agree else
+                 " The closed form and the numeric search do not give the same set: see the notes.")
+    ans.steps.append(Step("Every solution", text, table=(header, rows) if rows else None))
+    for note in res.notes:
+        ans.note(note)
+
+    ans.numeric["solutions"] = [dict(d) for d in res.solutions]
+    if res.status == "unreachable":
+        ans.extra["unreachable"] = True
+        ans.extra["reason"] = res.reason
+        ans.numeric["solutions"] = []
+        ans.steps.append(Step("Unreachable target", "No solution: " + (res.reason_tex or "") + "."))
+        _figure(ans, ctx, params, res, ik_joints, question)
+        return ans
+
+    how = ("the first of the sorted solutions inside the joint limits" if select_num is None else
+           "the solution nearest the configuration " + ", ".join(
+               f"${names[j.symbol]}$ = {report_number(select_num.get(j.name, 0.0))}" for j in ik_joints))
+    ans.numeric["selected"] = dict(res.selected)
+    ans.steps.append(Step("Selected solution", f"Selected: {how}.",
+                          equations=[(names[j.symbol], res.selected[j.name]) for j in ik_joints]))
+
+    # -- velocity -------------------------------------------------------------
+    if opts.get("velocity"):
+        coords = [model.coordinate(l) for _, l, _ in opts["velocity"]]
+        rates = [r for _, _, r in opts["velocity"]]
+        try:
+            rate_vals = [ctx.numeric(r, params) for r in rates]
+            vik = velocity_ik(coords, rate_vals, ik_joints, res.selected, values)
+        except MissingValues as exc:
+            ans.note(missing_note("q_dot", exc.names, ctx.problem))
+        else:
+            ans.numeric["q_dot"] = dict(vik.q_dot)
+            Jsym = sp.Matrix(coords).jacobian([j.symbol for j in ik_joints])
+            qd_names = [j.dot for j in joints]
+            method = {"inverse": "$\\dot q = J^{-1}\\,\\dot s$",
+                      "least_squares": "least squares, $\\dot q = J^{+}\\,\\dot s$",
+                      "min_norm": "minimum norm, $\\dot q = J^{+}\\,\\dot s$"}[vik.method]
+            ans.steps.append(Step(
+                "Velocity inverse kinematics",
+                "Differentiating the coordinates gives $\\dot s = J(q)\\,\\dot q$ with "
+                f"$J = \\partial s / \\partial q$; at the selected solution, {method}.",
+                equations=[("J", Jsym), ("J", vik.J.tolist()),
+                           ("\\dot s", [float(v) for v in rate_vals]),
+                           (tex(sp.Matrix(qd_names)), [[vik.q_dot[j.name]] for j in ik_joints])],
+            ))
+            if vik.note:
+                ans.note(vik.note)
+    _figure(ans, ctx, params, res, ik_joints, question)
+    return ans
+
+
+def _symbolic_only(ans, ctx, equations, ik_joints, names, tex, missing):
+    exprs = [sp.sympify(l) - sp.sympify(r) for l, r in equations]
+    if len(exprs) != len(ik_joints):
+        raise SolverError(f"{len(exprs)} equations for {len(ik_joints)} joints, and numeric values "
+                          f"are missing ({', '.join(missing)})")
+    try:
+        with ctx.time_limit(CLOSED_FORM_SECONDS):
+            cf = cfm.derive(exprs, [j.symbol for j in ik_joints], [j.revolute for j in ik_joints], names,
+                            tex=tex)
+            branches = cf.branches()
+    except (cfm.NoClosedForm, SymbolicTimeout) as exc:
+        raise SolverError(f"no closed form ({exc}) and no numeric solution: it needs values for "
+                          + ", ".join(missing)) from None
+    for st in cf.steps:
+        ans.steps.append(Step(st.title, st.text, equations=list(st.equations)))
+    ans.symbolic["closed_form"] = [{j.name: b[j.symbol] for j in ik_joints} for b in branches]
+    ans.note(missing_note("solutions", missing, ctx.problem))
+
+
+def _redundant_answer(ans, res, ik_joints, tex):
+    fam = res.family
+    if fam is None:
+        raise SolverError(res.reason)
+    free = fam["free"]
+    cf = fam["closed_form"]
+    ans.steps.append(Step(
+        "Redundant: infinitely many solutions",
+        res.reason + f" The family, with {', '.join('$' + tex(sp.Symbol(f)) + '$' for f in free)} "
+        "as parameter:"))
+    for st in cf.steps:
+        ans.steps.append(Step(st.title, st.text, equations=list(st.equations)))
+    ans.symbolic["closed_form"] = [{j.name: b.get(j.symbol, j.symbol) for j in ik_joints}
+                                   for b in fam["branches"]]
+    ans.numeric["solutions"] = []
+    ans.note(res.reason)
+    return ans
+
+
+def _figure(ans, ctx, params, res, ik_joints, question):
+    sols = res.all_solutions[:12]
+    if not sols and res.nearest is None:
+        return
+    drawings, labels, rejected = [], [], []
+    rej = {id(d) for d, _ in res.rejected}
+    configs = sols if sols else [res.nearest]
+    for k, d in enumerate(configs, 1):
+        s2 = dict(params)
+        s2.update({j.symbol: sp.Float(d[j.name]) for j in ik_joints})
+        drw = robot_drawing(ctx, s2)
+        if drw is None:
+            return
+        drawings.append(drw)
+        lab = ", ".join(f"{j.name}={d[j.name]:.3g}" for j in ik_joints)
+        if sols:
+            labels.append(f"#{k}: {lab}" + (" (rejected)" if id(d) in rej else ""))
+            rejected.append(id(d) in rej)
+        else:
+            labels.append(f"nearest: {lab}")
+            rejected.append(True)
+    point = question.point
+    target = None
+    coords = {}
+    for text, lhs, rhs in question.options["target"]:
+        if _is_point_coordinate(lhs):
+            pname, axis = lhs.name.split(".")
+            try:
+                coords[(pname, axis)] = float(ctx.numeric(rhs, params))
+            except MissingValues:
+                pass
+    if coords:
+        pname = sorted({p for p, _ in coords})[0]
+        # the unconstrained coordinates from the first drawing (every solution shares the target)
+        base = next((p["at"] for p in drawings[0]["points"] if p["name"] == pname), [0.0, 0.0, 0.0])
+        target = {"name": pname, "at": [coords.get((pname, a), base[i]) for i, a in enumerate("xyz")],
+                  "given": [a for a in "xyz" if (pname, a) in coords]}
+    ans.figures.append(FigureSpec(
+        "solutions", "ik_solutions",
+        "Inverse kinematics: every solution" if sols else "Unreachable target: the nearest configuration",
+        {"drawings": drawings, "labels": labels, "rejected": rejected, "target": target,
+         "selected": res.selected_index if res.selected is not None else None, "point": point}))
+
+
+def _branch_table(cf, values, tex, solutions, ik_joints):
+    """Each branch of the closed form evaluated with the data (or where it fails)."""
+    stages = cf.stages
+    header = ["branch"] + [f"${tex(st.joint)}$" for st in stages] + ["result"]
+    rows = []
+    for k, bv in enumerate(cfm.evaluate(cf, values), 1):
+        got = bv.q if bv.q is not None else (bv.partial or {})
+        cells = [report_number(got[st.joint]) if st.joint in got else "—" for st in stages]
+        if bv.failure is None:
+            match = [k2 for k2, d in enumerate(solutions, 1)
+                     if all(abs(wrap_angle(d[j.name] - bv.q[j.symbol]) if j.revolute else d[j.name] - bv.q[j.symbol])
+                            < 1e-6 * max(1.0, abs(d[j.name])) for j in ik_joints)]
+            result = f"solution #{match[0]}" if match else "does not satisfy every equation"
+        else:
+            idx, joint, ex = bv.failure
+            what = {"acos": "arccos of", "asin": "arcsin of", "sqrt": "square root of",
+                    "atan2": "atan2(0, 0)", "zero": "division by zero", "nan": "undefined"}.get(ex.what, ex.what)
+            val = ex.value if isinstance(ex.value, float) else None
+            result = f"no ${tex(joint)}$: {what}" + (f" {report_number(val)}" if val is not None else "")
+        rows.append([str(k)] + cells + [result])
+    return header, rows

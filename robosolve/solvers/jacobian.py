@@ -1,0 +1,310 @@
+"""Question 3: the Jacobian of the task coordinates, its determinant (or manipulability)
+and the singular configurations; optionally the geometric Jacobian and the
+centre-of-mass Jacobians.
+
+Conventions: J = ∂S/∂Q with S = F(Q) the chosen coordinates (rows) and Q the joints
+(columns, joint order), ERRATA item 7; the geometric Jacobian is 6 x n (velocity of the
+point, angular velocity of the frame), built from the L matrices ⁰Lᵢ; singularities as
+in the spec ("Singularities") and robosolve.kinematics.singularities.
+"""
+
+from __future__ import annotations
+
+import math
+
+import sympy as sp
+
+from robosolve.kinematics.jacobian_math import numeric_manipulability
+from robosolve.kinematics.naming import name_conditions
+from robosolve.kinematics.singularities import find_singularities
+from robosolve.kinematics.task import (
+    joint_kinds, joint_l0, limited, symbolic_budget, task_space, tidy_limited)
+from robosolve.solvers.base import SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, MissingValues, SolveContext, Step
+
+
+def _col(labels):
+    return r"\begin{bmatrix}" + r" \\ ".join(labels) + r"\end{bmatrix}"
+
+
+def _qtex(model):
+    return [sp.latex(s) for s in model.q]
+
+
+SYMBOLIC_SECONDS = _BASE_SECONDS      # per symbolic step (monkeypatched in tests)
+
+
+def _budget(ctx) -> float:
+    return symbolic_budget(ctx.model, SYMBOLIC_SECONDS)
+
+
+def solve(question, ctx: SolveContext) -> Answer:
+    model = ctx.model
+    ans = Answer(question.type, question.id)
+    opts = question.options
+    geometric = bool(opts.get("geometric"))
+    point = question.point
+    q = model.q
+    qtex = _qtex(model)
+    ts = task_space(question, ctx, _budget(ctx), geometric=geometric)
+    J = ts.J
+    m, n = J.shape
+
+    # -- S = F(Q) and the derivative, column by column -----------------------
+    if geometric:
+        _geometric_steps(ans, question, ctx, ts)
+    else:
+        what = (f"the coordinates of point {point} in frame 0" if ts.default
+                else "the coordinates chosen in the question")
+        ans.steps.append(Step(
+            "Task coordinates S = F(Q)",
+            f"The joint variables are $Q = ({', '.join(qtex)})$; the task coordinates are "
+            f"{what}, as functions of the joints:",
+            equations=[(f"S = {_col(ts.labels)}", sp.Matrix(ts.coords))],
+        ))
+        ans.steps.append(Step(
+            "Derivatives, column by column",
+            "Column $i$ of the Jacobian is the derivative of $S$ with respect to joint $i$ "
+            "(the velocity of the coordinates when only that joint moves, at unit rate):",
+            equations=[(f"\\frac{{\\partial S}}{{\\partial {t}}}", J[:, i]) for i, t in enumerate(qtex)],
+        ))
+        ans.steps.append(Step(
+            "Jacobian",
+            f"$\\dot S = J(Q)\\,\\dot Q$, with $J$ of size {m}×{n} (coordinates × joints):",
+            equations=[("J = \\frac{\\partial S}{\\partial Q}", J)],
+        ))
+    ans.symbolic["J"] = J
+
+    # -- determinant / manipulability and singular configurations -------------
+    _singularity_steps(ans, question, ctx, ts)
+
+    # -- centre-of-mass Jacobians ----------------------------------------------
+    com = {}
+    if opts.get("bodies"):
+        com = _com_steps(ans, ctx)
+        ans.symbolic["com_jacobians"] = com
+
+    # -- numbers ----------------------------------------------------------------
+    _numeric(ans, question, ctx, J, com)
+    return ans
+
+
+# ---------------------------------------------------------------------------
+
+def _geometric_steps(ans, question, ctx, ts):
+    model = ctx.model
+    point = question.point
+    frame = question.frame or model.problem.last_frame
+    ls = [joint_l0(model, i, frame) for i in range(len(model.q))]
+    ans.steps.append(Step(
+        "L matrices of the joints in frame 0",
+        "$^{0}L_i = \\frac{\\partial\\, {}^{0}M_i}{\\partial q_i}\\,{}^{0}M_i^{-1}$: its 3×3 block is "
+        "$[u_i]$ (the joint's unit angular velocity, zero for a prismatic joint) and its last "
+        "column $t_i$ is the velocity of the point of the moving body passing through $O_0$.",
+        equations=[(f"{{}}^{{0}}L_{{{i + 1}}}", lm) for i, lm in enumerate(ls)],
+    ))
+    ans.steps.append(Step(
+        "Geometric Jacobian",
+        f"Column $i$ holds the velocity of point {point} and the angular velocity of frame "
+        f"{frame} produced by a unit rate of joint $i$: $v_i = [u_i]\\,{{}}^{{0}}{point} + t_i$ "
+        "(the first three rows of $^{0}L_i$ times the homogeneous point), $\\omega_i = u_i$.",
+        equations=[(f"{{}}^{{0}}{point}", model.point0(point)),
+                   ("J = \\begin{bmatrix} J_P \\\\ J_\\omega \\end{bmatrix}", ts.J)],
+    ))
+
+
+def _singularity_steps(ans, question, ctx, ts):
+    model = ctx.model
+    J = ts.J
+    m, n = J.shape
+    kinds = joint_kinds(model)
+    params = {s: v for s, v in ctx.parameter_values(
+        {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
+    res, err = limited(ctx, _budget(ctx), find_singularities, J, model.q, kinds, params)
+    if res is None:
+        ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
+                 "the numeric answers are given.")
+        ans.steps.append(Step("Singular configurations",
+                              "The symbolic search exceeded its time limit: see the numeric "
+                              "values below."))
+        return
+    if res.kind == "det":
+        ans.symbolic["det"] = res.measure
+        ans.steps.append(Step(
+            "Determinant",
+            "J is square: it loses rank where its determinant vanishes. Simplified and factored:",
+            equations=[("\\det J", res.measure)],
+        ))
+        intro = ("Each factor of $\\det J$ that contains a joint is set to zero and solved "
+                 "for a joint (every value in $(-\\pi, \\pi]$ for a revolute joint):")
+    else:
+        from robosolve.kinematics.jacobian_math import tidy
+
+        gram, _err = limited(ctx, _budget(ctx), tidy, res.measure)
+        manip = sp.sqrt(gram if gram is not None else res.measure)
+        ans.symbolic["manipulability"] = manip
+        shape = "wide (redundant)" if m < n else "tall"
+        minors = [mi for mi in res.minors]
+        ans.steps.append(Step(
+            "Manipulability",
+            f"J is {m}×{n} ({shape}), so it has no determinant. Its manipulability is the product "
+            "of its singular values, $w = \\sqrt{\\det(J J^T)}$ "
+            + ("" if m < n else "(here $\\sqrt{\\det(J^T J)}$) ")
+            + "and by the Cauchy–Binet formula $\\det(J J^T)$ is the sum of the squares of the "
+              f"maximal ({min(m, n)}×{min(m, n)}) minors of J"
+            + (":" if len(minors) <= 6 else
+               f" ({len(minors)} minors, {sum(1 for x in minors if x != 0)} not identically zero; "
+               "the first six of these are shown):"),
+            equations=([(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors)]
+                       if len(minors) <= 6 else
+                       [(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors) if mi != 0][:6])
+            + [("w", manip)],
+        ))
+        intro = ("J loses rank where all its maximal minors vanish together: a factor of one "
+                 "minor is solved for a joint and substituted into the others:")
+    conds = name_conditions(res.conditions, model.q, kinds, None,
+                            model.point0(question.point), params,
+                            m0_frames=[_joint_pose(model, i) for i in range(len(model.q))])
+    ans.symbolic["singularities"] = [c.mapping() for c in conds]
+    for note in res.notes:
+        ans.note(note)
+    rows = []
+    for c in conds:
+        rows.append([f"${c.latex()}$" if (c.values or c.equations) else "every configuration",
+                     "; ".join(c.names) if c.names else "",
+                     _within_limits(c, model, params)])
+    if conds:
+        text = intro + " " + _count_text(conds)
+        ans.steps.append(Step("Singular configurations", text,
+                              table=(["condition", "configuration", "within the joint limits"], rows)))
+    else:
+        ans.steps.append(Step("Singular configurations",
+                              "No factor vanishes for any joint value: J never loses rank "
+                              "(for generic, non-zero parameters)."))
+
+
+def _count_text(conds):
+    k = len(conds)
+    return f"{k} singular condition{'s' if k != 1 else ''}."
+
+
+def _joint_pose(model, i):
+    """⁰M of the frame joint i moves (its L = ∂M/∂qᵢ·M⁻¹ gives the joint's axis)."""
+    frame = model.joint_frame(i)
+    return model.M0(frame) if frame is not None else sp.eye(4)
+
+
+def _within_limits(cond, model, params) -> str:
+    if cond.equations or not cond.values:
+        return ""
+    verdicts = []
+    for s, v in cond.values:
+        joint = next(j for j in model.joints if j.symbol == s)
+        if joint.limits is None:
+            continue
+        try:
+            val = float(sp.sympify(v).xreplace(params))
+            lo, hi = (float(sp.sympify(x).xreplace(params)) for x in joint.limits)
+        except (TypeError, ValueError):
+            return "depends on the other joints"
+        if not (lo - 1e-12 <= val <= hi + 1e-12):
+            verdicts.append(f"no (${sp.latex(s)} \\notin [{lo:.4g}, {hi:.4g}]$)")
+    return "; ".join(verdicts) if verdicts else "yes"
+
+
+def _check_geometric(ans, ctx, question, jn, subs):
+    """Built-in cross-check: the L-matrix columns against ∂P/∂q (central differences)."""
+    import numpy as np
+
+    model = ctx.model
+    try:
+        qv = [float(sp.N(subs[s])) for s in model.q]
+        p = sp.lambdify([model.q], model.point0(question.point).xreplace(
+            {k: v for k, v in subs.items() if k not in model.q}), "numpy")
+    except (KeyError, TypeError, ValueError):
+        return
+    eps = 1e-6
+    fd = []
+    for i in range(len(qv)):
+        a, b = list(qv), list(qv)
+        a[i] += eps
+        b[i] -= eps
+        fd.append((np.array(p(a), dtype=float) - np.array(p(b), dtype=float)).reshape(3) / (2 * eps))
+    err = float(np.max(np.abs(np.array(jn, dtype=float)[:3] - np.column_stack(fd))))
+    if err > 1e-6 * max(1.0, float(np.max(np.abs(jn)))):
+        ans.note(f"internal check failed: the geometric Jacobian differs from dP/dq by {err:.3g}")
+
+
+def _com_steps(ans, ctx):
+    model = ctx.model
+    out = {}
+    eqs = []
+    for b in model.bodies:
+        c0 = model.com0(b)
+        jg = tidy_limited(ctx, c0.jacobian(model.q), _budget(ctx))
+        out[b.name] = jg
+        eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
+        eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))
+    ans.steps.append(Step(
+        "Centre-of-mass Jacobians",
+        "The centre of mass of each body, $c = J[1{:}3,4]/J[4,4]$ from its pseudo-inertia, moved "
+        "to frame 0, and its 3×n Jacobian (used for the statics of the bodies' weight):",
+        equations=eqs,
+    ))
+    return out
+
+
+def _numeric(ans, question, ctx, J, com):
+    model = ctx.model
+    if not question.at and (J.free_symbols & set(model.q)):
+        return
+    subs = ctx.substitutions(question.at)
+    jn = ctx.try_numeric(ans, "J", J, subs, "J")
+    eqs = []
+    if jn is not None:
+        eqs.append(("J", jn))
+        if J.shape[0] == 6 and question.options.get("geometric"):
+            _check_geometric(ans, ctx, question, jn, subs)
+        m, n = J.shape
+        if m == n:
+            import numpy as np
+
+            try:
+                det = float(ctx.numeric(ans.symbolic["det"], subs))   # exact, then rounded
+            except (KeyError, MissingValues, ValueError, TypeError):
+                det = float(np.linalg.det(np.array(jn, dtype=float)))
+            det = 0.0 if abs(det) < 1e-12 else det
+            ans.numeric["det"] = det
+            eqs.append(("\\det J", det))
+            if abs(det) < 1e-9:
+                ans.note("J is singular at the given configuration (det J = 0).")
+        else:
+            w = numeric_manipulability(jn)
+            w = 0.0 if abs(w) < 1e-12 else w
+            ans.numeric["manipulability"] = w
+            eqs.append(("w", w))
+            if w < 1e-9:
+                ans.note("J loses rank at the given configuration (manipulability 0).")
+    sing = ans.symbolic.get("singularities")
+    if sing and all(isinstance(c, dict) for c in sing):
+        params = ctx.parameter_values()
+        try:
+            ans.numeric["singularities"] = [
+                {k: float(sp.sympify(v, locals={s.name: s for s in model.q}).xreplace(params))
+                 for k, v in c.items()} for c in sing]
+        except (TypeError, ValueError):
+            pass
+        else:
+            if any(not math.isfinite(x) for c in ans.numeric["singularities"] for x in c.values()):
+                ans.numeric.pop("singularities")
+    if com:
+        try:
+            ans.numeric["com_jacobians"] = {k: ctx.numeric(v, subs) for k, v in com.items()}
+            for k, v in ans.numeric["com_jacobians"].items():
+                eqs.append((f"J_{{G,\\mathrm{{{k}}}}}", v))
+        except MissingValues as exc:
+            from robosolve.solvers.base import missing_note
+
+            ans.note(missing_note("com_jacobians", exc.names, ctx.problem))
+    if eqs:
+        ans.steps.append(Step("Numeric values", "At the configuration of the question:",
+                              equations=eqs))

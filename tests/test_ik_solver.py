@@ -1,0 +1,102 @@
+"""The inverse_kinematics question through the pipeline: layouts of the spec, odd cases, goldens."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from robosolve.load.loader import load_problem_text
+from robosolve.pipeline import solve_problem
+from robosolve.render.results_json import results_document
+
+ROOT = Path(__file__).parent.parent
+
+PLANAR_2R = """
+robosolve: 1
+name: ik-2r
+parameters: {L1: 0.6, L2: 0.5, F: ~}
+joints:
+  - {name: theta1, type: revolute}
+  - {name: theta2, type: revolute, limits: [0, pi]}
+frames:
+  "1": {parent: "0", pose: "Rz(theta1) Tx(L1)"}
+  "2": {pose: "Rz(theta2) Tx(L2)"}
+questions:
+"""
+
+
+def _solve(questions: str, head: str = PLANAR_2R):
+    problem = load_problem_text(head + questions, "test.yaml")
+    report = solve_problem(problem)
+    return report, results_document(report, {})["answers"]
+
+
+def test_layout_solutions_selected_closed_form_qdot():
+    report, ans = _solve("  - {type: inverse_kinematics, target: {E.x: 0.7, E.y: 0.4}, velocity: {E.x: 0.1, E.y: 0}}\n")
+    a = ans["inverse_kinematics"]
+    assert "unreachable" not in a and "error" not in a
+    sols = a["numeric"]["solutions"]
+    assert len(sols) == 1 and list(sols[0]) == ["theta1", "theta2"]    # theta2 < 0 rejected
+    assert a["numeric"]["selected"] == sols[0]
+    assert set(a["numeric"]["q_dot"]) == {"theta1", "theta2"}
+    assert len(a["symbolic"]["closed_form"]) == 2
+    md = "\n".join(s.title for s in report.answers[0].steps)
+    assert "Every solution" in md
+    table = [s for s in report.answers[0].steps if s.table][-1].table
+    assert any("rejected" in row[-1] and "lower limit" in row[-1] for row in table[1])
+
+
+def test_unreachable_is_an_answer():
+    report, ans = _solve("  - {type: inverse_kinematics, target: {E.x: 1.31, E.y: 0}}\n")
+    a = ans["inverse_kinematics"]
+    assert report.exit_status == 0
+    assert a["unreachable"] is True and a["numeric"]["solutions"] == []
+    assert "1.31 > L1 + L2 = 1.1" in a["reason"]
+
+
+def test_select_nearest():
+    head = PLANAR_2R.replace("limits: [0, pi]", "limits: [-pi, pi]")
+    _, ans = _solve("  - {type: inverse_kinematics, target: {E.x: 0.7, E.y: 0.4}, "
+                    "select: {theta1: 1, theta2: -1}}\n", head)
+    assert ans["inverse_kinematics"]["numeric"]["selected"]["theta2"] < 0
+
+
+def test_overdetermined_is_explained():
+    report, ans = _solve("  - {type: inverse_kinematics, target: {E.x: 0.7, E.y: 0.4, 'theta1 + theta2': 0.5}}\n")
+    a = ans["inverse_kinematics"]
+    assert "Choose 2 of the 3 equations" in a["error"]
+    assert report.exit_status == 1
+
+
+def test_redundant_family_in_closed_form():
+    head = PLANAR_2R
+    _, ans = _solve("  - {type: inverse_kinematics, target: {E.x: 0.7}}\n", head)
+    a = ans["inverse_kinematics"]
+    assert a["numeric"]["solutions"] == []
+    assert any("infinitely many" in n for n in a["notes"])
+    assert a["symbolic"]["closed_form"]
+
+
+def test_null_parameter_gives_closed_form_only():
+    _, ans = _solve("  - {type: inverse_kinematics, target: {E.x: F, E.y: 0.4}}\n")
+    a = ans["inverse_kinematics"]
+    assert a["symbolic"]["closed_form"] and a["numeric"] == {}
+    assert any("F" in n for n in a["notes"])
+
+
+def test_continuum_at_the_base():
+    head = PLANAR_2R.replace("L1: 0.6, L2: 0.5", "L1: 0.5, L2: 0.5").replace("limits: [0, pi]", "limits: [-pi, pi]")
+    _, ans = _solve("  - {type: inverse_kinematics, target: {E.x: 0, E.y: 0}}\n", head)
+    a = ans["inverse_kinematics"]
+    assert len(a["numeric"]["solutions"]) == 1
+    assert abs(abs(a["numeric"]["solutions"][0]["theta2"]) - math.pi) < 1e-9
+    assert any("theta1 can take any value" in n for n in a["notes"])
+
+# The golden outputs of problems/ik-*.yaml are checked by tests/test_cli.py (robosolve batch --check).
+
+
+def test_equation_without_joints():
+    _, ans = _solve("  - {type: inverse_kinematics, id: z0, target: {E.x: 0.7, E.y: 0.4, E.z: 0}}\n"
+                    "  - {type: inverse_kinematics, id: z1, target: {E.x: 0.7, E.y: 0.4, E.z: 1}}\n")
+    assert len(ans["z0"]["numeric"]["solutions"]) == 1 and any("E.z holds" in n for n in ans["z0"]["notes"])
+    assert ans["z1"]["unreachable"] is True and ans["z1"]["reason"].startswith("E.z is 0 whatever the joints")
