@@ -1,0 +1,203 @@
+"""§3.1: the displacement matrix Q between two poses and its helical axis.
+
+`from`/`to` are two 4x4 poses (no robot needed) or two configurations of the
+robot (then the poses are those of `frame`, default the last frame). Q is
+expressed in frame 0; with explicit matrices and a robot, `frame` asks for Q in
+that frame instead: Q_k = M_0k^-1 Q_0 M_0k, M_0k taken at the question's `at`.
+Engines: robosolve.geometry.helical (formulas and special cases there).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import sympy as sp
+
+from robosolve.errors import SymbolicTimeout
+from robosolve.geometry.helical import (
+    displacement_matrix, express_in_frame, helical_numeric, helical_symbolic,
+)
+from robosolve.geometry.rotations import _default_simplify
+from robosolve.load.problem import Question
+from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
+from robosolve.solvers.common import frame_tex, m_name
+
+CASE_TEXT = {
+    "general": "$0 < \\alpha < \\pi$: $\\sin\\alpha > 0$, so the axis comes from the skew-symmetric part, "
+               "$u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$ (ERRATA item 30).",
+    "generic": "symbolic rotation: the general formulas $u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$, "
+               "valid where $\\sin\\alpha \\neq 0$.",
+    "half_turn": "$\\alpha = \\pi$: $R - R^T = 0$ gives no axis, so it comes from the symmetric part, "
+                 "$u_i^2 = (R_{ii} + 1)/2$, $u_i u_j = (R_{ij} + R_{ji})/4$ (ERRATA item 28); "
+                 "$u$ and $-u$ are the same displacement, the one with its first non-zero component "
+                 "positive is given.",
+    "translation": "$\\alpha = 0$: a pure translation, $u = \\Delta T/|\\Delta T|$, $h = |\\Delta T|$; "
+                   "there is no axis point and the pitch is infinite (ERRATA item 31).",
+    "identity": "$Q = I$: no displacement; the axis is undefined.",
+}
+
+
+def solve(question: Question, ctx: SolveContext) -> Answer:
+    ans = Answer(question.type, question.id)
+    try:
+        m01, m02, where, expressed, m0k = _poses(question, ctx)
+    except MissingValues as exc:
+        ans.error = missing_note("poses", exc.names, ctx.problem)
+        return ans
+    q0 = displacement_matrix(m01, m02)
+    q = express_in_frame(q0, m0k) if m0k is not None else q0
+    try:
+        with ctx.time_limit(10.0):
+            q = q.applyfunc(_default_simplify)
+    except SymbolicTimeout:
+        pass
+    f = frame_tex(expressed)
+
+    steps = [Step(
+        "Displacement matrix",
+        f"{where} Every body point moves as ${{}}^0P_2 = Q_0\\,{{}}^0P_1$ (ERRATA item 22), so "
+        "$Q_0 = {}^0M_2\\,{}^0M_1^{-1}$ (item 23)."
+        + (f" In frame {expressed}: $Q_{{{f}}} = {m_name('0', expressed)}^{{-1}}\\,Q_0\\,{m_name('0', expressed)}$ "
+           "(item 24)." if m0k is not None else ""),
+        equations=[("{}^0M_1", m01), ("{}^0M_2", m02), (f"Q_{{{f}}}", q)],
+    )]
+    ans.symbolic["Q"] = q
+    sym_case = None
+    try:
+        with ctx.time_limit():
+            hx = helical_symbolic(q)
+        sym = {k: _tidy(v) for k, v in _layout(hx).items()}
+        ans.symbolic.update(sym)
+        hx = dataclasses.replace(hx, axis=sym["u"], angle=sym["alpha"], h=sym["h"], point=sym["P"],
+                                 pitch=sym["pitch"], cos_alpha=_tidy(hx.cos_alpha),
+                                 sin_alpha=_tidy(hx.sin_alpha))
+        steps.append(_formula_step(hx))
+        sym_case = hx.case
+        for n in hx.notes:
+            ans.note(n)
+    except SymbolicTimeout:
+        ans.note("the symbolic helical axis was cut short by its time limit; numeric answers only")
+    except ValueError as exc:
+        ans.error = f"not a rigid displacement: {exc}"
+        return ans
+
+    subs = ctx.substitutions(question.at)
+    try:
+        qn = np.array(ctx.numeric(q, subs), dtype=float)
+        m1n = np.array(ctx.numeric(m01, subs), dtype=float)
+        m2n = np.array(ctx.numeric(m02, subs), dtype=float)
+        mkn = np.array(ctx.numeric(m0k, subs), dtype=float) if m0k is not None else np.eye(4)
+    except MissingValues as exc:
+        ans.note(missing_note("helical axis", exc.names, ctx.problem))
+        ans.steps = steps
+        return ans
+    problem = _rigidity(qn)
+    if problem:
+        ans.error = f"not a rigid displacement: {problem}"
+        return ans
+    hn = helical_numeric(qn)
+    ans.numeric = _layout(hn, qn.tolist())
+    steps.append(_numeric_step(hn, f))
+    if sym_case != hn.case:  # no symbolic step, or the numbers fall in a special case
+        steps[-1].text += " Case: " + CASE_TEXT[hn.case]
+    ans.steps = steps
+    ans.figures.append(FigureSpec(
+        "helical_axis", "helical_axis", f"Helical axis and the initial and final frames (in frame {expressed})",
+        _figure_data(hn, m1n, m2n, mkn, expressed)))
+    return ans
+
+
+# ---------------------------------------------------------------------------
+
+
+def _poses(question, ctx):
+    opts = question.options
+    src, dst = opts["from"], opts["to"]
+    model = ctx.model
+    if "config" in src or "config" in dst:
+        frame = question.frame
+
+        def pose(o):
+            if "matrix" in o:
+                return o["matrix"]
+            subs = {j.symbol: o["config"][j.name] for j in model.joints if j.name in o["config"]}
+            return model.M0(frame).xreplace(subs)
+
+        where = (f"The body is frame {frame}: its poses ${{}}^0M_1$, ${{}}^0M_2$ are "
+                 f"${m_name('0', frame)}$ at the two configurations.")
+        return pose(src), pose(dst), where, "0", None
+    where = "The two poses are given."
+    if question.frame_given and model is not None and question.frame != "0":
+        subs = {s: v for s, v in question.at.items() if s in set(model.q)}
+        return src["matrix"], dst["matrix"], where, question.frame, model.M0(question.frame).xreplace(subs)
+    return src["matrix"], dst["matrix"], where, "0", None
+
+
+def _rigidity(q: np.ndarray) -> str:
+    r = q[:3, :3]
+    if not np.allclose(r.T @ r, np.eye(3), atol=1e-6) or abs(np.linalg.det(r) - 1) > 1e-6:
+        return "the rotation block of Q is not a proper rotation (check the poses)"
+    if not np.allclose(q[3], [0, 0, 0, 1], atol=1e-9):
+        return "the last row of Q is not [0, 0, 0, 1]"
+    return ""
+
+
+def _layout(hx, q=None) -> dict:
+    out = {} if q is None else {"Q": q}
+    out.update({"u": hx.axis, "alpha": hx.angle, "h": hx.h, "P": hx.point, "pitch": hx.pitch})
+    return out
+
+
+def _formula_step(hx) -> Step:
+    eqs = [("\\cos\\alpha = \\frac{x_x + y_y + z_z - 1}{2}", hx.cos_alpha),
+           ("\\sin\\alpha = \\tfrac12\\left|\\operatorname{vex}(R - R^T)\\right|", hx.sin_alpha),
+           ("\\alpha", hx.angle)]
+    if hx.axis is not None:
+        eqs.append(("u", sp.Matrix(hx.axis)))
+    eqs.append(("h = u \\cdot \\Delta T" if hx.case not in ("translation", "identity") else "h = |\\Delta T|",
+                hx.h))
+    if hx.point is not None:
+        eqs.append(("P^* = \\frac{(I - R^T)\\,\\Delta T}{2(1 - \\cos\\alpha)}", sp.Matrix(hx.point)))
+        eqs.append(("p = h/\\alpha", hx.pitch))
+    return Step(
+        "Helical axis (Mozzi-Chasles)",
+        "Q is a rotation by $\\alpha \\in [0, \\pi]$ about the axis $(u, P^*)$ plus a translation $h$ "
+        "along it. $\\sin\\alpha$ is taken $\\geq 0$, which fixes the sign of $u$ (ERRATA items 25-31). "
+        "Case: " + CASE_TEXT[hx.case] + (" $P^*$ is the point of the axis nearest the origin "
+                                         "($P^* \\cdot u = 0$)." if hx.point is not None else ""),
+        equations=eqs,
+    )
+
+
+def _numeric_step(hn, f) -> Step:
+    text = "With the numbers (robust formulas: $\\alpha = \\operatorname{atan2}(\\sin\\alpha, \\cos\\alpha)$; " \
+           "$P^* = \\tfrac12(\\Delta T_\\perp + \\cot(\\alpha/2)\\,u \\times \\Delta T)$, the same point " \
+           "without the cancellation of $1 - \\cos\\alpha$ at small angles)."
+    eqs = [(f"Q_{{{f}}}", [list(r) + [t] for r, t in zip(hn.R, hn.dT)] + [[0.0, 0.0, 0.0, 1.0]]),
+           ("\\alpha", hn.angle), ("u", hn.axis), ("h", hn.h)]
+    if hn.point is not None:
+        eqs += [("P^*", hn.point), ("p", hn.pitch)]
+    return Step("Numeric values", text, equations=eqs)
+
+
+def _figure_data(hn, m1, m2, mk, expressed) -> dict:
+    inv = np.linalg.inv(mk)
+    a, b = inv @ m1, inv @ m2
+
+    def frame(m, name):
+        return {"name": name, "origin": m[:3, 3].tolist(), "axes": [m[:3, c].tolist() for c in range(3)]}
+
+    return {
+        "frames": [frame(np.eye(4), expressed), frame(a, "initial"), frame(b, "final")],
+        "axis": None if hn.axis is None else {"u": hn.axis, "point": hn.point},
+        "alpha": hn.angle, "h": hn.h, "case": hn.case,
+    }
+
+
+def _tidy(v):
+    if v is None:
+        return None
+    if isinstance(v, list):
+        return [_default_simplify(x) for x in v]
+    return _default_simplify(v)

@@ -1,0 +1,190 @@
+"""displacement / orientation / dof questions through the whole pipeline, checked
+against independent references (numpy poses, spatialmath, hand values)."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from robosolve.pipeline import solve_file
+from robosolve.render.results_json import results_document
+
+PROBLEM = Path(__file__).resolve().parents[1] / "problems" / "rigid-displacements.yaml"
+
+
+@pytest.fixture(scope="module")
+def answers():
+    report = solve_file(PROBLEM)
+    return {a.id: a for a in report.answers}
+
+
+def scara_pose(t1, t2, l, L1=0.5, L2=0.4, h=1.0):
+    def rz(a):
+        m = np.eye(4)
+        m[:2, :2] = [[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]
+        return m
+
+    def tr(x, y, z):
+        m = np.eye(4)
+        m[:3, 3] = [x, y, z]
+        return m
+
+    return tr(0, 0, h) @ rz(t1) @ tr(L1, 0, 0) @ rz(t2) @ tr(L2, 0, 0) @ tr(0, 0, -l)
+
+
+def axis_consistent(n, q):
+    q = np.array(q)
+    r, dt = q[:3, :3], q[:3, 3]
+    u, p = np.array(n["u"]), np.array(n["P"])
+    np.testing.assert_allclose((np.eye(3) - r) @ p + n["h"] * u, dt, atol=1e-10)
+    assert p @ u == pytest.approx(0, abs=1e-12)
+    assert n["pitch"] == pytest.approx(n["h"] / n["alpha"])
+
+
+def test_displacement_between_configurations(answers):
+    a = answers["scara-move"]
+    assert a.error is None
+    m1, m2 = scara_pose(0, 0, 0), scara_pose(math.pi / 2, math.pi / 6, 0.1)
+    q = m2 @ np.linalg.inv(m1)
+    np.testing.assert_allclose(a.numeric["Q"], q, atol=1e-12)
+    assert a.numeric["alpha"] == pytest.approx(2 * math.pi / 3)
+    np.testing.assert_allclose(a.numeric["u"], [0, 0, 1], atol=1e-12)
+    assert a.numeric["h"] == pytest.approx(-0.1)
+    axis_consistent(a.numeric, q)
+    # the symbolic answer keeps L1, L2 and agrees with the numbers
+    vals = {sp.Symbol("L1"): sp.Rational(1, 2), sp.Symbol("L2"): sp.Rational(2, 5)}
+    assert a.symbolic["alpha"] == 2 * sp.pi / 3
+    sym_p = [float(sp.sympify(str(x)).subs({sp.Symbol(k.name): v for k, v in vals.items()}))
+             for x in a.symbolic["P"]]
+    np.testing.assert_allclose(sym_p, a.numeric["P"], atol=1e-12)
+    assert a.figures and a.figures[0].kind == "helical_axis"
+
+
+def test_displacement_given_matrices(answers):
+    a = answers["screw-given"]
+    s3 = math.sqrt(3)
+    np.testing.assert_allclose(a.numeric["u"], [1 / s3] * 3)
+    assert a.numeric["alpha"] == pytest.approx(2 * math.pi / 3)
+    assert a.numeric["h"] == pytest.approx(s3 / 6)  # u . (1, -1, 1/2)
+    axis_consistent(a.numeric, a.numeric["Q"])
+    assert a.symbolic["P"] == [sp.Rational(2, 3), sp.Rational(-1, 2), sp.Rational(-1, 6)]
+    h = answers["half-turn"]
+    assert h.numeric["alpha"] == pytest.approx(math.pi) and h.numeric["u"] == [0.0, 1.0, 0.0]
+    axis_consistent(h.numeric, h.numeric["Q"])
+    t = answers["translation"]
+    assert t.numeric["alpha"] == 0.0 and t.numeric["P"] is None and t.numeric["pitch"] is None
+    assert t.numeric["h"] == pytest.approx(3.0)
+
+
+def test_orientation_against_spatialmath(answers):
+    smb = pytest.importorskip("spatialmath.base")
+    sm = pytest.importorskip("spatialmath")
+    r = np.array([[0, -0.5, math.sqrt(3) / 2], [0, math.sqrt(3) / 2, 0.5], [-1, 0, 0]])
+    a = answers["given-rotation"]
+    # pitch = +pi/2: RPY singular, ZYZ regular
+    assert a.numeric["rpy"]["singular"] is True and len(a.numeric["rpy"]["solutions"]) == 1
+    roll, pitch, yaw = a.numeric["rpy"]["solutions"][0]
+    np.testing.assert_allclose(smb.rpy2r(roll, pitch, yaw, order="zyx"), r, atol=1e-12)
+    np.testing.assert_allclose(a.numeric["zyz"]["solutions"][0], smb.tr2eul(r), atol=1e-12)
+    theta, v = smb.tr2angvec(r)
+    assert a.numeric["axis_angle"]["angle"] == pytest.approx(theta)
+    np.testing.assert_allclose(a.numeric["axis_angle"]["axis"], v, atol=1e-9)
+    np.testing.assert_allclose(a.numeric["quaternion"], sm.UnitQuaternion(r).vec, atol=1e-12)
+    # the tool of the SCARA at (pi/3, pi/6, 1/10) is Rz(pi/2): ZYZ singular, phi + psi = pi/2
+    t = answers["tool-orientation"]
+    assert t.numeric["zyz"]["singular"] is True
+    assert t.symbolic["zyz"]["solutions"] == [[sp.pi / 2, 0, 0]]
+    assert t.symbolic["quaternion"] == [sp.sqrt(2) / 2, 0, 0, sp.sqrt(2) / 2]
+    c = answers["cyclic-rotation"]
+    assert c.symbolic["quaternion"] == [sp.Rational(1, 2)] * 4
+    assert c.symbolic["axis_angle"]["angle"] == 2 * sp.pi / 3
+
+
+def test_dof_answers(answers):
+    assert answers["serial-4r"].numeric["dof"] == 4
+    assert answers["five-bar"].numeric["dof"] == 2      # ERRATA item 5
+    assert answers["spatial-four-bar"].numeric["dof"] == -2
+    assert any("over-constrained" in n for n in answers["spatial-four-bar"].notes)
+    assert answers["stewart"].numeric["dof"] == 6
+
+
+def test_problem_without_robot(write_problem):
+    path = write_problem("""
+        robosolve: 1
+        name: no-robot
+        parameters:
+          a: ~
+        questions:
+          - type: displacement
+            from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+            to: [[1, 0, 0, a], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]]
+          - type: orientation
+            matrix: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+          - {type: dof, bodies: 4, joints_1dof: 4}
+          - {type: dof, bodies: 3, joints_1dof: 3, space: planar}
+    """)
+    report = solve_file(path)
+    doc = results_document(report, {})["answers"]
+    d = doc["displacement"]
+    assert d["symbolic"]["u"] == ["1", "0", "0"] and d["symbolic"]["h"] == "a"
+    assert d["symbolic"]["alpha"] == "pi/2"
+    assert d["numeric"] == {} and any("a" in n for n in d["notes"])  # null parameter
+    o = doc["orientation"]
+    assert o["numeric"]["axis_angle"] == {"axis": None, "angle": 0.0}
+    assert o["numeric"]["quaternion"] == [1.0, 0.0, 0.0, 0.0]
+    assert o["numeric"]["zyz"]["singular"] is True and o["numeric"]["rpy"]["singular"] is False
+    assert doc["dof"]["numeric"]["dof"] == 1
+    assert doc["dof-2"]["numeric"]["dof"] == 0 and doc["dof-2"]["notes"]
+
+
+def test_not_a_rotation_is_an_error_not_a_traceback(write_problem):
+    path = write_problem("""
+        robosolve: 1
+        name: bad-matrix
+        questions:
+          - type: orientation
+            matrix: [[1, 0, 0], [0, 2, 0], [0, 0, 1]]
+          - type: displacement
+            from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+            to: [[1, 1, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    """)
+    report = solve_file(path)
+    assert all(a.error for a in report.answers)
+
+
+def test_displacement_expressed_in_another_frame(write_problem):
+    path = write_problem("""
+        robosolve: 1
+        name: in-frame
+        parameters: {L1: 1}
+        joints:
+          - {name: theta1, type: revolute}
+        frames:
+          "1": {parent: "0", pose: "Rz(theta1) Tx(L1)"}
+        questions:
+          - type: displacement
+            from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+            to: [[0, -1, 0, 1], [1, 0, 0, 0], [0, 0, 1, 2], [0, 0, 0, 1]]
+            frame: "1"
+            at: {theta1: pi/2}
+    """)
+    a = solve_file(path).answers[0]
+    m0k = np.array([[0, -1, 0, 0], [1, 0, 0, 1], [0, 0, 1, 0], [0, 0, 0, 1]], dtype=float)
+    q0 = np.array([[0, -1, 0, 1], [1, 0, 0, 0], [0, 0, 1, 2], [0, 0, 0, 1]], dtype=float)
+    qk = np.linalg.inv(m0k) @ q0 @ m0k
+    np.testing.assert_allclose(a.numeric["Q"], qk, atol=1e-12)
+    axis_consistent(a.numeric, qk)
+    assert a.numeric["h"] == pytest.approx(2.0) and a.numeric["alpha"] == pytest.approx(math.pi / 2)
+
+
+def test_helical_axis_figures_draw(answers, tmp_path):
+    pytest.importorskip("matplotlib")
+    from robosolve.render.plots import draw
+
+    for name in ("scara-move", "half-turn", "translation"):
+        spec = answers[name].figures[0]
+        out = tmp_path / f"{name}.png"
+        draw(spec, out)
+        assert out.stat().st_size > 10_000
