@@ -1,0 +1,12 @@
+"""Joint-space motion: synchronized profiles, torques along them, closed-loop control.
+
+Pure engines on plain sympy/numpy inputs (no loader, no I/O):
+
+* :mod:`robosolve.motion.profiles`: bang-bang, trapezoidal and quintic profiles,
+  each joint's own time, the synchronized time T and the rescaled values;
+* :mod:`robosolve.motion.torques`: actuator forces along a profile, closed form
+  piecewise in t and signed peaks;
+* :mod:`robosolve.motion.control`: closed-loop simulation (p, pd, pd_gravity,
+  computed_torque) with max and final errors;
+* :mod:`robosolve.motion.numeric`: fast numeric M(q), c(q, qd), g(q) from sympy.
+"""

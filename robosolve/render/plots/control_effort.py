@@ -1,0 +1,25 @@
+"""Closed-loop actuator effort against time, one panel per actuator.
+
+Data: t, T, duration, switches, actuators [{name, label, unit, values}].
+"""
+
+from __future__ import annotations
+
+from robosolve.render.plots import save, setup
+from robosolve.render.plots.control_tracking import _marks
+from robosolve.render.plots.motion_profile import COLOURS
+
+
+def draw(spec, path):
+    plt = setup()
+    d = spec.data
+    acts = d["actuators"]
+    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.3 * len(acts) + 0.8), sharex=True, squeeze=False)
+    for k, (ax, a) in enumerate(zip(axes[:, 0], acts)):
+        ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.2)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        _marks(ax, d)
+        ax.set_ylabel(f"${a['label']}$ ({a['unit']})")
+    axes[0, 0].set_title(spec.title)
+    axes[-1, 0].set_xlabel("t (s)")
+    save(fig, path)

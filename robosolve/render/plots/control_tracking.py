@@ -1,0 +1,44 @@
+"""Closed-loop tracking: each joint's actual trajectory over its desired profile (left) and the
+error e = q_d - q (right), one row per joint.
+
+Data: t, T, duration, switches, joints [{name, label, unit, q, q_desired, error}].
+"""
+
+from __future__ import annotations
+
+from robosolve.render.plots import save, setup
+from robosolve.render.plots.motion_profile import COLOURS
+
+
+def _marks(ax, d):
+    for s in d["switches"]:
+        ax.axvline(s, color="0.5", ls="--", lw=0.8)
+    if d["T"] < d["duration"]:
+        ax.axvline(d["T"], color="0.3", lw=0.8)
+
+
+def draw(spec, path):
+    plt = setup()
+    d = spec.data
+    js = d["joints"]
+    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False)
+    for k, j in enumerate(js):
+        c = COLOURS[k % len(COLOURS)]
+        ax = axes[k, 0]
+        ax.plot(d["t"], j["q_desired"], color="0.2", ls="--", lw=1.4, label="desired")
+        ax.plot(d["t"], j["q"], color=c, lw=1.4, label="actual")
+        _marks(ax, d)
+        ax.set_ylabel(f"${j['label']}$ ({j['unit']})")
+        ax.legend(loc="best", fontsize=8)
+        ax = axes[k, 1]
+        ax.plot(d["t"], j["error"], color=c, lw=1.2)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        _marks(ax, d)
+        ax.set_ylabel(f"$e_{{{j['label']}}}$ ({j['unit']})")
+    axes[0, 0].set_title("trajectory")
+    axes[0, 1].set_title("error $e = q_d - q$")
+    for ax in axes[-1]:
+        ax.set_xlabel("t (s)")
+    fig.suptitle(spec.title)
+    fig.subplots_adjust(wspace=0.32)
+    save(fig, path)

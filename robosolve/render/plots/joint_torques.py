@@ -1,0 +1,28 @@
+"""Every actuator against time along the profile: jumps at the switching instants, peaks marked.
+
+Data: t (each switching instant twice, once per side), T, switches, actuators [{name, label,
+unit, values, peak, t_peak}].
+"""
+
+from __future__ import annotations
+
+from robosolve.render.plots import save, setup
+from robosolve.render.plots.motion_profile import COLOURS, mark_switches
+
+
+def draw(spec, path):
+    plt = setup()
+    d = spec.data
+    acts = d["actuators"]
+    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.4 * len(acts) + 0.8), sharex=True, squeeze=False)
+    for k, (ax, a) in enumerate(zip(axes[:, 0], acts)):
+        ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.6)
+        mark_switches(ax, d["switches"], d["T"])
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.plot([a["t_peak"]], [a["peak"]], "o", color="k", ms=5)
+        ax.annotate(f"peak {a['peak']:.4g} {a['unit']} at t = {a['t_peak']:.4g} s", (a["t_peak"], a["peak"]),
+                    textcoords="offset points", xytext=(8, -12 if a["peak"] > 0 else 6), fontsize=8)
+        ax.set_ylabel(f"${a['label']}$ ({a['unit']})")
+    axes[0, 0].set_title(spec.title)
+    axes[-1, 0].set_xlabel("t (s)")
+    save(fig, path)

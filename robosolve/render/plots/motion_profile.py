@@ -1,0 +1,45 @@
+"""Position, velocity and acceleration of every joint against time, switching instants marked.
+
+Data: t (each switching instant twice, once per side), T, switches, joints [{name, label, kind,
+q, qd, qdd}].
+"""
+
+from __future__ import annotations
+
+from robosolve.render.plots import save, setup
+
+COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
+
+
+def _units(joints, order):
+    kinds = {j["kind"] for j in joints}
+    base = "rad" if kinds == {"revolute"} else "m" if kinds == {"prismatic"} else "rad or m"
+    return base + ("", "/s", "/s²")[order]
+
+
+def mark_switches(ax, switches, T):
+    for s in switches:
+        ax.axvline(s, color="0.5", ls="--", lw=0.8)
+    ax.axvline(0.0, color="0.3", lw=0.8)
+    ax.axvline(T, color="0.3", lw=0.8)
+
+
+def draw(spec, path):
+    plt = setup()
+    d = spec.data
+    t = d["t"]
+    fig, axes = plt.subplots(3, 1, figsize=(7.5, 7.5), sharex=True)
+    titles = (("q", "position"), ("qd", "velocity"), ("qdd", "acceleration"))
+    for order, (ax, (key, what)) in enumerate(zip(axes, titles)):
+        for k, j in enumerate(d["joints"]):
+            ax.plot(t, j[key], color=COLOURS[k % len(COLOURS)], lw=1.6, label=f"${j['label']}$")
+        mark_switches(ax, d["switches"], d["T"])
+        ax.set_ylabel(f"{what} ({_units(d['joints'], order)})")
+    axes[0].legend(loc="best")
+    axes[0].set_title(spec.title)
+    ticks = sorted({0.0, d["T"], *d["switches"]})
+    top = axes[0].secondary_xaxis("top")
+    top.set_xticks(ticks)
+    top.set_xticklabels([f"{x:.3g}" for x in ticks], fontsize=8)
+    axes[-1].set_xlabel("t (s)")
+    save(fig, path)

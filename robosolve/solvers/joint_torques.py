@@ -1,0 +1,123 @@
+"""Question 9: the actuator forces that make the arm follow the motion profile.
+
+The equations of motion M(q) qdd + c(q, qd) + g(q) = actuators + f_ext are solved
+for the actuators, and the profile of the referenced motion_profile question is
+substituted for q, qd, qdd.  The profile is polynomial between switching instants,
+so each actuator is a closed-form expression of t on each interval; it jumps where
+an acceleration jumps (0, T/2, T for bang-bang).  Peaks are signed, over [0, T],
+one-sided limits at the jumps included.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from robosolve.errors import SolverError, SymbolicTimeout
+from robosolve.load.problem import Question
+from robosolve.motion.adapter import numeric_engine, profile_for, symbolic_dynamics
+from robosolve.motion.torques import closed_form_pieces, torques_along
+from robosolve.render.numbers import report_number
+from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
+
+CLOSED_FORM_SECONDS = 20.0
+
+
+def _unit(kind: str) -> str:
+    return "N·m" if kind == "revolute" else "N"
+
+
+def solve(question: Question, ctx: SolveContext) -> Answer:
+    model = ctx.model
+    ref = question.options.get("profile")
+    prof = profile_for(ctx, ref)
+    if prof is None:
+        raise SolverError(f"the motion profile '{ref}' has no answer")
+    ans = Answer(question.type, question.id)
+    subs = ctx.substitutions(question.at)
+    joints = model.joints
+    act_names = [str(j.actuator) for j in joints]
+
+    dyn = symbolic_dynamics(ctx)
+    qs, qds, qdds = model.q, model.qd, model.qdd
+    lines = [f"{sp.latex(j.actuator)}" for j in joints]
+    if dyn is not None:
+        tau = dyn.actuator_expressions()
+        ans.steps.append(Step(
+            "Actuators from the equations of motion",
+            "The equations of motion $M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)$, solved for the "
+            "actuators (inverse dynamics):",
+            equations=[(lines[i], tau[i]) for i in range(len(joints))],
+        ))
+    else:
+        tau = None
+        ans.note("the symbolic equations of motion took too long: the torques are given numerically only")
+
+    # -- closed form on each interval
+    bps = prof.breakpoints() if all(b.is_number for b in [prof.T]) else []
+    pw = None
+    if tau is not None and prof.T.is_number and prof.T != 0:
+        params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
+        try:
+            with ctx.time_limit(CLOSED_FORM_SECONDS):
+                pieces, pw = closed_form_pieces(prof, list(tau), qs, qds, qdds, params)
+        except SymbolicTimeout:
+            ans.note("the closed-form torque profiles took too long: given numerically only")
+            pw = None
+        if pw is not None:
+            eqs = []
+            for k, (a, b) in enumerate(zip(bps[:-1], bps[1:])):
+                for i in range(len(joints)):
+                    eqs.append((f"{lines[i]}(t)\\big|_{{{sp.latex(a)} < t < {sp.latex(b)}}}", pieces[i][k]))
+            ans.steps.append(Step(
+                "Closed form along the profile",
+                "On each interval between switching instants the profile is a polynomial in $t$; substituting "
+                "$q(t)$, $\\dot q(t)$, $\\ddot q(t)$ and the data gives each actuator as a function of time. "
+                "Before 0 and after T the actuators hold the arm at rest (against gravity and the external forces).",
+                equations=eqs,
+            ))
+            ans.symbolic["profiles"] = {act_names[i]: pw[i] for i in range(len(joints))}
+
+    # -- numeric: samples and signed peaks
+    if not prof.T.is_number:
+        ans.note(missing_note("torques", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
+        return ans
+    try:
+        fast, _ = numeric_engine(ctx, subs)
+    except ValueError as exc:
+        ans.note(f"numeric torques omitted: {exc}")
+        return ans
+    res = torques_along(prof, fast, act_names)
+    # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is flat)
+    ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": float(f"{res.t_peaks[i]:.8g}")}
+                                for i in range(len(joints))}
+    rows = []
+    jumps = sorted({0.0, float(prof.T), *res.breaks})
+    for i, j in enumerate(joints):
+        at_jump = any(abs(res.t_peaks[i] - s) <= 1e-9 * max(1.0, float(prof.T)) for s in jumps)
+        rows.append([f"${sp.latex(j.actuator)}$", f"{report_number(res.peaks[i])} {_unit(j.kind)}",
+                     report_number(res.t_peaks[i]) + (" (a switching instant: one-sided value)" if at_jump else "")])
+    ans.steps.append(Step(
+        "Peaks",
+        "The peak is the signed value of largest magnitude over $[0, T]$; at a switching instant the "
+        "actuator jumps, and the larger of the two one-sided values counts.",
+        table=(["actuator", "peak", "at t (s)"], rows),
+    ))
+    if res.jumps:
+        header = ["t (s)"] + [f"${sp.latex(j.actuator)}$ before → after" for j in joints]
+        jrows = [[report_number(t)] + [f"{report_number(b[i])} → {report_number(a[i])}" for i in range(len(joints))]
+                 for t, b, a in res.jumps]
+        ans.steps.append(Step(
+            "Jumps at the switching instants",
+            "Where a joint acceleration jumps, so does $M(q)\\,\\ddot q$ and the actuators with it (velocities "
+            "and positions are continuous). Before 0 and after T the values are the holding forces at rest.",
+            table=(header, jrows),
+        ))
+    ans.figures.append(FigureSpec(
+        "torques", "joint_torques", f"Actuators along the profile (T = {report_number(float(prof.T))} s)",
+        {"t": [float(f"{x:.12g}") for x in res.t],
+         "T": float(prof.T), "switches": res.breaks,
+         "actuators": [{"name": act_names[i], "label": sp.latex(j.actuator), "unit": _unit(j.kind),
+                        "values": [float(f"{v:.12g}") + 0.0 for v in res.values[i]],
+                        "peak": res.peaks[i], "t_peak": res.t_peaks[i]} for i, j in enumerate(joints)]},
+    ))
+    return ans

@@ -1,0 +1,194 @@
+"""The motion_profile, joint_torques and p_control question types through the pipeline."""
+
+import math
+
+import numpy as np
+import pytest
+
+from robosolve.load.loader import load_problem_text
+from robosolve.pipeline import solve_problem
+
+ARM = """
+robosolve: 1
+name: arm
+parameters: {L1: 1/2, L2: 2/5, m1: 4, m2: 3, m3: 1, F: %s, g: 9.81}
+joints:
+  - {name: theta1, type: revolute}
+  - {name: theta2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rx(theta1) Ty(L1)"}
+  "2": {pose: "Rx(theta2) Ty(L2)"}
+bodies:
+  - {name: link1, frame: "1", mass: m1, rod: {from: [0, -L1, 0], to: [0, 0, 0]}}
+  - {name: link2, frame: "2", mass: m2, rod: {from: [0, -L2, 0], to: [0, 0, 0]}}
+  - {name: payload, frame: "2", mass: m3, point: [0, 0, 0]}
+forces:
+  - {name: F, frame: "2", at: [0, -L2/2, 0], force: [0, 0, -F]}
+questions:
+%s
+"""
+
+PROFILE = """  - {type: motion_profile, id: prof, from: {theta1: 0, theta2: 0}, to: {theta1: pi/2, theta2: -pi/3},
+     max_acceleration: {theta1: 2, theta2: 3}}
+"""
+
+
+def run(questions, F="5"):
+    report = solve_problem(load_problem_text(ARM % (F, PROFILE + questions)))
+    return {a.id: a for a in report.answers}
+
+
+def test_motion_profile_answers():
+    a = run("")["prof"]
+    assert a.error is None
+    n = a.numeric
+    # theta1: sqrt(4 (pi/2) / 2) = sqrt(pi); theta2: sqrt(4 (pi/3) / 3) = 2 sqrt(pi)/3
+    assert n["durations"] == pytest.approx({"theta1": math.sqrt(math.pi), "theta2": 2 * math.sqrt(math.pi) / 3})
+    assert n["T"] == pytest.approx(math.sqrt(math.pi))
+    assert n["accelerations"] == pytest.approx({"theta1": 2, "theta2": 4 / 3})
+    assert str(a.symbolic["T"]) == "sqrt(pi)"
+    assert set(a.symbolic["profiles"]) == {"theta1", "theta2"}
+    assert [f.kind for f in a.figures] == ["motion_profile"]
+
+
+def test_joint_torques_peaks_by_hand():
+    a = run("  - {type: joint_torques}\n")["joint_torques"]
+    assert a.error is None, a.error
+    # at t = 0+: q = 0, qd = 0, qdd = (2, -4/3).  M11 = L1^2 (m1/3 + m2 + m3) + L2^2 (m2/3 + m3)
+    # + 2 L1 L2 (m2/2 + m3) = 2.653333, M12 = L2^2 (m2/3 + m3) + L1 L2 (m2/2 + m3) = 0.82, M22 = 0.32;
+    # gravity g1 = g (L1 (m1/2 + m2 + m3) + L2 (m2/2 + m3)) = 4 g, g2 = g L2 (m2/2 + m3) = g;
+    # the force F = 5 down at 0.7 m (joint 1) and 0.2 m (joint 2) needs +3.5 and +1.0 more.
+    c1 = 2.6533333333333333 * 2 - 0.82 * 4 / 3 + 4 * 9.81 + 3.5
+    c2 = 0.82 * 2 - 0.32 * 4 / 3 + 9.81 + 1.0
+    act = a.numeric["actuators"]
+    assert act["C1"]["peak"] == pytest.approx(c1, rel=1e-12) and act["C1"]["t_peak"] == 0
+    assert act["C2"]["peak"] == pytest.approx(c2, rel=1e-12) and act["C2"]["t_peak"] == 0
+    # the closed forms hold the arm after T: gravity of the final pose and the force
+    import sympy as sp
+    pw = a.symbolic["profiles"]["C1"]
+    t = sp.Symbol("t")
+    # final pose: link 1 vertical (no gravity moment), link 2 at pi/6 from horizontal; F stays
+    # perpendicular to link 2, so its moment about joint 1 is F (L1 cos(theta2) + L2/2)
+    hold = 9.81 * 0.4 * 2.5 * math.cos(math.pi / 6) + 5 * (0.5 * math.cos(-math.pi / 3) + 0.2)
+    assert float(pw.subs(t, 10)) == pytest.approx(hold, rel=1e-12)
+
+
+def test_p_control_answers_and_options():
+    ans = run("""  - {type: p_control, gains: {theta1: 5000, theta2: 5000}}
+  - {type: p_control, id: ct, law: computed_torque, gains: {theta1: 100, theta2: 100},
+     gains_d: {theta1: 20, theta2: 20}, start: {theta1: 0.1, theta2: 0}, duration: 1}
+""", F="0")
+    p = ans["p_control"]
+    assert p.error is None, p.error
+    assert set(p.numeric) >= {"max_error", "final_error"}
+    assert list(p.numeric["max_error"]) == ["theta1", "theta2"]
+    assert 0 < p.numeric["max_error"]["theta1"] < 0.05
+    assert [f.kind for f in p.figures] == ["control_tracking", "control_effort"]
+    ct = ans["ct"]
+    # computed torque with no external force: e'' + 20 e' + 100 e = 0 from e(0) = -0.1
+    e_end = -0.1 * (1 + 10 * 1) * math.exp(-10)
+    assert ct.numeric["max_error"]["theta1"] == pytest.approx(0.1, rel=1e-6)
+    assert ct.numeric["final_error"]["theta1"] == pytest.approx(e_end, rel=1e-4, abs=1e-15)
+    assert ct.numeric["max_error"]["theta2"] < 1e-9
+
+
+def test_null_parameter_gives_notes_not_errors():
+    ans = run("  - {type: joint_torques}\n  - {type: p_control, gains: {theta1: 50, theta2: 50}}\n", F="~")
+    jt, pc = ans["joint_torques"], ans["p_control"]
+    assert jt.error is None and "actuators" not in jt.numeric and "profiles" in jt.symbolic
+    assert any("F" in n for n in jt.notes)
+    assert pc.error is None and not pc.numeric and any("F" in n for n in pc.notes)
+
+
+def test_profile_that_failed_gives_an_error_answer():
+    text = ARM % ("5", """  - {type: motion_profile, id: prof, shape: trapezoidal, from: {theta1: 0, theta2: 0},
+     to: {theta1: 1, theta2: 0}, max_acceleration: {theta1: 1, theta2: 1}, max_velocity: {theta1: L1/L1, theta2: 1}}
+  - {type: joint_torques}
+""")
+    ans = {a.id: a for a in solve_problem(load_problem_text(text)).answers}
+    assert ans["prof"].error is None
+    # a still joint in a trapezoidal profile (Robotics Toolbox crashes on it)
+    assert ans["prof"].numeric["durations"]["theta2"] == 0
+    assert ans["joint_torques"].error is None
+
+
+def test_numeric_only_path_when_the_symbolic_derivation_times_out(monkeypatch):
+    qs = "  - {type: joint_torques}\n  - {type: p_control, gains: {theta1: 500, theta2: 500}}\n"
+    sym = run(qs)
+    import robosolve.motion.adapter as adapter
+    monkeypatch.setattr(adapter, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    import robosolve.solvers.joint_torques as jt
+    monkeypatch.setattr(jt, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    num = run(qs)
+    assert "profiles" not in num["joint_torques"].symbolic
+    assert any("numerically" in n for n in num["joint_torques"].notes)
+    for act in ("C1", "C2"):
+        assert num["joint_torques"].numeric["actuators"][act]["peak"] == pytest.approx(
+            sym["joint_torques"].numeric["actuators"][act]["peak"], rel=1e-9)
+    for key in ("max_error", "final_error"):
+        assert num["p_control"].numeric[key] == pytest.approx(sym["p_control"].numeric[key], rel=1e-4, abs=1e-12)
+
+
+SCARA_QUESTIONS = """
+questions:
+  - {type: motion_profile, id: prof, shape: trapezoidal, from: {theta1: 0, theta2: 0, l: 0},
+     to: {theta1: pi/2, theta2: pi/2, l: 1/5}, max_acceleration: {theta1: 2, theta2: 3, l: 1},
+     max_velocity: {theta1: 1, theta2: 1, l: 1/2}}
+  - {type: joint_torques}
+  - {type: p_control, law: pd, gains: {theta1: 300, theta2: 300, l: 300},
+     gains_d: {theta1: 20, theta2: 20, l: 20}}
+"""
+
+
+def test_scara_prismatic_three_joints_symbolic_vs_numeric_only(monkeypatch):
+    # the compiled 3-joint closed loop (M solved by symbolic LU) against the engine's
+    # numeric-only M, c, g with numpy solves; and the prismatic joint's holding force
+    from pathlib import Path
+
+    base = (Path(__file__).resolve().parent.parent / "problems" / "scara-rrp.yaml").read_text()
+    text = base[:base.index("questions:")] + SCARA_QUESTIONS
+
+    def solve_all():
+        return {a.id: a for a in solve_problem(load_problem_text(text)).answers}
+
+    sym = solve_all()
+    f3 = sym["joint_torques"].numeric["actuators"]["F3"]
+    # l is measured downwards (M23 = Tz(-l)): the actuator holds the payload (m3 g = 19.62 N)
+    # and brakes its descent at 1 m/s^2 at the end: -m3 (g + a) = -21.62 N
+    assert f3["peak"] == pytest.approx(-2 * (9.81 + 1), rel=1e-12)
+    import robosolve.motion.adapter as adapter
+    import robosolve.solvers.joint_torques as jt
+    monkeypatch.setattr(adapter, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    monkeypatch.setattr(jt, "symbolic_dynamics", lambda ctx, seconds=None: None)
+    num = solve_all()
+    for act in ("C1", "C2", "F3"):
+        assert num["joint_torques"].numeric["actuators"][act]["peak"] == pytest.approx(
+            sym["joint_torques"].numeric["actuators"][act]["peak"], rel=1e-9)
+    for key in ("max_error", "final_error"):
+        assert num["p_control"].numeric[key] == pytest.approx(sym["p_control"].numeric[key], rel=1e-4, abs=1e-12)
+
+
+def test_figures_are_drawn(tmp_path):
+    from robosolve.pipeline import write_outputs
+
+    report = solve_problem(load_problem_text(ARM % ("5", PROFILE + """  - {type: joint_torques}
+  - {type: p_control, law: pd, gains: {theta1: 300, theta2: 300}, gains_d: {theta1: 20, theta2: 20}}
+""")))
+    out = write_outputs(report, tmp_path / "out")
+    names = sorted(p.name for p in (out / "figures").iterdir())
+    assert names == ["joint_torques-torques.png", "p_control-effort.png", "p_control-tracking.png",
+                     "prof-profile.png"]
+    assert all(a.notes == [] for a in report.answers)          # no "could not be drawn" note
+
+
+def test_null_acceleration_limit_keeps_the_profile_symbolic():
+    text = (ARM % ("5", """  - {type: motion_profile, id: prof, from: {theta1: 0, theta2: 0}, to: {theta1: pi/2, theta2: -pi/3},
+     max_acceleration: {theta1: a1, theta2: 3}}
+  - {type: joint_torques}
+  - {type: p_control, gains: {theta1: 50, theta2: 50}}
+""")).replace("F: 5,", "F: 5, a1: ~,")
+    ans = {a.id: a for a in solve_problem(load_problem_text(text)).answers}
+    assert all(a.error is None for a in ans.values())
+    assert "Max" in str(ans["prof"].symbolic["T"]) and "T" not in ans["prof"].numeric
+    assert ans["joint_torques"].notes == ["numeric torques omitted: it needs the null parameter a1"]
+    assert ans["p_control"].notes == ["numeric simulation omitted: it needs the null parameter a1"]
