@@ -1,8 +1,8 @@
 """The robot drawn at a configuration: links, frames (x red, y green, z blue), points.
 
 Data (from solvers.common.robot_drawing): frames [{name, origin, axes}], links
-[[p0, p1, ...]], points [{name, at}], optional highlight (a point name) and
-extra: {"poses": [...]} for overlays (several configurations).
+[[p0, p1, ...]], points [{name, at}], optional highlight (a point name).
+Other figure kinds reuse `draw_robot_3d` and `equal_3d` on their own axes.
 """
 
 from __future__ import annotations
@@ -14,13 +14,17 @@ from robosolve.render.plots import save, setup
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
 
-def extent(drawings) -> float:
+def _all_points(drawings) -> np.ndarray:
     pts = [[0.0, 0.0, 0.0]]
     for d in drawings:
         for link in d["links"]:
             pts += link
         pts += [p["at"] for p in d["points"]]
-    a = np.array(pts, dtype=float)
+    return np.array(pts, dtype=float)
+
+
+def extent(drawings) -> float:
+    a = _all_points(drawings)
     span = float(np.max(a.max(axis=0) - a.min(axis=0)))
     return span if span > 1e-9 else 1.0
 
@@ -48,12 +52,7 @@ def draw_robot_3d(ax, d, colour="0.25", label=None, frames=True, scale=None, alp
 
 
 def equal_3d(ax, drawings):
-    pts = [[0.0, 0.0, 0.0]]
-    for d in drawings:
-        for link in d["links"]:
-            pts += link
-        pts += [p["at"] for p in d["points"]]
-    a = np.array(pts, dtype=float)
+    a = _all_points(drawings)
     centre = (a.max(axis=0) + a.min(axis=0)) / 2
     half = max(extent(drawings) / 2 * 1.15, 1e-3)
     ax.set_xlim(centre[0] - half, centre[0] + half)
