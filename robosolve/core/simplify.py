@@ -7,6 +7,7 @@
 from __future__ import annotations
 
 import sympy as sp
+from sympy.simplify.fu import TR10i
 
 from robosolve.core.timing import time_limit
 from robosolve.errors import SymbolicTimeout
@@ -42,11 +43,28 @@ def _tidy(expr, seconds: float):
         return expr, True
     try:
         with time_limit(seconds) as token:
-            return sp.trigsimp(sp.expand(expr)), True
+            expanded = sp.expand(expr)
+            # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
+            # leaves trigsimp, slow on long chains, little or nothing to do.
+            collapsed = TR10i(expanded)
+            if not _has_trig_products(collapsed):
+                return collapsed, True
+            return sp.trigsimp(collapsed), True
     except SymbolicTimeout as exc:
         if exc.token is not token:
             raise          # an enclosing step's time is up
         return expr, False
+
+
+def _has_trig_products(expr) -> bool:
+    """True when a product or power of sin/cos is left (something trigsimp may reduce)."""
+    for node in sp.preorder_traversal(expr):
+        if node.is_Pow and isinstance(node.base, (sp.sin, sp.cos)):
+            return True
+        if node.is_Mul and sum(1 for a in node.args if isinstance(a, (sp.sin, sp.cos))
+                               or (a.is_Pow and isinstance(a.base, (sp.sin, sp.cos)))) > 1:
+            return True
+    return False
 
 
 def tidy_matrix(m: sp.Matrix, seconds: float = 5.0) -> sp.Matrix:

@@ -17,7 +17,7 @@ import sympy as sp
 
 from robosolve.core import matrices as mx
 from robosolve.core.simplify import tidy, tidy_matrix
-from robosolve.core.transforms import ELEMENTARY, dh_modified, dh_standard, rigid_inverse
+from robosolve.core.transforms import ELEMENTARY, dh_modified, dh_standard, homogeneous, rigid_inverse
 from robosolve.load.expressions import point_symbol
 from robosolve.load.problem import Body, Problem
 
@@ -91,7 +91,13 @@ class RobotModel:
         """Pose of `frame` in frame 0: M_0p * M_p,frame (memoised, trig-tidied)."""
         if frame not in self._m0:
             parent = self.frames[frame].parent
-            self._m0[frame] = tidy_matrix(self.M0(parent) * self.M_local(frame))
+            mp, ml = self.M0(parent), self.M_local(frame)
+            # Only the new products need tidying: the parent's translation is already
+            # tidy, so re-simplifying the whole growing sum (exponential in the chain
+            # length) is avoided.
+            r = tidy_matrix(mp[:3, :3] * ml[:3, :3])
+            t = mp[:3, 3] + tidy_matrix(mp[:3, :3] * ml[:3, 3])
+            self._m0[frame] = homogeneous(r, t)
         return self._m0[frame]
 
     def M0_inverse(self, frame: str) -> sp.Matrix:
