@@ -30,7 +30,7 @@ PYTHON_KEYWORDS = {
     "return", "try", "while", "with", "yield",
 }
 TOP_KEYS = ("robosolve", "name", "title", "description", "parameters", "joints", "frames",
-            "dh", "points", "gravity", "bodies", "forces", "questions")
+            "dh", "points", "gravity", "bodies", "forces", "questions", "grading")
 POSE_OPS = ("Tx", "Ty", "Tz", "Rx", "Ry", "Rz")
 DH_KEYS = ("theta", "d", "a", "alpha")
 MDH_KEYS = ("alpha", "a", "theta", "d")
@@ -211,7 +211,26 @@ class _ProblemBuilder:
             bodies=bodies, forces=forces, questions=[], names=self.names, has_robot=has_robot,
         )
         self.problem.questions = qschema.load_questions(self, data.get("questions"))
+        self.problem.grading = self._grading(data.get("grading"))
         return self.problem
+
+    def _grading(self, value) -> dict:
+        """`grading: {rtol, atol}`: the tolerances of grading.md, plain non-negative numbers."""
+        chk = self.chk
+        if value is None or not chk.mapping(("grading",), value, ("rtol", "atol")):
+            return {}
+        out = {}
+        for key, v in value.items():
+            if key not in ("rtol", "atol"):
+                continue
+            e = chk.expr(("grading", key), v, Namespace({}, what="number"))
+            if e is None:
+                continue
+            if not (e.is_number and e.is_real and e.is_nonnegative and e.is_finite):
+                chk.error(("grading", key), f"expected a number >= 0, got {v!r}")
+                continue
+            out[key] = float(e)
+        return out
 
     # -- parameters -----------------------------------------------------
     def _parameters(self, value) -> dict:

@@ -87,6 +87,8 @@ class Question:
     line: int = 0
     point_given: bool = False
     frame_given: bool = False
+    marks: object = 1                               # weight when graded (sympy Rational or Float)
+    grade: tuple = ()                               # graded answer keys (dotted); () = principal
 
 
 @dataclass
@@ -106,6 +108,7 @@ class Problem:
     questions: list
     names: dict                      # every name usable in expressions -> sympy object
     has_robot: bool = True
+    grading: dict = field(default_factory=dict)   # {"rtol": float, "atol": float} when given
 
     @property
     def last_frame(self) -> str:

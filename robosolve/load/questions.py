@@ -11,41 +11,11 @@ import re
 
 from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
 from robosolve.load.problem import Question
+from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES
 
 ID_RE = re.compile(r"^[A-Za-z0-9_-]+$")
-COMMON_KEYS = ("type", "id", "at", "point", "frame")
 SHAPES = ("bang-bang", "trapezoidal", "quintic")
 LAWS = ("p", "pd", "pd_gravity", "computed_torque")
-
-# type -> {option key: validator name}
-TYPES = {
-    "position": {},
-    "velocity_acceleration": {},
-    "jacobian": {"coordinates": "coordinates", "geometric": "bool", "bodies": "bool"},
-    "statics": {"force": "exprs", "torque": "vector3", "weight": "bool", "coordinates": "coordinates"},
-    "ellipsoids": {"coordinates": "coordinates", "budgets": "budgets",
-                   "joint_compliance": "exprs", "velocity": "exprs"},
-    "inverse_kinematics": {"target": "equations", "velocity": "equations", "select": "select"},
-    "motion_profile": {"from": "joint_values", "to": "joint_values", "max_acceleration": "joint_values",
-                       "shape": "shape", "max_velocity": "joint_values"},
-    "equations_of_motion": {},
-    "joint_torques": {"profile": "profile_ref"},
-    "p_control": {"profile": "profile_ref", "gains": "joint_values", "law": "law",
-                  "gains_d": "joint_values", "start": "joint_values", "duration": "expr"},
-    "displacement": {"from": "pose_or_config", "to": "pose_or_config"},
-    "orientation": {"matrix": "rotation_matrix"},
-    "dof": {"bodies": "count", "joints_1dof": "count", "joints_2dof": "count",
-            "joints_3dof": "count", "space": "space"},
-}
-REQUIRED = {
-    "ellipsoids": ("at",),
-    "inverse_kinematics": ("target",),
-    "motion_profile": ("from", "to", "max_acceleration"),
-    "p_control": ("gains",),
-    "displacement": ("from", "to"),
-    "dof": ("bodies",),
-}
-DYNAMICS_TYPES = ("equations_of_motion", "joint_torques", "p_control")
 
 
 def load_questions(builder, value) -> list:
@@ -83,17 +53,18 @@ class _QuestionLoader:
             chk.error(path, f"expected a mapping with a `type`, got {type(item).__name__}")
             return None
         qtype = item.get("type")
-        if not isinstance(qtype, str) or qtype not in TYPES:
+        if not isinstance(qtype, str) or qtype not in QUESTION_TYPES:
             if "type" not in item:
                 chk.error(path, "missing required key 'type'")
             else:
                 chk.error(path + ("type",), f"unknown question type {qtype!r}"
-                          + (did_you_mean(qtype, TYPES) if isinstance(qtype, str) else "")
-                          + f" (expected one of: {', '.join(TYPES)})")
+                          + (did_you_mean(qtype, QUESTION_TYPES) if isinstance(qtype, str) else "")
+                          + f" (expected one of: {', '.join(QUESTION_TYPES)})")
             return None
-        schema = TYPES[qtype]
+        qt = QUESTION_TYPES[qtype]
+        schema = qt.options
         n_before = len(chk.issues)
-        chk.mapping(path, item, COMMON_KEYS + tuple(schema), required=REQUIRED.get(qtype, ()))
+        chk.mapping(path, item, COMMON_KEYS + tuple(schema), required=qt.required)
         q = Question(type=qtype, id="", index=i, line=chk.src.line(path))
         if "id" in item:
             ident = item["id"]
@@ -116,6 +87,10 @@ class _QuestionLoader:
                 q.point, q.point_given = p, True
         if "at" in item:
             q.at = self.at(path + ("at",), item["at"])
+        if "marks" in item:
+            q.marks = self.marks(path + ("marks",), item["marks"])
+        if "grade" in item:
+            q.grade = self.grade_keys(path + ("grade",), item["grade"], qt)
         for key, kind in schema.items():
             if key in item:
                 v = getattr(self, "v_" + kind)(path + (key,), item[key], q)
@@ -127,11 +102,8 @@ class _QuestionLoader:
     def type_rules(self, path, item, q):
         chk, b = self.chk, self.b
         t, opts = q.type, q.options
-        needs_robot = t not in ("dof", "displacement", "orientation")
-        if t == "displacement" and any(isinstance(item.get(k), dict) for k in ("from", "to")):
-            needs_robot = True
-        if t == "orientation" and "matrix" not in item:
-            needs_robot = True
+        qt = QUESTION_TYPES[t]
+        needs_robot = qt.needs_robot(item)
         if needs_robot and not b.problem.has_robot:
             chk.error(path + ("type",), f"a {t} question needs a robot: define joints and frames")
         if needs_robot and t != "orientation" and t != "displacement" and not b.joints:
@@ -176,7 +148,7 @@ class _QuestionLoader:
         if t == "dof":
             if opts.get("space", "planar") == "planar" and "joints_3dof" in item:
                 chk.error(path + ("joints_3dof",), "3-DOF joints exist only with space: spatial")
-        if t in DYNAMICS_TYPES or (t == "statics" and opts.get("weight")):
+        if qt.needs_dynamics or (t == "statics" and opts.get("weight")):
             if b.problem.gravity is None:
                 chk.error(path + ("type",), "this question uses gravity: declare g in parameters "
                           "(the default gravity is [0, 0, -g]) or give gravity")
@@ -218,6 +190,33 @@ class _QuestionLoader:
                           + did_you_mean(ref, [p.id for p in profiles]))
 
     # -- validators ---------------------------------------------------
+    def marks(self, path, value):
+        e = self.chk.expr(path, value, Namespace({}, what="number"))
+        if e is None:
+            return 1
+        if not (e.is_number and e.is_real and e.is_nonnegative):
+            self.chk.error(path, f"expected a number >= 0, got {value!r}")
+            return 1
+        return e
+
+    def grade_keys(self, path, value, qt):
+        chk = self.chk
+        if not isinstance(value, list) or not value or not all(isinstance(v, str) for v in value):
+            chk.error(path, "expected a non-empty list of answer keys (e.g. [M, position])")
+            return ()
+        known = [a.name for a in qt.answers if not a.top]
+        known += [f"{a.name}.{f.name}" for a in qt.answers for f in a.fields]
+        out = []
+        for i, key in enumerate(value):
+            if qt.key(key) is None or qt.key(key).top:
+                chk.error(path + (i,), f"unknown answer key '{key}' for a {qt.name} question"
+                          + did_you_mean(key, known) + f" (keys: {', '.join(known)})")
+            elif key in out:
+                chk.error(path + (i,), f"answer key '{key}' listed twice")
+            else:
+                out.append(key)
+        return tuple(out)
+
     def at(self, path, value):
         chk, b = self.chk, self.b
         if not isinstance(value, dict):

@@ -8,23 +8,9 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.questions.registry import title as question_title
 from robosolve.render.numbers import report_number
 
-TYPE_TITLES = {
-    "position": "Position (direct kinematics)",
-    "velocity_acceleration": "Velocity and acceleration",
-    "jacobian": "Jacobian and singular configurations",
-    "statics": "Statics",
-    "ellipsoids": "Force, velocity and compliance ellipsoids",
-    "inverse_kinematics": "Inverse kinematics",
-    "motion_profile": "Motion profile",
-    "equations_of_motion": "Equations of motion",
-    "joint_torques": "Actuator torques along the profile",
-    "p_control": "Closed-loop control",
-    "displacement": "Rigid displacement (helical axis)",
-    "orientation": "Orientation representations",
-    "dof": "Degrees of freedom",
-}
 
 
 class Tex:
@@ -140,7 +126,7 @@ def render_step(step, tex: Tex) -> list[str]:
 
 
 def render_answer(index: int, answer, figure_paths: list[str], tex: Tex) -> list[str]:
-    title = TYPE_TITLES.get(answer.type, answer.type)
+    title = question_title(answer.type)
     out = [f"## {index}. {title} — `{answer.id}`"]
     if answer.error is not None:
         out.append(f"**Not answered:** {answer.error}")

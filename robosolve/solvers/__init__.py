@@ -1,25 +1,20 @@
 """Stage 3: one module per question type, each with `solve(question, ctx) -> Answer`.
 
-Solvers are found by name (`robosolve.solvers.<type>`), so adding a question
-type means adding a module; nothing else to register.
+Which module answers which type is the registry's business
+(`robosolve.questions.registry`): adding a type = a module here, a registry entry,
+a doc page.
 """
 
 from __future__ import annotations
 
-import importlib
-
+from robosolve.questions.registry import QUESTION_TYPES
 from robosolve.solvers.base import Answer
 
 
 def solver_for(qtype: str):
-    """The `solve` function of a question type, or None when not implemented yet."""
-    try:
-        module = importlib.import_module(f"robosolve.solvers.{qtype}")
-    except ModuleNotFoundError as exc:
-        if exc.name == f"robosolve.solvers.{qtype}":
-            return None
-        raise
-    return getattr(module, "solve", None)
+    """The `solve` function of a question type, or None when the registry has no such type."""
+    qt = QUESTION_TYPES.get(qtype)
+    return qt.solver() if qt is not None else None
 
 
 __all__ = ["Answer", "solver_for"]

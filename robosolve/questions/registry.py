@@ -1,0 +1,347 @@
+"""The question-type registry: every question type described once.
+
+For each type: its option keys (with the loader's validator for each), required
+keys and defaults, whether it needs a robot or the dynamics, its title, its solver
+module, its figures, its doc page, and its **answer schema** — every key of
+results.json with its kind, so that the loader, the renderers, the schema tests
+and the grader read one table instead of knowing question types by name.
+
+Adding a question type = a solver module `robosolve/solvers/<type>.py`, an entry
+in `QUESTION_TYPES` below, and a page `docs/questions/<type>.md`.
+
+This module is pure data (no sympy, no numpy): it is imported by the loader,
+the renderers and the CLI alike, and must stay cheap.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass, field
+from typing import Callable
+
+# -- answer key kinds -----------------------------------------------------------
+# The vocabulary of answer layouts (problem-format.md "Definitions and layouts").
+SCALAR = "scalar"                 # one number or expression
+VECTOR = "vector"                 # list of scalars; `shape` = (length,)
+MATRIX = "matrix"                 # list of rows; `shape` = (rows, cols)
+MATRIX_LIST = "matrix_list"       # list of matrices (e.g. the chain ⁰M₁, ¹M₂, …)
+JOINT_MAP = "joint_map"           # joint name -> scalar, in joint order
+ACTUATOR_MAP = "actuator_map"     # actuator name -> scalar, in joint order
+BODY_MAP = "body_map"             # body name -> scalar, plus `total`
+MATRIX_MAP = "matrix_map"         # name -> matrix (e.g. body -> 3xn Jacobian)
+JOINT_MAP_SET = "joint_map_set"   # set of joint mappings (IK solutions, singularities)
+JOINT_MAP_LIST = "joint_map_list"  # ordered list of joint mappings (closed forms)
+VECTOR_SET = "vector_set"         # set of vectors (Euler-angle solution sets)
+AXES = "axes"                     # list of vectors, sorted by length, each up to its sign
+EQUATIONS = "equations"           # list of "lhs = rhs" strings, one per joint
+RECORD = "record"                 # nested mapping with its own `fields`
+ACTUATOR_RECORDS = "actuator_records"  # actuator name -> record (`fields`)
+BOOL = "bool"
+TEXT = "text"
+
+KINDS = (SCALAR, VECTOR, MATRIX, MATRIX_LIST, JOINT_MAP, ACTUATOR_MAP, BODY_MAP, MATRIX_MAP,
+         JOINT_MAP_SET, JOINT_MAP_LIST, VECTOR_SET, AXES, EQUATIONS, RECORD, ACTUATOR_RECORDS,
+         BOOL, TEXT)
+
+# Shape tokens: an int, or a letter bound per question:
+#   "n" the number of joints, "m" the number of coordinates of the question,
+#   "r" the rows of J (m, or 6 for a geometric Jacobian).
+N, M, R = "n", "m", "r"
+
+
+@dataclass(frozen=True)
+class AnswerKey:
+    """One key of an answer, as results.json lays it out.
+
+    `principal`: graded by default (grading.md) whenever the reference answer has it.
+    `angle`: values are angles, compared modulo 2π (in a joint mapping or set of joint
+    mappings: the revolute joints' values only). `unordered`: a set, order ignored.
+    `sign_free`: each vector up to its sign. `symbolic`/`numeric`: where it may appear;
+    `top`: beside `type` in the answer (not inside symbolic/numeric).
+    """
+
+    name: str
+    kind: str
+    doc: str = ""
+    principal: bool = False
+    shape: tuple = ()
+    angle: bool = False
+    unordered: bool = False
+    sign_free: bool = False
+    symbolic: bool = True
+    numeric: bool = True
+    top: bool = False
+    fields: tuple = ()            # for RECORD / ACTUATOR_RECORDS: AnswerKeys of the fields
+
+    def field(self, name: str) -> "AnswerKey | None":
+        return next((f for f in self.fields if f.name == name), None)
+
+
+@dataclass(frozen=True)
+class QuestionType:
+    """One question type: its options, its rules and its answer schema."""
+
+    name: str
+    title: str
+    seed: str                      # where the course summary treats it
+    options: dict                  # option key -> loader validator name (v_<name>)
+    answers: tuple                 # AnswerKeys, in the order of grading.md's table
+    required: tuple = ()
+    defaults: dict = field(default_factory=dict)
+    needs_robot: Callable[[dict], bool] = lambda item: True
+    needs_dynamics: bool = False   # gravity, bodies and the equations of motion
+    figures: tuple = ()            # (figure name, plot kind) pairs it may draw
+    doc: str = ""                  # docs/questions/<name>.md unless given
+
+    @property
+    def doc_page(self) -> str:
+        return self.doc or f"docs/questions/{self.name}.md"
+
+    @property
+    def solver_module(self) -> str:
+        return f"robosolve.solvers.{self.name}"
+
+    def solver(self):
+        """The solver's `solve(question, ctx) -> Answer` (imports it on first use)."""
+        return importlib.import_module(self.solver_module).solve
+
+    def key(self, path: str) -> AnswerKey | None:
+        """The AnswerKey of a (dotted) path, e.g. 'force.semi_axes'."""
+        head, _, rest = path.partition(".")
+        k = next((a for a in self.answers if a.name == head), None)
+        while k is not None and rest:
+            head, _, rest = rest.partition(".")
+            k = k.field(head)
+        return k
+
+    @property
+    def principal_keys(self) -> tuple:
+        """Dotted paths of the principal keys, in the order of grading.md."""
+        out = []
+        for a in self.answers:
+            if a.principal:
+                out.append(a.name)
+            for f in a.fields:
+                if f.principal:
+                    out.append(f"{a.name}.{f.name}")
+        return tuple(out)
+
+
+def _k(name, kind, doc="", **kw) -> AnswerKey:
+    return AnswerKey(name, kind, doc, **kw)
+
+
+def _ellipse(name: str, what: str, principal: bool) -> AnswerKey:
+    return _k(name, RECORD, f"the {what} ellipsoid", fields=(
+        _k("semi_axes", AXES, "semi-axes scaled to their lengths, by decreasing length",
+           shape=(M, M), sign_free=True, symbolic=False),
+        _k("lengths", VECTOR, "semi-axis lengths, decreasing", principal=principal, shape=(M,)),
+        _k("directions", AXES, "unit directions of the semi-axes", shape=(M, M), sign_free=True,
+           symbolic=False),
+    ))
+
+
+def _displacement_needs_robot(item: dict) -> bool:
+    return any(isinstance(item.get(k), dict) for k in ("from", "to"))
+
+
+def _orientation_needs_robot(item: dict) -> bool:
+    return "matrix" not in item
+
+
+_TYPES = [
+    QuestionType(
+        "position", "Position (direct kinematics)", "§8 question 1",
+        options={},
+        answers=(
+            _k("M", MATRIX, "pose ⁰Mₖ of the frame in frame 0", principal=True, shape=(4, 4)),
+            _k("position", VECTOR, "the point in frame 0", principal=True, shape=(3,)),
+            _k("chain", MATRIX_LIST, "ⁱ⁻¹Mᵢ of each frame in its parent, from frame 1 on"),
+        ),
+        figures=(("robot", "robot"),),
+    ),
+    QuestionType(
+        "velocity_acceleration", "Velocity and acceleration", "§8 question 2",
+        options={},
+        answers=(
+            _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, shape=(3,)),
+            _k("acceleration", VECTOR, "acceleration of the point in frame 0", principal=True, shape=(3,)),
+            _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, shape=(3,)),
+            _k("angular_acceleration", VECTOR, "ω̇ of the frame in frame 0", shape=(3,)),
+            _k("W", MATRIX, "W₀ₖ = Ṁ M⁻¹, expressed in frame 0", shape=(4, 4)),
+            _k("H", MATRIX, "H₀ₖ = M̈ M⁻¹ = Ẇ + W², expressed in frame 0", shape=(4, 4)),
+            _k("W_aux", MATRIX, "W in the auxiliary frame (origin at the point)", shape=(4, 4)),
+            _k("H_aux", MATRIX, "H in the auxiliary frame", shape=(4, 4)),
+        ),
+    ),
+    QuestionType(
+        "jacobian", "Jacobian and singular configurations", "§8 question 3",
+        options={"coordinates": "coordinates", "geometric": "bool", "bodies": "bool"},
+        defaults={"geometric": False, "bodies": False},
+        answers=(
+            _k("J", MATRIX, "the Jacobian of the coordinates", principal=True, shape=(R, N)),
+            _k("det", SCALAR, "det J (square J)", principal=True),
+            _k("manipulability", SCALAR, "product of the singular values (J not square)", principal=True),
+            _k("singularities", JOINT_MAP_SET, "conditions joint -> value making J lose rank",
+               principal=True, angle=True, unordered=True),
+            _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N)),
+        ),
+    ),
+    QuestionType(
+        "statics", "Statics", "§8 question 4",
+        options={"force": "exprs", "torque": "vector3", "weight": "bool", "coordinates": "coordinates"},
+        defaults={"weight": False},
+        answers=(
+            _k("Fq", JOINT_MAP, "joint forces balancing the load, Fq = −Jᵀ·Fs", principal=True),
+        ),
+    ),
+    QuestionType(
+        "ellipsoids", "Force, velocity and compliance ellipsoids", "§8 question 5",
+        options={"coordinates": "coordinates", "budgets": "budgets",
+                 "joint_compliance": "exprs", "velocity": "exprs"},
+        required=("at",),
+        defaults={"budgets": {"force": 1, "velocity": 1, "compliance": 1}},
+        answers=(
+            _ellipse("force", "force", True),
+            _ellipse("velocity", "velocity", True),
+            _k("condition_number", SCALAR, "max/min eigenvalue of A", principal=True),
+            _ellipse("compliance", "compliance", False),
+            _k("A", MATRIX, "A = J Jᵀ", shape=(M, M)),
+            _k("eigenvalues", VECTOR, "eigenvalues of A, decreasing", shape=(M,)),
+            _k("q_dot", JOINT_MAP, "joint rates giving the desired velocity", symbolic=False),
+        ),
+        figures=(("ellipsoids", "ellipsoids"),),
+    ),
+    QuestionType(
+        "inverse_kinematics", "Inverse kinematics", "§8 question 6",
+        options={"target": "equations", "velocity": "equations", "select": "select"},
+        required=("target",),
+        defaults={"select": "limits"},
+        answers=(
+            _k("solutions", JOINT_MAP_SET, "every solution within the limits, sorted",
+               principal=True, angle=True, unordered=True, symbolic=False),
+            _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True,
+               symbolic=False),
+            _k("selected", JOINT_MAP, "the selected solution", angle=True, symbolic=False),
+            _k("closed_form", JOINT_MAP_LIST, "closed-form solution branches", numeric=False),
+            _k("unreachable", BOOL, "true when there is no solution", top=True),
+            _k("reason", TEXT, "why there is no solution", top=True),
+        ),
+        figures=(("solutions", "ik_solutions"),),
+    ),
+    QuestionType(
+        "motion_profile", "Motion profile", "§8 question 7",
+        options={"from": "joint_values", "to": "joint_values", "max_acceleration": "joint_values",
+                 "shape": "shape", "max_velocity": "joint_values"},
+        required=("from", "to", "max_acceleration"),
+        defaults={"shape": "bang-bang"},
+        answers=(
+            _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True),
+            _k("T", SCALAR, "the synchronized duration", principal=True),
+            _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True),
+            _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", numeric=False),
+        ),
+        figures=(("profile", "motion_profile"),),
+    ),
+    QuestionType(
+        "equations_of_motion", "Equations of motion", "§8 question 8",
+        options={},
+        needs_dynamics=True,
+        answers=(
+            _k("mass_matrix", MATRIX, "M(q)", principal=True, shape=(N, N)),
+            _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, shape=(N,)),
+            _k("gravity_terms", VECTOR, "g(q)", principal=True, shape=(N,)),
+            _k("generalized_forces", JOINT_MAP, "actuator plus external forces, per joint",
+               principal=True),
+            _k("equations", EQUATIONS, "one equation per joint", numeric=False),
+            _k("kinetic_energy", BODY_MAP, "T per body and total"),
+            _k("potential_energy", BODY_MAP, "U per body and total"),
+            _k("actuators", ACTUATOR_MAP, "actuator values needed at `at`", symbolic=False),
+        ),
+    ),
+    QuestionType(
+        "joint_torques", "Actuator torques along the profile", "§8 question 9",
+        options={"profile": "profile_ref"},
+        needs_dynamics=True,
+        answers=(
+            _k("actuators", ACTUATOR_RECORDS, "actuator -> signed peak and its time", principal=True,
+               symbolic=False, fields=(_k("peak", SCALAR, "signed value of largest magnitude"),
+                                       _k("t_peak", SCALAR, "time of the peak"))),
+            _k("profiles", ACTUATOR_MAP, "actuator -> piecewise expression in t", numeric=False),
+        ),
+        figures=(("torques", "joint_torques"),),
+    ),
+    QuestionType(
+        "p_control", "Closed-loop control", "§8 question 10",
+        options={"profile": "profile_ref", "gains": "joint_values", "law": "law",
+                 "gains_d": "joint_values", "start": "joint_values", "duration": "expr"},
+        required=("gains",),
+        defaults={"law": "p"},
+        needs_dynamics=True,
+        answers=(
+            _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, symbolic=False),
+            _k("final_error", JOINT_MAP, "signed e at the end", principal=True, symbolic=False),
+            _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False),
+        ),
+        figures=(("tracking", "control_tracking"), ("effort", "control_effort")),
+    ),
+    QuestionType(
+        "displacement", "Rigid displacement (helical axis)", "§3.1",
+        options={"from": "pose_or_config", "to": "pose_or_config"},
+        required=("from", "to"),
+        needs_robot=_displacement_needs_robot,
+        answers=(
+            _k("u", VECTOR, "unit vector of the helical axis", principal=True, shape=(3,)),
+            _k("alpha", SCALAR, "rotation angle in [0, π]", principal=True, angle=True),
+            _k("h", SCALAR, "translation along the axis", principal=True),
+            _k("P", VECTOR, "the axis point nearest the origin", principal=True, shape=(3,)),
+            _k("Q", MATRIX, "the displacement matrix", shape=(4, 4)),
+            _k("pitch", SCALAR, "h / α"),
+        ),
+        figures=(("helical_axis", "helical_axis"),),
+    ),
+    QuestionType(
+        "orientation", "Orientation representations", "§5.6",
+        options={"matrix": "rotation_matrix"},
+        needs_robot=_orientation_needs_robot,
+        answers=(
+            _k("zyz", RECORD, "R = Rz(φ)·Ry(θ)·Rz(ψ)", principal=True, fields=(
+                _k("solutions", VECTOR_SET, "[φ, θ, ψ] solution sets", shape=(3,), angle=True,
+                   unordered=True),
+                _k("singular", BOOL, "at a singularity"))),
+            _k("rpy", RECORD, "R = Rz(yaw)·Ry(pitch)·Rx(roll)", principal=True, fields=(
+                _k("solutions", VECTOR_SET, "[roll, pitch, yaw] solution sets", shape=(3,), angle=True,
+                   unordered=True),
+                _k("singular", BOOL, "at a singularity"))),
+            _k("axis_angle", RECORD, "axis and angle in [0, π]", principal=True, fields=(
+                _k("axis", VECTOR, "unit axis", shape=(3,)),
+                _k("angle", SCALAR, "angle in [0, π]", angle=True))),
+            _k("quaternion", VECTOR, "[η, εx, εy, εz], η ≥ 0", principal=True, shape=(4,)),
+        ),
+    ),
+    QuestionType(
+        "dof", "Degrees of freedom", "§1.1",
+        options={"bodies": "count", "joints_1dof": "count", "joints_2dof": "count",
+                 "joints_3dof": "count", "space": "space"},
+        required=("bodies",),
+        defaults={"space": "planar"},
+        needs_robot=lambda item: False,
+        answers=(
+            _k("dof", SCALAR, "Grübler (planar) / Kutzbach (spatial)", principal=True),
+        ),
+    ),
+]
+
+QUESTION_TYPES: dict[str, QuestionType] = {t.name: t for t in _TYPES}
+
+# Keys every question may have, whatever its type (problem-format.md "Questions").
+COMMON_KEYS = ("type", "id", "at", "point", "frame", "marks", "grade")
+
+
+def question_type(name: str) -> QuestionType:
+    return QUESTION_TYPES[name]
+
+
+def title(name: str) -> str:
+    t = QUESTION_TYPES.get(name)
+    return t.title if t is not None else name
