@@ -14,14 +14,14 @@ import sympy as sp
 from robosolve.errors import InputError, InputIssue
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, did_you_mean,
+    RESERVED, ExpressionError, Namespace, did_you_mean, size_issue, value_issue,
 )
 from robosolve.load.problem import (
     PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
 )
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml
 
-NAME_RE = re.compile(r"^[a-z0-9_-]+$")
+NAME_RE = re.compile(r"[a-z0-9_-]+")  # used with fullmatch: "$" would accept a final newline
 IDENT_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 PYTHON_KEYWORDS = {
     "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
@@ -68,6 +68,10 @@ class Checker:
     def __init__(self, source: Source):
         self.src = source
         self.issues: list[InputIssue] = []
+        # numeric values of the parameters (set once they are read) and of the current
+        # question's `at`: every expression read afterwards is checked with them
+        self.values: dict | None = None
+        self.overrides: dict = {}
 
     def error(self, path, message: str):
         self.issues.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
@@ -91,7 +95,7 @@ class Checker:
         if not isinstance(value, str):
             self.error(path, f"expected a string, got {type_name(value)}")
             return None
-        if pattern is not None and not pattern.match(value):
+        if pattern is not None and not pattern.fullmatch(value):
             self.error(path, f"invalid value {value!r}{hint}")
             return None
         return value
@@ -107,10 +111,35 @@ class Checker:
             self.error(path, f"expected a number or an expression, got {type_name(value)}")
             return None
         try:
-            return ns.parse(value)
+            e = ns.parse(value)
         except ExpressionError as exc:
             self.error(path, str(exc))
             return None
+        issue = self.value_issue(e, value if isinstance(value, str) else None)
+        if issue is not None:
+            self.error(path, issue)
+            return None
+        return e
+
+    def value_issue(self, e, shown: str | None = None) -> str | None:
+        """Why `e`, with the parameters' values (and the question's `at`), is not a finite real
+        number; None when it is one or still depends on joints, time or null parameters."""
+        if self.values is None:
+            return None
+        return value_issue(e, {**self.values, **self.overrides}, shown)
+
+    def number_value(self, e) -> float | None:
+        """The real value of `e` with the known values, or None when it has none (yet)."""
+        if self.values is None:
+            return None
+        v = e.xreplace({**self.values, **self.overrides})
+        if v.free_symbols:
+            return None
+        try:
+            c = complex(sp.N(v, 15))
+        except (TypeError, ValueError):
+            return None
+        return c.real if abs(c.imag) <= 1e-12 * max(1.0, abs(c.real)) else None
 
     def vector(self, path, value, ns: Namespace, length=3):
         if not isinstance(value, list) or (length is not None and len(value) != length):
@@ -194,6 +223,7 @@ class _ProblemBuilder:
                        if data.get("description") is not None else None)
 
         self.parameters = self._parameters(data.get("parameters"))
+        chk.values = self._values()
         self.joints = self._joints(data.get("joints"))
         self.names = self._names()
         self.ns = Namespace(self.names, what="name")
@@ -242,7 +272,7 @@ class _ProblemBuilder:
             return {}
         names = []
         for key in value:
-            if not IDENT_RE.match(key) or key in PYTHON_KEYWORDS:
+            if not IDENT_RE.fullmatch(key) or key in PYTHON_KEYWORDS:
                 chk.error(("parameters", key), f"invalid parameter name '{key}' (expected a name like L1 or m_2)")
             elif key in RESERVED:
                 chk.error(("parameters", key), f"'{key}' is reserved (a function, a constant or time)")
@@ -266,7 +296,12 @@ class _ProblemBuilder:
             e = raw.get(n)
             if e is None:
                 continue
-            v = e.xreplace({plain[k]: numeric[k] for k in numeric if k in plain})
+            known = {plain[k]: numeric[k] for k in numeric if k in plain}
+            issue = size_issue(e, known)
+            if issue is not None:
+                chk.error(("parameters", n), issue)
+                continue
+            v = e.xreplace(known)
             if v.free_symbols:
                 continue          # depends on a null parameter: stays symbolic
             try:
@@ -385,9 +420,10 @@ class _ProblemBuilder:
             j.limits = (lo, hi)
         return joints
 
-    def _values(self) -> dict:
-        """Numeric values of the parameters that have one (for sanity checks)."""
-        vals, pending = {}, dict(self.parameters)
+    def _values(self, overrides: dict | None = None) -> dict:
+        """Numeric values of the parameters that have one (for sanity checks), with `overrides`
+        (a question's `at` values of parameters) replacing theirs."""
+        vals, pending = {}, {**self.parameters, **(overrides or {})}
         for _ in range(len(pending) + 1):
             for s, e in list(pending.items()):
                 if e is None:
@@ -565,6 +601,10 @@ class _ProblemBuilder:
             except ExpressionError as exc:
                 chk.error(path, str(exc))
                 return None
+            issue = chk.value_issue(e, inner.strip())
+            if issue is not None:
+                chk.error(path, f"{op}({inner.strip()}): {issue}")
+                return None
             factors.append((op, e))
             i = k + 1
         if not factors:
@@ -597,7 +637,7 @@ class _ProblemBuilder:
             else:
                 for name, item in value.items():
                     path = ("points", name)
-                    if not IDENT_RE.match(name) or name in PYTHON_KEYWORDS:
+                    if not IDENT_RE.fullmatch(name) or name in PYTHON_KEYWORDS:
                         chk.error(path, f"invalid point name '{name}'")
                         continue
                     if name in taken:
@@ -662,6 +702,11 @@ class _ProblemBuilder:
                     continue
                 mass = chk.expr(path + ("mass",), item["mass"], self.ns)
                 if mass is None:
+                    continue
+                value = chk.number_value(mass)
+                if value is not None and value < 0:
+                    chk.error(path + ("mass",), f"a mass cannot be negative, got {item['mass']!r}"
+                              + (f" (= {value:g})" if not mass.is_number else ""))
                     continue
             elif "mass" in item:
                 chk.error(path + ("mass",), "the mass is the [4,4] entry of pseudo_inertia: do not give both")
