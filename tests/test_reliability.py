@@ -116,3 +116,60 @@ def test_name_must_match_entirely(write_problem):
 def test_parse_hints(write_problem, text, hint):
     result, _ = validate(write_problem, ARM + f"questions:\n  - {{type: position, at: {{q: {text}}}}}\n")
     assert result.exit_code == 2 and hint in result.output
+
+
+# -- internal errors become answers or clear input errors ---------------------------------------
+
+def solve_json(write_problem, tmp_path, text):
+    import json
+
+    src = write_problem(text)
+    out = tmp_path / "o"
+    result = runner.invoke(app, ["solve", str(src), "--out", str(out)])
+    assert "internal error" not in result.output and "Traceback" not in result.output, result.output
+    return result, json.loads((out / "results.json").read_text())["answers"] if out.exists() else None
+
+
+def test_ik_with_zero_length_link_is_an_answer(write_problem, tmp_path):
+    text = """\
+robosolve: 1
+name: fam
+parameters: {L1: 0, L2: 1}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute, limits: [2, 3]}]
+frames:
+  "1": {pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: inverse_kinematics, target: {E.x: 1, E.y: 0}}
+"""
+    result, answers = solve_json(write_problem, tmp_path, text)
+    assert result.exit_code == 0, result.output
+    ik = answers["inverse_kinematics"]
+    # E = (cos(q1 + q2), sin(q1 + q2)): reached for q1 + q2 = 0, q2 free in [2, 3] -> q1 = -q2
+    assert ik.get("unreachable") is True and "continuum" in ik["reason"]
+
+
+def test_jacobian_with_a_null_dh_alpha_is_answered_numerically_with_a_note(write_problem, tmp_path):
+    text = """\
+robosolve: 1
+name: dhnull
+parameters: {L1: 1, al: ~}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+dh:
+  rows:
+    - {theta: q1, d: 0, a: L1, alpha: al}
+    - {theta: q2, d: 0, a: L1, alpha: 0}
+questions:
+  - {type: jacobian}
+"""
+    result, answers = solve_json(write_problem, tmp_path, text)
+    assert result.exit_code == 0, result.output
+    assert any("cannot complete this step symbolically" in n for n in answers["jacobian"]["notes"])
+    assert "J" in answers["jacobian"]["symbolic"]
+
+
+@pytest.mark.parametrize("matrix", ["[[k, 0, 0], [0, 1, 0], [0, 0, 1]]", "[[1, 0, 0], [0, 1, 0], [0, 0, 2]]"])
+def test_orientation_of_a_non_rotation_is_an_input_error(write_problem, matrix):
+    text = f"robosolve: 1\nname: o\nparameters: {{k: ~}}\nquestions:\n  - {{type: orientation, matrix: {matrix}}}\n"
+    result, src = validate(write_problem, text)
+    assert result.exit_code == 2 and f"{src}:5: questions[0].matrix: not a rotation" in result.output

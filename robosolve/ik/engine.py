@@ -555,9 +555,15 @@ def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
         res.notes.append("the Jacobian of the equations is singular at a solution: the target is on "
                          "the boundary of the workspace (two solutions merge into one)")
     if not res.solutions:
-        if res.status != "family":
-            res.status = "unreachable"
-        if merged:
+        # also for a family found without a verified member (a chain with zero-length links):
+        # no solution is an answer, never a selection of nothing
+        family = res.status == "family"
+        res.status = "unreachable"
+        if merged and family:
+            res.reason = ("the target is reached along a continuum of configurations, but the one "
+                          "found breaks a joint limit (" + "; ".join(", ".join(b) for _, b in res.rejected)
+                          + "); other members of the continuum may respect the limits")
+        elif merged:
             res.reason = "every solution breaks a joint limit: " + "; ".join(
                 ", ".join(b) for _, b in res.rejected)
         elif num.best_q is not None:

@@ -379,8 +379,26 @@ class _QuestionLoader:
         if isinstance(value, dict):
             return {"config": self.v_joint_values(path, value, q)}
         m = self.chk.matrix(path, value, self.params_ns, shapes=((4, 4),))
+        if m is not None and (list(m[3, :]) != [0, 0, 0, 1] or not self.b._is_rigid(m)):
+            self.chk.error(path, "not a rototranslation: the last row must be [0, 0, 0, 1] and the 3x3 "
+                           "rotation block orthonormal with determinant 1")
+            return None
         return {"matrix": m} if m is not None else None
 
     def v_rotation_matrix(self, path, value, q):
-        return self.chk.matrix(path, value, self.params_ns, shapes=((3, 3), (4, 4)))
+        import sympy as sp
+
+        m = self.chk.matrix(path, value, self.params_ns, shapes=((3, 3), (4, 4)))
+        if m is None:
+            return None
+        full = m if m.shape == (4, 4) else sp.diag(m, 1)
+        if m.shape == (4, 4) and list(m[3, :]) != [0, 0, 0, 1]:
+            self.chk.error(path, "the last row of a pose matrix must be [0, 0, 0, 1]")
+            return None
+        if not self.b._is_rigid(full):
+            self.chk.error(path, "not a rotation: the 3x3 block must be orthonormal with determinant 1"
+                           + (" (checked at sample values of " + ", ".join(sorted(s.name for s in m.free_symbols))
+                              + ")" if m.free_symbols else ""))
+            return None
+        return m
 

@@ -124,7 +124,7 @@ def _singularity_steps(ans, question, ctx, ts):
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
                  "the numeric answers are given.")
         ans.steps.append(Step("Singular configurations",
-                              "The symbolic search exceeded its time limit: see the numeric "
+                              "The symbolic search was stopped (see the note): see the numeric "
                               "values below."))
         return
     if res.kind == "det":
