@@ -44,6 +44,7 @@ class Submission:
     raw: dict                      # question id -> raw mapping (before resolve_answers)
     source: Source
     answers: dict = field(default_factory=dict)   # question id -> {dotted key: Given}
+    issues: list = field(default_factory=list)    # layout issues found by read_answers (not fatal)
 
     def where(self, path) -> tuple[int, str]:
         return self.source.line(path), path_str(path)
@@ -68,7 +69,12 @@ class _Issues:
 
 
 def read_answers(file) -> Submission:
-    """Read an answers file and check its layout. Raises InputError with every issue."""
+    """Read an answers file and check its layout.
+
+    Raises InputError when nothing can be checked further (YAML, not a mapping, format key,
+    `answers`); smaller issues are kept in `issues` and raised by `resolve_answers` together
+    with those of the questions and keys, so one run reports every mistake.
+    """
     name = str(file)
     try:
         text = Path(file).read_bytes().decode("utf-8")
@@ -94,6 +100,8 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
         issues.error((), f"an answers file is a mapping with `{FORMAT_KEY}: 1`, got {type_name(data)}")
         issues.raise_if_any()
     for key in data:
+        if key == "robosolve" and FORMAT_KEY not in data:
+            continue              # a problem file given as answers: one message below says so
         if key not in TOP_KEYS:
             issues.error((key,), f"unknown key '{key}'" + did_you_mean(key, TOP_KEYS)
                          + f" (expected one of: {', '.join(TOP_KEYS)})")
@@ -126,13 +134,15 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
                 issues.error(("answers", qid), f"expected a mapping answer key -> value, got {type_name(value)}")
             else:
                 raw[qid] = value
-    issues.raise_if_any()
-    return Submission(file, student, problem_file, raw, source)
+    if any(i.path in ("", FORMAT_KEY, "answers") for i in issues.items):
+        issues.raise_if_any()     # no answers to check against a problem: stop here
+    return Submission(file, student, problem_file, raw, source, issues=list(issues.items))
 
 
 def resolve_answers(sub: Submission, problem) -> Submission:
     """Check question ids and keys against `problem`; fill `sub.answers`. Raises InputError."""
     issues = _Issues(sub.source)
+    issues.items = list(sub.issues)
     questions = {q.id: q for q in problem.questions}
     sub.answers = {}
     for qid, mapping in sub.raw.items():
@@ -168,8 +178,8 @@ def _flatten(issues, source, qt, mapping, path, prefix, out) -> None:
         parent = qt.key(dotted.rpartition(".")[0]) if "." in dotted else None
         if ak is None or (parent is not None and parent.kind != RECORD):
             known = known_keys(qt)
-            issues.error(kpath, f"unknown answer key '{dotted}' for a {qt.name} question"
-                         + did_you_mean(dotted, known) + f" (keys: {', '.join(known)})")
+            issues.error(kpath, f"unknown answer key '{dotted}'"
+                         + did_you_mean(dotted, known) + f" (keys of a {qt.name} question: {', '.join(known)})")
             continue
         if ak.kind == RECORD and isinstance(value, dict):
             _flatten(issues, source, qt, value, kpath, dotted + ".", out)

@@ -14,8 +14,9 @@ def problem_path(sub, override) -> Path:
     if override is not None:
         return Path(override)
     if sub.problem_file is None:
-        raise InputError([InputIssue(sub.file, sub.source.line(()), "",
-                                     "no problem: give `problem: FILE` in the answers file or --problem")])
+        raise InputError(sub.issues + [InputIssue(sub.file, sub.source.line(()), "",
+                                                  "no problem: give `problem: FILE` in the answers file "
+                                                  "or --problem")])
     return sub.problem_file
 
 
@@ -33,7 +34,10 @@ def check_file(answers, problem=None, rtol=None, atol=None) -> tuple[SubmissionR
     from robosolve.load.loader import load_problem
     from robosolve.pipeline import solve_problem
 
-    prob = load_problem(problem_path(sub, problem))
+    try:
+        prob = load_problem(problem_path(sub, problem))
+    except InputError as exc:
+        raise InputError(list(dict.fromkeys(sub.issues + exc.issues))) from None
     resolve_answers(sub, prob)
     ref = Reference.from_report(solve_problem(prob), rtol=rtol, atol=atol)
     return Grader(ref).grade(sub.student, sub.answers), ref
