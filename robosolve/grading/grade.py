@@ -95,11 +95,17 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
 
     variants = read_variants(Path(variants_dir)) if variants_dir is not None else None
     jobs, problems = [], {}
+    common = None                 # with --problem, even an unreadable submission has its problem
+    if problem is not None:
+        if not Path(problem).is_file():
+            raise UsageError(f"{problem}: no such problem file")
+        common = str(Path(problem).resolve())
+        problems[common] = (Path(problem), [])
     for i, f in enumerate(files):
         try:
             sub = read_answers(f)
         except InputError as exc:
-            jobs.append(Job(i, str(f), _fallback_student(f), None, None, str(exc)))
+            jobs.append(Job(i, str(f), _fallback_student(f), common, None, str(exc)))
             continue
         try:
             path = _problem_for(sub, problem, variants)
