@@ -219,6 +219,8 @@ class Grader:
             return "; ".join(parts) + (f" (and {more} more)" if more > 0 else "") + ". In full: "
         if outcome.wrong and outcome.wrong != ["the value"]:
             return "wrong: " + ", ".join(outcome.wrong) + "; "
+        if outcome.wrong == ["the value"]:
+            return f"given {show(g)}; "
         return ""
 
     def _expected(self, qref, ak, key, mode, value):
