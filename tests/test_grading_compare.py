@@ -311,3 +311,17 @@ def test_points_are_seeded_and_cover_the_rules(ref):
     assert len(moved) >= 2 and ((moved >= 0.4) & (moved <= 0.625) & (moved != 0.5)).all()
     q1 = a.columns[ref.problem.names["q1"]]
     assert ((q1 > -math.pi) & (q1 <= math.pi)).all() and a.size >= 6
+
+
+def test_direct_evaluator_agrees_with_sympy_evalf():
+    import sympy as sp
+
+    from robosolve.grading.points import tree_values
+
+    x, y = sp.symbols("x y", real=True)
+    e = (sp.sqrt(x ** 2 + 1) * sp.cos(x - y) / (2 + sp.sin(y)) ** 2 + sp.atan2(y, x + 3)
+         - sp.Rational(3, 7) * sp.exp(-x) * sp.Abs(y) + sp.log(x ** 2 + 2) ** sp.Rational(3, 2) - sp.pi * x ** -1)
+    xs, ys = np.array([0.3, -1.2, 2.5]), np.array([1.1, 0.4, -2.0])
+    got = tree_values(e, {x: xs, y: ys}, {})
+    want = [float(e.subs({x: a, y: b}).evalf(30)) for a, b in zip(xs, ys)]
+    assert np.allclose(got, want, rtol=1e-12, atol=0)

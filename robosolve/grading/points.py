@@ -129,6 +129,8 @@ def _as_real(x, n: int) -> np.ndarray:
 def _constant(e) -> float:
     if isinstance(e, (float, int)):
         return float(e)
+    if isinstance(e, sp.Number):
+        return float(e)
     try:
         c = complex(sp.N(e, 17))
     except (TypeError, ValueError):
@@ -147,6 +149,17 @@ def evaluate(tree, sampling: Sampling):
         if i not in symbolic:
             out[i] = np.full(n, _constant(e))
     if symbolic:
+        memo: dict = {}
+        slow = []
+        for i in symbolic:
+            try:
+                with np.errstate(all="ignore"), warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    out[i] = _as_real(tree_values(exprs[i], sampling.columns, memo), n)
+            except Exception:  # noqa: BLE001 - a node it does not know: lambdify below
+                slow.append(i)
+        symbolic = slow
+    if symbolic:
         args = [sampling.columns[s] for s in sampling.symbols]
         try:
             f = sp.lambdify(sampling.symbols, [exprs[i] for i in symbolic], modules="numpy")
@@ -159,6 +172,55 @@ def evaluate(tree, sampling: Sampling):
             for i in symbolic:
                 out[i] = _pointwise(exprs[i], sampling)
     return _rebuild(tree, iter(out))
+
+
+class _Unsupported(Exception):
+    """An expression node the direct evaluator does not know (lambdify takes over)."""
+
+
+_UNARY = {sp.sin: np.sin, sp.cos: np.cos, sp.tan: np.tan, sp.asin: np.arcsin, sp.acos: np.arccos,
+          sp.atan: np.arctan, sp.exp: np.exp, sp.log: np.log, sp.Abs: np.abs,
+          sp.sinh: np.sinh, sp.cosh: np.cosh, sp.tanh: np.tanh, sp.sign: np.sign}
+
+
+def tree_values(e, columns: dict, memo: dict):
+    """Values of a sympy expression at the points, by walking its tree with numpy.
+
+    Much quicker than `lambdify` for the small expressions of answers (no code is printed
+    and compiled); shared subexpressions are evaluated once (`memo`).
+    """
+    hit = memo.get(e)
+    if hit is not None:
+        return hit
+    if e.is_Symbol:
+        if e not in columns:
+            raise _Unsupported(e)
+        v = columns[e]
+    elif e.is_Number or e is sp.pi or e is sp.E:
+        v = complex(e) if e.is_Number and not e.is_real else float(e)
+    elif e.is_Add:
+        v = sum(tree_values(a, columns, memo) for a in e.args)
+    elif e.is_Mul:
+        v = 1.0
+        for a in e.args:
+            v = v * tree_values(a, columns, memo)
+    elif e.is_Pow:
+        base, ex = e.args
+        b = tree_values(base, columns, memo)
+        if ex == sp.S.Half:
+            v = np.sqrt(b)
+        elif ex.is_Integer:
+            v = np.asarray(b, dtype=float) ** int(ex) if int(ex) < 0 else b ** int(ex)
+        else:
+            v = np.power(b, tree_values(ex, columns, memo))
+    elif e.func in _UNARY:
+        v = _UNARY[e.func](tree_values(e.args[0], columns, memo))
+    elif e.func == sp.atan2:
+        v = np.arctan2(tree_values(e.args[0], columns, memo), tree_values(e.args[1], columns, memo))
+    else:
+        raise _Unsupported(e.func)
+    memo[e] = v
+    return v
 
 
 def _pointwise(expr, sampling: Sampling) -> np.ndarray:
