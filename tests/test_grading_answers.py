@@ -54,10 +54,10 @@ def test_unknown_question_and_key_with_did_you_mean(folder):
     assert out == [
         "A:4: answers.positon: unknown question id 'positon' (did you mean 'position'?) (the problem's "
         "questions: position, jacobian, statics, inverse_kinematics, ellipsoids, orientation)",
-        "A:7: answers.jacobian.dett: unknown answer key 'dett' (did you mean 'det'?) (keys of a jacobian "
-        "question: J, det, manipulability, singularities, com_jacobians)",
+        "A:7: answers.jacobian.dett: unknown answer key 'dett' (did you mean 'det'?) (keys of jacobian "
+        "questions: J, det, manipulability, singularities, com_jacobians)",
         "A:9: answers.ellipsoids.force.lenghts: unknown answer key 'force.lenghts' (did you mean "
-        "'force.lengths'?) (keys of a ellipsoids question: force, force.semi_axes, force.lengths, "
+        "'force.lengths'?) (keys of ellipsoids questions: force, force.semi_axes, force.lengths, "
         "force.directions, velocity, velocity.semi_axes, velocity.lengths, velocity.directions, "
         "condition_number, compliance, compliance.semi_axes, compliance.lengths, compliance.directions, "
         "A, eigenvalues, q_dot)",
@@ -91,7 +91,7 @@ def test_one_run_reports_every_mistake(folder):
         "A:2: studnt: unknown key 'studnt' (did you mean 'student'?) (expected one of: robosolve-answers, "
         "problem, student, answers)",
         "A:5: answers.jacobian.det: duplicate key 'det'",
-        "A:7: answers.statics.Fq.q1: unknown answer key 'Fq.q1' (did you mean 'Fq'?) (keys of a statics question: Fq)",
+        "A:7: answers.statics.Fq.q1: unknown answer key 'Fq.q1' (did you mean 'Fq'?) (keys of statics questions: Fq)",
     ]
 
 

@@ -179,7 +179,7 @@ def _flatten(issues, source, qt, mapping, path, prefix, out) -> None:
         if ak is None or (parent is not None and parent.kind != RECORD):
             known = known_keys(qt)
             issues.error(kpath, f"unknown answer key '{dotted}'"
-                         + did_you_mean(dotted, known) + f" (keys of a {qt.name} question: {', '.join(known)})")
+                         + did_you_mean(dotted, known) + f" (keys of {qt.name} questions: {', '.join(known)})")
             continue
         if ak.kind == RECORD and isinstance(value, dict):
             _flatten(issues, source, qt, value, kpath, dotted + ".", out)

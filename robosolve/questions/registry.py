@@ -171,7 +171,7 @@ _TYPES = [
                pose=True, notation="⁰M{sub}", hints=(
                    ("transposed", "the columns of R are the axes of frame {frame} in frame 0, and the "
                                   "last column is the origin of frame {frame} in frame 0"),
-                   ("inverse", "this is the pose of frame 0 in frame {frame}; {symbol} gives frame "
+                   ("inverse", "that is the pose of frame 0 in frame {frame}; {symbol} gives frame "
                                "{frame} in frame 0 ({symbol} = ⁰M₁·¹M₂·…)"))),
             _k("position", VECTOR, "the point in frame 0", principal=True, shape=(3,)),
             _k("chain", MATRIX_LIST, "ⁱ⁻¹Mᵢ of each frame in its parent, from frame 1 on"),
