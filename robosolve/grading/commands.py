@@ -94,7 +94,7 @@ def run_grade_command(sources, out, problem, variants_dir, jobs, rtol, atol) -> 
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from robosolve.grading.grade import UsageError, run_grade
-    from robosolve.grading.outputs import OutputFolderError
+    from robosolve.outputs import OutputFolderError
     from robosolve.grading.record import number_text, percent_text
 
     err = Console(stderr=True)

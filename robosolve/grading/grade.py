@@ -4,8 +4,8 @@ The parent reads every answers file, finds each one's problem (`--problem`, `--v
 or its own `problem:`), solves each distinct problem once, and sends the references to
 worker processes (pickled once per worker, through the pool's initializer); the workers
 grade the submissions. Outputs are written into a temporary folder that replaces DIR at
-the end (the output-folder rule of problem-format.md §2), so they are deterministic
-and never half-written.
+the end (`robosolve.outputs`, the output-folder rule of problem-format.md §2), so they are
+deterministic and never half-written.
 """
 
 from __future__ import annotations
@@ -23,6 +23,11 @@ from robosolve.grading.grader import Grader, invalid_result
 from robosolve.grading.record import (
     GRADES_COLUMNS, SUMMARY_COLUMNS, feedback_markdown, grade_rows, record_json, summary_row,
 )
+
+
+# Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
+# which could be a user's own file there; a student's earlier record is then left behind.
+OWN_OUTPUTS = ("grades.csv", "summary.csv", "feedback/*.md")
 
 
 class UsageError(Exception):
@@ -154,7 +159,11 @@ _REFERENCES: dict = {}
 _GRADERS: dict = {}
 
 
-def _init_worker(references) -> None:
+def _init_worker(references, worker: bool = False) -> None:
+    if worker:
+        from robosolve.interrupts import worker_init
+
+        worker_init()
     _REFERENCES.clear()
     _REFERENCES.update(references)
     _GRADERS.clear()
@@ -167,7 +176,11 @@ def grade_job(job: Job):
     grader = _GRADERS.get(job.problem_key)
     if grader is None:
         grader = _GRADERS[job.problem_key] = Grader(ref)
-    return job.index, grader.grade(job.student, job.answers)
+    try:
+        return job.index, grader.grade(job.student, job.answers)
+    except Exception as exc:  # noqa: BLE001 - a grading bug must not lose the other submissions
+        return job.index, invalid_result(ref, job.student, f"{job.file}: internal error while grading "
+                                                           f"({type(exc).__name__}: {exc})")
 
 
 def grade_all(jobs, references, n_jobs: int, progress=None) -> list:
@@ -182,11 +195,21 @@ def grade_all(jobs, references, n_jobs: int, progress=None) -> list:
             if progress:
                 progress(1)
         return results
-    with ProcessPoolExecutor(max_workers=n_jobs, initializer=_init_worker, initargs=(references,)) as pool:
+    pool = ProcessPoolExecutor(max_workers=n_jobs, initializer=_init_worker, initargs=(references, True))
+    clean = False
+    try:
         for i, r in pool.map(grade_job, jobs, chunksize=max(1, len(jobs) // (4 * n_jobs))):
             results[i] = r
             if progress:
                 progress(1)
+        clean = True
+    finally:
+        if clean:
+            pool.shutdown(wait=True)
+        else:  # interrupted: a waiting shutdown could hang on a busy worker, so stop them
+            for proc in list((getattr(pool, "_processes", None) or {}).values()):
+                proc.terminate()
+            pool.shutdown(wait=False, cancel_futures=True)
     return results
 
 
@@ -230,7 +253,7 @@ def _titles(ref) -> dict:
 
 def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None, atol=None,
               progress_factory=None, report=None) -> int:
-    from robosolve.grading.outputs import check_output_folder, write_output_folder
+    from robosolve.outputs import check_output_folder, write_output_folder
 
     files = collect(sources)
     inputs = list(files) + ([Path(problem)] if problem is not None else [])
@@ -244,7 +267,7 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
     else:
         results = grade_all(jobs, references, n_jobs)
     outputs = {rel: text.encode("utf-8") for rel, text in render(jobs, results, references).items()}
-    write_output_folder(Path(out), outputs, inputs)
+    write_output_folder(Path(out), outputs, inputs, own=OWN_OUTPUTS)
     if report is not None:
         report(jobs, results)
     return EXIT_ANSWER_ERROR if any(j.answers is None for j in jobs) else EXIT_OK
