@@ -325,3 +325,63 @@ def test_direct_evaluator_agrees_with_sympy_evalf():
     got = tree_values(e, {x: xs, y: ys}, {})
     want = [float(e.subs({x: a, y: b}).evalf(30)) for a, b in zip(xs, ys)]
     assert np.allclose(got, want, rtol=1e-12, atol=0)
+
+
+def _rules(revolute=("q1",), rtol=0.005, atol=1e-6, n=1):
+    from robosolve.grading.compare import Rules
+
+    return Rules(Tolerance(rtol, atol), np.ones(n, dtype=bool), frozenset(revolute))
+
+
+def _arr(x, n=1):
+    return np.full(n, float(x))
+
+
+def test_only_revolute_joint_values_wrap():
+    from robosolve.grading.compare import compare
+    from robosolve.questions.registry import JOINT_MAP_SET, AnswerKey
+
+    ak = AnswerKey("solutions", JOINT_MAP_SET, angle=True, unordered=True)
+    e = [{"q1": _arr(0.4), "d": _arr(0.3)}]
+    assert compare(ak, [{"q1": _arr(0.4 + 2 * math.pi), "d": _arr(0.3)}], e, _rules()).ok
+    assert not compare(ak, [{"q1": _arr(0.4), "d": _arr(0.3 + 2 * math.pi)}], e, _rules()).ok
+
+
+def test_unwrapped_values_when_the_schema_says_not_angle():
+    # forward-dynamics `final`/`max`/`min` are joint maps without `angle`: 4π is not 0
+    from robosolve.grading.compare import compare
+    from robosolve.questions.registry import JOINT_MAP, AnswerKey
+
+    ak = AnswerKey("final", JOINT_MAP)
+    e = {"q1": _arr(4 * math.pi)}
+    assert compare(ak, {"q1": _arr(4 * math.pi * 1.001)}, e, _rules()).ok
+    assert not compare(ak, {"q1": _arr(0.0)}, e, _rules()).ok
+    wrapped = AnswerKey("final", JOINT_MAP, angle=True)
+    assert compare(wrapped, {"q1": _arr(0.0)}, e, _rules()).ok
+
+
+def test_booleans_and_null_exact():
+    from robosolve.grading.compare import compare
+    from robosolve.questions.registry import BOOL, SCALAR, AnswerKey
+
+    assert compare(AnswerKey("singular", BOOL), True, True, _rules()).ok
+    assert not compare(AnswerKey("singular", BOOL), False, True, _rules()).ok
+    assert compare(AnswerKey("x", SCALAR), None, None, _rules()).ok
+    assert not compare(AnswerKey("x", SCALAR), _arr(0.0), None, _rules()).ok
+
+
+def test_tolerance_formula_at_the_boundary():
+    from robosolve.grading.compare import leaf_ok
+
+    r = _rules(rtol=0.01, atol=0.001)
+    assert leaf_ok(_arr(10.0 + 0.1 + 0.001 - 1e-9), _arr(10.0), False, r)      # atol + rtol·|e|
+    assert not leaf_ok(_arr(10.0 + 0.1 + 0.001 + 1e-6), _arr(10.0), False, r)
+    assert leaf_ok(_arr(-math.pi), _arr(math.pi), True, r)
+    assert not leaf_ok(_arr(-math.pi), _arr(math.pi), False, r)
+
+
+def test_maximum_matching_not_greedy():
+    from robosolve.grading.compare import max_matching
+
+    # given 0 matches both expected; given 1 only the first: a greedy match would find 1
+    assert max_matching([[True, True], [True, False]]) == 2

@@ -170,7 +170,10 @@ class Grader:
     def _compare(self, qref, ak, key, g, sym, num) -> KeyResult:
         subs = qref.subs
         free = free_symbols(g)
-        symbolic = bool(free) and not ak.by_value and sym is not None
+        # by_value keys (singularities) are compared as numbers whenever the reference has them
+        # as numbers; conditions written as equations stay symbolic (a single point cannot
+        # tell an equation up to a constant factor)
+        symbolic = bool(free) and sym is not None and not (ak.by_value and num is not None)
         if symbolic:
             e = self._expected(qref, ak, key, "symbolic", sym)
         else:
