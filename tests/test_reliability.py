@@ -173,3 +173,51 @@ def test_orientation_of_a_non_rotation_is_an_input_error(write_problem, matrix):
     text = f"robosolve: 1\nname: o\nparameters: {{k: ~}}\nquestions:\n  - {{type: orientation, matrix: {matrix}}}\n"
     result, src = validate(write_problem, text)
     assert result.exit_code == 2 and f"{src}:5: questions[0].matrix: not a rotation" in result.output
+
+
+# -- one mistake, one message; hints -------------------------------------------------------------
+
+def test_one_mistake_one_message(write_problem):
+    text = ARM.replace('"1": {pose: "Rz(q) Tx(L)"}', '"1": {pose: "Rz(q) Tx(LL)"}\n  "2": {parent: "1", pose: "Tx(L)"}') + """\
+points:
+  Q: {frame: "1", at: [0, 0, zz]}
+bodies:
+  - {name: link, frame: "1", mas: 1, point: [0, 0, 0]}
+questions:
+  - {type: position, frame: "1"}
+  - {type: position, point: Q, id: p2}
+  - {type: jacobian, coordinates: [Q.x, Q.y]}
+"""
+    result, src = validate(write_problem, text)
+    assert result.exit_code == 2
+    lines = result.output.strip().splitlines()
+    assert len(lines) == 3, result.output        # LL, zz, mas: nothing else
+    assert "unknown name 'LL'" in lines[0] and "unknown name 'zz'" in lines[1]
+    assert "unknown key 'mas' (did you mean 'mass'?)" in lines[2]
+    assert "missing required key" not in result.output and "unknown frame" not in result.output
+
+
+def test_tab_hint_and_cannot_read_without_line(write_problem, tmp_path):
+    src = write_problem("robosolve: 1\nname: tab\nparameters:\n\tL: 1\n")
+    result = runner.invoke(app, ["validate", str(src), str(tmp_path / "missing.yaml")])
+    assert result.exit_code == 2
+    assert f"{src}:4: YAML syntax error" in result.output and "indent with spaces" in result.output
+    assert f"{tmp_path / 'missing.yaml'}: cannot read the file" in result.output
+    assert f"{tmp_path / 'missing.yaml'}:1:" not in result.output
+
+
+def test_batch_messages_printed_once_and_unwrapped(tmp_path):
+    long_name = "a_parameter_with_a_very_long_name_" * 3
+    (tmp_path / "bad.yaml").write_text(ARM.replace("Tx(L)", f"Tx({long_name})")
+                                       + "questions:\n  - {type: position}\n")
+    proc = subprocess.run([sys.executable, "-m", "robosolve", "batch", str(tmp_path), "--out", str(tmp_path / "o"),
+                           "--jobs", "1"], cwd=ROOT, capture_output=True, text=True, timeout=300,
+                          env={"COLUMNS": "60", "PATH": "/usr/bin:/bin", "PYTHONPATH": str(ROOT)})
+    assert proc.returncode == 2
+    hits = [ln for ln in proc.stderr.splitlines() if ln.startswith(f"{tmp_path / 'bad.yaml'}:6: frames.1.pose:")]
+    assert len(hits) == 1 and long_name in hits[0], proc.stderr
+
+
+def test_every_body_without_mass_under_p_control_is_an_input_error(write_problem):
+    result, src = validate(write_problem, DYN.replace("MASS", "0").replace("ACC", "1").replace(", DURATION", ""))
+    assert result.exit_code == 2 and "mass matrix M(q) is singular" in result.output

@@ -87,9 +87,18 @@ class Checker:
                            + did_you_mean(key, allowed)
                            + f" (expected one of: {', '.join(allowed)})")
         for key in required:
-            if key not in value:
+            if key not in value and not self.misspelt(value, key, allowed):
                 self.error(path, f"missing required key '{key}'")
         return True
+
+    @staticmethod
+    def misspelt(value: dict, key: str, allowed) -> bool:
+        """True when an unknown key of `value` is a misspelling of `key`: its did-you-mean
+        already says what is wrong, so a 'missing key' would be a second message for one mistake."""
+        import difflib
+
+        unknown = [k for k in value if k not in allowed and isinstance(k, str)]
+        return any(difflib.get_close_matches(k, sorted(allowed), n=1, cutoff=0.5) == [key] for k in unknown)
 
     def string(self, path, value, pattern=None, hint="") -> str | None:
         if not isinstance(value, str):
@@ -173,11 +182,11 @@ def load_problem(file) -> Problem:
     try:
         raw = Path(file).read_bytes()
     except OSError as exc:
-        raise InputError([InputIssue(name, 1, "", f"cannot read the file: {exc.strerror or exc}")])
+        raise InputError([InputIssue(name, 0, "", f"cannot read the file: {exc.strerror or exc}")])
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
-        raise InputError([InputIssue(name, 1, "", "the file is not UTF-8 text")])
+        raise InputError([InputIssue(name, 0, "", "the file is not UTF-8 text")])
     return load_problem_text(text, name)
 
 
@@ -206,6 +215,8 @@ class _ProblemBuilder:
         self.chk = chk
         self.data = chk.src.data
         self.file = chk.src.file
+        self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
+        self.rejected_points: set[str] = set()
 
     def build(self) -> Problem | None:
         chk, data = self.chk, self.data
@@ -229,7 +240,8 @@ class _ProblemBuilder:
         self.ns = Namespace(self.names, what="name")
         self.frames = self._frames(data.get("frames"), data.get("dh"))
         self.points = self._points(data.get("points"))
-        self.ns_points = Namespace(self.names, self.points.keys(), what="name")
+        # rejected points parse (their error is already reported), so P.x is not "unknown" too
+        self.ns_points = Namespace(self.names, list(self.points) + sorted(self.rejected_points), what="name")
         gravity, gravity_given = self._gravity(data.get("gravity"))
         bodies = self._bodies(data.get("bodies"))
         forces = self._forces(data.get("forces"))
@@ -458,6 +470,8 @@ class _ProblemBuilder:
             else:
                 for key, item in frames_value.items():
                     self._frame(str(key), item, frames, from_dh=dh_value is not None)
+                    if str(key) not in frames:
+                        self.rejected_frames.add(str(key))
         if frames and len(chk.issues) == n_issues:   # (no cascade after a bad frame)
             used = set()
             for f in frames.values():
@@ -489,6 +503,7 @@ class _ProblemBuilder:
                 continue
             vals = [chk.expr(path + (k,), row[k], self.ns) for k in keys if k in row]
             if len(vals) != 4 or any(v is None for v in vals):
+                self.rejected_frames.add(str(i + 1))
                 continue
             name = str(i + 1)
             frames[name] = Frame(name, str(i), "dh" if conv == "standard" else "mdh",
@@ -512,6 +527,8 @@ class _ProblemBuilder:
             return
         default_parent = list(frames)[-1] if frames else "0"
         parent = str(item.get("parent", default_parent))
+        if parent != "0" and parent not in frames and parent in self.rejected_frames:
+            return  # its parent was rejected (and reported): one mistake, one message
         if parent != "0" and parent not in frames:
             chk.error(path + ("parent",), f"unknown parent frame '{parent}'"
                       + did_you_mean(parent, list(frames) + ["0"])
@@ -620,6 +637,8 @@ class _ProblemBuilder:
         name = str(value)
         if name == "0" and allow_base:
             return name
+        if name not in self.frames and name in self.rejected_frames:
+            return None  # the frame itself was rejected (and reported): no second message
         if name not in self.frames:
             known = list(self.frames) + (["0"] if allow_base else [])
             self.chk.error(path, f"unknown frame '{name}'" + did_you_mean(name, known)
@@ -649,6 +668,8 @@ class _ProblemBuilder:
                     at = self.chk.vector(path + ("at",), item.get("at", [0, 0, 0]), self.ns)
                     if frame is not None and at is not None:
                         points[name] = Point(name, frame, at, line=chk.src.line(path))
+                    else:
+                        self.rejected_points.add(name)
         if "E" not in points and "E" not in taken:
             points["E"] = Point("E", self.last_frame(), sp.zeros(3, 1), line=1, implicit=True)
         return points
@@ -698,7 +719,8 @@ class _ProblemBuilder:
             mass = None
             if kind != "pseudo_inertia":
                 if "mass" not in item:
-                    chk.error(path, "missing required key 'mass'")
+                    if not chk.misspelt(item, "mass", ("name", "frame", "mass") + kinds + ("inertia",)):
+                        chk.error(path, "missing required key 'mass'")
                     continue
                 mass = chk.expr(path + ("mass",), item["mass"], self.ns)
                 if mass is None:

@@ -79,7 +79,9 @@ class _QuestionLoader:
                 q.frame, q.frame_given = f, True
         if "point" in item:
             p = item["point"]
-            if not isinstance(p, str) or p not in b.points:
+            if isinstance(p, str) and p in b.rejected_points:
+                pass  # the point's own error is reported: one mistake, one message
+            elif not isinstance(p, str) or p not in b.points:
                 chk.error(path + ("point",), f"unknown point {p!r}"
                           + (did_you_mean(p, b.points) if isinstance(p, str) else "")
                           + (f" (known: {', '.join(b.points)})" if b.points else ""))
@@ -162,6 +164,10 @@ class _QuestionLoader:
                           "(the default gravity is [0, 0, -g]) or give gravity")
             if not b.problem.bodies and t != "statics":
                 chk.error(path + ("type",), "this question needs bodies (masses)")
+            masses = [chk.number_value(body.mass) for body in b.problem.bodies if body.mass is not None]
+            if t in ("p_control", "forward_dynamics") and masses and all(m == 0 for m in masses):
+                chk.error(path + ("type",), "every body has mass 0, so the mass matrix M(q) is singular "
+                          "and the motion cannot be integrated: give the bodies their masses")
             if t == "statics" and not b.problem.bodies:
                 chk.error(path + ("weight",), "weight: true needs bodies (masses)")
 

@@ -9,6 +9,7 @@ capable), restarted at each switching instant; see robosolve/motion/control.py.
 
 from __future__ import annotations
 
+import numpy as np
 import sympy as sp
 
 from robosolve.errors import SolverError
@@ -80,6 +81,10 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if not duration > 0:
         raise SolverError("the simulation needs a positive duration (does the profile move at all?)")
 
+    negative = [n for n, k in zip(names, kp + (kd or [])) if k < 0]
+    if negative and law != "computed_torque":
+        ans.note("a negative gain (" + ", ".join(sorted(set(negative))) + ") makes the loop unstable: "
+                 "the error grows exponentially instead of being corrected")
     syms = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in joints]
     gains_tex = ",\\quad ".join(f"K_{{p,{syms[i]}}} = {report_number(kp[i])}" for i in range(len(joints)))
     if kd is not None:
@@ -106,6 +111,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         res = simulate(fast, plan, law, kp, kd, start=start, duration=duration, samples=SAMPLES)
     except RuntimeError as exc:          # SimulationTooLong or an integration failure
         raise SolverError(str(exc)) from None
+    except (ValueError, ZeroDivisionError, np.linalg.LinAlgError) as exc:
+        if "invertible" in str(exc) or "singular" in str(exc).lower() or isinstance(exc, ZeroDivisionError):
+            raise SolverError("the mass matrix M(q) is singular (a joint moves no mass: a body of mass 0?), "
+                              "so the motion under control is not defined") from None
+        raise
 
     # The simulation is accurate to ~1e-6 relative (tests: 1e-4 required); more digits would be
     # noise that differs between machines, so the answers keep ANSWER_DIGITS significant digits.
