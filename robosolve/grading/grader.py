@@ -68,6 +68,7 @@ class SubmissionResult:
     student: str
     questions: list                               # QuestionResult, in the problem's order
     error: str = ""                               # the submission could not be read
+    notes: list = field(default_factory=list)     # answers that could not be placed (unknown question ids)
 
     @property
     def score(self) -> Fraction:
@@ -139,6 +140,8 @@ class Grader:
         return ak.symbol.format(sub=sub, frame=frame)
 
     def grade_key(self, qref, key: str, given) -> KeyResult:
+        if given is not None and given.problem:
+            return KeyResult(INVALID, feedback=given.problem)
         qt = question_type(qref.type)
         ak = qt.key(key)
         if qref.error is not None:
@@ -259,7 +262,7 @@ class Grader:
                          f"could not be confirmed equal; expected {self.symbol(qref, ak)} = {show(e)}")
 
     # -- one submission -----------------------------------------------------
-    def grade(self, student: str, answers: dict) -> SubmissionResult:
+    def grade(self, student: str, answers: dict, notes=()) -> SubmissionResult:
         """`answers`: question id -> {dotted key: Given} (answers.resolve_answers)."""
         out = []
         for qref in self.ref.questions:
@@ -275,7 +278,7 @@ class Grader:
                     continue
                 qr.keys[key] = self.grade_key(qref, key, given[key])
             out.append(qr)
-        return SubmissionResult(self.ref.name, student, out)
+        return SubmissionResult(self.ref.name, student, out, notes=list(notes))
 
 
 def invalid_result(reference: Reference | None, student: str, error: str) -> SubmissionResult:

@@ -47,6 +47,8 @@ def record(result: SubmissionResult) -> dict:
            "score": json_number(result.score), "max_score": json_number(result.max_score)}
     if result.error:
         out["error"] = result.error
+    if result.notes:
+        out["notes"] = list(result.notes)
     out["questions"] = {
         q.id: {"marks": json_number(q.marks), "score": json_number(q.score),
                "keys": {k: r.as_dict() for k, r in q.keys.items()}}
@@ -86,6 +88,8 @@ def feedback_markdown(result: SubmissionResult, titles: dict | None = None) -> s
     if result.error:
         lines += ["The answers file could not be read, so no answer was graded:", "", "```",
                   result.error, "```", ""]
+    if result.notes:
+        lines += ["These answers could not be graded:", ""] + [f"- {n}" for n in result.notes] + [""]
     for q in result.questions:
         title = titles.get(q.id, "")
         lines.append(f"## {q.id}" + (f" — {title}" if title else ""))
