@@ -385,3 +385,19 @@ def test_maximum_matching_not_greedy():
 
     # given 0 matches both expected; given 1 only the first: a greedy match would find 1
     assert max_matching([[True, True], [True, False]]) == 2
+
+
+def test_sympy_proof_when_points_fail(ref):
+    # an expected value undefined at the sample points is settled by sympy, briefly
+    import sympy as sp
+
+    from robosolve.grading.grader import Grader
+    from robosolve.questions.registry import question_type
+
+    g = Grader(ref)
+    qref = ref.question("jacobian")
+    ak = question_type("jacobian").key("det")
+    L1 = ref.problem.names["L1"]
+    e = sp.sqrt(-L1) * sp.sqrt(-L1)            # = -L1, but nan at every point with numpy
+    assert g._prove(qref, ak, "det", -L1, e).verdict == "correct"
+    assert g._prove(qref, ak, "det", L1, e).verdict == "incorrect"
