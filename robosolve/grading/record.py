@@ -94,7 +94,10 @@ def feedback_markdown(result: SubmissionResult, titles: dict | None = None) -> s
         title = titles.get(q.id, "")
         lines.append(f"## {q.id}" + (f" — {title}" if title else ""))
         lines.append("")
-        lines.append(f"{number_text(q.score)} of {number_text(q.max_score)} marks.")
+        if q.no_reference:
+            lines.append("Not graded: robosolve could not answer this question.")
+        else:
+            lines.append(f"Score: {number_text(q.score)} / {number_text(q.max_score)}.")
         lines.append("")
         lines.append("| key | verdict | what is wrong |")
         lines.append("| --- | --- | --- |")
@@ -107,4 +110,5 @@ def feedback_markdown(result: SubmissionResult, titles: dict | None = None) -> s
 
 
 def _cell(text: str) -> str:
-    return text.replace("|", "\\|").replace("\n", " ")
+    """Table-cell text: `|` and `*` escaped (L1*cos(theta1)*L2 must not turn italic)."""
+    return text.replace("\\", "\\\\").replace("|", "\\|").replace("*", "\\*").replace("\n", " ")
