@@ -401,3 +401,24 @@ def test_sympy_proof_when_points_fail(ref):
     e = sp.sqrt(-L1) * sp.sqrt(-L1)            # = -L1, but nan at every point with numpy
     assert g._prove(qref, ak, "det", -L1, e).verdict == "correct"
     assert g._prove(qref, ak, "det", L1, e).verdict == "incorrect"
+
+
+def test_sampling_ranges_of_every_role():
+    import sympy as sp
+
+    from robosolve.grading.points import SymbolRoles, sample
+
+    L, F, q, qd, C, t = sp.symbols("L F q q_dot C t", real=True)
+    roles = SymbolRoles(parameters={L: 2.0, F: None}, joints={q: (-0.5, 1.0)}, rates={qd},
+                        actuators={C}, t_symbol=t, t_range=(0.0, 1.7))
+    s = sample({L, F, q, qd, C, t}, roles, "seed")
+    col = s.columns
+    assert ((col[F] >= 0.5) & (col[F] <= 2)).all()                       # null parameter
+    assert ((col[q] >= -0.5) & (col[q] <= 1.0)).all()                    # joint limits
+    assert ((col[qd] >= -2) & (col[qd] <= 2)).all()
+    assert ((col[C] >= -5) & (col[C] <= 5)).all()
+    assert ((col[t] >= 0) & (col[t] <= 1.7)).all()
+    assert (col[L][s.fixed] == 2.0).all() and ((col[L][~s.fixed] >= 1.6) & (col[L][~s.fixed] <= 2.5)).all()
+    # a symbol's values do not depend on the other symbols sampled with it
+    alone = sample({q}, roles, "seed")
+    assert (alone.columns[q] == col[q]).all()
