@@ -422,3 +422,21 @@ def test_sampling_ranges_of_every_role():
     # a symbol's values do not depend on the other symbols sampled with it
     alone = sample({q}, roles, "seed")
     assert (alone.columns[q] == col[q]).all()
+
+
+def test_expression_for_a_numeric_reference_is_evaluated_at_the_values(ref):
+    # ellipse quantities are numbers (at `at`) even in symbolic form: an expression of the
+    # parameters is evaluated at their values, not diagnosed as substituted
+    J = jac()
+    w = np.linalg.eigvalsh(J @ J.T)
+    cond = max(w) / min(w)
+    r = one(ref, "ellipsoids", "condition_number", f'"{cond / (2 * 0.5 / 1.1)}*2*L1/(L1 + 0.6)"')
+    assert (r.verdict, r.compared) == ("correct", "numeric")
+    r = one(ref, "ellipsoids", "condition_number", f'"{cond}*3*L1"')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "")
+
+
+def test_parameters_substituted_needs_a_missing_parameter(ref):
+    # wrong at the moved points but every parameter kept: not "substituted"
+    r = one(ref, "jacobian", "det", '"L1*L2*sin(q2) + (L1 - 1/2)"')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "")

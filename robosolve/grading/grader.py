@@ -179,7 +179,11 @@ class Grader:
         symbolic = bool(free) and sym is not None and not (ak.by_value and num is not None)
         if symbolic:
             e = self._expected(qref, ak, key, "symbolic", sym)
-        else:
+            if not free_symbols(e):
+                # the reference is a number even in symbolic form (e.g. ellipse lengths at `at`):
+                # the given expression is evaluated at the question's values instead
+                symbolic = False
+        if not symbolic:
             if free:
                 g = substitute(g, subs)
                 left = free_symbols(g)
@@ -207,11 +211,12 @@ class Grader:
             return KeyResult(CORRECT, compared)
         if outcome.unknown:
             return KeyResult(INVALID, compared, feedback=outcome.unknown)
-        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic)
+        substituted = (free_symbols(e) & self.parameters) - free   # parameters the answer lacks
+        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted))
         symbol = self.symbol(qref, ak)
         expected_text = f"expected {symbol} = {show(e)}"
         if diagnosis:
-            params = self._names((free_symbols(e) & self.parameters) - free)
+            params = self._names(substituted)
             text = D.sentence(diagnosis, ak, symbol=symbol, frame=qref.frame, outcome=outcome, params=params)
             verdict = INVALID if diagnosis == "wrong_shape" else INCORRECT
             return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}")
