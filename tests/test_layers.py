@@ -22,13 +22,13 @@ PACKAGE = Path(__file__).resolve().parent.parent / "robosolve"
 
 # layer rank of each top-level part of the package
 LAYERS = {
-    "robosolve": 0, "errors": 0, "core": 0, "questions": 0,
+    "robosolve": 0, "errors": 0, "interrupts": 0, "core": 0, "questions": 0,
     "load": 1,
     "model": 2,
     "kinematics": 3, "ik": 3, "dynamics": 3, "motion": 3, "geometry": 3,
     "solvers": 4,
     "render": 5,
-    "pipeline": 6, "batch": 6, "grading": 6, "variants": 6,
+    "pipeline": 6, "outputs": 6, "batch": 6, "grading": 6, "variants": 6,
     "cli": 7, "__main__": 7,
 }
 ENGINES = {"kinematics", "ik", "dynamics", "motion", "geometry"}
