@@ -9,7 +9,8 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.questions.registry import title as question_title
-from robosolve.render.numbers import report_number
+from robosolve.core.prose import Num, Text
+from robosolve.render.numbers import report_number, text
 
 
 
@@ -22,6 +23,8 @@ class Tex:
     def __call__(self, v) -> str:
         if isinstance(v, str):
             return v
+        if isinstance(v, (Num, Text)):
+            return text(v, math=True)
         if isinstance(v, bool):
             return "\\text{true}" if v else "\\text{false}"
         if v is None:
@@ -50,7 +53,7 @@ def display(tex: str) -> str:
 
 def render_table(header, rows) -> str:
     def cell(x):
-        return str(x).replace("|", "\\|").replace("\n", " ")
+        return text(x).replace("|", "\\|").replace("\n", " ")
     out = ["| " + " | ".join(cell(h) for h in header) + " |",
            "| " + " | ".join("---" for _ in header) + " |"]
     out += ["| " + " | ".join(cell(c) for c in r) + " |" for r in rows]
@@ -116,7 +119,7 @@ def render_data(problem, model, tex: Tex) -> list[str]:
 def render_step(step, tex: Tex) -> list[str]:
     out = [f"#### {step.title}"]
     if step.text:
-        out.append(step.text)
+        out.append(text(step.text))
     for lhs, value in step.equations:
         out.append(display(f"{lhs} = {tex(value)}" if lhs else tex(value)))
     if step.table:
@@ -137,7 +140,7 @@ def render_answer(index: int, answer, figure_paths: list[str], tex: Tex) -> list
         out.append(f"![{answer.id}]({path})")
     if answer.notes:
         out.append("**Notes**")
-        out += [f"- {n}" for n in answer.notes]
+        out += [f"- {text(n)}" for n in answer.notes]
     return out
 
 
