@@ -77,6 +77,20 @@ class RobotModel:
         return [(f"MDH({sp.latex(al)}, {sp.latex(a)}, {sp.latex(th)}, {sp.latex(d)})",
                  dh_modified(al, a, th, d))]
 
+    def elementary_factors(self, frame: str) -> list | None:
+        """The frame's pose as elementary motions [(op, arg)] (DH rows expanded), or
+        None for a pose given as a matrix."""
+        f = self.frames[frame]
+        if f.kind == "pose":
+            return list(f.factors)
+        if f.kind == "dh":
+            th, d, a, al = f.factors
+            return [("Rz", th), ("Tz", d), ("Tx", a), ("Rx", al)]
+        if f.kind == "mdh":
+            al, a, th, d = f.factors
+            return [("Rx", al), ("Tx", a), ("Rz", th), ("Tz", d)]
+        return None
+
     def M_local(self, frame: str) -> sp.Matrix:
         """Pose of `frame` in its parent (the product of its elementary factors)."""
         key = ("M_local", frame)
@@ -172,7 +186,14 @@ class RobotModel:
         frame = frame or self.joint_frame(index)
         key = ("L_local", index, frame)
         if key not in self._cache:
-            self._cache[key] = mx.l_matrix(self.M_local(frame), self.joints[index].symbol)
+            q = self.joints[index].symbol
+            factors = self.elementary_factors(frame)
+            l_mat = mx.l_matrix_of_factors(factors, q) if factors is not None else None
+            if l_mat is not None:
+                l_mat = tidy_matrix(l_mat)
+            else:
+                l_mat = mx.l_matrix(self.M_local(frame), q)
+            self._cache[key] = l_mat
         return self._cache[key]
 
     def L0(self, index: int, frame: str | None = None) -> sp.Matrix:
