@@ -16,7 +16,7 @@ from functools import cached_property
 import sympy as sp
 
 from robosolve.core import matrices as mx
-from robosolve.core.simplify import tidy, tidy_matrix
+from robosolve.core.simplify import tidy, tidy_matrix, tidy_products_matrix
 from robosolve.core.transforms import ELEMENTARY, dh_modified, dh_standard, homogeneous, rigid_inverse
 from robosolve.load.expressions import point_symbol
 from robosolve.load.problem import Body, Problem
@@ -109,8 +109,11 @@ class RobotModel:
             # Only the new products need tidying: the parent's translation is already
             # tidy, so re-simplifying the whole growing sum (exponential in the chain
             # length) is avoided.
-            r = tidy_matrix(mp[:3, :3] * ml[:3, :3])
-            t = mp[:3, 3] + tidy_matrix(mp[:3, :3] * ml[:3, 3])
+            # Arms of 5+ joints: addition formulas only (trigsimp finds nothing more in
+            # their products and costs seconds per entry), see core.simplify.
+            tidy_m = tidy_matrix if len(self.q) <= 4 else tidy_products_matrix
+            r = tidy_m(mp[:3, :3] * ml[:3, :3])
+            t = mp[:3, 3] + tidy_m(mp[:3, :3] * ml[:3, 3])
             self._m0[frame] = homogeneous(r, t)
         return self._m0[frame]
 
