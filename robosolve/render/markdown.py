@@ -9,6 +9,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.questions.registry import title as question_title
+from robosolve.render.configuration import configuration_text, overrides_by_parameter
 from robosolve.render.numbers import report_number
 
 
@@ -62,7 +63,13 @@ def render_data(problem, model, tex: Tex) -> list[str]:
     if problem.parameters:
         rows = [(f"${tex(s)}$", "null (symbolic)" if v is None else f"${tex(v)}$")
                 for s, v in problem.parameters.items()]
-        out += ["### Parameters", render_table(("symbol", "value"), rows)]
+        header = ("symbol", "value")
+        overrides = overrides_by_parameter(problem, tex)
+        if overrides:       # the values some questions use instead, next to the base value
+            header += ("changed by a question's `at`",)
+            rows = [r + ("; ".join(overrides.get(s, [])) or "—",)
+                    for r, s in zip(rows, problem.parameters)]
+        out += ["### Parameters", render_table(header, rows)]
     if problem.joints:
         rows = []
         for j in problem.joints:
@@ -125,13 +132,25 @@ def render_step(step, tex: Tex) -> list[str]:
     return out
 
 
-def render_answer(index: int, answer, figure_paths: list[str], tex: Tex) -> list[str]:
+def _numbers_start(steps) -> int:
+    """Index of the first step that shows numbers of the question's configuration."""
+    for k, step in enumerate(steps):
+        if step.title.startswith("Numeric") or "configuration of the question" in step.text:
+            return k
+    return 0
+
+
+def render_answer(index: int, answer, figure_paths: list[str], tex: Tex,
+                  configuration: str | None = None) -> list[str]:
     title = question_title(answer.type)
     out = [f"## {index}. {title} — `{answer.id}`"]
     if answer.error is not None:
         out.append(f"**Not answered:** {answer.error}")
         return out
-    for step in answer.steps:
+    start = _numbers_start(answer.steps) if configuration else -1
+    for k, step in enumerate(answer.steps):
+        if k == start:
+            out.append(configuration)
         out += render_step(step, tex)
     for path in figure_paths:
         out.append(f"![{answer.id}]({path})")
@@ -150,6 +169,23 @@ def render_report(report, figure_paths: dict) -> str:
     out.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
                "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
     out += render_data(problem, model, tex)
+    questions = {q.id: q for q in problem.questions}
     for i, answer in enumerate(report.answers, 1):
-        out += render_answer(i, answer, figure_paths.get(answer.id, []), tex)
+        q = questions.get(answer.id)
+        config = configuration_text(q, problem, tex) if q is not None else None
+        out += render_answer(i, answer, figure_paths.get(answer.id, []), tex, config)
+    out += render_course_notes(out)
     return "\n\n".join(out) + "\n"
+
+
+def render_course_notes(blocks: list[str]) -> list[str]:
+    """The course notes the report links to, copied in so that the links work anywhere."""
+    from robosolve.core.course_notes import NOTES, cited, note_block
+
+    anchors = cited(blocks)
+    if not anchors:
+        return []
+    return (["## Notes on the course summary",
+             "Where the course summary is wrong or ambiguous, what this report does instead "
+             "(all the notes: robosolve's docs/course-notes.md)."]
+            + [note_block(NOTES[a], "####") for a in anchors])

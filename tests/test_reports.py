@@ -1,0 +1,102 @@
+"""Report wording and layout (issue 16): course notes, stated configurations, the
+position chain, readable line lengths. Checks against the golden reports and small
+problems whose numbers are computed here independently (numpy, by hand)."""
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from robosolve.core.course_notes import NOTES, notes_page
+from robosolve.pipeline import solve_file
+from robosolve.render.markdown import render_report
+
+ROOT = Path(__file__).resolve().parent.parent
+GOLDEN = ROOT / "tests" / "golden"
+FORBIDDEN = re.compile(r"errata", re.IGNORECASE)
+
+
+def test_course_notes_page_is_generated_from_the_notes():
+    page = (ROOT / "docs" / "course-notes.md").read_text(encoding="utf-8")
+    assert page == notes_page(), "regenerate: python -m robosolve.core.course_notes > docs/course-notes.md"
+
+
+def test_no_report_doc_or_solver_cites_a_document_outside_the_project():
+    files = [*GOLDEN.glob("*/report.md"), *(ROOT / "docs").rglob("*.md"), ROOT / "README.md",
+             *(ROOT / "problems").glob("*.yaml"), *(ROOT / "robosolve").rglob("*.py")]
+    offenders = [str(f.relative_to(ROOT)) for f in files if FORBIDDEN.search(f.read_text(encoding="utf-8"))]
+    assert offenders == []
+
+
+def test_every_note_link_of_a_report_has_its_note_in_the_report():
+    for report in GOLDEN.glob("*/report.md"):
+        text = report.read_text(encoding="utf-8")
+        links = set(re.findall(r"\]\(#note-([a-z0-9-]+)\)", text))
+        anchors = set(re.findall(r'<a id="note-([a-z0-9-]+)"></a>', text))
+        assert links <= set(NOTES), report
+        assert links == anchors, report
+
+
+@pytest.mark.xfail(reason="big matrices are shown whole until the compact layout lands", strict=False)
+def test_no_line_of_a_golden_report_is_unreadably_long():
+    for report in GOLDEN.glob("*/report.md"):
+        longest = max(len(line) for line in report.read_text(encoding="utf-8").splitlines())
+        assert longest <= 3000, (report, longest)
+
+
+TWO_FRAMES = """
+robosolve: 1
+name: two-frames
+parameters: {L1: 1/2, L2: 1/3}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+points:
+  P: {frame: "2", at: [0, 0, 0]}
+questions:
+  - {type: position, frame: "1", point: P, at: {q1: pi/6, q2: pi/4, L1: 1}}
+"""
+
+
+def _rz_tx(q, a):
+    c, s = math.cos(q), math.sin(q)
+    return np.array([[c, -s, 0, a * c], [s, c, 0, a * s], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def test_position_chain_reaches_the_point_frame(write_problem):
+    report = solve_file(write_problem(TWO_FRAMES))
+    ans = report.answers[0]
+    m01, m12 = _rz_tx(math.pi / 6, 1.0), _rz_tx(math.pi / 4, 1 / 3)
+    chain = ans.numeric["chain"]
+    assert len(chain) == 2 and len(ans.symbolic["chain"]) == 2
+    np.testing.assert_allclose(chain[0], m01, atol=1e-12)
+    np.testing.assert_allclose(chain[1], m12, atol=1e-12)
+    np.testing.assert_allclose(ans.numeric["M"], m01, atol=1e-12)            # frame 1 itself
+    np.testing.assert_allclose(ans.numeric["position"], (m01 @ m12)[:3, 3], atol=1e-12)
+
+
+def test_configuration_and_overrides_are_stated(write_problem):
+    report = solve_file(write_problem(TWO_FRAMES))
+    md = render_report(report, {})
+    # the data section shows the override next to the base value
+    row = next(line for line in md.splitlines() if line.startswith("| $L_{1}$"))
+    assert "\\frac{1}{2}" in row and "$1$ in `position`" in row
+    # the answer states joints (exact and decimal) and the override before its numbers
+    section = md.split("## 1. ")[1]
+    config = section.index("**Configuration of the numbers.**")
+    assert config < section.index("#### Numeric values")
+    stated = section[config:section.index("#### Numeric values")]
+    assert "\\theta" not in stated and "q_{1} = \\frac{\\pi}{6} \\approx 0.523599" in stated
+    assert "L_{1} = 1$ (data: $\\frac{1}{2}$)" in stated
+
+
+def test_golden_results_keep_a_chain_per_frame_used():
+    # self-check of the golden files against the loader's frames (robosolve against itself)
+    data = json.loads((GOLDEN / "scara-rrp" / "results.json").read_text())
+    assert len(data["answers"]["position"]["numeric"]["chain"]) == 3
