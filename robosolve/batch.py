@@ -31,7 +31,7 @@ def collect(source: str) -> list[Path]:
     return sorted(files)
 
 
-def solve_one(path: str, out_dir: str) -> dict:
+def solve_one(path: str, out_dir: str, formats=("md",)) -> dict:
     """Worker: load, solve, write. Returns a summary (never raises on bad input)."""
     from robosolve.load.loader import load_problem
     from robosolve.pipeline import solve_problem, write_outputs
@@ -43,14 +43,14 @@ def solve_one(path: str, out_dir: str) -> dict:
                 "messages": [str(i) for i in exc.issues]}
     report = solve_problem(problem)
     target = Path(out_dir) / problem.name
-    write_outputs(report, target)
+    write_outputs(report, target, formats)
     failed = [f"{a.id}: {a.error}" for a in report.answers if a.error is not None]
     return {"file": path, "name": problem.name, "status": report.exit_status,
             "answered": len(report.answers) - len(failed), "total": len(report.answers),
             "messages": failed}
 
 
-def run(files, out=None, jobs=0, golden=None, update=False) -> int:
+def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",)) -> int:
     from rich.console import Console
     from rich.progress import Progress
     from rich.table import Table
@@ -70,11 +70,11 @@ def run(files, out=None, jobs=0, golden=None, update=False) -> int:
             task = progress.add_task("solving", total=len(files))
             if jobs == 1 or len(files) == 1:
                 for f in files:
-                    results.append(solve_one(str(f), str(out_dir)))
+                    results.append(solve_one(str(f), str(out_dir), formats))
                     progress.advance(task)
             else:
                 with ProcessPoolExecutor(max_workers=min(jobs, len(files))) as pool:
-                    futures = [pool.submit(solve_one, str(f), str(out_dir)) for f in files]
+                    futures = [pool.submit(solve_one, str(f), str(out_dir), formats) for f in files]
                     for fut in as_completed(futures):
                         try:
                             results.append(fut.result())

@@ -28,6 +28,21 @@ def _err(text: str) -> None:
     sys.stderr.write(text + "\n")
 
 
+FORMAT_HELP = ("Reports to write, comma-separated: md (report.md), html (report.html, one "
+               "self-contained page), ipynb (report.ipynb, a notebook that recomputes the answers). "
+               "Default: md. results.json and figures/ are always written.")
+
+
+def _formats(text: Optional[str]) -> tuple:
+    from robosolve.render.formats import parse_formats
+
+    try:
+        return parse_formats(text)
+    except ValueError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
+
+
 def _default_out(problem_name: str) -> Path:
     return Path("out") / problem_name
 
@@ -39,10 +54,13 @@ def solve(
         None, "--out", "-o",
         help="Output folder. With one file: the folder itself (DIR/report.md). "
              "With several: DIR/<problem name>/. Default: out/<problem name>/."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
 ) -> None:
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
     from robosolve.pipeline import solve_problem, write_outputs
+
+    formats = _formats(format)
 
     # Validate every file first: nothing is written when any input is invalid.
     problems, status = [], EXIT_OK
@@ -64,7 +82,7 @@ def solve(
             target = _default_out(problem.name)
         else:
             target = out if len(files) == 1 else out / problem.name
-        write_outputs(report, target)
+        write_outputs(report, target, formats)
         failed = [a for a in report.answers if a.error is not None]
         msg = f"{problem.file}: {len(report.answers) - len(failed)}/{len(report.answers)} questions answered -> {target}"
         typer.echo(msg)
@@ -98,9 +116,12 @@ def batch(
     check: Optional[Path] = typer.Option(
         None, "--check", help="Golden folder: regenerate into a temporary folder and compare."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
 ) -> None:
     """Solve many problem files in parallel; optionally compare with golden outputs."""
     from robosolve import batch as batch_mod
+
+    formats = _formats(format)
 
     files = batch_mod.collect(source)
     if not files:
@@ -112,7 +133,7 @@ def batch(
     if check is None and out is None:
         _err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(EXIT_INPUT)
-    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update)
+    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, formats=formats)
     raise typer.Exit(status)
 
 

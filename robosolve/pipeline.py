@@ -61,8 +61,10 @@ def solve_file(path) -> Report:
     return solve_problem(load_problem(path))
 
 
-def render_outputs(report: Report, folder: Path) -> None:
-    """Write report.md, results.json and figures/ into an existing empty folder."""
+def render_outputs(report: Report, folder: Path, formats=("md",)) -> None:
+    """Write results.json, figures/ and the reports of `formats` (robosolve.render.formats:
+    md, html, ipynb) into an existing empty folder."""
+    from robosolve.render.formats import FORMATS
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
@@ -80,16 +82,20 @@ def render_outputs(report: Report, folder: Path) -> None:
                 continue
             figure_paths.setdefault(answer.id, []).append(rel)
     (folder / "results.json").write_text(render_results_json(report, figure_paths), encoding="utf-8")
-    (folder / "report.md").write_text(render_report(report, figure_paths), encoding="utf-8")
+    markdown = render_report(report, figure_paths)
+    for name in formats:
+        fmt = FORMATS[name]
+        (folder / fmt.filename).write_text(fmt.render(report, markdown, figure_paths, folder),
+                                           encoding="utf-8")
 
 
-def write_outputs(report: Report, out_dir) -> Path:
+def write_outputs(report: Report, out_dir, formats=("md",)) -> Path:
     """Render into a temporary sibling folder, then replace `out_dir` with it."""
     out_dir = Path(out_dir)
     out_dir.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
     try:
-        render_outputs(report, tmp)
+        render_outputs(report, tmp, formats)
         if out_dir.exists():
             old = out_dir.with_name(f".{out_dir.name}.old-{os.getpid()}")
             out_dir.rename(old)

@@ -100,3 +100,33 @@ def test_golden_results_keep_a_chain_per_frame_used():
     # self-check of the golden files against the loader's frames (robosolve against itself)
     data = json.loads((GOLDEN / "scara-rrp" / "results.json").read_text())
     assert len(data["answers"]["position"]["numeric"]["chain"]) == 3
+
+
+ONE_LINK_KP0 = """
+robosolve: 1
+name: kp-zero
+parameters: {L: 1, m1: 2, g: 9.81, F: 3}
+joints:
+  - {name: theta, type: revolute, actuator: C}
+frames:
+  "1": {parent: "0", pose: "Rx(theta) Ty(L)"}
+bodies:
+  - {name: link, frame: "1", mass: m1, rod: {from: [0, -L, 0], to: [0, 0, 0]}}
+forces:
+  - {name: F, frame: "1", at: [0, -L/3, 0], force: [0, 0, -F], in: "1"}
+questions:
+  - {type: motion_profile, id: move, from: {theta: 0}, to: {theta: 1/2}, max_acceleration: {theta: 2}}
+  - {type: p_control, profile: move, gains: {theta: 0}}
+"""
+
+
+def test_p_control_with_zero_gain_and_the_external_force_in_the_effort_plot(write_problem):
+    report = solve_file(write_problem(ONE_LINK_KP0))
+    control = report.answers[1]
+    text = " ".join(s.text for s in control.steps)
+    assert "springs" not in text and "K_p = 0" in text
+    effort = next(f for f in control.figures if f.name == "effort")
+    ext = effort.data["actuators"][0]["external"]
+    # follower force F = 3 N at 2L/3 perpendicular to the link: f_theta = -2/3 F L = -2 (by hand)
+    assert ext is not None and np.allclose(ext, -2.0, atol=1e-9)
+    assert np.allclose(effort.data["actuators"][0]["values"], 0.0)

@@ -45,6 +45,7 @@ def _converter():
 def latex_to_mathml(tex: str, display: bool) -> str:
     convert = _converter()
     out = convert(tex.strip(), display="block" if display else "inline")
+    out = out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1)   # implied in HTML5
     # stretchy fences around a matrix become CSS-drawn brackets on the table itself
     out = FENCED_MATRIX.sub(
         lambda m: f'<mtable class="rs-matrix {BRACKET_CLASS[m.group(1)]}">{m.group(3)}</mtable>', out)
@@ -163,3 +164,9 @@ def render_html(markdown: str, folder: Path | None = None, title: str = "robosol
             "<meta name=\"generator\" content=\"robosolve\">\n"
             f"<title>{html.escape(title)}</title>\n<style>{CSS}</style>\n</head>\n<body>\n"
             f"{body}</body>\n</html>\n")
+
+
+def render_html_file(report, markdown: str, figure_paths, folder) -> str:
+    """The `html` format (robosolve.render.formats)."""
+    problem = report.problem
+    return render_html(markdown, Path(folder), problem.title or problem.name)

@@ -189,3 +189,8 @@ def render_course_notes(blocks: list[str]) -> list[str]:
              "Where the course summary is wrong or ambiguous, what this report does instead "
              "(all the notes: robosolve's docs/course-notes.md)."]
             + [note_block(NOTES[a], "####") for a in anchors])
+
+
+def render_markdown_file(report, markdown: str, figure_paths, folder) -> str:
+    """The `md` format (robosolve.render.formats): report.md as rendered."""
+    return markdown
