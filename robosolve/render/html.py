@@ -128,7 +128,9 @@ mtable.rs-bracket { border-left: 1.3px solid currentColor; border-right: 1.3px s
 mtable.rs-paren { border-left: 1.3px solid currentColor; border-right: 1.3px solid currentColor;
   border-radius: .7em / 50%; }
 mtable.rs-bars { border-left: 1.3px solid currentColor; border-right: 1.3px solid currentColor; }
-mtable.rs-matrix mtd { padding: .16em .5em; }
+mtable.rs-matrix mtd { padding: .2em .55em; }
+mtd[columnalign="left"] { text-align: left; }
+mtd[columnalign="right"] { text-align: right; }
 .rs-table { overflow-x: auto; margin: .8em 0; }
 table { border-collapse: collapse; font-size: .93em; border-top: 2px solid var(--ink);
         border-bottom: 2px solid var(--ink); }
