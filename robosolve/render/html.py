@@ -143,6 +143,7 @@ ul { padding-left: 1.3em; }
 header.rs-meta { font-size: .8em; color: #666; margin-bottom: .4em; }
 @media (max-width: 600px) {
   html { font-size: 16px; }
+  h1 { font-size: 1.45em; }
   body { padding: .8em .7em 2em; }
 }
 @media print {
