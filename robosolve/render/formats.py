@@ -1,7 +1,8 @@
 """The report formats of `--format`, registered in one place.
 
-Each format names its file and a renderer `render(report, markdown, figure_paths, folder) -> str`
-(imported on first use); `markdown` is report.md's text, which the other formats build on.
+Each format names its file and a renderer `render(report, markdown, figure_paths, files) -> str`
+(imported on first use); `markdown` is report.md's text, which the other formats build on, and
+`files` the outputs rendered so far (relative path -> bytes: the figures to embed).
 results.json and figures/ are not formats: they are always written.
 """
 
@@ -20,9 +21,9 @@ class ReportFormat:
     needs: tuple = ()        # importable modules of its optional extra
     extra: str = ""          # pip extra that provides them
 
-    def render(self, report, markdown: str, figure_paths: dict, folder) -> str:
+    def render(self, report, markdown: str, figure_paths: dict, files: dict) -> str:
         module, func = self.renderer.split(":")
-        return getattr(importlib.import_module(module), func)(report, markdown, figure_paths, folder)
+        return getattr(importlib.import_module(module), func)(report, markdown, figure_paths, files)
 
 
 FORMATS = {

@@ -69,19 +69,24 @@ def _protect_math(md: str) -> tuple[str, list[tuple[str, bool]]]:
     return "\n".join(lines), found
 
 
-def _embed_images(body: str, folder: Path | None) -> str:
+def _embed_images(body: str, figures) -> str:
+    """Image sources -> data: URIs. `figures`: relative path -> PNG bytes, or a folder."""
     def data_uri(m):
         src = html.unescape(m.group(1))
-        path = (folder / src) if folder is not None else None
-        if path is None or not path.is_file() or src.startswith(("http:", "https:", "//")):
+        if isinstance(figures, dict):
+            data = figures.get(src)
+        elif figures is not None and (Path(figures) / src).is_file():
+            data = (Path(figures) / src).read_bytes()
+        else:
+            data = None
+        if data is None:
             return 'src=""'
-        b64 = base64.b64encode(path.read_bytes()).decode("ascii")
-        return f'src="data:image/png;base64,{b64}"'
+        return f'src="data:image/png;base64,{base64.b64encode(data).decode("ascii")}"'
 
     return re.sub(r'src="([^"]*)"', data_uri, body)
 
 
-def markdown_to_html_body(md: str, folder: Path | None = None) -> str:
+def markdown_to_html_body(md: str, folder=None) -> str:
     from markdown_it import MarkdownIt
 
     md = NOTE_ANCHOR.sub(lambda m: f"RSANCHOR{m.group(1)}X", md)
@@ -159,8 +164,9 @@ header.rs-meta { font-size: .8em; color: #666; margin-bottom: .4em; }
 """
 
 
-def render_html(markdown: str, folder: Path | None = None, title: str = "robosolve report") -> str:
-    """The whole page. `folder` holds figures/ (embedded); None leaves image sources empty."""
+def render_html(markdown: str, folder=None, title: str = "robosolve report") -> str:
+    """The whole page. `folder`: the figures (relative path -> PNG bytes, or the output folder
+    holding figures/), embedded; None leaves image sources empty."""
     body = markdown_to_html_body(markdown, folder)
     return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
@@ -169,7 +175,7 @@ def render_html(markdown: str, folder: Path | None = None, title: str = "robosol
             f"{body}</body>\n</html>\n")
 
 
-def render_html_file(report, markdown: str, figure_paths, folder) -> str:
-    """The `html` format (robosolve.render.formats)."""
+def render_html_file(report, markdown: str, figure_paths, files) -> str:
+    """The `html` format (robosolve.render.formats); `files`: the figures rendered so far."""
     problem = report.problem
-    return render_html(markdown, Path(folder), problem.title or problem.name)
+    return render_html(markdown, files, problem.title or problem.name)

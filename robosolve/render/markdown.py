@@ -237,6 +237,6 @@ def render_course_notes(blocks: list[str]) -> list[str]:
             + [note_block(NOTES[a], "####") for a in anchors])
 
 
-def render_markdown_file(report, markdown: str, figure_paths, folder) -> str:
+def render_markdown_file(report, markdown: str, figure_paths, files) -> str:
     """The `md` format (robosolve.render.formats): report.md as rendered."""
     return markdown

@@ -382,7 +382,7 @@ def build_notebook(report, markdown: str):
     return nb
 
 
-def render_notebook_file(report, markdown: str, figure_paths, folder) -> str:
+def render_notebook_file(report, markdown: str, figure_paths, files) -> str:
     """The `ipynb` format (robosolve.render.formats)."""
     import nbformat
 
