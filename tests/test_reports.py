@@ -139,3 +139,45 @@ def test_every_question_type_has_its_page_and_its_row_in_problem_format():
     for name, qt in QUESTION_TYPES.items():
         assert (ROOT / qt.doc_page).is_file(), qt.doc_page
         assert re.search(rf"^\| `{name}` \|", table, flags=re.M), name
+
+
+def test_compact_notation_is_defined_once_and_means_what_it_says():
+    import sympy as sp
+
+    from robosolve.load.loader import load_problem
+    from robosolve.render.compact import CompactTrig
+
+    problem = load_problem(ROOT / "problems" / "scara-rrp.yaml")
+    t1, t2, l = problem.joint_symbols
+    compact = CompactTrig(problem)
+    expr = 2 * sp.cos(t1) + sp.sin(t1 + t2) * l + sp.cos(2 * t1) + sp.sin(l)
+    short = compact(expr)
+    # back-substituting the meaning of each compact symbol gives the expression again
+    back = short.xreplace({s: f(a) for s, (f, a) in compact.meaning.items()})
+    assert sp.simplify(back - expr) == 0
+    names = {compact.names[s] for s in short.free_symbols if s in compact.names}
+    assert names == {"c_{1}", "s_{12}"}            # cos(2θ1) and sin(l) keep their own form
+    for report in GOLDEN.glob("*/report.md"):
+        text = report.read_text(encoding="utf-8")
+        notation = [line for line in text.splitlines() if line.startswith("Notation (the course's)")]
+        assert len(notation) <= 1, report
+        used = set(re.findall(r"(?<![A-Za-z\\])([cs]_\{\d+\})", text))
+        defined = set(re.findall(r"\$([cs]_\{\d+\}) = ", notation[0])) if notation else set()
+        assert used == defined, (report, used ^ defined)
+
+
+def test_a_big_matrix_is_shown_entry_by_entry_with_every_entry():
+    import sympy as sp
+
+    from robosolve.render.compact import display_lines
+    from robosolve.render.markdown import Tex
+
+    q = sp.symbols("q1:7")
+    big = sp.Matrix(4, 4, lambda i, j: 0 if i == 3 else sum(sp.cos(x) * sp.sin(y) for x in q for y in q[: i + j + 1]))
+    intro, lines = display_lines("{}^{0}M_{6}", big, Tex({}))
+    assert intro is not None and "[4,1], [4,2], [4,3], [4,4] are 0" in intro
+    assert len(lines) == 12
+    assert all(line.removeprefix("\\begin{array}{rl}\n").startswith(f"{{}}^{{0}}M_{{6}}[{i},{j}]")
+               for line, (i, j) in
+               zip(lines, [(i, j) for i in range(1, 4) for j in range(1, 5)]))
+    assert max(len(x) for line in lines for x in line.split("\n")) <= 400
