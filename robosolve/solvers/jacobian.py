@@ -3,7 +3,7 @@ and the singular configurations; optionally the geometric Jacobian and the
 centre-of-mass Jacobians.
 
 Conventions: J = ∂S/∂Q with S = F(Q) the chosen coordinates (rows) and Q the joints
-(columns, joint order), ERRATA item 7; the geometric Jacobian is 6 x n (velocity of the
+(columns, joint order; docs/course-notes.md#note-jacobian-shape); the geometric Jacobian is 6 x n (velocity of the
 point, angular velocity of the frame), built from the L matrices ⁰Lᵢ; singularities as
 in the spec ("Singularities") and robosolve.kinematics.singularities.
 """
