@@ -67,6 +67,7 @@ class ControlResult:
     breaks: list[float] = field(default_factory=list)
     nfev: int = 0
     method: str = "LSODA"
+    external: np.ndarray | None = None   # (n, N) generalized external forces f_ext(q), for the plots
 
 
 def _intervals(plan: NumericPlan, duration: float):
@@ -178,6 +179,7 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     q_des = np.empty((n, grid.size))
     err = np.empty((n, grid.size))
     effort = np.empty((n, grid.size))
+    external = np.empty((n, grid.size))
     lo = 0
     for idx, (a, b, coeffs, sol) in enumerate(sols):
         hi = grid.size if idx == len(sols) - 1 else int(np.searchsorted(grid, b, side="right"))
@@ -193,6 +195,7 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
             q_des[:, lo:hi] = qdes
             err[:, lo:hi] = e
             effort[:, lo:hi] = _effort_many(dyn, law, kp, kd, qdes - e, vdes - ed, e, ed, ades)
+            external[:, lo:hi] = _external_many(dyn, qdes - e, vdes - ed)
         lo = hi
 
     # max |e|: the solver's own steps sample every oscillation finely; the best few
@@ -223,7 +226,8 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     final = sols[-1][3].y[:n, -1].copy()
     q = q_des - err
     return ControlResult(law, duration, grid, q, q_des, err, effort, max_err, t_max, final,
-                         breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method)
+                         breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method,
+                         external=external)
 
 
 class _Budget:
@@ -309,6 +313,15 @@ def _top_local_maxima(vals: np.ndarray, keep: int = 12) -> list[int]:
     near = idx[top >= best * (1 - 1e-2)]
     order = np.argsort(-vals[near], kind="stable")[:keep]
     return sorted(int(near[k]) for k in order)
+
+
+def _external_many(dyn, q, qd):
+    """Generalized external forces f_ext(q) at many samples (arrays (n, N))."""
+    many = getattr(dyn, "_terms_many", None)
+    if many is not None:
+        return np.broadcast_to(many(q, qd)[3], q.shape)
+    return np.column_stack([dyn.terms(q[:, k], qd[:, k])[3] for k in range(q.shape[1])]) \
+        if q.shape[1] else np.empty_like(q)
 
 
 def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades):
