@@ -13,8 +13,24 @@ from robosolve.core.timing import time_limit
 from robosolve.errors import SymbolicTimeout
 
 
-# Above this size trigsimp costs seconds and rarely pays: the entry is left as is.
+# Above this size trigsimp costs seconds and rarely pays: the entry is left as is. The size is
+# counted (sympy operations), so the decision is the same on every machine; the time limit of
+# `tidy` is only a safety net.
 MAX_TIDY_OPS = 300
+
+
+def expression_nodes(obj) -> int:
+    """The number of expression-tree nodes in a sympy object, a matrix, or nested lists,
+    tuples and dicts of them: the deterministic measure of symbolic work (spec §2)."""
+    if isinstance(obj, sp.MatrixBase):
+        return sum(expression_nodes(e) for e in obj)
+    if isinstance(obj, sp.Basic):
+        return sum(1 for _ in sp.preorder_traversal(obj))
+    if isinstance(obj, dict):
+        return sum(expression_nodes(v) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return sum(expression_nodes(e) for e in obj)
+    return 0
 
 
 _MEMO: dict = {}
@@ -47,7 +63,7 @@ def _tidy(expr, seconds: float):
             # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
             # leaves trigsimp, slow on long chains, little or nothing to do.
             collapsed = TR10i(expanded)
-            if not _has_trig_products(collapsed):
+            if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > MAX_TIDY_OPS:
                 return collapsed, True
             return sp.trigsimp(collapsed), True
     except SymbolicTimeout as exc:
