@@ -27,6 +27,7 @@ CORRECT, INCORRECT, MISSING, INVALID, NO_REFERENCE = (
     "correct", "incorrect", "missing", "invalid", "no_reference")
 MIN_POINTS = 6
 SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+MAX_SHOWN = 600                   # characters of an expected value quoted in feedback
 
 
 @dataclass
@@ -94,11 +95,16 @@ def fraction(marks) -> Fraction:
 
 # -- formatting values for feedback ---------------------------------------------
 def show(tree) -> str:
-    """A value as a student would write it: numbers to 4 significant digits."""
+    """A value as a student would write it (numbers to 4 significant digits), cut at MAX_SHOWN."""
+    text = _show(tree)
+    return text if len(text) <= MAX_SHOWN else text[:MAX_SHOWN].rstrip() + " … (see the report)"
+
+
+def _show(tree) -> str:
     if isinstance(tree, dict):
-        return "{" + ", ".join(f"{k}: {show(v)}" for k, v in tree.items()) + "}"
+        return "{" + ", ".join(f"{k}: {_show(v)}" for k, v in tree.items()) + "}"
     if isinstance(tree, (list, tuple)):
-        return "[" + ", ".join(show(v) for v in tree) + "]"
+        return "[" + ", ".join(_show(v) for v in tree) + "]"
     if isinstance(tree, Equation):
         return tree.text or f"{tree.residual} = 0"
     if tree is None:
