@@ -4,6 +4,7 @@ The handlers go in before typer and the rest are imported, so an interrupt at an
 start-up also ends with exit status 130 (spec §4) instead of a traceback.
 """
 
+import os
 import sys
 
 from robosolve import interrupts
@@ -15,7 +16,8 @@ def main() -> None:
         from robosolve.cli import main as cli_main
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
-        sys.exit(interrupts.EXIT_SIGINT)
+        sys.stderr.flush()
+        os._exit(interrupts.EXIT_SIGINT)  # (see cli.main: not the interpreter's SIGINT exit)
     cli_main()
 
 

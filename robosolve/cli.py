@@ -6,6 +6,7 @@ that `robosolve --help` answers at once.
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import List, Optional
@@ -212,7 +213,12 @@ def main() -> None:
     owed = interrupts.received()
     if owed is not None:
         _err("interrupted")
-        status = owed
+        # os._exit: the interpreter's own exit path turns a KeyboardInterrupt seen anywhere
+        # into death by SIGINT (status -2), whatever was caught; the clean-up ran in finally
+        # blocks already
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(owed)
     sys.exit(status)
 
 
