@@ -116,6 +116,35 @@ def batch(
     raise typer.Exit(status)
 
 
+@app.command()
+def variants(
+    problem: Path = typer.Argument(..., help="A problem file with a `variants` section."),
+    count: Optional[int] = typer.Option(None, "--count", "-n", help="Make variants 1..N (zero-padded ids)."),
+    roster: Optional[Path] = typer.Option(None, "--roster", help="CSV with a `student` column: one variant each."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder (replaced as a whole)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the draws (same seed, same variants)."),
+    no_solve: bool = typer.Option(False, "--no-solve", help="Write the problem files only."),
+    formats: Optional[str] = typer.Option(None, "--format", help="Report formats: md,html,ipynb (default md)."),
+    jobs: int = typer.Option(0, "--jobs", "-j", help="Parallel processes (default: number of cores)."),
+    scheduler: Optional[str] = typer.Option(
+        None, "--scheduler", help="Dask: 'local' (a LocalCluster) or tcp://HOST:PORT."),
+) -> None:
+    """Individualized variants of a problem: variants.csv, one folder per variant, solved."""
+    from robosolve.execution import SchedulerError, check_scheduler
+    from robosolve.variants import workflow
+
+    if (count is None) == (roster is None) or (count is not None and count < 1):
+        _err("give either --count N (N >= 1) or --roster ROSTER.csv")
+        raise typer.Exit(EXIT_INPUT)
+    try:
+        fmts = workflow.parse_formats(formats)
+        check_scheduler(scheduler)
+    except (ValueError, SchedulerError) as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
+    raise typer.Exit(workflow.command(problem, count, roster, out, seed, not no_solve, fmts, jobs, scheduler))
+
+
 def main() -> None:
     try:
         app()
