@@ -9,10 +9,8 @@ from __future__ import annotations
 import difflib
 import glob
 import json
-import os
 import shutil
 import tempfile
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
@@ -32,31 +30,61 @@ def collect(source: str) -> list[Path]:
 
 
 def solve_one(path: str, out_dir: str) -> dict:
-    """Worker: load, solve, write. Returns a summary (never raises on bad input)."""
-    from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem, write_outputs
-
-    try:
-        problem = load_problem(path)
-    except InputError as exc:
-        return {"file": path, "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
-                "messages": [str(i) for i in exc.issues]}
-    report = solve_problem(problem)
-    target = Path(out_dir) / problem.name
-    write_outputs(report, target)
-    failed = [f"{a.id}: {a.error}" for a in report.answers if a.error is not None]
-    return {"file": path, "name": problem.name, "status": report.exit_status,
-            "answered": len(report.answers) - len(failed), "total": len(report.answers),
-            "messages": failed}
+    """Load, solve and write one problem in this process (a summary row; never raises on bad input)."""
+    results = list(_solve_all([Path(path)], Path(out_dir), 1, None, lambda: None))
+    return results[0]
 
 
-def run(files, out=None, jobs=0, golden=None, update=False) -> int:
+def _tasks(files):
+    """One task per file (its YAML text); unreadable files become rows at once."""
+    from robosolve.execution import make_task
+
+    tasks, rows = [], {}
+    for i, f in enumerate(files):
+        try:
+            text = Path(f).read_bytes().decode("utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            why = "the file is not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else \
+                f"cannot read the file: {exc.strerror or exc}"
+            rows[i] = {"file": str(f), "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
+                       "messages": [f"{f}:1: {why}"]}
+            text = None
+        tasks.append(None if text is None else make_task(text, str(f)))
+    return tasks, rows
+
+
+def _solve_all(files, out_dir: Path, jobs, scheduler, advance):
+    """Solve every file on the chosen back-end; write each result's files as it arrives.
+    Returns the summary rows in file order."""
+    from robosolve.execution import owned, replace_folder, run_tasks
+
+    tasks, rows = _tasks(files)
+    todo = [i for i, t in enumerate(tasks) if t is not None]
+    for _ in rows:
+        advance()
+    for j, res in run_tasks([tasks[i] for i in todo], jobs, scheduler):
+        i = todo[j]
+        files_out = res.pop("files") or {}
+        res.pop("version", None)
+        if res["name"] and res["status"] != EXIT_INPUT:
+            target = out_dir / res["name"]
+            if owned(target):
+                replace_folder(files_out, target)
+            else:
+                res["status"] = EXIT_INPUT
+                res["messages"] = [f"{target}: exists and is not a robosolve output folder "
+                                   "(no .robosolve mark, not empty): not touched"]
+        rows[i] = res
+        advance()
+    return [rows[i] for i in range(len(files))]
+
+
+def run(files, out=None, jobs=0, golden=None, update=False, scheduler=None) -> int:
     from rich.console import Console
     from rich.progress import Progress
     from rich.table import Table
 
     console = Console(stderr=True)
-    jobs = jobs or os.cpu_count() or 1
     tmp = None
     if golden is not None:
         tmp = Path(tempfile.mkdtemp(prefix="robosolve-check-"))
@@ -64,24 +92,10 @@ def run(files, out=None, jobs=0, golden=None, update=False) -> int:
     else:
         out_dir = Path(out)
         out_dir.mkdir(parents=True, exist_ok=True)
-    results = []
     try:
         with Progress(console=console, transient=True) as progress:
             task = progress.add_task("solving", total=len(files))
-            if jobs == 1 or len(files) == 1:
-                for f in files:
-                    results.append(solve_one(str(f), str(out_dir)))
-                    progress.advance(task)
-            else:
-                with ProcessPoolExecutor(max_workers=min(jobs, len(files))) as pool:
-                    futures = [pool.submit(solve_one, str(f), str(out_dir)) for f in files]
-                    for fut in as_completed(futures):
-                        try:
-                            results.append(fut.result())
-                        except Exception as exc:  # a crashed worker is reported, not fatal
-                            results.append({"file": "?", "name": None, "status": EXIT_ANSWER_ERROR,
-                                            "answered": 0, "total": 0, "messages": [repr(exc)]})
-                        progress.advance(task)
+            results = _solve_all(files, out_dir, jobs, scheduler, lambda: progress.advance(task))
         results.sort(key=lambda r: r["file"])
         names = [r["name"] for r in results if r["name"]]
         dup = sorted({n for n in names if names.count(n) > 1})

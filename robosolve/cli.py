@@ -98,6 +98,8 @@ def batch(
     check: Optional[Path] = typer.Option(
         None, "--check", help="Golden folder: regenerate into a temporary folder and compare."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
+    scheduler: Optional[str] = typer.Option(
+        None, "--scheduler", help="Dask: 'local' (a LocalCluster) or tcp://HOST:PORT (workers with robosolve)."),
 ) -> None:
     """Solve many problem files in parallel; optionally compare with golden outputs."""
     from robosolve import batch as batch_mod
@@ -112,7 +114,14 @@ def batch(
     if check is None and out is None:
         _err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(EXIT_INPUT)
-    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update)
+    from robosolve.execution import SchedulerError, check_scheduler
+
+    try:
+        check_scheduler(scheduler)
+    except SchedulerError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
+    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, scheduler=scheduler)
     raise typer.Exit(status)
 
 

@@ -122,7 +122,9 @@ def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
     if n_valid is not None and n_valid < len(ids):
         what = "meet `require`" if spec.require else "exist"
         raise InputError([InputIssue(problem.file, spec.line, "variants",
-                                     f"only {n_valid} distinct variants {what} ({len(ids)} asked)")])
+                                     f"only {n_valid} distinct variant{'s' if n_valid != 1 else ''} "
+                                     f"{what.replace('meet', 'meets') if n_valid == 1 else what} "
+                                     f"({len(ids)} asked)")])
     plan = Plan(problem, spec, seed)
     step = progress.task("drawing", len(ids)) if progress else None
     for vid, student in ids:
