@@ -93,9 +93,15 @@ def run(files, out=None, jobs=0, golden=None, update=False, scheduler=None) -> i
         out_dir = Path(out)
         out_dir.mkdir(parents=True, exist_ok=True)
     try:
-        with Progress(console=console, transient=True) as progress:
-            task = progress.add_task("solving", total=len(files))
-            results = _solve_all(files, out_dir, jobs, scheduler, lambda: progress.advance(task))
+        from robosolve.execution import SchedulerError
+
+        try:
+            with Progress(console=console, transient=True) as progress:
+                task = progress.add_task("solving", total=len(files))
+                results = _solve_all(files, out_dir, jobs, scheduler, lambda: progress.advance(task))
+        except SchedulerError as exc:
+            console.print(str(exc), markup=False, highlight=False)
+            return EXIT_INPUT
         results.sort(key=lambda r: r["file"])
         names = [r["name"] for r in results if r["name"]]
         dup = sorted({n for n in names if names.count(n) > 1})

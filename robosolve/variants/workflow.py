@@ -229,6 +229,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
     from rich.console import Console
     from rich.progress import Progress
 
+    from robosolve.execution import SchedulerError
     from robosolve.variants.naming import count_ids, read_roster
 
     console = Console(stderr=True)
@@ -246,6 +247,9 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
             plan = plan_variants(problem, ids, seed, Steps(bar))
             status, results = run(plan, out, formats, solve, jobs, scheduler, Steps(bar))
     except InputError as exc:
+        say(str(exc))
+        return EXIT_INPUT
+    except SchedulerError as exc:
         say(str(exc))
         return EXIT_INPUT
     except VariantInvalid as exc:
