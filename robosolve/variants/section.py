@@ -146,8 +146,8 @@ def _parameters(builder, value) -> list:
                 chk.error(ppath, f"undeclared parameter '{name}'" + did_you_mean(name, declared)
                           + " (a varied parameter must be declared in `parameters`, with its base value)")
             continue
-        if not chk.mapping(ppath, item, PARAMETER_KEYS):
-            continue
+        if not chk.mapping(ppath, item, PARAMETER_KEYS) or any(k not in PARAMETER_KEYS for k in item):
+            continue                     # one mistake, one message
         given = [k for k in ("range", "choices") if k in item]
         if len(given) != 1:
             chk.error(ppath, "expected exactly one of range (with step) or choices"
@@ -240,7 +240,7 @@ def _require(builder, value, varied: set) -> list:
             chk.error(ipath, "expected an inequality string such as \"L1 > L2\", or {reachable: <question id>} "
                       "or {nonsingular: <question id>}")
             continue
-        if not chk.mapping(ipath, item, REQUIRE_KINDS):
+        if not chk.mapping(ipath, item, REQUIRE_KINDS) or any(k not in REQUIRE_KINDS for k in item):
             continue
         if len(item) != 1:
             chk.error(ipath, "expected one condition per item (reachable or nonsingular)")
