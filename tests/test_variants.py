@@ -113,7 +113,7 @@ def test_solve_ignores_a_valid_section():
      "p.yaml:17: variants.require[0]: expected one inequality such as \"L1 > L2\" (operators < <= > >=), "
      "got 'm1 = 2'"),
     ("variants:\n  parameters:\n    m1: {choices: [1, 2]}\n  require:\n    - \"m1 > L\"\n",
-     "p.yaml:17: variants.require[0]: unknown parameter 'L' in 'L' (did you mean 'L1'?)"),
+     "p.yaml:17: variants.require[0]: unknown parameter 'L' in 'L' (did you mean 'L2'?)"),
     ("variants:\n  parameters:\n    m1: {choices: [1, 2]}\n  require:\n    - \"L1 > L2\"\n",
      "p.yaml:17: variants.require[0]: 'L1 > L2' involves no varied parameter: it would hold for every variant "
      "or for none"),
@@ -219,7 +219,7 @@ def test_too_few_distinct_variants_is_an_error_with_the_count(tmp_path):
     out = tmp_path / "out"
     result = runner.invoke(app, ["variants", str(p), "--count", "4", "--out", str(out), "--no-solve"])
     assert result.exit_code == 2
-    assert f"{p}:14: variants: only 3 distinct variants meet `require` (4 asked)" in result.output
+    assert f"{p}:13: variants: only 3 distinct variants meet `require` (4 asked)" in result.output
     assert not out.exists()
     # exactly as many as exist: all of them, each once
     result = runner.invoke(app, ["variants", str(p), "--count", "3", "--out", str(out), "--no-solve"])
@@ -234,7 +234,7 @@ def test_a_condition_that_never_holds_stops_after_1000_draws(tmp_path):
     p = problem_file(tmp_path, section)
     result = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve"])
     assert result.exit_code == 2
-    assert (f"{p}:18: variants.require[0]: variant 1: 1000 draws in a row are rejected (1000 of them by this "
+    assert (f"{p}:17: variants.require[0]: variant 1: 1000 draws in a row are rejected (1000 of them by this "
             "condition, 'L1 > 2'): widen the ranges or relax the condition") in result.output
     assert not (tmp_path / "o").exists()
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import csv
 import io
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -235,7 +236,8 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
     console = Console(stderr=True)
 
     def say(text):
-        console.print(text, markup=False, highlight=False)
+        # plain lines: an editor can jump to FILE:LINE (rich would wrap them)
+        sys.stderr.write(text + "\n")
 
     reason = check_out(out)
     if reason:
@@ -275,6 +277,6 @@ def summary(console, plan, results, solved: bool):
         answered = f"{r['answered']}/{r['total']}" if solved else str(r["total"])
         table.add_row(v.folder, v.student or "—", answered, label if solved else "valid")
     console.print(table)
-    for v, r in zip(plan.variants, results):
+    for r in results:
         for m in r["messages"]:
-            console.print(f"{v.folder}: {m}", markup=False, highlight=False)
+            sys.stderr.write(m + "\n")
