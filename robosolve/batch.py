@@ -6,11 +6,11 @@ not compared: PNG bytes depend on the matplotlib build).
 
 from __future__ import annotations
 
+import contextlib
 import difflib
 import glob
 import json
-import shutil
-import tempfile
+import os
 from pathlib import Path
 
 from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
@@ -29,120 +29,178 @@ def collect(source: str) -> list[Path]:
     return sorted(files)
 
 
-def solve_one(path: str, out_dir: str) -> dict:
-    """Load, solve and write one problem in this process (a summary row; never raises on bad input)."""
-    results = list(_solve_all([Path(path)], Path(out_dir), 1, None, lambda: None))
-    return results[0]
+def solve_one(path: str, formats=("md",)) -> dict:
+    """Load, solve, render one problem file in this process: a summary and the files
+    (relative path -> bytes); never raises on bad input. Writes nothing."""
+    from robosolve.execution import make_task, read_error, solve_task
+
+    try:
+        text = Path(path).read_bytes().decode("utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        return read_error(path, exc)
+    return solve_task(make_task(text, str(path), formats))
 
 
-def _tasks(files):
-    """One task per file (its YAML text); unreadable files become rows at once."""
-    from robosolve.execution import make_task
+def declared_names(files) -> dict[str, str | None]:
+    """file -> the problem name it declares (None when unreadable or not a valid name).
 
-    tasks, rows = [], {}
-    for i, f in enumerate(files):
+    A quick YAML read, so that duplicate names and refused output folders stop the batch
+    before any work; the full validation happens in the workers.
+    """
+    import yaml
+
+    from robosolve.load.loader import NAME_RE
+
+    names = {}
+    for f in files:
         try:
-            text = Path(f).read_bytes().decode("utf-8")
+            data = yaml.safe_load(Path(f).read_text(encoding="utf-8"))
+            name = data.get("name") if isinstance(data, dict) else None
+        except Exception:  # reported properly by the loader later
+            name = None
+        names[str(f)] = name if isinstance(name, str) and NAME_RE.fullmatch(name) else None
+    return names
+
+
+def refusals(names: dict, out, golden, update) -> list[str]:
+    """Why the batch must not start (duplicate names, output folders robosolve does not own)."""
+    from robosolve.outputs import OutputFolderError, check_collection, check_output_folder
+
+    by_name: dict[str, list[str]] = {}
+    for f, n in names.items():
+        if n is not None:
+            by_name.setdefault(n, []).append(f)
+    msgs = [f"several problem files have the name '{n}' ({', '.join(fs)}): their outputs would "
+            "overwrite each other; give each a different `name`" for n, fs in sorted(by_name.items())
+            if len(fs) > 1]
+    root = Path(out) if golden is None else (Path(golden) if update else None)
+    if root is None or msgs:
+        return msgs
+    try:
+        check_collection(root)
+        for n in sorted(by_name):
+            check_output_folder(root / n, inputs=list(names), legacy=GOLDEN_FILES if golden else ())
+    except OutputFolderError as exc:
+        msgs.append(str(exc))
+    return msgs
+
+
+def _results(files, jobs, formats=("md",), scheduler=None):
+    """Yield each file's summary as it is solved, on the chosen back-end (robosolve.execution:
+    this process, the warm process pool, or Dask); an interrupt stops the workers at once."""
+    from robosolve.execution import make_task, read_error, run_tasks
+
+    tasks = []
+    for f in files:
+        try:
+            tasks.append(make_task(Path(f).read_bytes().decode("utf-8"), str(f), formats))
         except (OSError, UnicodeDecodeError) as exc:
-            why = "the file is not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else \
-                f"cannot read the file: {exc.strerror or exc}"
-            rows[i] = {"file": str(f), "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
-                       "messages": [f"{f}:1: {why}"]}
-            text = None
-        tasks.append(None if text is None else make_task(text, str(f)))
-    return tasks, rows
+            yield read_error(str(f), exc)
+    for _, r in run_tasks(tasks, jobs, scheduler):
+        r.pop("version", None)
+        yield r
 
 
-def _solve_all(files, out_dir: Path, jobs, scheduler, advance):
-    """Solve every file on the chosen back-end; write each result's files as it arrives.
-    Returns the summary rows in file order."""
-    from robosolve.execution import owned, replace_folder, run_tasks
+def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), scheduler=None) -> int:
+    import sys
 
-    tasks, rows = _tasks(files)
-    todo = [i for i, t in enumerate(tasks) if t is not None]
-    for _ in rows:
-        advance()
-    for j, res in run_tasks([tasks[i] for i in todo], jobs, scheduler):
-        i = todo[j]
-        files_out = res.pop("files") or {}
-        res.pop("version", None)
-        if res["name"] and res["status"] != EXIT_INPUT:
-            target = out_dir / res["name"]
-            if owned(target):
-                replace_folder(files_out, target)
-            else:
-                res["status"] = EXIT_INPUT
-                res["messages"] = [f"{target}: exists and is not a robosolve output folder "
-                                   "(no .robosolve mark, not empty): not touched"]
-        rows[i] = res
-        advance()
-    return [rows[i] for i in range(len(files))]
-
-
-def run(files, out=None, jobs=0, golden=None, update=False, scheduler=None) -> int:
     from rich.console import Console
-    from rich.progress import Progress
     from rich.table import Table
 
-    console = Console(stderr=True)
-    tmp = None
-    if golden is not None:
-        tmp = Path(tempfile.mkdtemp(prefix="robosolve-check-"))
-        out_dir = tmp
-    else:
-        out_dir = Path(out)
-        out_dir.mkdir(parents=True, exist_ok=True)
-    try:
-        from robosolve.execution import SchedulerError
+    from robosolve.execution import SchedulerError
 
-        try:
-            with Progress(console=console, transient=True) as progress:
-                task = progress.add_task("solving", total=len(files))
-                results = _solve_all(files, out_dir, jobs, scheduler, lambda: progress.advance(task))
-        except SchedulerError as exc:
-            console.print(str(exc), markup=False, highlight=False)
-            return EXIT_INPUT
-        results.sort(key=lambda r: r["file"])
-        names = [r["name"] for r in results if r["name"]]
-        dup = sorted({n for n in names if names.count(n) > 1})
-        status = max([r["status"] for r in results] + [EXIT_OK])
-        table = Table(title="robosolve batch")
-        for col in ("file", "problem", "answered", "status"):
-            table.add_column(col)
-        for r in results:
-            label = {EXIT_OK: "ok", EXIT_ANSWER_ERROR: "errors", EXIT_INPUT: "invalid"}[r["status"]]
-            table.add_row(r["file"], r["name"] or "—", f"{r['answered']}/{r['total']}", label)
-        console.print(table)
-        for r in results:
-            for m in r["messages"]:
-                console.print(f"{r['file']}: {m}", markup=False, highlight=False)
-        if dup:
-            console.print(f"several files share the problem name(s) {', '.join(dup)}: outputs overwrote "
-                          "each other", markup=False)
-            status = max(status, EXIT_INPUT)
-        if golden is not None:
-            golden = Path(golden)
-            if update:
-                for n in names:
-                    dest = golden / n
-                    dest.mkdir(parents=True, exist_ok=True)
-                    for g in GOLDEN_FILES:
-                        shutil.copyfile(out_dir / n / g, dest / g)
-                console.print(f"golden folder {golden} updated ({len(names)} problems)", markup=False)
-            else:
-                diffs = compare_tree(out_dir, golden, names)
-                for line in diffs:
-                    print(line)
-                if diffs:
-                    status = max(status, EXIT_ANSWER_ERROR)
-                    console.print("golden check: differences found (rerun with --update to accept them)",
-                                  markup=False)
-                else:
-                    console.print(f"golden check: {len(names)} problems identical", markup=False)
-        return status
-    finally:
-        if tmp is not None:
-            shutil.rmtree(tmp, ignore_errors=True)
+    console = Console(stderr=True)
+    jobs = jobs or os.cpu_count() or 1
+    names = declared_names(files)
+    refused = refusals(names, out, golden, update)
+    if refused:
+        for m in refused:
+            sys.stderr.write(m + "\n")
+        return EXIT_INPUT
+    try:
+        results, diffs, write_errors = _solve_and_write(files, names, out, jobs, golden, update, formats,
+                                                        scheduler, console)
+    except SchedulerError as exc:
+        sys.stderr.write(f"{exc}\n")
+        return EXIT_INPUT
+
+    results.sort(key=lambda r: r["file"])
+    solved = [r["name"] for r in results if r["name"]]
+    status = max([r["status"] for r in results] + [EXIT_OK])
+    table = Table(title="robosolve batch")
+    for col in ("file", "problem", "answered", "status"):
+        table.add_column(col)
+    for r in results:
+        label = {EXIT_OK: "ok", EXIT_ANSWER_ERROR: "errors", EXIT_INPUT: "invalid"}[r["status"]]
+        table.add_row(r["file"], r["name"] or "—", f"{r['answered']}/{r['total']}", label)
+    console.print(table)
+    # plain writes, one line each: an editor can jump to FILE:LINE (rich would wrap them)
+    for r in results:
+        for m in r["messages"]:
+            sys.stderr.write(m + "\n")
+    for m in write_errors:
+        sys.stderr.write(m + "\n")
+    if write_errors:
+        status = max(status, EXIT_INPUT)
+    if golden is not None and update:
+        sys.stderr.write(f"golden folder {golden} updated ({len(solved) - len(write_errors)} problems)\n")
+    elif golden is not None:
+        lines = [line for f in sorted(diffs) for line in diffs[f]]
+        for line in lines:
+            print(line)
+        if lines:
+            status = max(status, EXIT_ANSWER_ERROR)
+            sys.stderr.write("golden check: differences found (rerun with --update to accept them)\n")
+        else:
+            sys.stderr.write(f"golden check: {len(solved)} problems identical\n")
+    return status
+
+
+def _solve_and_write(files, names, out, jobs, golden, update, formats, scheduler, console):
+    """Solve every file and write (or compare) each result as it arrives."""
+    from rich.progress import Progress
+
+    from robosolve.outputs import OutputFolderError, write_output_folder
+
+    results, diffs, write_errors = [], {}, []
+    with contextlib.ExitStack() as stack:
+        progress = stack.enter_context(Progress(console=console, transient=True))
+        task = progress.add_task("solving", total=len(files))
+        for r in stack.enter_context(contextlib.closing(_results(files, jobs, formats, scheduler))):
+            out_files = r.pop("files")
+            if r["name"] and golden is None:
+                try:
+                    write_output_folder(Path(out) / r["name"], out_files, inputs=list(names))
+                except (OutputFolderError, OSError) as exc:
+                    write_errors.append(str(exc))
+            elif r["name"] and update:
+                try:
+                    write_output_folder(Path(golden) / r["name"], {g: out_files[g] for g in GOLDEN_FILES},
+                                        inputs=list(names), legacy=GOLDEN_FILES)
+                except (OutputFolderError, OSError) as exc:
+                    write_errors.append(str(exc))
+            elif r["name"]:
+                diffs[r["file"]] = compare_files(out_files, Path(golden), r["name"])
+            results.append(r)
+            progress.advance(task)
+    return results, diffs, write_errors
+
+
+def compare_files(new_files: dict, golden_root: Path, name: str) -> list[str]:
+    """Differences between one problem's new files (relative path -> bytes) and its golden folder."""
+    out = []
+    for g in GOLDEN_FILES:
+        old = golden_root / name / g
+        if not old.exists():
+            out.append(f"--- {old}: missing in the golden folder")
+            continue
+        a, b = old.read_text(encoding="utf-8"), new_files[g].decode("utf-8")
+        if g.endswith(".json"):
+            out += [f"{old}: {d}" for d in compare_json(json.loads(a), json.loads(b))]
+        elif a != b:
+            out += list(difflib.unified_diff(a.splitlines(), b.splitlines(), str(old), f"{name}/{g} (new)",
+                                             lineterm=""))
+    return out
 
 
 def compare_tree(new_root: Path, golden_root: Path, names) -> list[str]:

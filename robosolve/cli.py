@@ -28,21 +28,41 @@ def _err(text: str) -> None:
     sys.stderr.write(text + "\n")
 
 
-def _default_out(problem_name: str) -> Path:
-    return Path("out") / problem_name
+FORMAT_HELP = ("Reports to write, comma-separated: md (report.md), html (report.html, one "
+               "self-contained page), ipynb (report.ipynb, a notebook that recomputes the answers). "
+               "Default: md. results.json and figures/ are always written.")
+
+
+SCHEDULER_HELP = ("Solve on Dask: 'local' (a LocalCluster on this machine) or tcp://HOST:PORT (a "
+                  "scheduler whose workers have robosolve installed; pip install \"robosolve[dask]\").")
+
+
+def _formats(text: Optional[str]) -> tuple:
+    from robosolve.render.formats import parse_formats
+
+    try:
+        return parse_formats(text)
+    except ValueError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
 
 
 @app.command()
 def solve(
     files: List[Path] = typer.Argument(..., help="Problem files (YAML)."),
-    out: Optional[Path] = typer.Option(
+    out: Optional[str] = typer.Option(
         None, "--out", "-o",
         help="Output folder. With one file: the folder itself (DIR/report.md). "
-             "With several: DIR/<problem name>/. Default: out/<problem name>/."),
+             "With several: DIR/<problem name>/. Default: out/<problem name>/. "
+             "robosolve only replaces folders that are new, empty or its own (marked .robosolve)."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
 ) -> None:
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem, write_outputs
+    from robosolve.outputs import OutputFolderError
+    from robosolve.pipeline import render_outputs, solve_problem
+
+    formats = _formats(format)
 
     # Validate every file first: nothing is written when any input is invalid.
     problems, status = [], EXIT_OK
@@ -54,17 +74,14 @@ def solve(
             status = EXIT_INPUT
     if status == EXIT_INPUT:
         raise typer.Exit(EXIT_INPUT)
-    names = [p.name for p in problems]
-    if out is not None and len(files) > 1 and len(set(names)) != len(names):
-        _err("several problem files have the same name; their outputs would overwrite each other")
-        raise typer.Exit(EXIT_INPUT)
-    for problem in problems:
+    targets = _solve_targets(problems, out)
+    for problem, target in zip(problems, targets):
         report = solve_problem(problem)
-        if out is None:
-            target = _default_out(problem.name)
-        else:
-            target = out if len(files) == 1 else out / problem.name
-        write_outputs(report, target)
+        try:
+            render_outputs(report, target, formats, inputs=files)
+        except (OutputFolderError, OSError) as exc:
+            _err(_write_error(target, exc))
+            raise typer.Exit(EXIT_INPUT)
         failed = [a for a in report.answers if a.error is not None]
         msg = f"{problem.file}: {len(report.answers) - len(failed)}/{len(report.answers)} questions answered -> {target}"
         typer.echo(msg)
@@ -72,6 +89,40 @@ def solve(
             _err(f"{problem.file}: {a.id}: {a.error}")
         status = max(status, report.exit_status)
     raise typer.Exit(status)
+
+
+def _write_error(target, exc) -> str:
+    if isinstance(exc, OSError):
+        return f"{target}: cannot write the outputs ({exc.strerror or exc})"
+    return str(exc)
+
+
+def _solve_targets(problems, out: Optional[str]) -> list:
+    """Each problem's output folder, every one checked before any work (exit 2 when refused)."""
+    from robosolve.outputs import OutputFolderError, check_collection, check_output_folder
+
+    names = [p.name for p in problems]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        for n in dup:
+            _err("several problem files have the name '" + n + "' ("
+                 + ", ".join(str(p.file) for p in problems if p.name == n)
+                 + "): their outputs would overwrite each other; give each a different `name`")
+        raise typer.Exit(EXIT_INPUT)
+    if out is not None and len(problems) == 1:
+        collection, targets = None, [out]
+    else:
+        collection = "out" if out is None else out
+        targets = [Path(collection) / n for n in names]
+    try:
+        if collection is not None:
+            check_collection(collection)
+        for target in targets:
+            check_output_folder(target, inputs=[p.file for p in problems])
+    except OutputFolderError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
+    return targets
 
 
 @app.command()
@@ -93,16 +144,18 @@ def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).
 @app.command()
 def batch(
     source: str = typer.Argument(..., help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
-    out: Optional[Path] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
-    jobs: int = typer.Option(0, "--jobs", "-j", help="Parallel processes (default: number of cores)."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
+    jobs: int = typer.Option(0, "--jobs", "-j", min=0, help="Parallel processes (default: number of cores)."),
     check: Optional[Path] = typer.Option(
-        None, "--check", help="Golden folder: regenerate into a temporary folder and compare."),
+        None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
-    scheduler: Optional[str] = typer.Option(
-        None, "--scheduler", help="Dask: 'local' (a LocalCluster) or tcp://HOST:PORT (workers with robosolve)."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP),
 ) -> None:
     """Solve many problem files in parallel; optionally compare with golden outputs."""
     from robosolve import batch as batch_mod
+
+    formats = _formats(format)
 
     files = batch_mod.collect(source)
     if not files:
@@ -114,14 +167,9 @@ def batch(
     if check is None and out is None:
         _err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(EXIT_INPUT)
-    from robosolve.execution import SchedulerError, check_scheduler
-
-    try:
-        check_scheduler(scheduler)
-    except SchedulerError as exc:
-        _err(str(exc))
-        raise typer.Exit(EXIT_INPUT)
-    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, scheduler=scheduler)
+    _scheduler(scheduler)
+    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, formats=formats,
+                           scheduler=scheduler)
     raise typer.Exit(status)
 
 
@@ -133,33 +181,80 @@ def variants(
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (replaced as a whole)."),
     seed: int = typer.Option(0, "--seed", help="Seed of the draws (same seed, same variants)."),
     no_solve: bool = typer.Option(False, "--no-solve", help="Write the problem files only."),
-    formats: Optional[str] = typer.Option(None, "--format", help="Report formats: md,html,ipynb (default md)."),
-    jobs: int = typer.Option(0, "--jobs", "-j", help="Parallel processes (default: number of cores)."),
-    scheduler: Optional[str] = typer.Option(
-        None, "--scheduler", help="Dask: 'local' (a LocalCluster) or tcp://HOST:PORT."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
+    jobs: int = typer.Option(0, "--jobs", "-j", min=0, help="Parallel processes (default: number of cores)."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP),
 ) -> None:
-    """Individualized variants of a problem: variants.csv, one folder per variant, solved."""
-    from robosolve.execution import SchedulerError, check_scheduler
+    """Individualized variants of a problem: variants.csv and one solved folder per variant."""
     from robosolve.variants import workflow
 
     if (count is None) == (roster is None) or (count is not None and count < 1):
         _err("give either --count N (N >= 1) or --roster ROSTER.csv")
         raise typer.Exit(EXIT_INPUT)
+    formats = _formats(format)
+    _scheduler(scheduler)
+    raise typer.Exit(workflow.command(problem, count, roster, out, seed, not no_solve, formats, jobs, scheduler))
+
+
+def _scheduler(scheduler: Optional[str]) -> None:
+    """--scheduler usage checks (Dask installed, address well formed), before any work."""
+    from robosolve.execution import SchedulerError, check_scheduler
+
     try:
-        fmts = workflow.parse_formats(formats)
         check_scheduler(scheduler)
-    except (ValueError, SchedulerError) as exc:
+    except SchedulerError as exc:
         _err(str(exc))
         raise typer.Exit(EXIT_INPUT)
-    raise typer.Exit(workflow.command(problem, count, roster, out, seed, not no_solve, fmts, jobs, scheduler))
+
+
+@app.command()
+def check(
+    answers: Path = typer.Argument(..., help="An answers file (YAML, grading.md)."),
+    problem: Optional[Path] = typer.Option(None, "--problem", "-p", help="Problem file (default: the answers file's `problem:`)."),
+    json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
+    rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default 0.005, or the problem's grading:)."),
+    atol: Optional[float] = typer.Option(None, "--atol", help="Absolute tolerance (default 1e-6, or the problem's grading:)."),
+) -> None:
+    """Check a student's answers against robosolve's solution: a verdict per key, and what is wrong."""
+    from robosolve.grading.commands import run_check
+
+    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol))
+
+
+@app.command()
+def grade(
+    submissions: List[Path] = typer.Argument(..., help="Answers files, or folders of them (*.yaml, *.yml)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder: grades.csv, summary.csv, <student>.json, feedback/."),
+    problem: Optional[Path] = typer.Option(None, "--problem", "-p", help="Grade every submission against this problem."),
+    variants: Optional[Path] = typer.Option(None, "--variants", help="A `robosolve variants` folder: each student's own variant."),
+    jobs: int = typer.Option(0, "--jobs", "-j", help="Parallel processes (default: number of cores)."),
+    rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default 0.005, or the problem's grading:)."),
+    atol: Optional[float] = typer.Option(None, "--atol", help="Absolute tolerance (default 1e-6, or the problem's grading:)."),
+) -> None:
+    """Grade a class: every submission against its problem (solved once), with marks and feedback."""
+    from robosolve.grading.commands import run_grade_command
+
+    raise typer.Exit(run_grade_command(submissions, out, problem, variants, jobs, rtol, atol))
 
 
 def main() -> None:
+    from robosolve import interrupts
+
+    interrupts.install()
     try:
         app()
+        status = EXIT_OK
     except KeyboardInterrupt:
+        status = interrupts.EXIT_SIGINT
+    except SystemExit as exc:
+        status = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    # click turns KeyboardInterrupt into "Aborted!" and exit 1, and a library may swallow it:
+    # a signal received at any point decides the status (spec §4: SIGINT exits 130).
+    owed = interrupts.received()
+    if owed is not None:
         _err("interrupted")
-        sys.exit(130)
+        status = owed
+    sys.exit(status)
 
 
 __all__ = ["app", "main", "EXIT_ANSWER_ERROR"]

@@ -27,7 +27,8 @@ class InputIssue:
 
     def __str__(self) -> str:
         where = f"{self.path}: " if self.path else ""
-        return f"{self.file}:{self.line}: {where}{self.message}"
+        line = f":{self.line}" if self.line > 0 else ""  # 0: about the whole file (cannot read it)
+        return f"{self.file}{line}: {where}{self.message}"
 
 
 class InputError(RobosolveError):
@@ -53,3 +54,11 @@ class SymbolicTimeout(BaseException):
 
 class SolverError(RobosolveError):
     """A question cannot be answered; the message becomes the answer's `error`."""
+
+
+class MissingValues(Exception):
+    """Numeric evaluation needs values that are not given (null parameters, joints)."""
+
+    def __init__(self, names):
+        self.names = sorted(set(names))
+        super().__init__(", ".join(self.names))

@@ -17,17 +17,12 @@ which task finished first.
 
 from __future__ import annotations
 
-import contextlib
 import os
 import re
-import shutil
-import tempfile
-from pathlib import Path
 
 from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
 
 DASK_HINT = 'Dask is not installed: pip install "robosolve[dask]"'
-MARK = ".robosolve"
 SCHEDULER_RE = re.compile(r"^(local|(tcp|tls|ws|wss|inproc)://\S+)$")
 
 
@@ -43,53 +38,49 @@ def make_task(text: str, file: str, formats=("md",), solve: bool = True) -> dict
 
 
 def solve_task(task: dict) -> dict:
-    """Load (and solve) one problem from its YAML text; never raises on bad input."""
+    """Load (and solve and render) one problem from its YAML text; never raises on bad input.
+    Writes nothing: the files come back as bytes."""
     import robosolve
     from robosolve.load.loader import load_problem_text
 
-    base = {"file": task["file"], "name": None, "answered": 0, "total": 0, "messages": [],
+    file = task["file"]
+    base = {"file": file, "name": None, "answered": 0, "total": 0, "messages": [],
             "files": {}, "version": robosolve.__version__}
     try:
-        problem = load_problem_text(task["text"], task["file"])
+        problem = load_problem_text(task["text"], file)
     except InputError as exc:
         return {**base, "status": EXIT_INPUT, "messages": [str(i) for i in exc.issues]}
     base["name"] = problem.name
     base["total"] = len(problem.questions)
     if not task.get("solve", True):
         return {**base, "status": EXIT_OK}
-    from robosolve.pipeline import solve_problem
+    from robosolve.pipeline import render_files, solve_problem
 
     report = solve_problem(problem)
-    failed = [f"{a.id}: {a.error}" for a in report.answers if a.error is not None]
+    failed = [f"{file}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
     return {**base, "status": report.exit_status, "answered": len(report.answers) - len(failed),
-            "messages": failed, "files": render_files(report, task.get("formats", ("md",)))}
+            "messages": failed, "files": render_files(report, tuple(task.get("formats", ("md",))))}
 
 
-def render_files(report, formats=("md",)) -> dict:
-    """The output files of a solved problem, as bytes (rendered in a scratch folder)."""
-    import inspect
-
-    from robosolve.pipeline import render_outputs
-
-    tmp = Path(tempfile.mkdtemp(prefix="robosolve-render-"))
-    try:
-        if "formats" in inspect.signature(render_outputs).parameters:
-            render_outputs(report, tmp, formats=tuple(formats))
-        else:                       # md only until the html / ipynb renderers are merged
-            render_outputs(report, tmp)
-        return {p.relative_to(tmp).as_posix(): p.read_bytes()
-                for p in sorted(tmp.rglob("*")) if p.is_file()}
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+def read_error(path, exc: BaseException) -> dict:
+    """The summary row of a problem file that cannot be read."""
+    why = ("the file is not UTF-8 text" if isinstance(exc, UnicodeDecodeError)
+           else f"cannot read the file: {getattr(exc, 'strerror', None) or exc}")
+    return {"file": str(path), "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
+            "messages": [f"{path}:1: {why}"], "files": {}, "version": None}
 
 
 def warm_worker() -> None:
-    """Pool initializer: pay the imports once per worker, not once per task."""
-    import robosolve.pipeline  # noqa: F401
-    import robosolve.solvers  # noqa: F401
+    """Pool initializer: the parent handles SIGINT (robosolve.interrupts), and the imports are
+    paid once per worker, not once per task."""
+    from robosolve.interrupts import worker_init
+
+    worker_init()
     import matplotlib
 
     matplotlib.use("Agg")
+    import robosolve.pipeline  # noqa: F401
+    import robosolve.solvers  # noqa: F401
 
 
 def estimate(task: dict) -> int:
@@ -104,7 +95,8 @@ def estimate(task: dict) -> int:
 
 def crash_result(task: dict, exc: BaseException) -> dict:
     return {"file": task["file"], "name": None, "status": EXIT_ANSWER_ERROR, "answered": 0, "total": 0,
-            "messages": [f"the worker failed: {type(exc).__name__}: {exc}"], "files": {}, "version": None}
+            "messages": [f"{task['file']}: the worker failed ({type(exc).__name__}: {exc})"], "files": {},
+            "version": None}
 
 
 # ---------------------------------------------------------------------------
@@ -145,6 +137,7 @@ def _run_pool(tasks, order, jobs):
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), initializer=warm_worker)
+    clean = False
     try:
         futures = {pool.submit(solve_task, tasks[i]): i for i in order}
         for fut in as_completed(futures):
@@ -153,8 +146,14 @@ def _run_pool(tasks, order, jobs):
                 yield i, fut.result()
             except Exception as exc:  # a crashed worker is a row of the summary, not a traceback
                 yield i, crash_result(tasks[i], exc)
+        clean = True
     finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+        if clean:
+            pool.shutdown(wait=True)
+        else:  # interrupted: a waiting shutdown could hang on a busy worker, so terminate them
+            for proc in list((getattr(pool, "_processes", None) or {}).values()):
+                proc.terminate()
+            pool.shutdown(wait=False, cancel_futures=True)
 
 
 def start_local_cluster(jobs: int = 0):
@@ -206,68 +205,3 @@ def _run_dask(tasks, order, jobs, scheduler):
         client.close()
         if cluster is not None:
             cluster.close()
-
-
-# ---------------------------------------------------------------------------
-# writing (client side)
-
-def owned(folder: Path) -> bool:
-    """problem-format.md §2: robosolve may replace a folder that is missing, empty or marked."""
-    if not folder.exists():
-        return True
-    if not folder.is_dir():
-        return False
-    return (folder / MARK).exists() or not any(folder.iterdir())
-
-
-def write_tree(files: dict, folder: Path) -> None:
-    """Write relpath -> bytes under an existing folder."""
-    for rel, data in sorted(files.items()):
-        path = folder / rel
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_bytes(data)
-
-
-@contextlib.contextmanager
-def staged_folder(target: Path, mark: bool = True):
-    """Yield a fresh sibling folder to write into; on success it replaces `target` (atomic
-    rename), marked as robosolve's; on any error or interrupt it is removed."""
-    target = Path(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=target.parent))
-    try:
-        yield tmp
-        if mark:
-            (tmp / MARK).write_bytes(b"")
-        os.chmod(tmp, 0o777 & ~_umask())
-        swap_in(tmp, target)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-
-
-def replace_folder(files: dict, target: Path, mark: bool = True) -> Path:
-    """Write `files` (relpath -> bytes) as the new content of the output folder `target`."""
-    with staged_folder(target, mark) as tmp:
-        write_tree(files, tmp)
-    return Path(target)
-
-
-def swap_in(tmp: Path, target: Path) -> None:
-    if target.exists():
-        old = target.with_name(f".{target.name}.old-{os.getpid()}")
-        target.rename(old)
-        try:
-            tmp.rename(target)
-        except BaseException:
-            old.rename(target)
-            raise
-        shutil.rmtree(old, ignore_errors=True)
-    else:
-        tmp.rename(target)
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask

@@ -340,7 +340,7 @@ def test_an_unmarked_folder_is_refused_and_left_alone(tmp_path):
     out.mkdir()
     (out / "notes.txt").write_text("keep me")
     result = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(out), "--no-solve"])
-    assert result.exit_code == 2 and "not a robosolve output folder" in result.output
+    assert result.exit_code == 2 and "holds files robosolve did not write (notes.txt)" in result.output
     assert [x.name for x in out.iterdir()] == ["notes.txt"]
 
 

@@ -1,6 +1,6 @@
 """Equations of motion by the course's matrix method, engineered to stay small.
 
-The course (seed §6, ERRATA §D.5-9):
+The course (seed §6; docs/course-notes.md, Dynamics):
 
 * Tⱼ = ½ tr(⁰W₀ⱼ ⁰Jⱼ ⁰W₀ⱼᵀ), Uⱼ = −tr(⁰H_g ⁰Jⱼ), ℒ = Σ(Tⱼ − Uⱼ);
 * fᵢ = (Σ_{j≥i} ⁰Φⱼ) ⊗ ⁰Lᵢ;
@@ -34,21 +34,13 @@ import sympy as sp
 
 from robosolve.core.matrices import action_matrix
 from robosolve.core.transforms import skew, vex
-from robosolve.dynamics.api import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
+from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra, fourier_terms, product_terms
+from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
 
-__all__ = ["DynamicsEngine", "tsimp"]
+__all__ = ["DynamicsEngine"]
 
 BASE = "0"
 COMPACT_MAX_JOINTS = 4  # robots up to this size get the sum-of-angles compaction
-
-
-def tsimp(expr):
-    """Trig-simplify a *small* expression (cheap canonical form otherwise)."""
-    expr = sp.sympify(expr)
-    if expr.is_number or not expr.has(sp.sin, sp.cos):
-        return sp.expand(expr)
-    out = sp.trigsimp(sp.expand(expr))
-    return out
 
 
 class DynamicsEngine:
@@ -97,8 +89,6 @@ class DynamicsEngine:
 
     # ------------------------------------------------------------------ algebra
     def _setup_algebra(self, algebra):
-        from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra
-
         exprs, self._slot = [], {}
 
         def put(key, values):
@@ -317,7 +307,7 @@ class DynamicsEngine:
         return self._cached(("rPhi", k), build)
 
     def _rext(self):
-        """Generalized forces of the loads: Σ Φ_b ⊗ ᵇLᵢⱼ (frame invariant, ERRATA §D.6)."""
+        """Generalized forces of the loads: Σ Φ_b ⊗ ᵇLᵢⱼ (frame invariant, course-notes#note-pseudo-scalar-product)."""
         from robosolve.core.matrices import _PSP_ENTRIES
 
         def build():
@@ -345,8 +335,6 @@ class DynamicsEngine:
         both the terms are grouped by their trig factor with the parameter coefficient
         factored. No `trigsimp`: both forms come from the polynomial in microseconds.
         """
-        from robosolve.dynamics.trigpoly import TrigAlgebra, fourier_terms, product_terms
-
         alg = self.alg
         if not isinstance(alg, TrigAlgebra):
             expr = sp.sympify(p)
@@ -463,7 +451,7 @@ class DynamicsEngine:
             [self.pretty(x) for x in self._rext()]))
 
     def hg(self) -> sp.Matrix:
-        """⁰H_g: the gravity vector in the last column (ERRATA §D.9)."""
+        """⁰H_g: the gravity vector in the last column (course-notes#note-gravity)."""
         out = sp.zeros(4, 4)
         out[:3, 3] = self.gravity
         return out
@@ -550,7 +538,7 @@ class DynamicsEngine:
 
     def link_actions0(self) -> dict[str, sp.Matrix]:
         """⁰Φ of each link: +own actuator, −next actuators' reactions, external loads on
-        any frame of the link (ERRATA §D.5)."""
+        any frame of the link (course-notes#note-matrix-of-actions)."""
         return {k: self._view(("Phi0", k), v) for k, v in self._rlink_actions0().items()}
 
     def _rL0(self, i: int, name: str):

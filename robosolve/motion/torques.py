@@ -3,7 +3,7 @@
 tau(t) = M(q) qdd + c(q, qd) + g(q) - f_ext(q) with q, qd, qdd the desired profile.
 The profile is polynomial on each interval between switching instants, so tau is
 a closed-form expression in t on each of them; it jumps where an acceleration
-jumps (0, T/2 and T for bang-bang, ERRATA item 127).
+jumps (0, T/2 and T for bang-bang, docs/course-notes.md#note-torque-jumps).
 
 Peaks (spec, "Joint torques"): the signed value of largest magnitude over [0, T],
 with the one-sided limits at the jumps included, so that t_peak is exactly a
@@ -18,7 +18,7 @@ from typing import Sequence
 import numpy as np
 import sympy as sp
 
-from robosolve.motion.numeric import FastDynamics
+from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import SyncProfile
 
 __all__ = ["TorqueResult", "torques_along", "closed_form_pieces"]
@@ -108,7 +108,7 @@ def golden_max(f, lo: float, hi: float, iterations: int = 64) -> float:
     return (a + b) / 2
 
 
-def torques_along(profile: SyncProfile, dyn: FastDynamics, names: Sequence[str],
+def torques_along(profile: SyncProfile, dyn: NumericDynamics, names: Sequence[str],
                   samples_per_interval: int = 241) -> TorqueResult:
     """Sample tau(t) on every interval (closed at both ends) and find the signed peaks."""
     plan = profile.numeric_plan()

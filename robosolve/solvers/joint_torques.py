@@ -12,14 +12,12 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
-from robosolve.motion.adapter import numeric_engine, profile_for, symbolic_dynamics
 from robosolve.motion.torques import closed_form_pieces, torques_along
-from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
-CLOSED_FORM_SECONDS = 20.0
 
 
 def _unit(kind: str) -> str:
@@ -29,7 +27,7 @@ def _unit(kind: str) -> str:
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ref = question.options.get("profile")
-    prof = profile_for(ctx, ref)
+    prof = ctx.profile(ref)
     if prof is None:
         raise SolverError(f"the motion profile '{ref}' has no answer")
     ans = Answer(question.type, question.id)
@@ -37,7 +35,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     joints = model.joints
     act_names = [str(j.actuator) for j in joints]
 
-    dyn = symbolic_dynamics(ctx)
+    dyn = ctx.dynamics()
     qs, qds, qdds = model.q, model.qd, model.qdd
     lines = [f"{sp.latex(j.actuator)}" for j in joints]
     if dyn is not None:
@@ -58,7 +56,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if tau is not None and prof.T.is_number and prof.T != 0:
         params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
         try:
-            with ctx.time_limit(CLOSED_FORM_SECONDS):
+            with ctx.time_limit(ctx.budgets.closed_form_seconds):
                 pieces, pw = closed_form_pieces(prof, list(tau), qs, qds, qdds, params)
         except SymbolicTimeout:
             ans.note("the closed-form torque profiles took too long: given numerically only")
@@ -82,20 +80,21 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ans.note(missing_note("torques", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
         return ans
     try:
-        fast, _ = numeric_engine(ctx, subs)
+        fast, _ = ctx.simulation_dynamics(subs)
     except ValueError as exc:
         ans.note(f"numeric torques omitted: {exc}")
         return ans
     res = torques_along(prof, fast, act_names)
-    # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is flat)
-    ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": float(f"{res.t_peaks[i]:.8g}")}
+    # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is
+    # flat): the answer schema keeps 8 digits of t_peak (registry: AnswerKey.digits)
+    ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": res.t_peaks[i]}
                                 for i in range(len(joints))}
     rows = []
     jumps = sorted({0.0, float(prof.T), *res.breaks})
     for i, j in enumerate(joints):
         at_jump = any(abs(res.t_peaks[i] - s) <= 1e-9 * max(1.0, float(prof.T)) for s in jumps)
-        rows.append([f"${sp.latex(j.actuator)}$", f"{report_number(res.peaks[i])} {_unit(j.kind)}",
-                     report_number(res.t_peaks[i]) + (" (a switching instant: one-sided value)" if at_jump else "")])
+        rows.append([f"${sp.latex(j.actuator)}$", Num(res.peaks[i], _unit(j.kind)),
+                     Text(Num(res.t_peaks[i])) + (" (a switching instant: one-sided value)" if at_jump else "")])
     ans.steps.append(Step(
         "Peaks",
         "The peak is the signed value of largest magnitude over $[0, T]$; at a switching instant the "
@@ -104,7 +103,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ))
     if res.jumps:
         header = ["t (s)"] + [f"${sp.latex(j.actuator)}$ before → after" for j in joints]
-        jrows = [[report_number(t)] + [f"{report_number(b[i])} → {report_number(a[i])}" for i in range(len(joints))]
+        jrows = [[Num(t)] + [Text(Num(b[i]), " → ", Num(a[i])) for i in range(len(joints))]
                  for t, b, a in res.jumps]
         ans.steps.append(Step(
             "Jumps at the switching instants",
@@ -113,11 +112,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             table=(header, jrows),
         ))
     ans.figures.append(FigureSpec(
-        "torques", "joint_torques", f"Actuators along the profile (T = {report_number(float(prof.T))} s)",
-        {"t": [float(f"{x:.12g}") for x in res.t],
+        "torques", "joint_torques", Text("Actuators along the profile (T = ", Num(float(prof.T)), " s)"),
+        {"t": [float(x) for x in res.t],
          "T": float(prof.T), "switches": res.breaks,
          "actuators": [{"name": act_names[i], "label": sp.latex(j.actuator), "unit": _unit(j.kind),
-                        "values": [float(f"{v:.12g}") + 0.0 for v in res.values[i]],
+                        "values": [float(v) for v in res.values[i]],
                         "peak": res.peaks[i], "t_peak": res.t_peaks[i]} for i, j in enumerate(joints)]},
     ))
     return ans

@@ -20,7 +20,11 @@ from pathlib import Path
 import yaml
 
 from robosolve.errors import EXIT_INPUT, EXIT_OK, InputError, InputIssue
-from robosolve.execution import make_task, owned, run_tasks, staged_folder, write_tree
+from robosolve.execution import make_task, run_tasks
+
+# what a variants folder holds, for the working directory written in place (robosolve.outputs)
+OWN_FILES = ("variants.csv", "*/problem.yaml", "*/report.md", "*/report.html", "*/report.ipynb",
+             "*/results.json", "*/figures/*.png")
 
 
 @dataclass
@@ -153,25 +157,28 @@ def variants_csv(plan: Plan) -> bytes:
 # ---------------------------------------------------------------------------
 # running
 
-def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=None, progress=None):
-    """Load (and solve) every variant, then write DIR. Returns (status, results in order)."""
+def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=None, progress=None,
+        inputs=()):
+    """Load (and solve) every variant, then write DIR as one output folder (robosolve.outputs).
+    Returns (status, results in variant order)."""
+    from robosolve.outputs import write_output_folder
+
     tasks = [make_task(v.text, f"{out}/{v.folder}/problem.yaml", formats, solve) for v in plan.variants]
     results = [None] * len(tasks)
+    files = {"variants.csv": variants_csv(plan)}
     step = progress.task("solving" if solve else "checking the variants", len(tasks)) if progress else None
-    with staged_folder(out) as tmp:
-        for i, res in run_tasks(tasks, jobs, scheduler):
-            results[i] = res
-            if res["status"] != EXIT_INPUT:
-                v = plan.variants[i]
-                write_tree({"problem.yaml": v.text.encode("utf-8"), **res["files"]}, tmp / v.folder)
-            res["files"] = None            # written: do not keep every figure in memory
-            if step:
-                step()
-        bad = [r for r in results if r["status"] == EXIT_INPUT]
-        if bad:
-            issues = [m for r in bad for m in r["messages"]]
-            raise VariantInvalid(issues)
-        (tmp / "variants.csv").write_bytes(variants_csv(plan))
+    for i, res in run_tasks(tasks, jobs, scheduler):
+        results[i] = res
+        v = plan.variants[i]
+        files[f"{v.folder}/problem.yaml"] = v.text.encode("utf-8")
+        for rel, data in (res.pop("files") or {}).items():
+            files[f"{v.folder}/{rel}"] = data
+        if step:
+            step()
+    bad = [r for r in results if r["status"] == EXIT_INPUT]
+    if bad:
+        raise VariantInvalid([m for r in bad for m in r["messages"]])
+    write_output_folder(out, dict(sorted(files.items())), inputs=inputs, own=OWN_FILES)
     status = max([r["status"] for r in results] + [EXIT_OK])
     return status, results
 
@@ -184,13 +191,14 @@ class VariantInvalid(Exception):
         super().__init__("\n".join(messages))
 
 
-def check_out(out: Path) -> str | None:
-    """Why DIR cannot be used as the output folder, or None."""
-    if Path(out).resolve() == Path.cwd().resolve():
-        return f"{out}: give a sub-folder for the variants (DIR is replaced as a whole)"
-    if not owned(Path(out)):
-        return (f"{out}: exists and is not a robosolve output folder (no .robosolve mark, not empty): "
-                "refusing to touch it")
+def check_out(out: Path, inputs=()) -> str | None:
+    """Why DIR cannot be the output folder (problem-format.md §2), or None. Touches nothing."""
+    from robosolve.outputs import OutputFolderError, check_output_folder
+
+    try:
+        check_output_folder(out, inputs)
+    except OutputFolderError as exc:
+        return str(exc)
     return None
 
 
@@ -208,29 +216,13 @@ class Steps:
         return lambda: self.progress.advance(tid)
 
 
-def parse_formats(text: str | None) -> tuple:
-    """--format md,html,ipynb -> ('md', ...); ValueError with the reason."""
-    from robosolve.load.expressions import did_you_mean
-
-    known = ("md", "html", "ipynb")
-    if text is None:
-        return ("md",)
-    out = []
-    for f in (x.strip() for x in text.split(",")):
-        if f not in known:
-            raise ValueError(f"--format: unknown format {f!r}" + did_you_mean(f, known)
-                             + " (expected md, html, ipynb, comma-separated)")
-        if f not in out:
-            out.append(f)
-    return tuple(out)
-
-
 def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, formats: tuple,
             jobs: int, scheduler) -> int:
     from rich.console import Console
     from rich.progress import Progress
 
     from robosolve.execution import SchedulerError
+    from robosolve.outputs import OutputFolderError
     from robosolve.variants.naming import count_ids, read_roster
 
     console = Console(stderr=True)
@@ -239,7 +231,8 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         # plain lines: an editor can jump to FILE:LINE (rich would wrap them)
         sys.stderr.write(text + "\n")
 
-    reason = check_out(out)
+    inputs = [problem] + ([roster] if roster is not None else [])
+    reason = check_out(out, inputs)
     if reason:
         say(reason)
         return EXIT_INPUT
@@ -247,11 +240,14 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         ids = [(i, "") for i in count_ids(count)] if roster is None else read_roster(roster)
         with Progress(console=console, transient=True) as bar:
             plan = plan_variants(problem, ids, seed, Steps(bar))
-            status, results = run(plan, out, formats, solve, jobs, scheduler, Steps(bar))
+            status, results = run(plan, out, formats, solve, jobs, scheduler, Steps(bar), inputs)
     except InputError as exc:
         say(str(exc))
         return EXIT_INPUT
     except SchedulerError as exc:
+        say(str(exc))
+        return EXIT_INPUT
+    except OutputFolderError as exc:
         say(str(exc))
         return EXIT_INPUT
     except VariantInvalid as exc:
