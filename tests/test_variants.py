@@ -386,20 +386,20 @@ def test_without_dask_scheduler_says_how_to_install(tmp_path, monkeypatch):
 # the classroom workflow, end to end: roster -> variants -> answers -> grade --variants
 
 def test_roster_to_grades_each_student_against_their_own_variant(tmp_path):
-    """The determinant of the 2R Jacobian is L1*L2*sin(theta2) (closed form, computed here
-    from variants.csv): Jo answers with Jo's values, Ann copies Jo's answer."""
+    """The manipulability of the planar 2R (J is 3x2, its z row zero) is |det| = L1*L2*|sin(theta2)|
+    (closed form, computed here from variants.csv): Jo answers with Jo's values, Ann copies Jo."""
     import yaml
 
     p = problem_file(tmp_path)
     roster = tmp_path / "class.csv"
     roster.write_text("student\nJo Smith\nAnn\n", encoding="utf-8")
     exams = tmp_path / "exams"
-    r = runner.invoke(app, ["variants", str(p), "--roster", str(roster), "--out", str(exams), "--jobs", "1"])
+    r = runner.invoke(app, ["variants", str(p), "--roster", str(roster), "--out", str(exams), "--no-solve"])
     assert r.exit_code == 0, r.output
     rows = {row["student"]: row for row in csv.DictReader(io.StringIO((exams / "variants.csv").read_text()))}
 
     def det(row):
-        return float(sp.sympify(row["L1"]) * sp.sympify(row["L2"]) * sp.sin(sp.sympify(row["q2a"])))
+        return abs(float(sp.sympify(row["L1"]) * sp.sympify(row["L2"]) * sp.sin(sp.sympify(row["q2a"]))))
 
     assert abs(det(rows["Jo Smith"]) - det(rows["Ann"])) > 0.01 * abs(det(rows["Ann"]))
     subs = tmp_path / "subs"
@@ -407,10 +407,10 @@ def test_roster_to_grades_each_student_against_their_own_variant(tmp_path):
     for student, fname in (("Jo Smith", "jo.yaml"), ("Ann", "ann.yaml")):
         (subs / fname).write_text(yaml.safe_dump({
             "robosolve-answers": 1, "student": student,
-            "answers": {"jac": {"det": round(det(rows["Jo Smith"]), 5)}}}), encoding="utf-8")
+            "answers": {"jac": {"manipulability": round(det(rows["Jo Smith"]), 5)}}}), encoding="utf-8")
     grades = tmp_path / "grades"
     r = runner.invoke(app, ["grade", str(subs), "--variants", str(exams), "--out", str(grades)])
     assert r.exit_code in (0, 1), r.output
     lines = list(csv.DictReader(io.StringIO((grades / "grades.csv").read_text())))
-    det_rows = {row["student"]: row["verdict"] for row in lines if row["question"] == "jac" and row["key"] == "det"}
+    det_rows = {row["student"]: row["verdict"] for row in lines if row["question"] == "jac" and row["key"] == "manipulability"}
     assert det_rows == {"Jo Smith": "correct", "Ann": "incorrect"}
