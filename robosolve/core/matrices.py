@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.simplify import twist_entry
 from robosolve.core.transforms import rigid_inverse, skew
 
 __all__ = [
@@ -25,7 +26,7 @@ __all__ = [
 
 def l_matrix(m: sp.Matrix, q: sp.Symbol) -> sp.Matrix:
     """L = dM/dq * M^-1 for a rototranslation M depending on joint variable q."""
-    return (m.diff(q) * rigid_inverse(m)).applyfunc(lambda e: sp.trigsimp(sp.expand(e)))
+    return (m.diff(q) * rigid_inverse(m)).applyfunc(twist_entry)
 
 
 def change_frame(m: sp.Matrix, a: sp.Matrix) -> sp.Matrix:

@@ -11,6 +11,7 @@ import contextlib
 from dataclasses import dataclass, field
 import sympy as sp
 
+from robosolve.core.simplify import DEFAULT_BUDGETS, SimplifyBudgets
 from robosolve.core.timing import time_limit
 from robosolve.dynamics.model import simulation_dynamics, dynamics_for
 from robosolve.dynamics.numeric import NumericDynamics
@@ -34,6 +35,8 @@ class Budgets:
     symbolic_seconds: float = 30.0      # one symbolic step (Jacobian, statics, ellipsoids)
     closed_form_seconds: float = 20.0   # a closed form (IK derivation, torques along a profile)
     dynamics_seconds: float = 90.0      # the symbolic equations of motion of one robot
+    # op-count budgets of the simplification variants (robosolve/core/simplify.py)
+    simplify: SimplifyBudgets = DEFAULT_BUDGETS
 
 
 # Default budget of one symbolic step before a solver falls back to numbers.

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.simplify import full
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
 from robosolve.kinematics.task import symbolic_budget, limited, task_space, tidy_limited
 from robosolve.solvers.base import Answer, SolveContext, Step
@@ -102,7 +103,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         # cross-check with the potential energy
         u = sum((-(b.mass * g.dot(model.com0(b))) for b in model.bodies), sp.Integer(0))
         check, _err = limited(ctx, _budget(ctx),
-                              lambda: sp.simplify(sp.Matrix([u.diff(s) for s in q]) - part))
+                              lambda: full(sp.Matrix([u.diff(s) for s in q]) - part))
         if check is not None and check != sp.zeros(n, 1):
             ans.note("internal check failed: −ΣJ_Gᵀ m g differs from ∂U/∂q")
         total += part
