@@ -119,6 +119,14 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         table=(["joint", "max |e|", "at t (s)", Text("e at t = ", Num(duration), " s")], rows),
     ))
 
+    _figures(ans, res, prof, plan, duration, law, joints, syms)
+    return ans
+
+
+def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
+    """Tracking (actual vs desired, error) and effort figures of the simulation."""
+    names = [j.name for j in joints]
+
     def r(a):
         return [float(x) for x in a]
 
@@ -136,4 +144,3 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                                  "unit": "N·m" if j.kind == "revolute" else "N", "values": r(res.effort[i])}
                                 for i, j in enumerate(joints)]),
     ))
-    return ans
