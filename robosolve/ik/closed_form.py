@@ -265,6 +265,7 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None, tex=No
         _TEX[0] = sp.latex
 
 
+# long: one elimination loop whose branches share the stage list and the substitutions; to split into compute / steps next (issue 10 item 6)
 def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
     unknowns = list(unknowns)
     rev = dict(zip(unknowns, revolute))

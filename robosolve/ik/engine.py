@@ -283,6 +283,7 @@ def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt,
 
 # main entry
 
+# long: the IK decision sequence (count, closed form, numeric, merge) reads top to bottom; to split next (issue 10 item 6)
 def solve_ik(
     equations: list[tuple],
     joints: list[IKJoint],
@@ -471,9 +472,9 @@ def _closed_form_subset(exprs, joints, names, tex, time_limit_s, tries=20):
     budget = time_limit_s or 20.0
     import time as _time
 
-    start = _time.monotonic()
+    start = _time.process_time()          # CPU time, as core.timing's limits
     for k, combo in enumerate(itertools.combinations(range(len(exprs)), n)):
-        left = budget - (_time.monotonic() - start)
+        left = budget - (_time.process_time() - start)
         if k >= tries or left <= 0.5:
             break
         sub = [exprs[i] for i in combo]
@@ -560,11 +561,17 @@ def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
         res.notes.append("the Jacobian of the equations is singular at a solution: the target is on "
                          "the boundary of the workspace (two solutions merge into one)")
     if not res.solutions:
-        if res.status != "family":
-            res.status = "unreachable"
-        if merged:
-            res.reason = "every solution breaks a joint limit: " + Text.join(
-                "; ", [Text.join(", ", b) for _, b in res.rejected])
+        # also for a family found without a verified member (a chain with zero-length links):
+        # no solution is an answer, never a selection of nothing
+        family = res.status == "family"
+        res.status = "unreachable"
+        broken = Text.join("; ", [Text.join(", ", b) for _, b in res.rejected]) if merged else ""
+        if merged and family:
+            res.reason = ("the target is reached along a continuum of configurations, but the one "
+                          "found breaks a joint limit (" + broken
+                          + "); other members of the continuum may respect the limits")
+        elif merged:
+            res.reason = "every solution breaks a joint limit: " + broken
         elif num.best_q is not None:
             res.nearest = {j.name: (wrap_angle(v) if j.revolute else v) for j, v in zip(joints, num.best_q)}
         return

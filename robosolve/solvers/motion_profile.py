@@ -1,8 +1,8 @@
 """Question 7: synchronized joint motion profiles (bang-bang, trapezoidal, quintic).
 
 Each joint alone at its limits needs its own time; the synchronized time T is
-the largest of them (ERRATA 126), and the other joints are slowed down to end
-at T: rescaled accelerations for bang-bang (a_i = 4|D_i|/T^2, ERRATA 125),
+the largest of them (docs/course-notes.md#note-motion-sync), and the other joints are slowed down to end
+at T: rescaled accelerations for bang-bang (a_i = 4|D_i|/T^2),
 lowered cruise velocities for trapezoidal, peak accelerations for quintic.
 """
 

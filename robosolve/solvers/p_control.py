@@ -9,6 +9,7 @@ capable), restarted at each switching instant; see robosolve/motion/control.py.
 
 from __future__ import annotations
 
+import numpy as np
 import sympy as sp
 
 from robosolve.core.prose import Num, Text
@@ -26,8 +27,9 @@ LAW_TEX = {
     "computed_torque": "\\tau = M(q)\\,(\\ddot q_d + K_d\\,\\dot e + K_p\\,e) + c(q, \\dot q) + g(q)",
 }
 LAW_TEXT = {
-    "p": "proportional control (the course's controller), with no gravity compensation: the arm settles "
-         "where the springs $K_p e$ balance gravity, so an error remains",
+    "p": "proportional control (the course's controller), with no gravity compensation: the "
+         "actuators act as springs $K_p e$ pulling each joint towards its desired value, so under "
+         "gravity or a load an error remains",
     "pd": "proportional-derivative control: the derivative term damps the oscillations",
     "pd_gravity": "PD control with gravity compensation $g(q)$",
     "computed_torque": "computed-torque control: the model is inverted, so the error obeys "
@@ -50,6 +52,21 @@ def _float(ctx, expr, subs, what):
         return float(ctx.numeric(sp.sympify(expr), subs))
     except Exception:
         raise SolverError(f"{what} must be a number (got {expr})") from None
+
+
+def _external_series(res, i, r):
+    """Joint i's generalized external force along the run, or None when it is zero throughout."""
+    ext = getattr(res, "external", None)
+    if ext is None or not np.any(np.abs(ext[i]) > 1e-12):
+        return None
+    return r(ext[i])
+
+
+def _law_sentence(law: str, kp: list) -> str:
+    if law == "p" and not any(kp):
+        return ("proportional control with $K_p = 0$: the actuators exert no torque, so the arm "
+                "moves under gravity and the external loads alone")
+    return LAW_TEXT[law]
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
@@ -75,6 +92,10 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if not duration > 0:
         raise SolverError("the simulation needs a positive duration (does the profile move at all?)")
 
+    negative = [n for n, k in zip(names, kp + (kd or [])) if k < 0]
+    if negative and law != "computed_torque":
+        ans.note("a negative gain (" + ", ".join(sorted(set(negative))) + ") makes the loop unstable: "
+                 "the error grows exponentially instead of being corrected")
     syms = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in joints]
     gains_tex = Text.join(",\\quad ", [Text(f"K_{{p,{syms[i]}}} = ", Num(kp[i])) for i in range(len(joints))])
     if kd is not None:
@@ -84,7 +105,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                  Text.join(", ", [Text(f"${syms[i]} = ", Num(start[i]), "$") for i in range(len(joints))]))
     ans.steps.append(Step(
         "Closed loop",
-        Text(f"Error $e = q_d - q$ (desired profile `{ref}` minus actual). Law: {LAW_TEXT[law]}. "
+        Text(f"Error $e = q_d - q$ (desired profile `{ref}` minus actual). Law: {_law_sentence(law, kp)}. "
              "The actuators replace $\\tau$ in the equations of motion, which become a system of ODEs in $q$; "
              "it is integrated from ", start_txt, ", at rest, over $[0, ", Num(duration), "]$ s."),
         equations=[("", LAW_TEX[law]),
@@ -101,6 +122,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         res = simulate(fast, plan, law, kp, kd, start=start, duration=duration, samples=SAMPLES)
     except RuntimeError as exc:          # SimulationTooLong or an integration failure
         raise SolverError(str(exc)) from None
+    except (ValueError, ZeroDivisionError, np.linalg.LinAlgError) as exc:
+        if "invertible" in str(exc) or "singular" in str(exc).lower() or isinstance(exc, ZeroDivisionError):
+            raise SolverError("the mass matrix M(q) is singular (a joint moves no mass: a body of mass 0?), "
+                              "so the motion under control is not defined") from None
+        raise
 
     # The simulation is accurate to ~1e-6 relative (tests: 1e-4 required); more digits would be
     # noise that differs between machines: the answer schema keeps 6 (registry AnswerKey.digits).
@@ -141,6 +167,7 @@ def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
     ans.figures.append(FigureSpec(
         "effort", "control_effort", f"{law} control: actuator effort",
         dict(common, actuators=[{"name": str(j.actuator), "label": sp.latex(j.actuator),
-                                 "unit": "N·m" if j.kind == "revolute" else "N", "values": r(res.effort[i])}
+                                 "unit": "N·m" if j.kind == "revolute" else "N", "values": r(res.effort[i]),
+                                 "external": _external_series(res, i, r)}
                                 for i, j in enumerate(joints)]),
     ))
