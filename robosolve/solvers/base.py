@@ -11,6 +11,7 @@ import contextlib
 from dataclasses import dataclass, field
 import sympy as sp
 
+from robosolve.core.simplify import DEFAULT_BUDGETS, SimplifyBudgets
 from robosolve.core.timing import time_limit
 from robosolve.dynamics.model import simulation_dynamics, dynamics_for
 from robosolve.dynamics.numeric import NumericDynamics
@@ -44,6 +45,8 @@ class Budgets:
     # questions of the file are not attempted (each says why).
     question_seconds: float = 900.0
     file_seconds: float = 3600.0
+    # op-count budgets of the simplification variants (robosolve/core/simplify.py)
+    simplify: SimplifyBudgets = DEFAULT_BUDGETS
 
 
 # Default budget of one symbolic step before a solver falls back to numbers.
