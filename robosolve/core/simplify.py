@@ -145,11 +145,9 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
             # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
             # leaves trigsimp, slow on long chains, little or nothing to do.
             collapsed = TR10i(expanded)
-# Above this size trigsimp costs seconds and rarely pays: the entry is left as is. The size is
-# counted (sympy operations), so the decision is the same on every machine; the time limit of
-# `tidy` is only a safety net.
-MAX_TIDY_OPS = DEFAULT_BUDGETS.chain_ops
-
+            if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > max_ops:
+                return collapsed
+            return sp.trigsimp(collapsed)
     except SymbolicTimeout as exc:
         if exc.token is not token:
             raise          # an enclosing step's time is up
