@@ -254,8 +254,8 @@ class _ProblemBuilder:
         )
         self.problem.questions = qschema.load_questions(self, data.get("questions"))
         self.problem.grading = self._grading(data.get("grading"))
-        # validated like every key, then ignored by `solve` (robosolve/variants, variants.md)
-        from robosolve.variants.section import load_variants
+        # validated like every key, then ignored by `solve` (load/variants.py, variants.md)
+        from robosolve.load.variants import load_variants
         self.problem.variants = load_variants(self, data.get("variants"))
         return self.problem
 

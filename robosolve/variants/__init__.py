@@ -1,7 +1,8 @@
 """Individualized variants of a problem (spec variants.md).
 
-- `section`: the `variants:` section of a problem file, validated by the loader into a
-  `VariantSpec` (varied parameters with their exact value sets, `require` conditions);
+The `variants:` section itself is validated by the loader (robosolve/load/variants.py) into
+a `VariantSpec` on the Problem (varied parameters with exact value sets, `require`); here:
+
 - `draw`: the draw of variant k from (seed, k) with a stable hash, the grid, distinctness;
 - `require`: cheap numeric checks of the conditions (inequalities, `reachable`, `nonsingular`);
 - `naming`: roster ids -> folder names;
