@@ -133,6 +133,9 @@ def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",)) -> 
 
     from robosolve.outputs import OutputFolderError, write_output_folder
 
+    if golden is not None and "md" not in formats:     # golden folders hold report.md
+        formats = ("md", *formats)
+
     console = Console(stderr=True)
     jobs = jobs or os.cpu_count() or 1
     names = declared_names(files)
