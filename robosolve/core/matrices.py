@@ -25,7 +25,40 @@ __all__ = [
 
 def l_matrix(m: sp.Matrix, q: sp.Symbol) -> sp.Matrix:
     """L = dM/dq * M^-1 for a rototranslation M depending on joint variable q."""
-    return (m.diff(q) * rigid_inverse(m)).applyfunc(lambda e: sp.trigsimp(sp.expand(e)))
+    from robosolve.core.simplify import tidy
+
+    return (m.diff(q) * rigid_inverse(m)).applyfunc(lambda e: tidy(sp.expand(e)))
+
+
+# dF/da F^-1 of each elementary motion F(a): constant twists (Rx: [e_x], Tx: e_x, ...).
+_UNIT_TWIST = {
+    "Rx": ((1, 0, 0), (0, 0, 0)), "Ry": ((0, 1, 0), (0, 0, 0)), "Rz": ((0, 0, 1), (0, 0, 0)),
+    "Tx": ((0, 0, 0), (1, 0, 0)), "Ty": ((0, 0, 0), (0, 1, 0)), "Tz": ((0, 0, 0), (0, 0, 1)),
+}
+
+
+def l_matrix_of_factors(factors, q: sp.Symbol) -> sp.Matrix | None:
+    """L = dM/dq M^-1 of M = F1 F2 ... (elementary motions `(op, arg)`) by structure,
+    when q appears in one factor Fk only, linearly: L = P (c L_op) P^-1 with P = F1...Fk-1
+    and c = d arg/dq (the same matrix as differentiating M, without simplifying products
+    of sines). None when that shape does not apply (the caller differentiates M)."""
+    from robosolve.core.transforms import ELEMENTARY
+
+    hits = [k for k, (_, arg) in enumerate(factors) if sp.sympify(arg).has(q)]
+    if len(hits) != 1:
+        return None
+    op, arg = factors[hits[0]]
+    c = sp.diff(arg, q)
+    if c.has(q) or op not in _UNIT_TWIST:
+        return None
+    prefix = sp.eye(4)
+    for pop, parg in factors[:hits[0]]:
+        prefix = prefix * ELEMENTARY[pop](parg)
+    w, v = _UNIT_TWIST[op]
+    r, t = prefix[:3, :3], prefix[:3, 3]
+    omega = r * sp.Matrix(w) * c
+    vel = r * sp.Matrix(v) * c - omega.cross(t)
+    return velocity_matrix(omega.applyfunc(sp.expand), vel.applyfunc(sp.expand))
 
 
 def change_frame(m: sp.Matrix, a: sp.Matrix) -> sp.Matrix:

@@ -67,8 +67,32 @@ def _has_trig_products(expr) -> bool:
     return False
 
 
+def _has_trig_squares(expr) -> bool:
+    """True when a power of sin/cos is left (room for cos² + sin² = 1)."""
+    return any(node.is_Pow and isinstance(node.base, (sp.sin, sp.cos))
+               for node in sp.preorder_traversal(expr))
+
+
 def tidy_matrix(m: sp.Matrix, seconds: float = 5.0) -> sp.Matrix:
     return m.applyfunc(lambda e: tidy(e, seconds))
+
+
+def tidy_products(expr, seconds: float = 5.0):
+    """Named variant for the chain products of long arms (5+ joints): expand and apply
+    the addition formulas (TR10i); trigsimp only when a power of sin/cos is left. An entry
+    of a 6R pose is a sum of products of sines and cosines of different angles, with no
+    cos² + sin² = 1 to use: trigsimp spends seconds per entry on it and finds only the
+    factored look (a common factor pulled out), which the short arms' reports keep (they
+    use `tidy`)."""
+    expr = sp.sympify(expr)
+    if expr.is_Atom or not expr.has(sp.sin, sp.cos):
+        return tidy(expr, seconds)
+    collapsed = TR10i(sp.expand(expr))
+    return tidy(collapsed, seconds) if _has_trig_squares(collapsed) else collapsed
+
+
+def tidy_products_matrix(m: sp.Matrix, seconds: float = 5.0) -> sp.Matrix:
+    return m.applyfunc(lambda e: tidy_products(e, seconds))
 
 
 def small_trig(expr):

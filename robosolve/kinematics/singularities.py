@@ -156,10 +156,14 @@ def _pretty_atan2(s_val, c_val, sample):
 
 def _solve_revolute(f, q, sample):
     """Every q in (−π, π] with f(q) = 0 (f a function of q and parameters), or None."""
-    try:
-        sol = sp.solveset(f, q, sp.Interval.Lopen(-sp.pi, sp.pi))
-    except (NotImplementedError, ValueError, TypeError):
-        sol = None
+    sol = None
+    if not (f.is_Add and f.free_symbols - {q}):
+        # solveset on a sum with symbolic coefficients (a3 sin q3 + d4 cos q3) spends
+        # seconds before giving up: such factors go straight to the polynomial system
+        try:
+            sol = sp.solveset(f, q, sp.Interval.Lopen(-sp.pi, sp.pi))
+        except (NotImplementedError, ValueError, TypeError):
+            sol = None
     if isinstance(sol, sp.FiniteSet) and all(not v.has(q) for v in sol):
         return [wrap_angle(v) for v in sol]
     # polynomial system in c = cos q, s = sin q
@@ -337,22 +341,26 @@ def _subsumed(small: Condition, big: Condition) -> bool:
 
 
 def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping,
-                       params: Mapping | None = None) -> SingularityResult:
+                       params: Mapping | None = None, det=None) -> SingularityResult:
     """Singular configurations of J(q).
 
     ``kinds`` maps each joint symbol to 'revolute' or 'prismatic'; ``params`` maps
     parameter symbols to numbers (or None) and is used only to choose between
     equivalent closed forms, to order the results and to drop values that are not
-    real for the given parameters (with a note).
+    real for the given parameters (with a note). ``det``: det J of a square J, already
+    factored by structure (robosolve.kinematics.structured_det), used instead of expanding.
     """
     j = sp.Matrix(j)
     joints = list(joints)
     params = dict(params or {})
-    kind, measure = rank_measure(j)
+    if det is not None and j.shape[0] == j.shape[1]:
+        kind, measure = "det", det
+    else:
+        kind, measure = rank_measure(j)
     notes: list[str] = []
     minors: list[sp.Expr] = []
     if kind == "det":
-        measure = factored(measure)
+        measure = factored(measure) if det is None else measure
         exprs = [measure]
     else:
         # det(J Jᵀ) (or det(Jᵀ J)) = sum of the squares of the maximal minors

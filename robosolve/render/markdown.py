@@ -9,9 +9,10 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.questions.registry import title as question_title
+from robosolve.core.prose import Num, Text
 from robosolve.render.compact import CompactTrig, display_lines
 from robosolve.render.configuration import configuration_text, overrides_by_parameter
-from robosolve.render.numbers import report_number
+from robosolve.render.numbers import report_number, text
 
 
 
@@ -25,6 +26,8 @@ class Tex:
     def __call__(self, v) -> str:
         if isinstance(v, str):
             return v
+        if isinstance(v, (Num, Text)):
+            return text(v, math=True)
         if isinstance(v, bool):
             return "\\text{true}" if v else "\\text{false}"
         if v is None:
@@ -56,7 +59,7 @@ def display(tex: str) -> str:
 
 def render_table(header, rows) -> str:
     def cell(x):
-        return str(x).replace("|", "\\|").replace("\n", " ")
+        return text(x).replace("|", "\\|").replace("\n", " ")
     out = ["| " + " | ".join(cell(h) for h in header) + " |",
            "| " + " | ".join("---" for _ in header) + " |"]
     out += ["| " + " | ".join(cell(c) for c in r) + " |" for r in rows]
@@ -158,7 +161,7 @@ def decimal_companion(value, tex: Tex) -> str | None:
 def render_step(step, tex: Tex) -> list[str]:
     out = [f"#### {step.title}"]
     if step.text:
-        out.append(step.text)
+        out.append(text(step.text))
     for lhs, value in step.equations:
         intro, lines = display_lines(lhs, value, tex)
         approx = decimal_companion(value, tex)
@@ -197,7 +200,7 @@ def render_answer(index: int, answer, figure_paths: list[str], tex: Tex,
         out.append(f"![{answer.id}]({path})")
     if answer.notes:
         out.append("**Notes**")
-        out += [f"- {n}" for n in answer.notes]
+        out += [f"- {text(n)}" for n in answer.notes]
     return out
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.core.course_notes import note_link
 from robosolve.kinematics.ellipsoids_math import ellipsoids, exact_values, joint_rates
 from robosolve.kinematics.task import symbolic_budget, limited, position_axes, task_space
@@ -21,12 +22,13 @@ def _col(labels):
     return r"\begin{bmatrix}" + r" \\ ".join(labels) + r"\end{bmatrix}"
 
 
-def _vec_tex(v):
-    return "(" + ", ".join(f"{x:.4g}" for x in v) + ")"
+def _vec_tex(v) -> Text:
+    """A unit direction for a table: 4 digits are all a reader can use."""
+    return Text("(", Text.join(", ", [Num(x, digits=4) for x in v]), ")")
 
 
-def _num(x):
-    return "∞" if x is None else f"{x:.6g}"
+def _num(x, unit: str = "") -> Text:
+    return Text("∞" + (" " + unit if unit else "")) if x is None else Text(Num(x, unit))
 
 
 def _units(question, model, ts):
@@ -136,7 +138,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     # -- force ---------------------------------------------------------------------
     def axes_table(ax, unit):
         return (["axis", "length", "direction", "semi-axis"],
-                [[str(i + 1), f"{_num(ln)} {unit}", _vec_tex(d),
+                [[str(i + 1), _num(ln, unit), _vec_tex(d),
                   _vec_tex(s) if s is not None else "∞ (unbounded)"]
                  for i, (ln, d, s) in enumerate(zip(ax.lengths, ax.directions, ax.semi_axes))])
 
@@ -212,11 +214,11 @@ def solve(question, ctx: SolveContext) -> Answer:
         ratio = res.condition_number ** 0.5
         ans.steps.append(Step(
             "Condition number",
-            "The isotropy of the robot at this configuration is measured by the condition "
-            "number of A, $\\max\\nu / \\min\\nu$ (" + note_link("condition-number") + "). It equals $\\mathrm{cond}(J)^2$, "
-            "the square of the ratio of the largest to the smallest singular value of J, and the "
-            f"ratio of the ellipse's longest to shortest semi-axis is its square root "
-            f"({ratio:.6g}). 1 would be an isotropic configuration.",
+            Text("The isotropy of the robot at this configuration is measured by the condition "
+                 "number of A, $\\max\\nu / \\min\\nu$ (" + note_link("condition-number") + "). It equals $\\mathrm{cond}(J)^2$, "
+                 "the square of the ratio of the largest to the smallest singular value of J, and the "
+                 "ratio of the ellipse's longest to shortest semi-axis is its square root (",
+                 Num(ratio), "). 1 would be an isotropic configuration."),
             equations=([("\\frac{\\max \\nu}{\\min \\nu}", exact["condition_number"])]
                        if exact is not None and exact["condition_number"] is not None else [])
             + [("\\frac{\\max \\nu}{\\min \\nu}", res.condition_number)],

@@ -12,6 +12,7 @@ import math
 import numpy as np
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.core.course_notes import note_link
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.rotations import (
@@ -83,8 +84,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     steps.append(_numeric_step(z, y, aa, q))
     for e, name in ((z, "ZYZ"), (y, "RPY")):
         if e.singular:
-            ans.note(f"{name} singular: only {e.family[0]} = {e.family[1]:.6g} is determined; "
-                     "the representative sets the last angle to 0")
+            ans.note(Text(f"{name} singular: only {e.family[0]} = ", Num(e.family[1]),
+                          " is determined; the representative sets the last angle to 0"))
     if aa.case == "zero":
         ans.note("zero rotation: the axis of the axis-angle representation is undefined (null)")
     if aa.case == "half_turn":
@@ -146,8 +147,8 @@ def _numeric_step(z, y, aa, q) -> Step:
     for name, e in (("ZYZ (φ, θ, ψ)", z), ("RPY (roll, pitch, yaw)", y)):
         for k, s in enumerate(e.solutions):
             rows.append((f"{name} #{k + 1}" + (" (singular)" if e.singular else ""),
-                         ", ".join(f"{x:.6g}" for x in s), ", ".join(f"{x * deg:.6g}" for x in s)))
-    rows.append(("axis-angle α", f"{aa.angle:.6g}", f"{aa.angle * deg:.6g}"))
+                         Text.join(", ", [Num(x) for x in s]), Text.join(", ", [Num(x * deg) for x in s])))
+    rows.append(("axis-angle α", Num(aa.angle), Num(aa.angle * deg)))
     return Step("Numeric values", "Angles in radians and degrees:",
                 equations=[("u", aa.axis), ("q", q)],
                 table=(("representation", "rad", "deg"), rows))
