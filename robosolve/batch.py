@@ -109,6 +109,9 @@ def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), sch
 
     from robosolve.execution import SchedulerError
 
+    if golden is not None and "md" not in formats:     # golden folders hold report.md
+        formats = ("md", *formats)
+
     console = Console(stderr=True)
     jobs = jobs or os.cpu_count() or 1
     names = declared_names(files)
