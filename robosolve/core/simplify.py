@@ -59,8 +59,25 @@ class SimplifyBudgets:
 
 DEFAULT_BUDGETS = SimplifyBudgets()
 
-# Above this size trigsimp costs seconds and rarely pays: the entry is left as is.
+# Above this size trigsimp costs seconds and rarely pays: the entry is left as is. The size is
+# counted (sympy operations), so the decision is the same on every machine; the time limit of
+# `tidy` is only a safety net.
 MAX_TIDY_OPS = DEFAULT_BUDGETS.chain_ops
+
+
+def expression_nodes(obj) -> int:
+    """The number of expression-tree nodes in a sympy object, a matrix, or nested lists,
+    tuples and dicts of them: the deterministic measure of symbolic work (spec §2)."""
+    if isinstance(obj, sp.MatrixBase):
+        return sum(expression_nodes(e) for e in obj)
+    if isinstance(obj, sp.Basic):
+        return sum(1 for _ in sp.preorder_traversal(obj))
+    if isinstance(obj, dict):
+        return sum(expression_nodes(v) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return sum(expression_nodes(e) for e in obj)
+    return 0
+
 
 _MEMO: dict = {}
 _MEMO_SIZE = 50_000
@@ -128,7 +145,7 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
             # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
             # leaves trigsimp, slow on long chains, little or nothing to do.
             collapsed = TR10i(expanded)
-            if not _has_trig_products(collapsed):
+            if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > max_ops:
                 return collapsed
             return sp.trigsimp(collapsed)
     except SymbolicTimeout as exc:
