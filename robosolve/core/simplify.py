@@ -10,6 +10,7 @@ solve context carries one: `ctx.budgets.simplify`); engines use the defaults.
 | variant | for | budget |
 | --- | --- | --- |
 | `chain_product` (alias `tidy`) | entries of chain products M, W, H, L (c1 c2 - s1 s2 -> cos(q1 + q2)) | `chain_ops` (+ `chain_seconds` safety net) |
+| `tidy_products` | chain products of long arms (5+ joints): addition formulas, trigsimp only when a power of sin/cos is left | as `chain_product` |
 | `jacobian_entry` | Jacobian entries: trigsimp, then factor if shorter | none (entries are small) |
 | `small_trig` | small pieces: the dynamics engine's sympy fallback, twists L = dM/dq M^-1 | none |
 | `exact_geometry` | rotation / displacement quantities (angles, axes, quaternions) | `geometry_ops` |

@@ -22,7 +22,7 @@ from robosolve.geometry.helical import (
 )
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
-from robosolve.solvers.common import frame_tex, m_name
+from robosolve.solvers.common import frame_tex, geometry_matrix, m_name
 
 CASE_TEXT = {
     "general": "$0 < \\alpha < \\pi$: $\\sin\\alpha > 0$, so the axis comes from the skew-symmetric part, "
@@ -48,12 +48,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return ans
     q0 = displacement_matrix(m01, m02)
     q = express_in_frame(q0, m0k) if m0k is not None else q0
-    try:
-        with ctx.time_limit(10.0):
-            ops = ctx.budgets.simplify.geometry_ops
-            q = q.applyfunc(lambda e: exact_geometry(e, ops))
-    except SymbolicTimeout:
-        pass
+    q = geometry_matrix(ctx, q)
     f = frame_tex(expressed)
 
     steps = [Step(

@@ -19,7 +19,7 @@ from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
 from robosolve.kinematics.task import (
-    joint_kinds, joint_l0, limited, symbolic_budget, task_space, tidy_limited)
+    joint_kinds, joint_l0, limited, task_space, tidy_limited)
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
 
@@ -31,10 +31,6 @@ def _qtex(model):
     return [sp.latex(s) for s in model.q]
 
 
-def _budget(ctx) -> float:
-    return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
-
-
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
@@ -43,7 +39,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     point = question.point
     q = model.q
     qtex = _qtex(model)
-    ts = task_space(question, ctx, _budget(ctx), geometric=geometric)
+    ts = task_space(question, ctx, ctx.step_seconds, geometric=geometric)
     J = ts.J
     m, n = J.shape
 
@@ -118,7 +114,7 @@ def _singularity_steps(ans, question, ctx, ts):
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
     det = _structured_det_steps(ans, question, ctx, ts)
-    res, err = limited(ctx, _budget(ctx), find_singularities, J, model.q, kinds, params, det)
+    res, err = limited(ctx, ctx.step_seconds, find_singularities, J, model.q, kinds, params, det)
     if res is None:
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
                  "the numeric answers are given.")
@@ -138,7 +134,7 @@ def _singularity_steps(ans, question, ctx, ts):
     else:
         from robosolve.kinematics.jacobian_math import tidy
 
-        gram, _err = limited(ctx, _budget(ctx), tidy, res.measure)
+        gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
         manip = sp.sqrt(gram if gram is not None else res.measure)
         ans.symbolic["manipulability"] = manip
         shape = "wide (redundant)" if m < n else "tall"
@@ -197,7 +193,7 @@ def _structured_det_steps(ans, question, ctx, ts):
     if ts.geometric:
         pframe, _ = model.point_local(question.point)
         frame = question.frame or model.problem.last_frame
-        wrist, err = limited(ctx, _budget(ctx), sd.wrist_decoupled_det, model, pframe, frame)
+        wrist, err = limited(ctx, ctx.step_seconds, sd.wrist_decoupled_det, model, pframe, frame)
         if err is not None:
             return None
         if wrist is not None:
@@ -218,7 +214,7 @@ def _structured_det_steps(ans, question, ctx, ts):
                 "the velocity of W) times the wrist's (the angular velocities of joints 4–6).",
                 equations=eqs))
             return wrist.det.det
-    split, _err = limited(ctx, _budget(ctx), sd.structured_det, ts.J, model.q)
+    split, _err = limited(ctx, ctx.step_seconds, sd.structured_det, ts.J, model.q)
     if split is None or len(split.blocks) < 2:
         return split.det if split is not None else None
     ans.steps.append(Step(
@@ -289,7 +285,7 @@ def _com_steps(ans, ctx):
     eqs = []
     for b in model.bodies:
         c0 = model.com0(b)
-        jg = tidy_limited(ctx, c0.jacobian(model.q), _budget(ctx))
+        jg = tidy_limited(ctx, c0.jacobian(model.q), ctx.step_seconds)
         out[b.name] = jg
         eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
         eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))

@@ -13,7 +13,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.prose import Num, Text
-from robosolve.errors import SolverError, SymbolicTimeout
+from robosolve.errors import SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
@@ -26,10 +26,7 @@ def _unit(kind: str) -> str:
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
-    ref = question.options.get("profile")
-    prof = ctx.profile(ref)
-    if prof is None:
-        raise SolverError(f"the motion profile '{ref}' has no answer")
+    prof = ctx.profile(question.options.get("profile"))
     ans = Answer(question.type, question.id)
     subs = ctx.substitutions(question.at)
     joints = model.joints

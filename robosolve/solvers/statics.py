@@ -16,16 +16,12 @@ import sympy as sp
 from robosolve.core.course_notes import note_link
 from robosolve.core.simplify import full
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
-from robosolve.kinematics.task import symbolic_budget, limited, task_space, tidy_limited
+from robosolve.kinematics.task import limited, task_space, tidy_limited
 from robosolve.solvers.base import Answer, SolveContext, Step
 
 
 def _actuator_tex(model):
     return [sp.latex(j.actuator) for j in model.joints]
-
-
-def _budget(ctx) -> float:
-    return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
 
 
 def solve(question, ctx: SolveContext) -> Answer:
@@ -56,7 +52,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         total += _weight_part(ctx, ans)
 
     if (force is not None or torque is not None) and weight:
-        total = tidy_limited(ctx, total, _budget(ctx))
+        total = tidy_limited(ctx, total, ctx.step_seconds)
         ans.steps.append(Step("Total", "The loads add up:", equations=[("F_q", total)]))
 
     names = [j.name for j in model.joints]
@@ -86,7 +82,7 @@ def _load_part(question, ctx: SolveContext, ans: Answer, force, torque) -> sp.Ma
     """F_q = -J^T F_s for the external force (and torque: geometric Jacobian), with its steps."""
     point = question.point
     geometric = torque is not None
-    ts = task_space(question, ctx, _budget(ctx), geometric=geometric)
+    ts = task_space(question, ctx, ctx.step_seconds, geometric=geometric)
     if geometric:
         f = sp.Matrix(force if force is not None else [0, 0, 0])
         tau = sp.Matrix(torque)
@@ -109,7 +105,7 @@ def _load_part(question, ctx: SolveContext, ans: Answer, force, torque) -> sp.Ma
             equations=[("S", sp.Matrix(ts.coords)), ("J = \\frac{\\partial S}{\\partial Q}", ts.J),
                        ("F_s", f)],
         ))
-    part = tidy_limited(ctx, part, _budget(ctx))
+    part = tidy_limited(ctx, part, ctx.step_seconds)
     ans.steps.append(Step(
         "Joint actions for the load",
         "",
@@ -127,12 +123,12 @@ def _weight_part(ctx: SolveContext, ans: Answer) -> sp.Matrix:
     jgs, masses, eqs = [], [], []
     for b in model.bodies:
         c0 = model.com0(b)
-        jg = tidy_limited(ctx, c0.jacobian(q), _budget(ctx))
+        jg = tidy_limited(ctx, c0.jacobian(q), ctx.step_seconds)
         jgs.append(jg)
         masses.append(b.mass)
         eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
         eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))
-    part = tidy_limited(ctx, balance_weight(jgs, masses, g), _budget(ctx))
+    part = tidy_limited(ctx, balance_weight(jgs, masses, g), ctx.step_seconds)
     ans.steps.append(Step(
         "Weight of the bodies",
         "Each body's weight $m_i g$ acts at its centre of mass $G_i$ (from the pseudo-inertia: "
@@ -144,7 +140,7 @@ def _weight_part(ctx: SolveContext, ans: Answer) -> sp.Matrix:
     ))
     # cross-check with the potential energy
     u = sum((-(b.mass * g.dot(model.com0(b))) for b in model.bodies), sp.Integer(0))
-    check, _err = limited(ctx, _budget(ctx),
+    check, _err = limited(ctx, ctx.step_seconds,
                           lambda: full(sp.Matrix([u.diff(s) for s in q]) - part))
     if check is not None and check != sp.zeros(n, 1):
         ans.note("internal check failed: −ΣJ_Gᵀ m g differs from ∂U/∂q")
