@@ -60,10 +60,12 @@ def solve_file(path) -> Report:
     return solve_problem(load_problem(path))
 
 
-def render_files(report: Report) -> dict[str, bytes]:
-    """report.md, results.json and figures/*.png as a mapping relative path -> bytes."""
+def render_files(report: Report, formats=("md",)) -> dict[str, bytes]:
+    """results.json, figures/*.png and the reports of `formats` (robosolve.render.formats:
+    md -> report.md, html -> report.html, ipynb -> report.ipynb) as relative path -> bytes."""
     import io
 
+    from robosolve.render.formats import FORMATS
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
@@ -83,11 +85,14 @@ def render_files(report: Report) -> dict[str, bytes]:
             files[rel] = buffer.getvalue()
             figure_paths.setdefault(answer.id, []).append(rel)
     files["results.json"] = render_results_json(report, figure_paths).encode("utf-8")
-    files["report.md"] = render_report(report, figure_paths).encode("utf-8")
+    markdown = render_report(report, figure_paths)
+    for name in formats:
+        fmt = FORMATS[name]
+        files[fmt.filename] = fmt.render(report, markdown, figure_paths, files).encode("utf-8")
     return files
 
 
-def write_outputs(report: Report, out_dir, inputs=()) -> Path:
+def write_outputs(report: Report, out_dir, inputs=(), formats=("md",)) -> Path:
     """Write the report as the output folder `out_dir` (robosolve.outputs: ownership, atomic swap).
 
     Raises robosolve.outputs.OutputFolderError, with nothing touched, when the folder is not
@@ -95,4 +100,10 @@ def write_outputs(report: Report, out_dir, inputs=()) -> Path:
     """
     from robosolve.outputs import write_output_folder
 
-    return write_output_folder(out_dir, render_files(report), inputs=inputs)
+    return write_output_folder(out_dir, render_files(report, formats), inputs=inputs)
+
+
+def render_outputs(report: Report, folder, formats=("md",), inputs=()) -> Path:
+    """The output folder of one report in the `formats` asked for (`--format`): what the
+    `solve`, `batch` and `variants` commands call; same rules as write_outputs."""
+    return write_outputs(report, folder, inputs=inputs, formats=formats)

@@ -1,13 +1,13 @@
 """The course's 4x4 matrices beyond M: L, W, H, pseudo-inertia J, actions Phi.
 
-Conventions are the spec's §3 and ERRATA §D:
+Conventions are the spec's §3 and docs/course-notes.md:
 
 * L of a joint = dM/dq * M^-1 (generated from M, never written by hand, §D.4);
 * W = Mdot M^-1, H = Mddot M^-1 = Wdot + W^2, both expressed in the fixed frame;
 * pseudo-inertia J = integral of p p^T dm with homogeneous p (§D.8);
 * matrix of actions Phi = sum(F P^T - P F^T) + [C]  (§D.5);
 * pseudo scalar product A (x) B over entries [3,2],[1,3],[2,1],[1,4],[2,4],[3,4]
-  (1-based; ERRATA item 92: [3,2], not [3,1]).
+  (1-based; course-notes#note-pseudo-scalar-product: [3,2], not [3,1]).
 """
 
 from __future__ import annotations
@@ -94,7 +94,7 @@ def pseudo_inertia_rod(mass, start, end) -> sp.Matrix:
 def pseudo_inertia_from_com(mass, com, inertia=None) -> sp.Matrix:
     """J from the centre of mass c and the classical inertia tensor I_G about it.
 
-    J3x3 = (tr I_G / 2) 1 - I_G + m c c^T, J[:3, 3] = m c, J[3, 3] = m (ERRATA §D.8).
+    J3x3 = (tr I_G / 2) 1 - I_G + m c c^T, J[:3, 3] = m c, J[3, 3] = m (course-notes#note-pseudo-inertia).
     """
     c = sp.Matrix(com)
     ig = sp.zeros(3, 3) if inertia is None else sp.Matrix(inertia)
@@ -116,7 +116,7 @@ def pseudo_inertia_parts(j: sp.Matrix) -> dict:
 
 
 def gravity_matrix(gravity) -> sp.Matrix:
-    """H_g: zero but for the gravity vector in the last column (ERRATA §D.9)."""
+    """H_g: zero but for the gravity vector in the last column (course-notes#note-gravity)."""
     out = sp.zeros(4, 4)
     out[:3, 3] = sp.Matrix(gravity)
     return out

@@ -1,5 +1,5 @@
 """Rigid displacements and their helical (screw) axis (seed §3.1.3-3.1.6 as
-corrected by ERRATA items 22-37 and §D.13).
+corrected as in docs/course-notes.md#note-helical-axis).
 
 A body moves from pose M01 to pose M02 (both in frame 0).  The displacement
 matrix Q0 = M02 * M01^-1 maps the initial position of any body point to its

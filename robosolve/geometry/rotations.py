@@ -1,5 +1,5 @@
 """Rotation representations: ZYZ Euler angles, roll-pitch-yaw, axis-angle and
-unit quaternion (seed §5.6, ERRATA items 77-80 and §D.12).
+unit quaternion (seed §5.6, docs/course-notes.md#note-orientation).
 
 Conventions (the spec's "Orientation" layout):
 
@@ -66,7 +66,7 @@ class AxisAngle:
     free symbols, ``"generic"`` (the general formulas, valid where
     sin(alpha) != 0).  ``cos_angle``/``sin_angle`` are the quantities the
     formulas start from: cos(alpha) = (tr R - 1)/2 and
-    sin(alpha) = |vex(R - R^T)|/2 (ERRATA items 25-26).
+    sin(alpha) = |vex(R - R^T)|/2 (course-notes#note-helical-axis).
     """
 
     axis: Any            # [ux, uy, uz] or None
@@ -269,7 +269,7 @@ def axis_angle_numeric(m, tol: float = ZERO_TOL) -> AxisAngle:
 
 
 def axis_angle_symbolic(m, simplify: Callable = _default_simplify) -> AxisAngle:
-    """Axis-angle of a sympy rotation matrix (ERRATA items 25-30, 79).
+    """Axis-angle of a sympy rotation matrix (course-notes#note-helical-axis).
 
     cos(alpha) = (tr R - 1)/2, sin(alpha) = |vex(R - R^T)|/2 >= 0 and
     u = vex(R - R^T)/(2 sin alpha); at alpha = pi (exact matrices only)
@@ -408,7 +408,7 @@ def zyz_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
 
 
 def rpy_matrix(roll, pitch, yaw) -> sp.Matrix:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (ERRATA item 78)."""
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (course-notes#note-orientation)."""
     from robosolve.core.transforms import rot_x, rot_y, rot_z
 
     return (rot_z(yaw) * rot_y(pitch) * rot_x(roll))[:3, :3]

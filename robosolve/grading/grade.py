@@ -42,6 +42,7 @@ class Job:
     problem_key: str | None        # the resolved problem file, or None when unknown
     answers: dict | None           # resolved answers, or None when the file is invalid
     error: str = ""
+    notes: tuple = ()              # unknown question ids (the rest is graded)
     duplicate: bool = False        # a second submission with an earlier one's student id
 
 
@@ -131,8 +132,8 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
             raise UsageError(str(exc)) from None
         for i, sub in subs:
             try:
-                resolve_answers(sub, references[key].problem)
-                jobs[i].answers = sub.answers
+                resolve_answers(sub, references[key].problem, strict=False)
+                jobs[i].answers, jobs[i].notes = sub.answers, tuple(sub.notes)
             except InputError as exc:
                 jobs[i].error = str(exc)
     _mark_duplicates(jobs)
@@ -177,7 +178,7 @@ def grade_job(job: Job):
     if grader is None:
         grader = _GRADERS[job.problem_key] = Grader(ref)
     try:
-        return job.index, grader.grade(job.student, job.answers)
+        return job.index, grader.grade(job.student, job.answers, job.notes)
     except Exception as exc:  # noqa: BLE001 - a grading bug must not lose the other submissions
         return job.index, invalid_result(ref, job.student, f"{job.file}: internal error while grading "
                                                            f"({type(exc).__name__}: {exc})")

@@ -68,6 +68,7 @@ class SubmissionResult:
     student: str
     questions: list                               # QuestionResult, in the problem's order
     error: str = ""                               # the submission could not be read
+    notes: list = field(default_factory=list)     # answers that could not be placed (unknown question ids)
 
     @property
     def score(self) -> Fraction:
@@ -139,6 +140,8 @@ class Grader:
         return ak.symbol.format(sub=sub, frame=frame)
 
     def grade_key(self, qref, key: str, given) -> KeyResult:
+        if given is not None and given.problem:
+            return KeyResult(INVALID, feedback=given.problem)
         qt = question_type(qref.type)
         ak = qt.key(key)
         if qref.error is not None:
@@ -176,7 +179,11 @@ class Grader:
         symbolic = bool(free) and sym is not None and not (ak.by_value and num is not None)
         if symbolic:
             e = self._expected(qref, ak, key, "symbolic", sym)
-        else:
+            if not free_symbols(e):
+                # the reference is a number even in symbolic form (e.g. ellipse lengths at `at`):
+                # the given expression is evaluated at the question's values instead
+                symbolic = False
+        if not symbolic:
             if free:
                 g = substitute(g, subs)
                 left = free_symbols(g)
@@ -204,11 +211,12 @@ class Grader:
             return KeyResult(CORRECT, compared)
         if outcome.unknown:
             return KeyResult(INVALID, compared, feedback=outcome.unknown)
-        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic)
+        substituted = (free_symbols(e) & self.parameters) - free   # parameters the answer lacks
+        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted))
         symbol = self.symbol(qref, ak)
         expected_text = f"expected {symbol} = {show(e)}"
         if diagnosis:
-            params = self._names((free_symbols(e) & self.parameters) - free)
+            params = self._names(substituted)
             text = D.sentence(diagnosis, ak, symbol=symbol, frame=qref.frame, outcome=outcome, params=params)
             verdict = INVALID if diagnosis == "wrong_shape" else INCORRECT
             return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}")
@@ -259,7 +267,7 @@ class Grader:
                          f"could not be confirmed equal; expected {self.symbol(qref, ak)} = {show(e)}")
 
     # -- one submission -----------------------------------------------------
-    def grade(self, student: str, answers: dict) -> SubmissionResult:
+    def grade(self, student: str, answers: dict, notes=()) -> SubmissionResult:
         """`answers`: question id -> {dotted key: Given} (answers.resolve_answers)."""
         out = []
         for qref in self.ref.questions:
@@ -275,7 +283,7 @@ class Grader:
                     continue
                 qr.keys[key] = self.grade_key(qref, key, given[key])
             out.append(qr)
-        return SubmissionResult(self.ref.name, student, out)
+        return SubmissionResult(self.ref.name, student, out, notes=list(notes))
 
 
 def invalid_result(reference: Reference | None, student: str, error: str) -> SubmissionResult:

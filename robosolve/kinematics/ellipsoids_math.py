@@ -1,6 +1,6 @@
 """Force, velocity and compliance ellipsoids of a Jacobian at one configuration.
 
-ERRATA §D.10 and the spec's "Ellipsoids" layout:
+docs/course-notes.md#note-ellipsoid-axes and the spec's "Ellipsoids" layout:
 
 * A = J·Jᵀ (J of the chosen task coordinates), eigenvalues νᵢ, *unit* eigenvectors ϑ̂ᵢ;
 * force ellipsoid FᵀAF = Kf²: semi-axes (Kf/√νᵢ)·ϑ̂ᵢ;

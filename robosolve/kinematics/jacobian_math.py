@@ -1,9 +1,9 @@
 """Jacobians of task coordinates, geometric Jacobians, centre-of-mass Jacobians.
 
-Conventions (spec §1 "Coordinates", ERRATA §D):
+Conventions (spec §1 "Coordinates", docs/course-notes.md):
 
 * analytic Jacobian J = dS/dQ of the coordinate vector S = F(Q): rows are the
-  coordinates, columns the joints, in joint order (ERRATA item 7: J is n x m);
+  coordinates, columns the joints, in joint order (course-notes#note-jacobian-shape);
 * geometric Jacobian (6 x m): column i = velocity of the point P and angular
   velocity of the moving frame produced by a unit rate of joint i alone. With
   ⁰Lᵢ = [[ω̂ᵢ], tᵢ; 0, 0] (∂M0i/∂qᵢ·M0i⁻¹), the column is (ω̂ᵢ·P + tᵢ, vex(ω̂ᵢ));

@@ -33,7 +33,9 @@ def joint_kinds(model) -> dict:
 
 
 def limited(ctx, seconds, fn, *args, **kwargs):
-    """Run fn under the context's time limit; (result, None) or (None, timeout message)."""
+    """Run fn under the context's time limit; (result, None) or (None, why it stopped)."""
+    from sympy.polys.polyerrors import BasePolynomialError
+
     from robosolve.errors import SymbolicTimeout
 
     try:
@@ -41,6 +43,10 @@ def limited(ctx, seconds, fn, *args, **kwargs):
             return fn(*args, **kwargs), None
     except SymbolicTimeout as exc:
         return None, str(exc)
+    except (BasePolynomialError, NotImplementedError) as exc:
+        # sympy cannot do this algebra (e.g. a DH alpha left symbolic gives sqrt(sin(al)**4 - 1)
+        # terms that factor() rejects): the step is skipped like one past its limit
+        return None, f"sympy cannot complete this step symbolically ({type(exc).__name__})"
 
 
 def tidy_limited(ctx, m, seconds, long_chain=False):

@@ -3,7 +3,7 @@
 `RobotModel` is built once per problem and memoises everything it derives, so
 solvers share one chain product, one set of L matrices, and so on.
 
-Conventions (spec §3, ERRATA §D.1-4): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
+Conventions (spec §3; docs/course-notes.md: frame-notation, w-matrix, h-matrix, l-matrix): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
 and H_0j = Mddot_0j M_0j^-1, both expressed in frame 0; the L matrix of joint i
 is dM/dq_i M^-1 moved to frame 0. Time derivatives use the chain rule with the
 symbols q, q_dot, q_ddot (no sympy Functions of t: faster and printable).

@@ -1,6 +1,6 @@
 """Synchronized joint motion profiles (the course's §7.4, corrected).
 
-Three rest-to-rest shapes (spec, "Motion profiles"; ERRATA items 121-126, §D.15):
+Three rest-to-rest shapes (spec, "Motion profiles"; docs/course-notes.md#note-motion-sync):
 
 * ``bang-bang``: constant acceleration +a up to T/2, -a after (the course's
   profile a t^2/2 | aT^2/4 - a(T - t)^2/2).  Own time T_i = sqrt(4|D_i|/a_i),

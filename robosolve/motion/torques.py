@@ -3,7 +3,7 @@
 tau(t) = M(q) qdd + c(q, qd) + g(q) - f_ext(q) with q, qd, qdd the desired profile.
 The profile is polynomial on each interval between switching instants, so tau is
 a closed-form expression in t on each of them; it jumps where an acceleration
-jumps (0, T/2 and T for bang-bang, ERRATA item 127).
+jumps (0, T/2 and T for bang-bang, docs/course-notes.md#note-torque-jumps).
 
 Peaks (spec, "Joint torques"): the signed value of largest magnitude over [0, T],
 with the one-sided limits at the jumps included, so that t_peak is exactly a

@@ -14,6 +14,7 @@ import dataclasses
 import numpy as np
 import sympy as sp
 
+from robosolve.core.course_notes import note_link
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.helical import (
     displacement_matrix, express_in_frame, helical_numeric, helical_symbolic,
@@ -25,15 +26,15 @@ from robosolve.solvers.common import frame_tex, m_name
 
 CASE_TEXT = {
     "general": "$0 < \\alpha < \\pi$: $\\sin\\alpha > 0$, so the axis comes from the skew-symmetric part, "
-               "$u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$ (ERRATA item 30).",
+               "$u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$ (" + note_link("helical-axis") + ").",
     "generic": "symbolic rotation: the general formulas $u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$, "
                "valid where $\\sin\\alpha \\neq 0$.",
     "half_turn": "$\\alpha = \\pi$: $R - R^T = 0$ gives no axis, so it comes from the symmetric part, "
-                 "$u_i^2 = (R_{ii} + 1)/2$, $u_i u_j = (R_{ij} + R_{ji})/4$ (ERRATA item 28); "
+                 "$u_i^2 = (R_{ii} + 1)/2$, $u_i u_j = (R_{ij} + R_{ji})/4$ (" + note_link("helical-axis") + "); "
                  "$u$ and $-u$ are the same displacement, the one with its first non-zero component "
                  "positive is given.",
     "translation": "$\\alpha = 0$: a pure translation, $u = \\Delta T/|\\Delta T|$, $h = |\\Delta T|$; "
-                   "there is no axis point and the pitch is infinite (ERRATA item 31).",
+                   "there is no axis point and the pitch is infinite (" + note_link("helical-axis") + ").",
     "identity": "$Q = I$: no displacement; the axis is undefined.",
 }
 
@@ -56,8 +57,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 
     steps = [Step(
         "Displacement matrix",
-        f"{where} Every body point moves as ${{}}^0P_2 = Q_0\\,{{}}^0P_1$ (ERRATA item 22), so "
-        "$Q_0 = {}^0M_2\\,{}^0M_1^{-1}$ (item 23)."
+        f"{where} Every body point moves as ${{}}^0P_2 = Q_0\\,{{}}^0P_1$ (" + note_link("displacement-matrix") + "), so "
+        "$Q_0 = {}^0M_2\\,{}^0M_1^{-1}$."
         + (f" In frame {expressed}: $Q_{{{f}}} = {m_name('0', expressed)}^{{-1}}\\,Q_0\\,{m_name('0', expressed)}$ "
            "(item 24)." if m0k is not None else ""),
         equations=[("{}^0M_1", m01), ("{}^0M_2", m02), (f"Q_{{{f}}}", q)],
@@ -163,7 +164,7 @@ def _formula_step(hx) -> Step:
     return Step(
         "Helical axis (Mozzi-Chasles)",
         "Q is a rotation by $\\alpha \\in [0, \\pi]$ about the axis $(u, P^*)$ plus a translation $h$ "
-        "along it. $\\sin\\alpha$ is taken $\\geq 0$, which fixes the sign of $u$ (ERRATA items 25-31). "
+        "along it. $\\sin\\alpha$ is taken $\\geq 0$, which fixes the sign of $u$ (" + note_link("helical-axis") + "). "
         "Case: " + CASE_TEXT[hx.case] + (" $P^*$ is the point of the axis nearest the origin "
                                          "($P^* \\cdot u = 0$)." if hx.point is not None else ""),
         equations=eqs,

@@ -3,7 +3,7 @@ and the singular configurations; optionally the geometric Jacobian and the
 centre-of-mass Jacobians.
 
 Conventions: J = ∂S/∂Q with S = F(Q) the chosen coordinates (rows) and Q the joints
-(columns, joint order), ERRATA item 7; the geometric Jacobian is 6 x n (velocity of the
+(columns, joint order; docs/course-notes.md#note-jacobian-shape); the geometric Jacobian is 6 x n (velocity of the
 point, angular velocity of the frame), built from the L matrices ⁰Lᵢ; singularities as
 in the spec ("Singularities") and robosolve.kinematics.singularities.
 """
@@ -14,6 +14,7 @@ import math
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
@@ -122,7 +123,7 @@ def _singularity_steps(ans, question, ctx, ts):
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
                  "the numeric answers are given.")
         ans.steps.append(Step("Singular configurations",
-                              "The symbolic search exceeded its time limit: see the numeric "
+                              "The symbolic search was stopped (see the note): see the numeric "
                               "values below."))
         return
     if res.kind == "det":
@@ -239,7 +240,7 @@ def _joint_pose(model, i):
     return model.M0(frame) if frame is not None else sp.eye(4)
 
 
-def _within_limits(cond, model, params) -> str:
+def _within_limits(cond, model, params) -> str | Text:
     if cond.equations or not cond.values:
         return ""
     verdicts = []
@@ -253,8 +254,9 @@ def _within_limits(cond, model, params) -> str:
         except (TypeError, ValueError):
             return "depends on the other joints"
         if not (lo - 1e-12 <= val <= hi + 1e-12):
-            verdicts.append(f"no (${sp.latex(s)} \\notin [{lo:.4g}, {hi:.4g}]$)")
-    return "; ".join(verdicts) if verdicts else "yes"
+            verdicts.append(Text(f"no (${sp.latex(s)} \\notin [", Num(lo, digits=4), ", ",
+                                 Num(hi, digits=4), "]$)"))
+    return Text.join("; ", verdicts) if verdicts else "yes"
 
 
 def _check_geometric(ans, ctx, question, jn, subs):
@@ -277,7 +279,8 @@ def _check_geometric(ans, ctx, question, jn, subs):
         fd.append((np.array(p(a), dtype=float) - np.array(p(b), dtype=float)).reshape(3) / (2 * eps))
     err = float(np.max(np.abs(np.array(jn, dtype=float)[:3] - np.column_stack(fd))))
     if err > 1e-6 * max(1.0, float(np.max(np.abs(jn)))):
-        ans.note(f"internal check failed: the geometric Jacobian differs from dP/dq by {err:.3g}")
+        ans.note(Text("internal check failed: the geometric Jacobian differs from dP/dq by ",
+                      Num(err, digits=3)))
 
 
 def _com_steps(ans, ctx):

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
-from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
 
@@ -85,15 +85,16 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ans.note(f"numeric torques omitted: {exc}")
         return ans
     res = torques_along(prof, fast, act_names)
-    # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is flat)
-    ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": float(f"{res.t_peaks[i]:.8g}")}
+    # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is
+    # flat): the answer schema keeps 8 digits of t_peak (registry: AnswerKey.digits)
+    ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": res.t_peaks[i]}
                                 for i in range(len(joints))}
     rows = []
     jumps = sorted({0.0, float(prof.T), *res.breaks})
     for i, j in enumerate(joints):
         at_jump = any(abs(res.t_peaks[i] - s) <= 1e-9 * max(1.0, float(prof.T)) for s in jumps)
-        rows.append([f"${sp.latex(j.actuator)}$", f"{report_number(res.peaks[i])} {_unit(j.kind)}",
-                     report_number(res.t_peaks[i]) + (" (a switching instant: one-sided value)" if at_jump else "")])
+        rows.append([f"${sp.latex(j.actuator)}$", Num(res.peaks[i], _unit(j.kind)),
+                     Text(Num(res.t_peaks[i])) + (" (a switching instant: one-sided value)" if at_jump else "")])
     ans.steps.append(Step(
         "Peaks",
         "The peak is the signed value of largest magnitude over $[0, T]$; at a switching instant the "
@@ -102,7 +103,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ))
     if res.jumps:
         header = ["t (s)"] + [f"${sp.latex(j.actuator)}$ before → after" for j in joints]
-        jrows = [[report_number(t)] + [f"{report_number(b[i])} → {report_number(a[i])}" for i in range(len(joints))]
+        jrows = [[Num(t)] + [Text(Num(b[i]), " → ", Num(a[i])) for i in range(len(joints))]
                  for t, b, a in res.jumps]
         ans.steps.append(Step(
             "Jumps at the switching instants",
@@ -111,11 +112,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             table=(header, jrows),
         ))
     ans.figures.append(FigureSpec(
-        "torques", "joint_torques", f"Actuators along the profile (T = {report_number(float(prof.T))} s)",
-        {"t": [float(f"{x:.12g}") for x in res.t],
+        "torques", "joint_torques", Text("Actuators along the profile (T = ", Num(float(prof.T)), " s)"),
+        {"t": [float(x) for x in res.t],
          "T": float(prof.T), "switches": res.breaks,
          "actuators": [{"name": act_names[i], "label": sp.latex(j.actuator), "unit": _unit(j.kind),
-                        "values": [float(f"{v:.12g}") + 0.0 for v in res.values[i]],
+                        "values": [float(v) for v in res.values[i]],
                         "peak": res.peaks[i], "t_peak": res.t_peaks[i]} for i, j in enumerate(joints)]},
     ))
     return ans

@@ -1,8 +1,8 @@
 """Question 7: synchronized joint motion profiles (bang-bang, trapezoidal, quintic).
 
 Each joint alone at its limits needs its own time; the synchronized time T is
-the largest of them (ERRATA 126), and the other joints are slowed down to end
-at T: rescaled accelerations for bang-bang (a_i = 4|D_i|/T^2, ERRATA 125),
+the largest of them (docs/course-notes.md#note-motion-sync), and the other joints are slowed down to end
+at T: rescaled accelerations for bang-bang (a_i = 4|D_i|/T^2),
 lowered cruise velocities for trapezoidal, peak accelerations for quintic.
 """
 
@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
 from robosolve.motion.profiles import ProfileError, synchronize
-from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
 
 T_SYMBOL = sp.Symbol("t")
@@ -25,11 +25,12 @@ def _unit(kind: str, order: int) -> str:
     return base + ("", "/s", "/s²")[order]
 
 
-def _num(e) -> str:
+def _num(e, unit: str = "") -> Text:
+    """A value for a table: the number (the renderer formats it), or its LaTeX when symbolic."""
     try:
-        return report_number(float(sp.N(e)))
+        return Text(Num(float(sp.N(e)), unit))
     except TypeError:
-        return "$" + sp.latex(e) + "$"
+        return Text("$" + sp.latex(e) + "$" + (" " + unit if unit else ""))
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
@@ -77,9 +78,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     rows = []
     for jm, j in zip(prof.joints, joints):
         row = [f"${syms[j.name]}$", _num(jm.start), _num(jm.end), _num(jm.delta),
-               f"{_num(jm.max_acceleration)} {_unit(j.kind, 2)}"]
+               _num(jm.max_acceleration, _unit(j.kind, 2))]
         if shape == "trapezoidal":
-            row.append(f"{_num(jm.max_velocity)} {_unit(j.kind, 1)}")
+            row.append(_num(jm.max_velocity, _unit(j.kind, 1)))
         row.append(_num(jm.own_time) + ("" if jm.moves else " (does not move)"))
         rows.append(row)
     ans.steps.append(Step("Displacements and each joint's own time", text,
@@ -112,13 +113,13 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     for jm, j in zip(prof.joints, joints):
         if shape == "trapezoidal":
             eqs.append((f"v_{{{syms[j.name]}}}", jm.velocity))
-            switches = ", ".join(_num(s) for s in jm.switch_times) or "—"
-            rows.append([f"${syms[j.name]}$", f"{_num(jm.acceleration)} {_unit(j.kind, 2)}",
-                         f"{_num(jm.velocity)} {_unit(j.kind, 1)}", switches])
+            switches = Text.join(", ", [_num(s) for s in jm.switch_times]) if jm.switch_times else "—"
+            rows.append([f"${syms[j.name]}$", _num(jm.acceleration, _unit(j.kind, 2)),
+                         _num(jm.velocity, _unit(j.kind, 1)), switches])
         else:
             eqs.append((f"a_{{{syms[j.name]}}}", jm.acceleration))
-            rows.append([f"${syms[j.name]}$", f"{_num(jm.acceleration)} {_unit(j.kind, 2)}",
-                         f"{_num(jm.velocity)} {_unit(j.kind, 1)}"])
+            rows.append([f"${syms[j.name]}$", _num(jm.acceleration, _unit(j.kind, 2)),
+                         _num(jm.velocity, _unit(j.kind, 1))])
     header = ["joint", "acceleration", "cruise velocity", "switching instants (s)"] if shape == "trapezoidal" \
         else ["joint", "acceleration" if shape == "bang-bang" else "peak acceleration", "peak velocity"]
     ans.steps.append(Step(f"Rescaled {what}", "At the synchronized time T:", equations=eqs,
@@ -168,14 +169,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         Q, QD, QDD = np.hstack(q_all), np.hstack(qd_all), np.hstack(qdd_all)
         ans.figures.append(FigureSpec(
             "profile", "motion_profile",
-            f"Synchronized {shape} profile (T = {report_number(T)} s)",
-            {"t": [round(float(x), 12) for x in t_cat], "T": T,
+            Text(f"Synchronized {shape} profile (T = ", Num(T), " s)"),
+            {"t": [float(x) for x in t_cat], "T": T,
              "switches": [b for b in breaks[1:-1]],
              "joints": [{"name": j.name, "label": syms[j.name], "kind": j.kind,
-                         "q": _r(Q[i]), "qd": _r(QD[i]), "qdd": _r(QDD[i])} for i, j in enumerate(joints)]},
+                         "q": Q[i].tolist(), "qd": QD[i].tolist(), "qdd": QDD[i].tolist()}
+                        for i, j in enumerate(joints)]},
         ))
     return ans
-
-
-def _r(a):
-    return [float(f"{float(x):.12g}") + 0.0 for x in a]

@@ -6,13 +6,14 @@
   Jacobian;
 * `weight: true`: the bodies' own weight, Fq = −Σ J_Giᵀ·mᵢ·g (centre of mass from the
   pseudo-inertia, gravity vector g of the problem). This equals ∂U/∂q.
-Loads given together are added. Fq is what the joints must exert (spec §3, ERRATA §D.7).
+Loads given together are added. Fq is what the joints must exert (spec §3, docs/course-notes.md#note-statics-sign).
 """
 
 from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.course_notes import note_link
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
 from robosolve.kinematics.task import symbolic_budget, limited, task_space, tidy_limited
 from robosolve.solvers.base import Answer, SolveContext, Step
@@ -43,7 +44,8 @@ def solve(question, ctx: SolveContext) -> Answer:
         "In equilibrium the virtual work of the joint actions $F_q$ and of the external load "
         "$F_s$ vanishes for every virtual displacement: $\\delta Q^T F_q + \\delta S^T F_s = 0$. "
         "With $\\delta S = J\\,\\delta Q$ this gives $\\delta Q^T (F_q + J^T F_s) = 0$ for every "
-        "$\\delta Q$, hence the joint actions that balance the load are $F_q = -J^T F_s$.",
+        "$\\delta Q$, hence the joint actions that balance the load are $F_q = -J^T F_s$ ("
+        + note_link("statics-sign") + ").",
     ))
 
     if force is not None or torque is not None:
