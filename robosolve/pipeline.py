@@ -28,32 +28,55 @@ class Report:
 
 
 def solve_problem(problem: Problem, budgets=None) -> Report:
-    """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work."""
-    from robosolve.model import RobotModel
-    from robosolve.solvers import solver_for
-    from robosolve.solvers.base import Answer, SolveContext
+    """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work, each
+    question (`question_seconds`) and the whole file (`file_seconds`)."""
+    import time
 
+    from robosolve.model import RobotModel
+    from robosolve.solvers.base import Answer, Budgets, SolveContext
+
+    budgets = budgets or Budgets()
+    started = time.process_time()
     model = RobotModel(problem) if problem.has_robot else None
     ctx = SolveContext(problem, model, budgets)
     report = Report(problem, model)
     for q in problem.questions:
-        solve = solver_for(q.type)
-        if solve is None:
-            answer = Answer(q.type, q.id, error=f"question type '{q.type}' is not supported yet")
+        left = budgets.file_seconds - (time.process_time() - started)
+        if left <= 0:
+            answer = Answer(q.type, q.id, error=f"not attempted: the file's budget of {budgets.file_seconds:g} s "
+                                               "of CPU time is spent (a safety net)")
         else:
-            try:
-                answer = solve(q, ctx)
-            except SolverError as exc:
-                answer = Answer(q.type, q.id, error=str(exc))
-            except SymbolicTimeout as exc:
-                answer = Answer(q.type, q.id, error=f"a symbolic step took too long ({exc})")
-            except RecursionError:
-                answer = Answer(q.type, q.id, error="the expressions are too deeply nested to handle")
-            except Exception as exc:  # a bug must not hide the other answers
-                answer = Answer(q.type, q.id, error=f"internal error ({type(exc).__name__}: {exc})")
+            answer = _solve_question(q, ctx, min(budgets.question_seconds, left))
         ctx.answers[q.id] = answer
         report.answers.append(answer)
     return report
+
+
+def _solve_question(q, ctx, seconds: float):
+    """One answer, whatever happens: a SolverError, a budget past, or a bug become its error."""
+    from robosolve.core.timing import time_limit
+    from robosolve.solvers import solver_for
+    from robosolve.solvers.base import Answer
+
+    solve = solver_for(q.type)
+    if solve is None:
+        return Answer(q.type, q.id, error=f"question type '{q.type}' is not supported yet")
+    try:
+        with time_limit(seconds, repeat=True, what="the question") as token:
+            return solve(q, ctx)
+    except SolverError as exc:
+        return Answer(q.type, q.id, error=str(exc))
+    except SymbolicTimeout as exc:
+        if exc.token is token:
+            return Answer(q.type, q.id, error=f"the question exceeded its budget of {seconds:g} s of CPU "
+                                              "time (a safety net; the symbolic steps have counted budgets)")
+        return Answer(q.type, q.id, error=f"a symbolic step took too long ({exc})")
+    except RecursionError:
+        return Answer(q.type, q.id, error="the expressions are too deeply nested to handle")
+    except MemoryError:
+        return Answer(q.type, q.id, error="the question needs more memory than the machine has")
+    except Exception as exc:  # a bug must not hide the other answers
+        return Answer(q.type, q.id, error=f"internal error ({type(exc).__name__}: {exc})")
 
 
 def solve_file(path) -> Report:

@@ -440,3 +440,20 @@ def test_parameters_substituted_needs_a_missing_parameter(ref):
     # wrong at the moved points but every parameter kept: not "substituted"
     r = one(ref, "jacobian", "det", '"L1*L2*sin(q2) + (L1 - 1/2)"')
     assert (r.verdict, r.diagnosis) == ("incorrect", "")
+
+
+def test_question_without_reference_is_not_graded(ref):
+    import copy
+
+    from robosolve.grading.record import grade_rows
+
+    broken = copy.deepcopy(ref)
+    broken.question("jacobian").error = "the Jacobian could not be derived"
+    res = grade_text(broken, answers('  jacobian: {det: "L1*L2*sin(q2)"}\n'))
+    jac_q = next(q for q in res.questions if q.id == "jacobian")
+    assert {k: r.verdict for k, r in jac_q.keys.items()} == {
+        "J": "no_reference", "det": "no_reference", "manipulability": "no_reference",
+        "singularities": "no_reference"}
+    assert res.max_score == 6 and jac_q.score == 0
+    rows = [r for r in grade_rows(res) if r[1] == "jacobian"]
+    assert all(r[3] == "no_reference" and r[5:] == ("0", "0") for r in rows)

@@ -246,3 +246,15 @@ def test_unknown_keys_are_invalid_for_that_key_only_in_grade(classroom):
     assert keys["det"]["verdict"] == "correct"
     assert keys["dett"]["verdict"] == "invalid" and "did you mean 'det'?" in keys["dett"]["feedback"]
     assert rec["score"] == 1           # det: half of jacobian's 2 marks
+
+
+def test_variants_table_with_roster_names(tmp_path):
+    from robosolve.grading.grade import read_variants
+
+    for v in ("smith", "jo-smith"):
+        (tmp_path / f"exam-{v}").mkdir()
+        (tmp_path / f"exam-{v}" / "problem.yaml").write_text("robosolve: 1\n")
+    (tmp_path / "variants.csv").write_text("variant,student,seed,L1\nsmith,Smith,0,1/2\njo-smith,Jo Smith,0,3/5\n")
+    table = read_variants(tmp_path)
+    assert table["Jo Smith"] == table["jo-smith"] == tmp_path / "exam-jo-smith" / "problem.yaml"
+    assert table["Smith"] == tmp_path / "exam-smith" / "problem.yaml"

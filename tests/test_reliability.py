@@ -221,3 +221,49 @@ def test_batch_messages_printed_once_and_unwrapped(tmp_path):
 def test_every_body_without_mass_under_p_control_is_an_input_error(write_problem):
     result, src = validate(write_problem, DYN.replace("MASS", "0").replace("ACC", "1").replace(", DURATION", ""))
     assert result.exit_code == 2 and "mass matrix M(q) is singular" in result.output
+
+
+# -- budgets: counted, so the same everywhere; safety nets that cannot be swallowed ------------
+
+def test_symbolic_step_over_the_node_budget_is_skipped_deterministically():
+    import sympy as sp
+
+    from robosolve.kinematics.task import limited
+    from robosolve.solvers.base import Budgets
+
+    class Ctx:
+        budgets = Budgets(symbolic_nodes=50)
+
+        def time_limit(self, seconds):
+            raise AssertionError("over the count: the clock is not even started")
+
+    q = sp.symbols("q1:9")
+    big = sp.Matrix([[sp.cos(a + b) * sp.sin(a) for a in q] for b in q])   # far more than 50 nodes
+    called = []
+    out, why = limited(Ctx(), 30, lambda m: called.append(m), big)
+    assert out is None and not called and "expression nodes, above the budget of 50" in why
+
+
+def test_question_budget_cannot_be_swallowed(write_problem, monkeypatch):
+    """A solver that catches SymbolicTimeout without looking at its token still ends: the
+    per-question safety net is raised again until the question is over."""
+    import robosolve.solvers.position as position
+    from robosolve.errors import SymbolicTimeout
+    from robosolve.load.loader import load_problem
+    from robosolve.pipeline import solve_problem
+    from robosolve.solvers.base import Budgets
+
+    def stubborn(question, ctx):
+        try:
+            while True:
+                sum(i * i for i in range(10_000))
+        except SymbolicTimeout:
+            pass              # swallowed, as a careless fallback would
+        while True:           # more work: only the repeated expiry stops it
+            sum(i * i for i in range(10_000))
+
+    monkeypatch.setattr(position, "solve", stubborn)
+    problem = load_problem(write_problem(ARM + "questions:\n  - {type: position}\n  - {type: dof, bodies: 2, joints_1dof: 1}\n"))
+    report = solve_problem(problem, Budgets(question_seconds=0.3))
+    assert "exceeded its budget" in report.answers[0].error
+    assert report.answers[1].error is None        # the next question is still answered

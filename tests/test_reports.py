@@ -122,7 +122,7 @@ questions:
 def test_p_control_with_zero_gain_and_the_external_force_in_the_effort_plot(write_problem):
     report = solve_file(write_problem(ONE_LINK_KP0))
     control = report.answers[1]
-    text = " ".join(s.text for s in control.steps)
+    text = " ".join(s.text.words() if hasattr(s.text, "words") else s.text for s in control.steps)
     assert "springs" not in text and "K_p = 0" in text
     effort = next(f for f in control.figures if f.name == "effort")
     ext = effort.data["actuators"][0]["external"]

@@ -24,11 +24,13 @@ _SIGNAL = getattr(signal, "SIGPROF", None)
 
 
 @contextlib.contextmanager
-def time_limit(seconds: float):
+def time_limit(seconds: float, repeat: bool = False, what: str = "symbolic step"):
     """Raise SymbolicTimeout if the block runs longer than `seconds`.
 
     Yields a token: `exc.token is token` tells whether this block expired (and
-    not an enclosing one, whose expiry must propagate).
+    not an enclosing one, whose expiry must propagate). With `repeat`, the expiry is raised
+    again every second until the block ends, so that code catching SymbolicTimeout without
+    checking its token cannot swallow an outer budget (the pipeline's per-question net).
     """
     token = object()
     usable = (seconds and seconds > 0 and hasattr(signal, "setitimer") and _TIMER is not None
@@ -38,7 +40,9 @@ def time_limit(seconds: float):
         return
 
     def on_alarm(signum, frame):
-        raise SymbolicTimeout(f"symbolic step exceeded {seconds:g} s", token)
+        if repeat:
+            signal.setitimer(_TIMER, 1.0)
+        raise SymbolicTimeout(f"{what} exceeded {seconds:g} s", token)
 
     previous = signal.signal(_SIGNAL, on_alarm)
     remaining, _ = signal.getitimer(_TIMER)

@@ -69,17 +69,31 @@ def read_variants(folder: Path) -> dict:
     rows = list(csv.DictReader(io.StringIO(text)))
     if rows and not {"variant", "student"} <= set(rows[0]):
         raise UsageError(f"{table}: expected the columns variant,student,seed,…")
+    name = _base_name(folder, [row["variant"] for row in rows], table)
     out = {}
     for row in rows:
         variant = row["variant"]
-        found = sorted(folder.glob(f"*-{variant}/problem.yaml"))
-        if len(found) != 1:
-            raise UsageError(f"{table}: variant {variant}: expected one folder <name>-{variant}/problem.yaml "
-                             f"in {folder}, found {len(found)}")
-        for key in {row.get("student") or "", safe_name(row.get("student") or ""), variant}:
+        problem = folder / f"{name}-{variant}" / "problem.yaml"
+        student = row.get("student") or ""
+        for key in dict.fromkeys((student, safe_name(student), variant)):   # ordered, no duplicates
             if key:
-                out.setdefault(key, found[0])
+                out.setdefault(key, problem)
     return out
+
+
+def _base_name(folder: Path, variants: list, table: Path) -> str:
+    """The problem name <name> such that every variant has DIR/<name>-<variant>/problem.yaml.
+
+    (A folder name alone is ambiguous: `exam-jo-smith` ends with `-smith` too.)
+    """
+    if not variants:
+        return ""
+    first = variants[0]
+    candidates = sorted(p.parent.name[: -len(first) - 1] for p in folder.glob(f"*-{first}/problem.yaml"))
+    for name in candidates:
+        if all((folder / f"{name}-{v}" / "problem.yaml").is_file() for v in variants):
+            return name
+    raise UsageError(f"{table}: no folder <name>-<variant>/problem.yaml for every variant in {folder}")
 
 
 def _problem_for(sub, problem, variants):

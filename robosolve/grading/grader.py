@@ -15,6 +15,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
 from robosolve.grading.points import evaluate, sample, single_point
@@ -27,6 +28,7 @@ CORRECT, INCORRECT, MISSING, INVALID, NO_REFERENCE = (
     "correct", "incorrect", "missing", "invalid", "no_reference")
 MIN_POINTS = 6
 SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+MAX_SHOWN = 600                   # characters of an expected value quoted in feedback
 
 
 @dataclass
@@ -94,11 +96,16 @@ def fraction(marks) -> Fraction:
 
 # -- formatting values for feedback ---------------------------------------------
 def show(tree) -> str:
-    """A value as a student would write it: numbers to 4 significant digits."""
+    """A value as a student would write it (numbers to 4 significant digits), cut at MAX_SHOWN."""
+    text = _show(tree)
+    return text if len(text) <= MAX_SHOWN else text[:MAX_SHOWN].rstrip() + " … (see the report)"
+
+
+def _show(tree) -> str:
     if isinstance(tree, dict):
-        return "{" + ", ".join(f"{k}: {show(v)}" for k, v in tree.items()) + "}"
+        return "{" + ", ".join(f"{k}: {_show(v)}" for k, v in tree.items()) + "}"
     if isinstance(tree, (list, tuple)):
-        return "[" + ", ".join(show(v) for v in tree) + "]"
+        return "[" + ", ".join(_show(v) for v in tree) + "]"
     if isinstance(tree, Equation):
         return tree.text or f"{tree.residual} = 0"
     if tree is None:
@@ -258,7 +265,7 @@ class Grader:
             return KeyResult(INCORRECT, "symbolic", "", f"expected {self.symbol(qref, ak)} = {show(e)}")
         try:
             with time_limit(2.0):
-                same = all(sp.simplify(a - b) == 0 for a, b in pairs)
+                same = all(is_zero(a - b) for a, b in pairs)
         except SymbolicTimeout:
             same = False
         if same:

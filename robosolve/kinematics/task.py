@@ -36,8 +36,14 @@ def limited(ctx, seconds, fn, *args, **kwargs):
     """Run fn under the context's time limit; (result, None) or (None, why it stopped)."""
     from sympy.polys.polyerrors import BasePolynomialError
 
+    from robosolve.core.simplify import expression_nodes
     from robosolve.errors import SymbolicTimeout
 
+    limit = getattr(getattr(ctx, "budgets", None), "symbolic_nodes", None)
+    size = expression_nodes(args) if limit else 0
+    if limit and size > limit:
+        return None, (f"its input has {size:,} expression nodes, above the budget of {limit:,}: "
+                      "a count, so the outcome is the same on every machine")
     try:
         with ctx.time_limit(seconds):
             return fn(*args, **kwargs), None
@@ -55,7 +61,7 @@ def tidy_limited(ctx, m, seconds, long_chain=False):
     per entry of a 6R Jacobian and its report shows the method, not a factored look)."""
     from robosolve.core.simplify import tidy_products
 
-    out, _err = limited(ctx, seconds, lambda: sp.Matrix(m).applyfunc(tidy_products if long_chain else tidy))
+    out, _err = limited(ctx, seconds, lambda mm: sp.Matrix(mm).applyfunc(tidy_products if long_chain else tidy), m)
     return out if out is not None else sp.Matrix(m)
 
 

@@ -92,7 +92,7 @@ def _log10(e, values, memo) -> float | None:
     if e in memo:
         return memo[e]
     est = _log10_node(e, values, memo)
-    if est is not None and est > MAX_LOG10:
+    if est is not None and est > MAX_LOG10 + 5:   # (the estimate is rough: a little slack)
         raise _too_large(est)
     memo[e] = est
     return est

@@ -44,6 +44,7 @@ def _budget(ctx) -> float:
     return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
 
 
+# long: compute and steps still interleaved per ellipsoid; to split into compute / steps next (issue 10 item 6)
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)

@@ -14,9 +14,10 @@ import sympy as sp
 
 from robosolve.core.prose import Num, Text
 from robosolve.core.course_notes import note_link
+from robosolve.core.simplify import exact_geometry
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.rotations import (
-    _default_simplify, axis_angle_numeric, axis_angle_symbolic, quaternion_numeric,
+    axis_angle_numeric, axis_angle_symbolic, quaternion_numeric,
     quaternion_symbolic, rpy_numeric, rpy_symbolic, zyz_numeric, zyz_symbolic,
 )
 from robosolve.load.problem import Question
@@ -39,7 +40,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         where = f"The rotation is the orientation block of ${m_name('0', frame)}$."
     try:
         with ctx.time_limit(10.0):
-            r = r.applyfunc(_default_simplify)
+            ops = ctx.budgets.simplify.geometry_ops
+            r = r.applyfunc(lambda e: exact_geometry(e, ops))
     except SymbolicTimeout:
         pass
     steps = [Step("Rotation matrix", where, equations=[("R", r)])]

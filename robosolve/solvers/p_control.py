@@ -145,6 +145,14 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         table=(["joint", "max |e|", "at t (s)", Text("e at t = ", Num(duration), " s")], rows),
     ))
 
+    _figures(ans, res, prof, plan, duration, law, joints, syms)
+    return ans
+
+
+def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
+    """Tracking (actual vs desired, error) and effort figures of the simulation."""
+    names = [j.name for j in joints]
+
     def r(a):
         return [float(x) for x in a]
 
@@ -163,4 +171,3 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                                  "external": _external_series(res, i, r)}
                                 for i, j in enumerate(joints)]),
     ))
-    return ans

@@ -88,6 +88,7 @@ def numeric_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         ans.steps.append(Step("Numeric values", "At the configuration of the question:", equations=shown))
 
 
+# long: the W / H chain of steps in the course's order, one equation list; to split next (issue 10 item 6)
 def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     model = ctx.model
     frame, point = question.frame, question.point
