@@ -16,7 +16,11 @@ def main() -> None:
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
         sys.exit(interrupts.EXIT_SIGINT)
-    cli_main()
+    try:
+        cli_main()
+    except KeyboardInterrupt:   # one that arrives after the CLI's own handling (at exit)
+        sys.stderr.write("interrupted\n")
+        sys.exit(interrupts.EXIT_SIGINT)
 
 
 if __name__ == "__main__":
