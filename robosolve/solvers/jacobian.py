@@ -113,7 +113,7 @@ def _singularity_steps(ans, question, ctx, ts):
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
-    det = _structured_det_steps(ans, question, ctx, ts)
+    det, det_parts = _structured_det_steps(ans, question, ctx, ts)
     res, err = limited(ctx, ctx.step_seconds, find_singularities, J, model.q, kinds, params, det)
     if res is None:
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
@@ -159,6 +159,7 @@ def _singularity_steps(ans, question, ctx, ts):
     conds = name_conditions(res.conditions, model.q, kinds, None,
                             model.point0(question.point), params,
                             m0_frames=[_joint_pose(model, i) for i in range(len(model.q))])
+    conds = _tag_decoupled(conds, det_parts)
     ans.symbolic["singularities"] = [c.mapping() for c in conds]
     for note in res.notes:
         ans.note(note)
@@ -189,13 +190,13 @@ def _structured_det_steps(ans, question, ctx, ts):
     model = ctx.model
     m, n = ts.J.shape
     if m != n or n < STRUCTURE_MIN_JOINTS:
-        return None
+        return None, None
     if ts.geometric:
         pframe, _ = model.point_local(question.point)
         frame = question.frame or model.problem.last_frame
         wrist, err = limited(ctx, ctx.step_seconds, sd.wrist_decoupled_det, model, pframe, frame)
         if err is not None:
-            return None
+            return None, None
         if wrist is not None:
             (_, _, j11, d11), (_, _, j22, d22) = wrist.det.blocks[:2] if len(wrist.det.blocks) == 2 else (
                 (None, None, wrist.jacobian[:3, :3], None), (None, None, wrist.jacobian[3:, 3:], None))
@@ -213,16 +214,31 @@ def _structured_det_steps(ans, question, ctx, ts):
                 "$\\det J = \\det J_{11}\\,\\det J_{22}$: the arm's factor (rows 1–3, joints 1–3: "
                 "the velocity of W) times the wrist's (the angular velocities of joints 4–6).",
                 equations=eqs))
-            return wrist.det.det
+            return wrist.det.det, ((d11, "arm singularity (det J₁₁ = 0)"), (d22, "wrist singularity (det J₂₂ = 0)"))
     split, _err = limited(ctx, ctx.step_seconds, sd.structured_det, ts.J, model.q)
     if split is None or len(split.blocks) < 2:
-        return split.det if split is not None else None
+        return (split.det if split is not None else None), None
     ans.steps.append(Step(
         "Block structure",
         "The zero entries of J split it into a block triangular form (rows and columns "
         "reordered), so det J is the product of the diagonal blocks' determinants:",
         equations=[(f"\\det J_{{{k + 1}}}", d) for k, (_, _, _, d) in enumerate(split.blocks)]))
-    return split.det
+    return split.det, None
+
+
+def _tag_decoupled(conds, det_parts):
+    """After decoupling at the wrist: say which factor each condition comes from (a
+    condition's factor shares its joints with the arm's or the wrist's determinant)."""
+    if not det_parts or any(d is None for d, _ in det_parts):
+        return conds
+    from dataclasses import replace
+
+    out = []
+    for c in conds:
+        joints = c.factor.free_symbols if c.factor is not None else set()
+        tags = [tag for d, tag in det_parts if joints and joints <= sp.sympify(d).free_symbols]
+        out.append(replace(c, names=tuple(tags[:1]) + tuple(c.names)) if tags else c)
+    return out
 
 
 def _count_text(conds):
