@@ -18,7 +18,12 @@ def main() -> None:
         sys.stderr.write("interrupted\n")
         sys.stderr.flush()
         os._exit(interrupts.EXIT_SIGINT)  # (see cli.main: not the interpreter's SIGINT exit)
-    cli_main()
+    try:
+        cli_main()
+    except KeyboardInterrupt:   # one that arrives after the CLI's own handling (at exit)
+        sys.stderr.write("interrupted\n")
+        sys.stderr.flush()
+        os._exit(interrupts.EXIT_SIGINT)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,6 @@ import difflib
 import glob
 import json
 import os
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
@@ -31,25 +30,15 @@ def collect(source: str) -> list[Path]:
 
 
 def solve_one(path: str, formats=("md",)) -> dict:
-    """Worker: load, solve, render. Returns a summary and the files (never raises on bad input).
-
-    Workers write nothing: the parent writes every folder, so stopping a worker at any point
-    leaves no debris.
-    """
-    from robosolve.load.loader import load_problem
-    from robosolve.pipeline import render_files, solve_problem
+    """Load, solve, render one problem file in this process: a summary and the files
+    (relative path -> bytes); never raises on bad input. Writes nothing."""
+    from robosolve.execution import make_task, read_error, solve_task
 
     try:
-        problem = load_problem(path)
-    except InputError as exc:
-        return {"file": path, "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
-                "messages": [str(i) for i in exc.issues], "files": {}}
-    report = solve_problem(problem)
-    files = render_files(report, formats)
-    failed = [f"{path}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
-    return {"file": path, "name": problem.name, "status": report.exit_status,
-            "answered": len(report.answers) - len(failed), "total": len(report.answers),
-            "messages": failed, "files": files}
+        text = Path(path).read_bytes().decode("utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        return read_error(path, exc)
+    return solve_task(make_task(text, str(path), formats))
 
 
 def declared_names(files) -> dict[str, str | None]:
@@ -96,42 +85,32 @@ def refusals(names: dict, out, golden, update) -> list[str]:
     return msgs
 
 
-def _results(files, jobs, formats=("md",)):
-    """Yield each file's summary as it is solved; on an interrupt stop the workers at once."""
-    if jobs == 1 or len(files) == 1:
-        for f in files:
-            yield solve_one(str(f), formats)
-        return
-    from robosolve.interrupts import worker_init
+def _results(files, jobs, formats=("md",), scheduler=None):
+    """Yield each file's summary as it is solved, on the chosen back-end (robosolve.execution:
+    this process, the warm process pool, or Dask); an interrupt stops the workers at once."""
+    from robosolve.execution import make_task, read_error, run_tasks
 
-    pool = ProcessPoolExecutor(max_workers=min(jobs, len(files)), initializer=worker_init)
-    futures = {pool.submit(solve_one, str(f), formats): str(f) for f in files}
-    clean = False
-    try:
-        for fut in as_completed(futures):
-            try:
-                yield fut.result()
-            except Exception as exc:  # a crashed worker is reported, not fatal
-                yield {"file": futures[fut], "name": None, "status": EXIT_ANSWER_ERROR, "answered": 0,
-                       "total": 0, "messages": [f"{futures[fut]}: the worker failed ({exc!r})"], "files": {}}
-        clean = True
-    finally:
-        if clean:
-            pool.shutdown(wait=True)
-        else:  # interrupted: a waiting shutdown could hang on a busy worker, so terminate them
-            for proc in list((getattr(pool, "_processes", None) or {}).values()):
-                proc.terminate()
-            pool.shutdown(wait=False, cancel_futures=True)
+    tasks = []
+    for f in files:
+        try:
+            tasks.append(make_task(Path(f).read_bytes().decode("utf-8"), str(f), formats))
+        except (OSError, UnicodeDecodeError) as exc:
+            yield read_error(str(f), exc)
+    for _, r in run_tasks(tasks, jobs, scheduler):
+        r.pop("version", None)
+        yield r
 
 
-def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",)) -> int:
+def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), scheduler=None) -> int:
     import sys
 
     from rich.console import Console
-    from rich.progress import Progress
     from rich.table import Table
 
-    from robosolve.outputs import OutputFolderError, write_output_folder
+    from robosolve.execution import SchedulerError
+
+    if golden is not None and "md" not in formats:     # golden folders hold report.md
+        formats = ("md", *formats)
 
     console = Console(stderr=True)
     jobs = jobs or os.cpu_count() or 1
@@ -141,27 +120,13 @@ def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",)) -> 
         for m in refused:
             sys.stderr.write(m + "\n")
         return EXIT_INPUT
-    results, diffs, write_errors = [], {}, []
-    with contextlib.ExitStack() as stack:
-        progress = stack.enter_context(Progress(console=console, transient=True))
-        task = progress.add_task("solving", total=len(files))
-        for r in stack.enter_context(contextlib.closing(_results(files, jobs, formats))):
-            out_files = r.pop("files")
-            if r["name"] and golden is None:
-                try:
-                    write_output_folder(Path(out) / r["name"], out_files, inputs=list(names))
-                except (OutputFolderError, OSError) as exc:
-                    write_errors.append(str(exc))
-            elif r["name"] and update:
-                try:
-                    write_output_folder(Path(golden) / r["name"], {g: out_files[g] for g in GOLDEN_FILES},
-                                        inputs=list(names), legacy=GOLDEN_FILES)
-                except (OutputFolderError, OSError) as exc:
-                    write_errors.append(str(exc))
-            elif r["name"]:
-                diffs[r["file"]] = compare_files(out_files, Path(golden), r["name"])
-            results.append(r)
-            progress.advance(task)
+    try:
+        results, diffs, write_errors = _solve_and_write(files, names, out, jobs, golden, update, formats,
+                                                        scheduler, console)
+    except SchedulerError as exc:
+        sys.stderr.write(f"{exc}\n")
+        return EXIT_INPUT
+
     results.sort(key=lambda r: r["file"])
     solved = [r["name"] for r in results if r["name"]]
     status = max([r["status"] for r in results] + [EXIT_OK])
@@ -192,6 +157,36 @@ def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",)) -> 
         else:
             sys.stderr.write(f"golden check: {len(solved)} problems identical\n")
     return status
+
+
+def _solve_and_write(files, names, out, jobs, golden, update, formats, scheduler, console):
+    """Solve every file and write (or compare) each result as it arrives."""
+    from rich.progress import Progress
+
+    from robosolve.outputs import OutputFolderError, write_output_folder
+
+    results, diffs, write_errors = [], {}, []
+    with contextlib.ExitStack() as stack:
+        progress = stack.enter_context(Progress(console=console, transient=True))
+        task = progress.add_task("solving", total=len(files))
+        for r in stack.enter_context(contextlib.closing(_results(files, jobs, formats, scheduler))):
+            out_files = r.pop("files")
+            if r["name"] and golden is None:
+                try:
+                    write_output_folder(Path(out) / r["name"], out_files, inputs=list(names))
+                except (OutputFolderError, OSError) as exc:
+                    write_errors.append(str(exc))
+            elif r["name"] and update:
+                try:
+                    write_output_folder(Path(golden) / r["name"], {g: out_files[g] for g in GOLDEN_FILES},
+                                        inputs=list(names), legacy=GOLDEN_FILES)
+                except (OutputFolderError, OSError) as exc:
+                    write_errors.append(str(exc))
+            elif r["name"]:
+                diffs[r["file"]] = compare_files(out_files, Path(golden), r["name"])
+            results.append(r)
+            progress.advance(task)
+    return results, diffs, write_errors
 
 
 def compare_files(new_files: dict, golden_root: Path, name: str) -> list[str]:

@@ -34,6 +34,10 @@ FORMAT_HELP = ("Reports to write, comma-separated: md (report.md), html (report.
                "Default: md. results.json and figures/ are always written.")
 
 
+SCHEDULER_HELP = ("Solve on Dask: 'local' (a LocalCluster on this machine) or tcp://HOST:PORT (a "
+                  "scheduler whose workers have robosolve installed; pip install \"robosolve[dask]\").")
+
+
 def _formats(text: Optional[str]) -> tuple:
     from robosolve.render.formats import parse_formats
 
@@ -147,6 +151,7 @@ def batch(
         None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
     format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP),
 ) -> None:
     """Solve many problem files in parallel; optionally compare with golden outputs."""
     from robosolve import batch as batch_mod
@@ -163,8 +168,44 @@ def batch(
     if check is None and out is None:
         _err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(EXIT_INPUT)
-    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, formats=formats)
+    _scheduler(scheduler)
+    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, formats=formats,
+                           scheduler=scheduler)
     raise typer.Exit(status)
+
+
+@app.command()
+def variants(
+    problem: Path = typer.Argument(..., help="A problem file with a `variants` section."),
+    count: Optional[int] = typer.Option(None, "--count", "-n", help="Make variants 1..N (zero-padded ids)."),
+    roster: Optional[Path] = typer.Option(None, "--roster", help="CSV with a `student` column: one variant each."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder (replaced as a whole)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the draws (same seed, same variants)."),
+    no_solve: bool = typer.Option(False, "--no-solve", help="Write the problem files only."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
+    jobs: int = typer.Option(0, "--jobs", "-j", min=0, help="Parallel processes (default: number of cores)."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP),
+) -> None:
+    """Individualized variants of a problem: variants.csv and one solved folder per variant."""
+    from robosolve.variants import workflow
+
+    if (count is None) == (roster is None) or (count is not None and count < 1):
+        _err("give either --count N (N >= 1) or --roster ROSTER.csv")
+        raise typer.Exit(EXIT_INPUT)
+    formats = _formats(format)
+    _scheduler(scheduler)
+    raise typer.Exit(workflow.command(problem, count, roster, out, seed, not no_solve, formats, jobs, scheduler))
+
+
+def _scheduler(scheduler: Optional[str]) -> None:
+    """--scheduler usage checks (Dask installed, address well formed), before any work."""
+    from robosolve.execution import SchedulerError, check_scheduler
+
+    try:
+        check_scheduler(scheduler)
+    except SchedulerError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
 
 
 @app.command()

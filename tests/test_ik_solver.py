@@ -45,6 +45,23 @@ def test_layout_solutions_selected_closed_form_qdot():
     table = [s for s in report.answers[0].steps if s.table][-1].table
     assert any("rejected" in row[-1] and "lower limit" in row[-1] for row in table[1])
 
+    # values, against the textbook closed form of the planar 2R arm (independent of robosolve):
+    # cos t2 = (x^2 + y^2 - L1^2 - L2^2) / (2 L1 L2), t1 = atan2(y, x) - atan2(L2 s2, L1 + L2 c2);
+    # theta2 limited to [0, pi] keeps the elbow-down branch t2 > 0
+    L1, L2, x, y = 0.6, 0.5, 0.7, 0.4
+    t2 = math.acos((x * x + y * y - L1 * L1 - L2 * L2) / (2 * L1 * L2))
+    t1 = math.atan2(y, x) - math.atan2(L2 * math.sin(t2), L1 + L2 * math.cos(t2))
+    assert math.isclose(sols[0]["theta1"], t1, abs_tol=1e-9)
+    assert math.isclose(sols[0]["theta2"], t2, abs_tol=1e-9)
+    # velocity IK: q_dot = J^-1 v, J of the same closed form
+    j = [[-L1 * math.sin(t1) - L2 * math.sin(t1 + t2), -L2 * math.sin(t1 + t2)],
+         [L1 * math.cos(t1) + L2 * math.cos(t1 + t2), L2 * math.cos(t1 + t2)]]
+    det = j[0][0] * j[1][1] - j[0][1] * j[1][0]
+    qd1 = (j[1][1] * 0.1 - j[0][1] * 0.0) / det
+    qd2 = (-j[1][0] * 0.1 + j[0][0] * 0.0) / det
+    assert math.isclose(a["numeric"]["q_dot"]["theta1"], qd1, rel_tol=1e-9)
+    assert math.isclose(a["numeric"]["q_dot"]["theta2"], qd2, rel_tol=1e-9)
+
 
 def test_unreachable_is_an_answer():
     report, ans = _solve("  - {type: inverse_kinematics, target: {E.x: 1.31, E.y: 0}}\n")

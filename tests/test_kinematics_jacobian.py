@@ -8,7 +8,9 @@ from robosolve.core.matrices import pseudo_inertia_rod
 from robosolve.kinematics.jacobian_math import (
     analytic_jacobian, com_jacobian, com_position, geometric_jacobian, numeric_manipulability,
     rank_measure, tidy_matrix)
-from tests._kin_robots import L1, L2, anthropomorphic, h, planar2r, scara, t1, t2
+from tests.support.robots import L1, L2, h, t1, t2
+from tests.support.robots import kin_anthropomorphic as anthropomorphic, kin_planar2r as planar2r, \
+    kin_scara as scara
 
 RNG = np.random.default_rng(7)
 

@@ -12,8 +12,9 @@ import sympy as sp
 from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities, wrap_angle
-from tests._kin_robots import (
-    a2, a3, anthropomorphic, d, planar2r, planar3r, polar, scara, t1, t2, t3)
+from tests.support.robots import a2, a3, d, t1, t2, t3
+from tests.support.robots import (kin_anthropomorphic as anthropomorphic, kin_planar2r as planar2r,
+                                  kin_planar3r as planar3r, kin_polar as polar, kin_scara as scara)
 
 RNG = np.random.default_rng(11)
 
@@ -187,7 +188,7 @@ def test_geometric_jacobian_wrist_alignment():
 
 
 _SCRIPT = """
-from tests._kin_robots import anthropomorphic, planar3r
+from tests.support.robots import kin_anthropomorphic as anthropomorphic, kin_planar3r as planar3r
 from robosolve.kinematics.jacobian_math import analytic_jacobian
 from robosolve.kinematics.singularities import find_singularities
 for b, rows in ((anthropomorphic, 3), (planar3r, 2)):

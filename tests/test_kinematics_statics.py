@@ -9,7 +9,8 @@ from robosolve.core.matrices import gravity_matrix, pseudo_inertia_rod
 from robosolve.core.transforms import rot_x
 from robosolve.kinematics.jacobian_math import analytic_jacobian, com_jacobian, geometric_jacobian
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
-from tests._kin_robots import L1, L2, Robot, planar2r, scara, t1, t2
+from tests.support.robots import L1, L2, KinRobot as Robot, t1, t2
+from tests.support.robots import kin_planar2r as planar2r, kin_scara as scara
 
 RNG = np.random.default_rng(5)
 

@@ -8,10 +8,7 @@ from robosolve.motion.control import simulate
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import synchronize
 
-try:
-    from motion_arm import pin_model, symbolic
-except ImportError:
-    from tests.motion_arm import pin_model, symbolic
+from tests.support.robots import arm2r_pin as pin_model, arm2r_symbolic as symbolic
 
 
 @pytest.fixture(scope="module")

@@ -117,7 +117,7 @@ def test_profile_that_failed_gives_an_error_answer():
     assert ans["joint_torques"].error is None
 
 
-def test_numeric_only_path_when_the_symbolic_derivation_times_out():
+def test_two_routes_numeric_only_path_matches_the_symbolic_one():
     # two routes of one engine (symbolic M, c, g lambdified vs the numeric-only assembly)
     qs = "  - {type: joint_torques}\n  - {type: p_control, gains: {theta1: 500, theta2: 500}}\n"
     sym = run(qs)
@@ -142,7 +142,7 @@ questions:
 """
 
 
-def test_scara_prismatic_three_joints_symbolic_vs_numeric_only():
+def test_two_routes_scara_prismatic_three_joints_symbolic_vs_numeric_only():
     # the compiled 3-joint closed loop (M solved by symbolic LU) against the engine's
     # numeric-only M, c, g with numpy solves; and the prismatic joint's holding force
     from pathlib import Path

@@ -8,10 +8,7 @@ from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import synchronize
 from robosolve.motion.torques import closed_form_pieces, torques_along
 
-try:
-    from motion_arm import rtb_robot, symbolic
-except ImportError:                      # tests/ imported as a package
-    from tests.motion_arm import rtb_robot, symbolic
+from tests.support.robots import arm2r_rtb as rtb_robot, arm2r_symbolic as symbolic
 
 
 @pytest.fixture(scope="module")

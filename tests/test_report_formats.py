@@ -129,3 +129,28 @@ def test_notebook_validates_runs_and_recomputes_the_answers(tmp_path):
         results["velocity_acceleration"]["numeric"]["velocity"], abs=2e-6)
     assert numbers_after("acceleration =") == pytest.approx(
         results["velocity_acceleration"]["numeric"]["acceleration"], abs=2e-6)
+
+
+MINI = """
+robosolve: 1
+name: mini
+parameters: {L: 1}
+joints:
+  - {name: q, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q) Tx(L)"}
+questions:
+  - {type: position, at: {q: pi/3}}
+"""
+
+
+def test_batch_passes_the_formats_to_every_problem(write_problem, tmp_path):
+    write_problem(MINI, "mini.yaml")
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["batch", str(tmp_path), "--out", str(out), "--jobs", "1",
+                                 "--format", "md,html"])
+    assert result.exit_code == 0, result.output
+    assert (out / "mini" / "report.md").is_file() and (out / "mini" / "report.html").is_file()
+    assert not (out / "mini" / "report.ipynb").exists()
+    page = (out / "mini" / "report.html").read_text(encoding="utf-8")
+    assert "<math" in page and "0.866025" in page          # sin(pi/3), the y of E

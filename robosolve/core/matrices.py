@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.simplify import tidy
 from robosolve.core.transforms import rigid_inverse, skew
 
 __all__ = [
@@ -25,8 +26,6 @@ __all__ = [
 
 def l_matrix(m: sp.Matrix, q: sp.Symbol) -> sp.Matrix:
     """L = dM/dq * M^-1 for a rototranslation M depending on joint variable q."""
-    from robosolve.core.simplify import tidy
-
     return (m.diff(q) * rigid_inverse(m)).applyfunc(lambda e: tidy(sp.expand(e)))
 
 

@@ -33,6 +33,7 @@ from typing import Mapping
 import sympy as sp
 
 from robosolve.core.matrices import action_matrix
+from robosolve.core.simplify import coefficient
 from robosolve.core.transforms import skew, vex
 from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra, fourier_terms, product_terms
 from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
@@ -374,8 +375,7 @@ class DynamicsEngine:
             coef = sp.expand(groups[trig])
             if coef == 0:
                 continue
-            coef = sp.factor(coef) if factor and small and sp.count_ops(coef) <= 60 else \
-                sp.factor_terms(coef)
+            coef = coefficient(coef, small=factor and small)
             out.append(coef * trig)
         return sp.Add(*out)
 

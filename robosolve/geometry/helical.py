@@ -36,6 +36,7 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import full
 from robosolve.core.transforms import rigid_inverse, skew
 from robosolve.geometry.rotations import (
     ZERO_TOL, axis_angle_numeric, axis_angle_symbolic, axis_angle_matrix, is_zero,
@@ -147,8 +148,8 @@ def helical_numeric(q, tol: float = ZERO_TOL) -> HelicalAxis:
                        point=(p + 0.0).tolist(), pitch=h / alpha)
 
 
-def _default_simplify(e):
-    return sp.simplify(e)
+#: The few small exact expressions of one helical axis: the policy's blanket variant.
+_default_simplify = full
 
 
 def helical_symbolic(q, simplify: Callable = _default_simplify) -> HelicalAxis:

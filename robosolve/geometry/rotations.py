@@ -35,6 +35,8 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import exact_geometry
+
 __all__ = [
     "SINGULAR_TOL", "ZERO_TOL",
     "AxisAngle", "EulerAngles",
@@ -151,25 +153,9 @@ def _rot3_symbolic(m) -> sp.Matrix:
     return a
 
 
-#: Above this operation count a symbolic expression is left as it is: trigsimp
-#: on large expressions takes minutes and rarely makes them readable.
-SIMPLIFY_MAX_OPS = 60
-
-
-def _default_simplify(e):
-    """The simplification policy: exact numbers fully, small symbolic expressions
-    with trigsimp, large ones untouched (fast and deterministic)."""
-    e = sp.sympify(e)
-    floats = e.atoms(sp.Float)
-    if floats:  # inexact input: drop round-off terms (2.8e-17*h) before anything else
-        e = e.xreplace({x: sp.Integer(0) for x in floats if abs(x) < 1e-13})
-    if not e.free_symbols:
-        return sp.simplify(e)
-    if isinstance(e, sp.atan2):
-        return sp.atan2(*(_default_simplify(a) for a in e.args))
-    if sp.count_ops(e) > SIMPLIFY_MAX_OPS:
-        return e
-    return sp.trigsimp(sp.expand(e))
+#: The simplification of every symbolic quantity here: the policy's `exact_geometry`
+#: variant (exact numbers fully, small expressions with trigsimp, large ones untouched).
+_default_simplify = exact_geometry
 
 
 def is_zero(e) -> bool:

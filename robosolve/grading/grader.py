@@ -15,6 +15,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
 from robosolve.grading.points import evaluate, sample, single_point
@@ -264,7 +265,7 @@ class Grader:
             return KeyResult(INCORRECT, "symbolic", "", f"expected {self.symbol(qref, ak)} = {show(e)}")
         try:
             with time_limit(2.0):
-                same = all(sp.simplify(a - b) == 0 for a, b in pairs)
+                same = all(is_zero(a - b) for a, b in pairs)
         except SymbolicTimeout:
             same = False
         if same:

@@ -18,6 +18,7 @@ import numpy as np
 import sympy as sp
 
 from robosolve.core.prose import Num, Text
+from robosolve.core.simplify import factored
 from robosolve.core.timing import time_limit
 from robosolve.errors import SymbolicTimeout as Timeout
 from robosolve.ik import closed_form as cfm
@@ -192,7 +193,7 @@ def _positive(expr):
     back = {v: k for k, v in reps.items()}
     e = expr.xreplace(reps)
     if isinstance(e, sp.Pow) and e.exp == sp.Rational(1, 2):
-        e = sp.sqrt(sp.factor(e.base))
+        e = sp.sqrt(factored(e.base))
     return e.xreplace(back)
 
 
@@ -282,6 +283,7 @@ def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt,
 
 # main entry
 
+# long: the IK decision sequence (count, closed form, numeric, merge) reads top to bottom; to split next (issue 10 item 6)
 def solve_ik(
     equations: list[tuple],
     joints: list[IKJoint],

@@ -170,13 +170,17 @@ def _names(cond: Condition, geo: _Geometry) -> tuple[str, ...]:
     scale = max(1.0, float(np.linalg.norm(p)), *(float(np.linalg.norm(a)) for _, _, a in axes))
     tol = 1e-7 * scale
     names: list[str] = []
-    on = [i + 1 for i, u, a in axes if _dist_point_line(p, u, a) < tol]
+    # the point on an axis (only where it is not on it in general: a wrist centre lies on
+    # the wrist's axes everywhere, which names nothing)
+    q_generic = [_GENERIC[i % len(_GENERIC)] for i in range(len(geo.joints))]
+    p_generic = geo.point(q_generic)
+    always = {i for i, u, a in geo.axes(q_generic) if _dist_point_line(p_generic, u, a) < tol}
+    on = [i + 1 for i, u, a in axes if _dist_point_line(p, u, a) < tol and i not in always]
     if on:
         which = (f"axis of joint {on[0]}" if len(on) == 1
                  else "axes of joints " + ", ".join(map(str, on[:-1])) + f" and {on[-1]}")
         names.append(f"the point lies on the {which}")
     # aligned axes (only where they are not aligned in general)
-    q_generic = [_GENERIC[i % len(_GENERIC)] for i in range(len(geo.joints))]
     generic = {i: (u, a) for i, u, a in geo.axes(q_generic)}
     for x in range(len(axes)):
         for y in range(x + 1, len(axes)):

@@ -14,7 +14,7 @@ import sympy as sp
 from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian, tidy
 
 __all__ = ["TaskSpace", "task_space", "limited", "tidy_limited", "coordinate_latex",
-           "joint_kinds", "position_axes", "joint_l0", "symbolic_budget"]
+           "joint_kinds", "position_axes", "joint_l0"]
 
 
 @dataclass
@@ -145,9 +145,3 @@ def joint_l0(model, index, frame):
     for f in frames:
         total += change_frame(model.M0(model.frames[f].parent), model.L_local(index, f))
     return total
-
-
-def symbolic_budget(model, base: float) -> float:
-    """Seconds for one symbolic step: the full budget up to 4 joints (where symbolic answers
-    are required), a quarter of it beyond (the numeric answers are always given)."""
-    return base if len(model.q) <= 4 else base / 4

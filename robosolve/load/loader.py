@@ -30,7 +30,7 @@ PYTHON_KEYWORDS = {
     "return", "try", "while", "with", "yield",
 }
 TOP_KEYS = ("robosolve", "name", "title", "description", "parameters", "joints", "frames",
-            "dh", "points", "gravity", "bodies", "forces", "questions", "grading")
+            "dh", "points", "gravity", "bodies", "forces", "questions", "grading", "variants")
 POSE_OPS = ("Tx", "Ty", "Tz", "Rx", "Ry", "Rz")
 DH_KEYS = ("theta", "d", "a", "alpha")
 MDH_KEYS = ("alpha", "a", "theta", "d")
@@ -254,6 +254,9 @@ class _ProblemBuilder:
         )
         self.problem.questions = qschema.load_questions(self, data.get("questions"))
         self.problem.grading = self._grading(data.get("grading"))
+        # validated like every key, then ignored by `solve` (load/variants.py, variants.md)
+        from robosolve.load.variants import load_variants
+        self.problem.variants = load_variants(self, data.get("variants"))
         return self.problem
 
     def _grading(self, value) -> dict:

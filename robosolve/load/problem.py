@@ -109,6 +109,7 @@ class Problem:
     names: dict                      # every name usable in expressions -> sympy object
     has_robot: bool = True
     grading: dict = field(default_factory=dict)   # {"rtol": float, "atol": float} when given
+    variants: object = None          # robosolve.load.variants.VariantSpec, or None
 
     @property
     def last_frame(self) -> str:

@@ -112,6 +112,7 @@ def _law_torque(law, kp, kd, e, ed, qdd_d, m, c, g):
     return m @ (qdd_d + kd * ed + kp * e) + c + g
 
 
+# long: one integration loop with its restart and refine state in locals; to split next (issue 10 item 6)
 def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, start=None,
              duration: float | None = None, samples: int = 801,
              rtol: float = RTOL, atol=None, method: str = "LSODA",

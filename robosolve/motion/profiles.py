@@ -30,6 +30,8 @@ from typing import Sequence
 
 import sympy as sp
 
+from robosolve.core.simplify import collected_radicals
+
 __all__ = ["SHAPES", "Segment", "JointMotion", "SyncProfile", "synchronize", "ProfileError"]
 
 SHAPES = ("bang-bang", "trapezoidal", "quintic")
@@ -252,10 +254,11 @@ def _nice(e):
     """Exact numbers with their radicals collected (radsimp: fast); never a blanket simplify."""
     e = sp.sympify(e)
     if e.is_number and not e.is_Rational and not e.has(sp.Float):
-        return sp.radsimp(e)
+        return collected_radicals(e)
     return e
 
 
+# long: one case per profile shape sharing the synchronized time; to split next (issue 10 item 6)
 def synchronize(
     names: Sequence[str],
     start: Sequence,

@@ -18,6 +18,7 @@ from typing import Sequence
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import factored
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import SyncProfile
 
@@ -55,7 +56,7 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
         for s in j.segments:
             if float(s.t0) <= float(mid) <= float(s.t1):
                 # small polynomials: factored rates read as the course writes them, a (T - t)
-                return s.position, sp.factor(sp.diff(s.position, t)), sp.factor(sp.diff(s.position, t, 2))
+                return s.position, factored(sp.diff(s.position, t)), factored(sp.diff(s.position, t, 2))
         return j.start, sp.S(0), sp.S(0)
 
     def rest(at_end: bool):

@@ -179,7 +179,8 @@ def render_step(step, tex: Tex) -> list[str]:
 def _numbers_start(steps) -> int:
     """Index of the first step that shows numbers of the question's configuration."""
     for k, step in enumerate(steps):
-        if step.title.startswith("Numeric") or "configuration of the question" in step.text:
+        title = step.title if isinstance(step.title, str) else step.title.words()
+        if title.startswith("Numeric") or "configuration of the question" in (step.text or ""):
             return k
     return 0
 

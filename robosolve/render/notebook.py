@@ -7,7 +7,7 @@
   frame's pose from its elementary motions or DH row, points — so that a teacher can change
   a number and re-run; then, after each question's section, a cell that recomputes the main
   results from that data. Recomputed types: position, velocity_acceleration, jacobian,
-  statics (a force), ellipsoids, motion_profile (bang-bang), dof. The other types get a
+  statics (a force, or the weight), ellipsoids, motion_profile (bang-bang), dof. The other types get a
   cell that shows robosolve's numbers from results.json (stdlib json) and says so.
 * Cell ids are deterministic (`md-003`, `code-004`): the same problem gives the same bytes.
 """
@@ -145,12 +145,32 @@ def _data_cell(problem) -> str:
             pose = "sp.Matrix([" + ", ".join(_vec(list(f.matrix.row(i))) for i in range(4)) + "])"
         lines.append(f'    "{f.name}": ("{f.parent}", {pose}),')
     lines.append("}")
+    if problem.bodies:
+        lines.append("# body: (frame, mass, centre of mass in that frame)")
+        lines.append("bodies = {")
+        for b in problem.bodies:
+            com = _centre_of_mass(b)
+            if com is not None:
+                lines.append(f'    "{b.name}": ("{b.frame}", {_s(b.mass)}, {_vec(com)}),')
+        lines.append("}")
+        lines.append(f"gravity = sp.Matrix({_vec(list(problem.gravity))})")
     lines.append("# point: (frame, coordinates in that frame)")
     lines.append("points = {")
     for p in problem.points.values():
         lines.append(f'    "{p.name}": ("{p.frame}", {_vec(list(p.at))}),')
     lines.append("}")
     return "\n".join(lines)
+
+
+def _centre_of_mass(body):
+    d = body.data
+    if body.kind == "point":
+        return list(d["at"])
+    if body.kind == "rod":
+        return [(a + b) / 2 for a, b in zip(d["from"], d["to"])]
+    if body.kind == "com":
+        return list(d["com"])
+    return None                     # pseudo_inertia: not rebuilt here
 
 
 def _point_names_cell(problem) -> str:
@@ -237,8 +257,26 @@ def _cell_jacobian(q, answer, problem):
     ])
 
 
+def _cell_weight(q, answer, problem):
+    if not problem.bodies or any(_centre_of_mass(b) is None for b in problem.bodies):
+        return None
+    return "\n".join([
+        f"at = {_at(q)}",
+        "# the bodies' own weight: Fq = -sum_i J_Gi^T m_i g (J_Gi the Jacobian of the centre of mass)",
+        "Fq = sp.zeros(len(joints), 1)",
+        "for name, (frame, mass, com) in bodies.items():",
+        "    G0 = (M0(frame) * sp.Matrix([*com, 1]))[:3, :]",
+        "    Fq -= G0.jacobian(joints).T * mass * gravity",
+        "display(sp.simplify(Fq))",
+        "print('Fq =', number(Fq, at).ravel())",
+        _expected(answer, ["Fq"]),
+    ])
+
+
 def _cell_statics(q, answer, problem):
     force = q.options.get("force")
+    if q.options.get("weight") and force is None and q.options.get("torque") is None:
+        return _cell_weight(q, answer, problem)
     if force is None or q.options.get("torque") is not None or q.options.get("weight"):
         return None
     return "\n".join(_jacobian_lines(q) + [

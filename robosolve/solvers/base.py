@@ -11,11 +11,12 @@ import contextlib
 from dataclasses import dataclass, field
 import sympy as sp
 
+from robosolve.core.simplify import DEFAULT_BUDGETS, SimplifyBudgets
 from robosolve.core.timing import time_limit
 from robosolve.dynamics.model import simulation_dynamics, dynamics_for
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.dynamics.types import Dynamics
-from robosolve.errors import MissingValues, SymbolicTimeout
+from robosolve.errors import MissingValues, SolverError, SymbolicTimeout
 from robosolve.load.problem import Problem
 from robosolve.motion.profiles import SyncProfile
 
@@ -44,6 +45,8 @@ class Budgets:
     # questions of the file are not attempted (each says why).
     question_seconds: float = 900.0
     file_seconds: float = 3600.0
+    # op-count budgets of the simplification variants (robosolve/core/simplify.py)
+    simplify: SimplifyBudgets = DEFAULT_BUDGETS
 
 
 # Default budget of one symbolic step before a solver falls back to numbers.
@@ -105,14 +108,24 @@ class SolveContext:
         self.answers: dict[str, Answer] = {}      # earlier answers, by question id
         self._profiles: dict[str, SyncProfile] = {}
 
+    @property
+    def step_seconds(self) -> float:
+        """Seconds for one symbolic step: the full budget up to 4 joints (where symbolic
+        answers are required), a quarter of it beyond (the numeric answers are always given)."""
+        n = len(self.model.q) if self.model is not None else 0
+        return self.budgets.symbolic_seconds if n <= 4 else self.budgets.symbolic_seconds / 4
+
     # -- results of earlier questions ------------------------------------
     def record_profile(self, qid: str, profile: SyncProfile) -> None:
         """The synchronized profile of motion_profile question `qid` (for joint_torques, p_control)."""
         self._profiles[qid] = profile
 
-    def profile(self, qid: str) -> SyncProfile | None:
-        """The SyncProfile of motion_profile question `qid` (None if it has no answer)."""
-        return self._profiles.get(qid)
+    def profile(self, qid: str) -> SyncProfile:
+        """The SyncProfile of motion_profile question `qid`; SolverError when it has no answer."""
+        prof = self._profiles.get(qid)
+        if prof is None:
+            raise SolverError(f"the motion profile '{qid}' has no answer")
+        return prof
 
     # -- dynamics (one derivation per model, cached by the bridge) --------
     def dynamics(self) -> Dynamics | None:

@@ -1,10 +1,13 @@
-"""Helpers shared by solvers: LaTeX names of matrices, robot drawings, joint values."""
+"""Helpers shared by solvers: LaTeX names of matrices, robot drawings, joint values,
+budgeted symbolic parts."""
 
 from __future__ import annotations
 
 import sympy as sp
 
-from robosolve.solvers.base import MissingValues, SolveContext
+from robosolve.core.simplify import exact_geometry
+from robosolve.errors import SymbolicTimeout
+from robosolve.solvers.base import Answer, MissingValues, SolveContext
 
 
 def frame_tex(name: str) -> str:
@@ -58,3 +61,27 @@ def robot_drawing(ctx: SolveContext, subs: dict) -> dict | None:
         "links": links,
         "points": [{"name": n, "at": p} for n, p in points.items()],
     }
+
+
+def symbolic_within_budget(ctx: SolveContext, ans: Answer, part, what: str) -> bool:
+    """Run `part()` (the symbolic steps) within the symbolic-step budget; past it, drop the
+    symbolic steps and answers with a note (the numeric answers follow). True when done."""
+    try:
+        with ctx.time_limit():
+            part()
+        return True
+    except SymbolicTimeout:
+        ans.steps, ans.symbolic = [], {}
+        ans.note(f"the symbolic {what} was cut short by its time limit; numeric answers only")
+        return False
+
+
+def geometry_matrix(ctx: SolveContext, m, seconds: float = 10.0):
+    """A rotation or displacement matrix through the `exact_geometry` simplification, within
+    `seconds` (the matrix as it is past them)."""
+    ops = ctx.budgets.simplify.geometry_ops
+    try:
+        with ctx.time_limit(seconds):
+            return m.applyfunc(lambda e: exact_geometry(e, ops))
+    except SymbolicTimeout:
+        return m

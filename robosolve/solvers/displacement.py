@@ -15,14 +15,14 @@ import numpy as np
 import sympy as sp
 
 from robosolve.core.course_notes import note_link
+from robosolve.core.simplify import exact_geometry
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.helical import (
     displacement_matrix, express_in_frame, helical_numeric, helical_symbolic,
 )
-from robosolve.geometry.rotations import _default_simplify
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
-from robosolve.solvers.common import frame_tex, m_name
+from robosolve.solvers.common import frame_tex, geometry_matrix, m_name
 
 CASE_TEXT = {
     "general": "$0 < \\alpha < \\pi$: $\\sin\\alpha > 0$, so the axis comes from the skew-symmetric part, "
@@ -48,11 +48,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return ans
     q0 = displacement_matrix(m01, m02)
     q = express_in_frame(q0, m0k) if m0k is not None else q0
-    try:
-        with ctx.time_limit(10.0):
-            q = q.applyfunc(_default_simplify)
-    except SymbolicTimeout:
-        pass
+    q = geometry_matrix(ctx, q)
     f = frame_tex(expressed)
 
     steps = [Step(
@@ -68,11 +64,12 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     try:
         with ctx.time_limit():
             hx = helical_symbolic(q)
-        sym = {k: _tidy(v) for k, v in _layout(hx).items()}
+        ops = ctx.budgets.simplify.geometry_ops
+        sym = {k: _tidy(v, ops) for k, v in _layout(hx).items()}
         ans.symbolic.update(sym)
         hx = dataclasses.replace(hx, axis=sym["u"], angle=sym["alpha"], h=sym["h"], point=sym["P"],
-                                 pitch=sym["pitch"], cos_alpha=_tidy(hx.cos_alpha),
-                                 sin_alpha=_tidy(hx.sin_alpha))
+                                 pitch=sym["pitch"], cos_alpha=_tidy(hx.cos_alpha, ops),
+                                 sin_alpha=_tidy(hx.sin_alpha, ops))
         steps.append(_formula_step(hx))
         sym_case = hx.case
         for n in hx.notes:
@@ -196,9 +193,9 @@ def _figure_data(hn, m1, m2, mk, expressed) -> dict:
     }
 
 
-def _tidy(v):
+def _tidy(v, ops: int):
     if v is None:
         return None
     if isinstance(v, list):
-        return [_default_simplify(x) for x in v]
-    return _default_simplify(v)
+        return [exact_geometry(x, ops) for x in v]
+    return exact_geometry(v, ops)

@@ -13,7 +13,7 @@ import sympy as sp
 from robosolve.core.prose import Num, Text
 from robosolve.core.course_notes import note_link
 from robosolve.kinematics.ellipsoids_math import ellipsoids, exact_values, joint_rates
-from robosolve.kinematics.task import symbolic_budget, limited, position_axes, task_space
+from robosolve.kinematics.task import limited, position_axes, task_space
 from robosolve.solvers.base import (
     Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note)
 
@@ -40,16 +40,13 @@ def _units(question, model, ts):
     return "N or N·m", "m/s or rad/s", "m or rad"
 
 
-def _budget(ctx) -> float:
-    return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
-
-
+# long: compute and steps still interleaved per ellipsoid; to split into compute / steps next (issue 10 item 6)
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
     opts = question.options
     q = model.q
-    ts = task_space(question, ctx, _budget(ctx))
+    ts = task_space(question, ctx, ctx.step_seconds)
     J = ts.J
     m, n = J.shape
     subs = ctx.substitutions(question.at)
@@ -105,7 +102,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     j_exact = J.xreplace(subs)
     exact = None
     if not j_exact.free_symbols and not j_exact.has(sp.Float):
-        exact, _err = limited(ctx, min(_budget(ctx), 10), exact_values, j_exact,
+        exact, _err = limited(ctx, min(ctx.step_seconds, 10), exact_values, j_exact,
                               kf_s.xreplace(subs), kv_s.xreplace(subs), ka_s.xreplace(subs),
                               [x.xreplace(subs) for x in kq_s])
     if exact is not None:

@@ -36,6 +36,7 @@ def _angle_text(v: float, revolute: bool) -> Text:
     return Text(Num(v), " (", Num(math.degrees(v)), "°)")
 
 
+# long: compute and steps still interleaved (closed form, numeric set, selection, velocity); to split next (issue 10 item 6)
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     if model is None or not model.joints:

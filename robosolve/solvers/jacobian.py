@@ -19,7 +19,7 @@ from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
 from robosolve.kinematics.task import (
-    joint_kinds, joint_l0, limited, symbolic_budget, task_space, tidy_limited)
+    joint_kinds, joint_l0, limited, task_space, tidy_limited)
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
 
@@ -31,10 +31,6 @@ def _qtex(model):
     return [sp.latex(s) for s in model.q]
 
 
-def _budget(ctx) -> float:
-    return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
-
-
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
@@ -43,7 +39,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     point = question.point
     q = model.q
     qtex = _qtex(model)
-    ts = task_space(question, ctx, _budget(ctx), geometric=geometric)
+    ts = task_space(question, ctx, ctx.step_seconds, geometric=geometric)
     J = ts.J
     m, n = J.shape
 
@@ -117,8 +113,8 @@ def _singularity_steps(ans, question, ctx, ts):
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
-    det = _structured_det_steps(ans, question, ctx, ts)
-    res, err = limited(ctx, _budget(ctx), find_singularities, J, model.q, kinds, params, det)
+    det, det_parts = _structured_det_steps(ans, question, ctx, ts)
+    res, err = limited(ctx, ctx.step_seconds, find_singularities, J, model.q, kinds, params, det)
     if res is None:
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
                  "the numeric answers are given.")
@@ -138,7 +134,7 @@ def _singularity_steps(ans, question, ctx, ts):
     else:
         from robosolve.kinematics.jacobian_math import tidy
 
-        gram, _err = limited(ctx, _budget(ctx), tidy, res.measure)
+        gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
         manip = sp.sqrt(gram if gram is not None else res.measure)
         ans.symbolic["manipulability"] = manip
         shape = "wide (redundant)" if m < n else "tall"
@@ -163,6 +159,7 @@ def _singularity_steps(ans, question, ctx, ts):
     conds = name_conditions(res.conditions, model.q, kinds, None,
                             model.point0(question.point), params,
                             m0_frames=[_joint_pose(model, i) for i in range(len(model.q))])
+    conds = _tag_decoupled(conds, det_parts)
     ans.symbolic["singularities"] = [c.mapping() for c in conds]
     for note in res.notes:
         ans.note(note)
@@ -193,13 +190,13 @@ def _structured_det_steps(ans, question, ctx, ts):
     model = ctx.model
     m, n = ts.J.shape
     if m != n or n < STRUCTURE_MIN_JOINTS:
-        return None
+        return None, None
     if ts.geometric:
         pframe, _ = model.point_local(question.point)
         frame = question.frame or model.problem.last_frame
-        wrist, err = limited(ctx, _budget(ctx), sd.wrist_decoupled_det, model, pframe, frame)
+        wrist, err = limited(ctx, ctx.step_seconds, sd.wrist_decoupled_det, model, pframe, frame)
         if err is not None:
-            return None
+            return None, None
         if wrist is not None:
             (_, _, j11, d11), (_, _, j22, d22) = wrist.det.blocks[:2] if len(wrist.det.blocks) == 2 else (
                 (None, None, wrist.jacobian[:3, :3], None), (None, None, wrist.jacobian[3:, 3:], None))
@@ -217,16 +214,31 @@ def _structured_det_steps(ans, question, ctx, ts):
                 "$\\det J = \\det J_{11}\\,\\det J_{22}$: the arm's factor (rows 1–3, joints 1–3: "
                 "the velocity of W) times the wrist's (the angular velocities of joints 4–6).",
                 equations=eqs))
-            return wrist.det.det
-    split, _err = limited(ctx, _budget(ctx), sd.structured_det, ts.J, model.q)
+            return wrist.det.det, ((d11, "arm singularity (det J₁₁ = 0)"), (d22, "wrist singularity (det J₂₂ = 0)"))
+    split, _err = limited(ctx, ctx.step_seconds, sd.structured_det, ts.J, model.q)
     if split is None or len(split.blocks) < 2:
-        return split.det if split is not None else None
+        return (split.det if split is not None else None), None
     ans.steps.append(Step(
         "Block structure",
         "The zero entries of J split it into a block triangular form (rows and columns "
         "reordered), so det J is the product of the diagonal blocks' determinants:",
         equations=[(f"\\det J_{{{k + 1}}}", d) for k, (_, _, _, d) in enumerate(split.blocks)]))
-    return split.det
+    return split.det, None
+
+
+def _tag_decoupled(conds, det_parts):
+    """After decoupling at the wrist: say which factor each condition comes from (a
+    condition's factor shares its joints with the arm's or the wrist's determinant)."""
+    if not det_parts or any(d is None for d, _ in det_parts):
+        return conds
+    from dataclasses import replace
+
+    out = []
+    for c in conds:
+        joints = c.factor.free_symbols if c.factor is not None else set()
+        tags = [tag for d, tag in det_parts if joints and joints <= sp.sympify(d).free_symbols]
+        out.append(replace(c, names=tuple(tags[:1]) + tuple(c.names)) if tags else c)
+    return out
 
 
 def _count_text(conds):
@@ -289,7 +301,7 @@ def _com_steps(ans, ctx):
     eqs = []
     for b in model.bodies:
         c0 = model.com0(b)
-        jg = tidy_limited(ctx, c0.jacobian(model.q), _budget(ctx))
+        jg = tidy_limited(ctx, c0.jacobian(model.q), ctx.step_seconds)
         out[b.name] = jg
         eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
         eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))

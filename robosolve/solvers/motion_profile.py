@@ -13,7 +13,7 @@ import sympy as sp
 from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
-from robosolve.motion.profiles import ProfileError, synchronize
+from robosolve.motion.profiles import ProfileError, SyncProfile, synchronize
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
 
 T_SYMBOL = sp.Symbol("t")
@@ -33,10 +33,11 @@ def _num(e, unit: str = "") -> Text:
         return Text("$" + sp.latex(e) + "$" + (" " + unit if unit else ""))
 
 
-def solve(question: Question, ctx: SolveContext) -> Answer:
+def compute(question: Question, ctx: SolveContext) -> SyncProfile:
+    """The synchronized profile of the question (recorded in the context for the
+    questions that refer to it)."""
     model = ctx.model
     opts = question.options
-    ans = Answer(question.type, question.id)
     shape = opts.get("shape", "bang-bang")
     subs = ctx.substitutions(question.at)
     joints = model.joints
@@ -52,45 +53,42 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     except ProfileError as exc:
         raise SolverError(str(exc)) from None
     ctx.record_profile(question.id, prof)
+    return prof
 
+
+def solve(question: Question, ctx: SolveContext) -> Answer:
+    model = ctx.model
+    prof = compute(question, ctx)
+    ans = Answer(question.type, question.id)
+    shape = question.options.get("shape", "bang-bang")
+    subs = ctx.substitutions(question.at)
+    joints = model.joints
     syms = {j.name: sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in joints}
-    # -- step 1: displacements and own times
-    own_rule = {
-        "bang-bang": "T_i = \\sqrt{\\dfrac{4\\,\\lvert\\Delta_i\\rvert}{a_i}}",
-        "quintic": "T_i = \\sqrt{\\dfrac{10\\,\\lvert\\Delta_i\\rvert}{\\sqrt{3}\\,a_i}}",
-        "trapezoidal": ("T_i = \\dfrac{\\lvert\\Delta_i\\rvert}{v_i} + \\dfrac{v_i}{a_i}"
-                        "\\ \\text{if}\\ \\lvert\\Delta_i\\rvert \\ge \\dfrac{v_i^2}{a_i},"
-                        "\\quad\\text{else}\\ T_i = \\sqrt{\\dfrac{4\\,\\lvert\\Delta_i\\rvert}{a_i}}"),
-    }[shape]
-    text = {
-        "bang-bang": ("Bang-bang profile (the course's constant-acceleration profile): each joint accelerates "
-                      "at $+a_i$ for half of its time and decelerates at $-a_i$ for the other half, so "
-                      "$\\lvert\\Delta_i\\rvert = a_i T_i^2/4$. Each joint alone, at its maximum acceleration:"),
-        "trapezoidal": ("Trapezoidal profile: acceleration $a_i$ up to the cruise velocity $v_i$, cruise, then "
-                        "deceleration. A joint too short to reach $v_i$ moves bang-bang. Each joint alone, at its "
-                        "limits:"),
-        "quintic": ("Quintic (rest-to-rest) profile $q = q_0 + \\Delta\\,(10s^3 - 15s^4 + 6s^5)$, $s = t/T$, whose "
-                    "peak acceleration is $10\\lvert\\Delta\\rvert/(\\sqrt{3}\\,T^2)$. Each joint alone, at its "
-                    "maximum acceleration:"),
-    }[shape]
-    header = ["joint", "from", "to", "Δ", "max acceleration"] + (["max velocity"] if shape == "trapezoidal" else []) \
-        + ["own time T_i (s)"]
-    rows = []
-    for jm, j in zip(prof.joints, joints):
-        row = [f"${syms[j.name]}$", _num(jm.start), _num(jm.end), _num(jm.delta),
-               _num(jm.max_acceleration, _unit(j.kind, 2))]
-        if shape == "trapezoidal":
-            row.append(_num(jm.max_velocity, _unit(j.kind, 1)))
-        row.append(_num(jm.own_time) + ("" if jm.moves else " (does not move)"))
-        rows.append(row)
-    ans.steps.append(Step("Displacements and each joint's own time", text,
-                          equations=[("", own_rule)] + [(f"T_{{{syms[jm.name]}}}", jm.own_time)
-                                                         for jm in prof.joints if jm.moves],
-                          table=(header, rows)))
+    ans.steps += steps(prof, shape, joints, syms)
+    # -- answers
+    ans.symbolic["durations"] = {jm.name: jm.own_time for jm in prof.joints}
+    ans.symbolic["T"] = prof.T
+    ans.symbolic["accelerations"] = {jm.name: jm.acceleration for jm in prof.joints}
+    if shape == "trapezoidal":
+        ans.symbolic["velocities"] = {jm.name: jm.velocity for jm in prof.joints}
+    ans.symbolic["profiles"] = {jm.name: prof.position(i) for i, jm in enumerate(prof.joints)}
+
+    numeric_keys = ["durations", "T", "accelerations"] + (["velocities"] if shape == "trapezoidal" else [])
+    for key in numeric_keys:
+        ctx.try_numeric(ans, key, ans.symbolic[key], subs, key)
+
+    _figure(ans, prof, shape, joints, syms)
+    return ans
+
+
+def steps(prof: SyncProfile, shape: str, joints, syms: dict) -> list[Step]:
+    """The worked solution: own times, synchronized time, rescaled values, profiles."""
+    steps: list[Step] = []
+    steps += _own_times(prof, shape, joints, syms)
 
     # -- step 2: synchronized time
     slow = ", ".join(f"${syms[n]}$" for n in prof.slowest) or "—"
-    ans.steps.append(Step(
+    steps.append(Step(
         "Synchronized time",
         "All joints must start and stop together, so the motion lasts as long as the slowest joint "
         f"(here {slow}), which keeps its limits; the others are slowed down to end at the same instant. "
@@ -122,7 +120,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                          _num(jm.velocity, _unit(j.kind, 1))])
     header = ["joint", "acceleration", "cruise velocity", "switching instants (s)"] if shape == "trapezoidal" \
         else ["joint", "acceleration" if shape == "bang-bang" else "peak acceleration", "peak velocity"]
-    ans.steps.append(Step(f"Rescaled {what}", "At the synchronized time T:", equations=eqs,
+    steps.append(Step(f"Rescaled {what}", "At the synchronized time T:", equations=eqs,
                           table=(header, rows)))
 
     # -- step 4: profiles
@@ -135,21 +133,52 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                         "while decelerating; at rest before 0 and after T."),
         "quintic": "$q_i(t) = q_{i,0} + \\Delta_i\\,(10s^3 - 15s^4 + 6s^5)$, $s = t/T$; at rest before 0 and after T.",
     }[shape]
-    ans.steps.append(Step("Profiles", forms, equations=[
+    steps.append(Step("Profiles", forms, equations=[
         (f"{syms[j.name]}(t)", prof.position(i)) for i, j in enumerate(joints)]))
+    return steps
 
-    # -- answers
-    ans.symbolic["durations"] = {jm.name: jm.own_time for jm in prof.joints}
-    ans.symbolic["T"] = prof.T
-    ans.symbolic["accelerations"] = {jm.name: jm.acceleration for jm in prof.joints}
-    if shape == "trapezoidal":
-        ans.symbolic["velocities"] = {jm.name: jm.velocity for jm in prof.joints}
-    ans.symbolic["profiles"] = {jm.name: prof.position(i) for i, jm in enumerate(prof.joints)}
 
-    numeric_keys = ["durations", "T", "accelerations"] + (["velocities"] if shape == "trapezoidal" else [])
-    for key in numeric_keys:
-        ctx.try_numeric(ans, key, ans.symbolic[key], subs, key)
+def _own_times(prof: SyncProfile, shape: str, joints, syms: dict) -> list[Step]:
+    """Step 1: each joint's displacement and its own time at its limits."""
+    steps: list[Step] = []
+    # -- step 1: displacements and own times
+    own_rule = {
+        "bang-bang": "T_i = \\sqrt{\\dfrac{4\\,\\lvert\\Delta_i\\rvert}{a_i}}",
+        "quintic": "T_i = \\sqrt{\\dfrac{10\\,\\lvert\\Delta_i\\rvert}{\\sqrt{3}\\,a_i}}",
+        "trapezoidal": ("T_i = \\dfrac{\\lvert\\Delta_i\\rvert}{v_i} + \\dfrac{v_i}{a_i}"
+                        "\\ \\text{if}\\ \\lvert\\Delta_i\\rvert \\ge \\dfrac{v_i^2}{a_i},"
+                        "\\quad\\text{else}\\ T_i = \\sqrt{\\dfrac{4\\,\\lvert\\Delta_i\\rvert}{a_i}}"),
+    }[shape]
+    text = {
+        "bang-bang": ("Bang-bang profile (the course's constant-acceleration profile): each joint accelerates "
+                      "at $+a_i$ for half of its time and decelerates at $-a_i$ for the other half, so "
+                      "$\\lvert\\Delta_i\\rvert = a_i T_i^2/4$. Each joint alone, at its maximum acceleration:"),
+        "trapezoidal": ("Trapezoidal profile: acceleration $a_i$ up to the cruise velocity $v_i$, cruise, then "
+                        "deceleration. A joint too short to reach $v_i$ moves bang-bang. Each joint alone, at its "
+                        "limits:"),
+        "quintic": ("Quintic (rest-to-rest) profile $q = q_0 + \\Delta\\,(10s^3 - 15s^4 + 6s^5)$, $s = t/T$, whose "
+                    "peak acceleration is $10\\lvert\\Delta\\rvert/(\\sqrt{3}\\,T^2)$. Each joint alone, at its "
+                    "maximum acceleration:"),
+    }[shape]
+    header = ["joint", "from", "to", "Δ", "max acceleration"] + (["max velocity"] if shape == "trapezoidal" else []) \
+        + ["own time T_i (s)"]
+    rows = []
+    for jm, j in zip(prof.joints, joints):
+        row = [f"${syms[j.name]}$", _num(jm.start), _num(jm.end), _num(jm.delta),
+               _num(jm.max_acceleration, _unit(j.kind, 2))]
+        if shape == "trapezoidal":
+            row.append(_num(jm.max_velocity, _unit(j.kind, 1)))
+        row.append(_num(jm.own_time) + ("" if jm.moves else " (does not move)"))
+        rows.append(row)
+    steps.append(Step("Displacements and each joint's own time", text,
+                          equations=[("", own_rule)] + [(f"T_{{{syms[jm.name]}}}", jm.own_time)
+                                                         for jm in prof.joints if jm.moves],
+                          table=(header, rows)))
+    return steps
 
+
+def _figure(ans: Answer, prof: SyncProfile, shape: str, joints, syms: dict) -> None:
+    """The profiles sampled on [0, T], both sides of each switching instant."""
     # -- figure
     if "T" in ans.numeric and ans.numeric["T"] > 0:
         import numpy as np
@@ -176,4 +205,3 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                          "q": Q[i].tolist(), "qd": QD[i].tolist(), "qdd": QDD[i].tolist()}
                         for i, j in enumerate(joints)]},
         ))
-    return ans

@@ -16,12 +16,12 @@ from robosolve.core.prose import Num, Text
 from robosolve.core.course_notes import note_link
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.rotations import (
-    _default_simplify, axis_angle_numeric, axis_angle_symbolic, quaternion_numeric,
+    axis_angle_numeric, axis_angle_symbolic, quaternion_numeric,
     quaternion_symbolic, rpy_numeric, rpy_symbolic, zyz_numeric, zyz_symbolic,
 )
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
-from robosolve.solvers.common import m_name
+from robosolve.solvers.common import geometry_matrix, m_name
 
 FAMILY_TEX = {"phi + psi": "\\varphi + \\psi", "phi - psi": "\\varphi - \\psi",
               "roll - yaw": "\\text{roll} - \\text{yaw}", "roll + yaw": "\\text{roll} + \\text{yaw}"}
@@ -37,23 +37,14 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         subs = {s: v for s, v in question.at.items() if s in set(ctx.model.q)}
         r = ctx.model.M0(frame)[:3, :3].xreplace(subs)
         where = f"The rotation is the orientation block of ${m_name('0', frame)}$."
-    try:
-        with ctx.time_limit(10.0):
-            r = r.applyfunc(_default_simplify)
-    except SymbolicTimeout:
-        pass
+    r = geometry_matrix(ctx, r)
     steps = [Step("Rotation matrix", where, equations=[("R", r)])]
 
     try:
         with ctx.time_limit():
             z, y = zyz_symbolic(r), rpy_symbolic(r)
             aa, q = axis_angle_symbolic(r), quaternion_symbolic(r)
-        ans.symbolic = {
-            "zyz": {"solutions": z.solutions, "singular": z.singular},
-            "rpy": {"solutions": y.solutions, "singular": y.singular},
-            "axis_angle": {"axis": aa.axis, "angle": aa.angle},
-            "quaternion": q,
-        }
+        ans.symbolic = _representations(z, y, aa, q)
         steps += _symbolic_steps(z, y, aa, q)
         if z.singular is None:
             ans.note("symbolic ZYZ angles hold where sin(theta) != 0 and RPY angles where cos(pitch) != 0")
@@ -75,12 +66,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return ans
     z, y = zyz_numeric(rn), rpy_numeric(rn)
     aa, q = axis_angle_numeric(rn), quaternion_numeric(rn)
-    ans.numeric = {
-        "zyz": {"solutions": z.solutions, "singular": z.singular},
-        "rpy": {"solutions": y.solutions, "singular": y.singular},
-        "axis_angle": {"axis": aa.axis, "angle": aa.angle},
-        "quaternion": q,
-    }
+    ans.numeric = _representations(z, y, aa, q)
     steps.append(_numeric_step(z, y, aa, q))
     for e, name in ((z, "ZYZ"), (y, "RPY")):
         if e.singular:
@@ -139,6 +125,16 @@ def _symbolic_steps(z, y, aa, q) -> list:
         "$-q$ is the same rotation).",
         equations=[("[\\eta, \\varepsilon_x, \\varepsilon_y, \\varepsilon_z]", q)]))
     return out
+
+
+def _representations(z, y, aa, q) -> dict:
+    """The answer layout of the four representations (symbolic or numeric alike)."""
+    return {
+        "zyz": {"solutions": z.solutions, "singular": z.singular},
+        "rpy": {"solutions": y.solutions, "singular": y.singular},
+        "axis_angle": {"axis": aa.axis, "angle": aa.angle},
+        "quaternion": q,
+    }
 
 
 def _numeric_step(z, y, aa, q) -> Step:

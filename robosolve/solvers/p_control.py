@@ -74,8 +74,6 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     opts = question.options
     ref = opts.get("profile")
     prof = ctx.profile(ref)
-    if prof is None:
-        raise SolverError(f"the motion profile '{ref}' has no answer")
     ans = Answer(question.type, question.id)
     subs = ctx.substitutions(question.at)
     joints = model.joints
@@ -145,6 +143,14 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         table=(["joint", "max |e|", "at t (s)", Text("e at t = ", Num(duration), " s")], rows),
     ))
 
+    _figures(ans, res, prof, plan, duration, law, joints, syms)
+    return ans
+
+
+def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
+    """Tracking (actual vs desired, error) and effort figures of the simulation."""
+    names = [j.name for j in joints]
+
     def r(a):
         return [float(x) for x in a]
 
@@ -163,4 +169,3 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                                  "external": _external_series(res, i, r)}
                                 for i, j in enumerate(joints)]),
     ))
-    return ans

@@ -5,21 +5,15 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.course_notes import note_link
-from robosolve.errors import SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.model.numeric import NumericChain
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
-from robosolve.solvers.common import frame_tex, m_name, robot_drawing
+from robosolve.solvers.common import frame_tex, m_name, robot_drawing, symbolic_within_budget
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
     ans = Answer(question.type, question.id)
-    try:
-        with ctx.time_limit():
-            symbolic_part(question, ctx, ans)
-    except SymbolicTimeout:
-        ans.steps, ans.symbolic = [], {}
-        ans.note("the symbolic chain product was cut short by its time limit; numeric answers only")
+    symbolic_within_budget(ctx, ans, lambda: symbolic_part(question, ctx, ans), "chain product")
     numeric_part(question, ctx, ans)
     return ans
 

@@ -1,4 +1,15 @@
-"""Reference robots for tests and the benchmark (plain sympy inputs of the engine).
+"""The robots of the tests and the benchmarks, in one place.
+
+* Dynamics robots (`RobotDef`: plain sympy inputs of the dynamics engine, also built with
+  sympy.physics.mechanics in `mechanics.py`): one_link, planar_2r, scara, anthropomorphic_3r,
+  puma560, rp_vertical;
+* kinematic chains from elementary transforms (`KinRobot`): kin_scara, kin_planar2r,
+  kin_planar3r, kin_polar, kin_anthropomorphic;
+* the vertical planar 2R arm of the motion tests, three independent ways:
+  arm2r_symbolic (Lagrange by hand), arm2r_rtb (Robotics Toolbox), arm2r_pin (pinocchio).
+  (The problems/*.yaml files describe some of the same robots for the pipeline.)
+
+Reference robots for tests and the benchmark (plain sympy inputs of the engine).
 
 Each robot is a :class:`RobotDef`: frames as lists of elementary motions (so that the same
 robot can also be built with ``sympy.physics.mechanics``), joints, bodies given by mass,
@@ -10,10 +21,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
 import sympy as sp
 
 from robosolve.core.matrices import pseudo_inertia_from_com, pseudo_inertia_rod
-from robosolve.core.transforms import ELEMENTARY
+from robosolve.core.transforms import ELEMENTARY, dh_standard, rot_y, rot_z, trans_x, trans_z
 from robosolve.dynamics.types import BodySpec, FrameSpec, JointSpec, LoadSpec
 
 __all__ = ["RobotDef", "BodyDef", "planar_2r", "scara", "anthropomorphic_3r", "puma560",
@@ -239,3 +251,139 @@ def rp_vertical() -> RobotDef:
         [],
         {m1: 4, m2: 2, L1: 1, g: sp.Rational(981, 100), d2: sp.Rational(1, 2)},
     )
+
+
+# ------------------------------------------------ kinematic chains (elementary transforms)
+
+t1, t2, t3, d, l = sp.symbols("theta1 theta2 theta3 d l")
+L1, L2, L3, h, a2, a3 = sp.symbols("L1 L2 L3 h a2 a3")
+R, P = "revolute", "prismatic"
+
+
+def prod(ms):
+    out = sp.eye(4)
+    for m in ms:
+        out = out * m
+    return out
+
+
+def _twist(m: sp.Matrix, q) -> sp.Matrix:
+    r, p = m[:3, :3], m[:3, 3]
+    inv = sp.Matrix(sp.BlockMatrix([[r.T, -r.T * p], [sp.zeros(1, 3), sp.ones(1, 1)]]))
+    return (m.diff(q) * inv).applyfunc(lambda e: sp.trigsimp(sp.expand(e)))
+
+
+class KinRobot:
+    """frames: one list of elementary matrices per frame (frame i holds joint i)."""
+
+    def __init__(self, q, kinds, frames, params):
+        self.q = list(q)
+        self.kinds = dict(zip(self.q, kinds))
+        self.params = params
+        self.local = [prod(f) for f in frames]
+        self.M0 = []
+        m = sp.eye(4)
+        for loc in self.local:
+            m = m * loc
+            self.M0.append(m)
+        self._l0 = None
+
+    @property
+    def L0(self):
+        """L_i = (dM0_i/dq_i) M0_i^-1, written out here (not robosolve's l_matrix), so the
+        tests that use it compare robosolve with an independent construction."""
+        if self._l0 is None:
+            self._l0 = [_twist(self.M0[i], qi) for i, qi in enumerate(self.q)]
+        return self._l0
+
+    @property
+    def E(self):
+        return self.M0[-1][:3, 3]
+
+
+def kin_scara():
+    return KinRobot([t1, t2, l], [R, R, P],
+                 [[trans_z(h), rot_z(t1), trans_x(L1)], [rot_z(t2), trans_x(L2)], [trans_z(-l)]],
+                 {L1: sp.Rational(1, 2), L2: sp.Rational(2, 5), h: 1})
+
+
+def kin_planar2r():
+    return KinRobot([t1, t2], [R, R], [[rot_z(t1), trans_x(L1)], [rot_z(t2), trans_x(L2)]],
+                 {L1: sp.Rational(1, 2), L2: sp.Rational(1, 2)})
+
+
+def kin_planar3r():
+    return KinRobot([t1, t2, t3], [R, R, R],
+                 [[rot_z(t1), trans_x(L1)], [rot_z(t2), trans_x(L2)], [rot_z(t3), trans_x(L3)]],
+                 {L1: sp.Rational(1, 2), L2: sp.Rational(2, 5), L3: sp.Rational(3, 10)})
+
+
+def kin_polar():
+    """Polar RRP: azimuth θ1 about z, elevation θ2 (positive up), radial extension d."""
+    return KinRobot([t1, t2, d], [R, R, P], [[rot_z(t1)], [rot_y(-t2)], [trans_x(d)]], {})
+
+
+def kin_anthropomorphic():
+    return KinRobot([t1, t2, t3], [R, R, R],
+                 [[dh_standard(t1, h, 0, sp.pi / 2)], [dh_standard(t2, 0, a2, 0)],
+                  [dh_standard(t3, 0, a3, 0)]],
+                 {h: sp.Rational(1, 2), a2: sp.Rational(2, 5), a3: sp.Rational(3, 10)})
+
+
+# ------------------------------------------------ the motion tests' vertical 2R arm
+
+ARM2R_VALUES = dict(L1=0.5, L2=0.4, m1=3.0, m2=2.0, I1=0.06, I2=0.03, g=9.81)
+ARM2R_LC = dict(lc1=0.25, lc2=0.2)          # centres of mass from each joint, along the link
+
+
+def arm2r_symbolic():
+    """(M, c, g_vec, q, qd, qdd, params) of the 2R arm, by Lagrange from the COM positions."""
+    q1, q2, dq1, dq2 = sp.symbols("q1 q2 q1_dot q2_dot")
+    ddq1, ddq2 = sp.symbols("q1_ddot q2_ddot")
+    L1, m1, m2, I1, I2, g, lc1, lc2 = sp.symbols("L1 m1 m2 I1 I2 g lc1 lc2", positive=True)
+    t = sp.Symbol("t")
+    f1, f2 = sp.Function("f1")(t), sp.Function("f2")(t)
+    p1 = sp.Matrix([lc1 * sp.cos(f1), lc1 * sp.sin(f1)])
+    p2 = sp.Matrix([L1 * sp.cos(f1) + lc2 * sp.cos(f1 + f2), L1 * sp.sin(f1) + lc2 * sp.sin(f1 + f2)])
+    v1, v2 = p1.diff(t), p2.diff(t)
+    T = (m1 * v1.dot(v1) + m2 * v2.dot(v2) + I1 * f1.diff(t) ** 2 + I2 * (f1.diff(t) + f2.diff(t)) ** 2) / 2
+    U = g * (m1 * p1[1] + m2 * p2[1])
+    Lg = T - U
+    eqs = []
+    for f in (f1, f2):
+        eqs.append(sp.diff(Lg.diff(f.diff(t)), t) - Lg.diff(f))
+    rep = {f1.diff(t, 2): ddq1, f2.diff(t, 2): ddq2}
+    rep2 = {f1.diff(t): dq1, f2.diff(t): dq2}
+    rep3 = {f1: q1, f2: q2}
+    eqs = [sp.expand(e.subs(rep).subs(rep2).subs(rep3)) for e in eqs]
+    qdd = [ddq1, ddq2]
+    M = sp.Matrix(2, 2, lambda i, j: eqs[i].coeff(qdd[j]))
+    rest = [sp.expand(e - sum(M[i, j] * qdd[j] for j in range(2))) for i, e in enumerate(eqs)]
+    gv = sp.Matrix([r.subs({dq1: 0, dq2: 0}) for r in rest])
+    c = sp.Matrix([sp.expand(r - gr) for r, gr in zip(rest, gv)])
+    params = {L1: ARM2R_VALUES["L1"], m1: ARM2R_VALUES["m1"], m2: ARM2R_VALUES["m2"], I1: ARM2R_VALUES["I1"], I2: ARM2R_VALUES["I2"],
+              g: ARM2R_VALUES["g"], lc1: ARM2R_LC["lc1"], lc2: ARM2R_LC["lc2"]}
+    return M, c, gv, [q1, q2], [dq1, dq2], qdd, params
+
+
+def arm2r_rtb():
+    import pytest
+    rtb = pytest.importorskip("roboticstoolbox")
+    v = ARM2R_VALUES
+    l1 = rtb.RevoluteDH(a=v["L1"], m=v["m1"], r=[ARM2R_LC["lc1"] - v["L1"], 0, 0], I=[0, 0, v["I1"]], Jm=0, G=1, B=0, Tc=[0, 0])
+    l2 = rtb.RevoluteDH(a=v["L2"], m=v["m2"], r=[ARM2R_LC["lc2"] - v["L2"], 0, 0], I=[0, 0, v["I2"]], Jm=0, G=1, B=0, Tc=[0, 0])
+    robot = rtb.DHRobot([l1, l2], gravity=[0, -v["g"], 0])
+    return robot
+
+
+def arm2r_pin():
+    import pytest
+    pin = pytest.importorskip("pinocchio")
+    v = ARM2R_VALUES
+    model = pin.Model()
+    j1 = model.addJoint(0, pin.JointModelRZ(), pin.SE3.Identity(), "j1")
+    model.appendBodyToJoint(j1, pin.Inertia(v["m1"], np.array([ARM2R_LC["lc1"], 0, 0]), np.diag([0, 0, v["I1"]])), pin.SE3.Identity())
+    j2 = model.addJoint(j1, pin.JointModelRZ(), pin.SE3(np.eye(3), np.array([v["L1"], 0, 0])), "j2")
+    model.appendBodyToJoint(j2, pin.Inertia(v["m2"], np.array([ARM2R_LC["lc2"], 0, 0]), np.diag([0, 0, v["I2"]])), pin.SE3.Identity())
+    model.gravity.linear = np.array([0, -v["g"], 0])
+    return model

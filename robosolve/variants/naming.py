@@ -1,0 +1,69 @@
+"""Variant ids: zero-padded positions (--count) or students' ids made safe (--roster)."""
+
+from __future__ import annotations
+
+import csv
+import io
+import re
+
+from robosolve.errors import InputError, InputIssue
+from robosolve.load.expressions import did_you_mean
+
+UNSAFE_RUN = re.compile(r"[^a-z0-9_-]+")
+
+
+def safe_name(student: str) -> str:
+    """variants.md: lower case, each run outside [a-z0-9_-] -> one '-', no leading/trailing '-'."""
+    return UNSAFE_RUN.sub("-", student.lower()).strip("-")
+
+
+def count_ids(n: int) -> list[str]:
+    width = len(str(n))
+    return [str(k).zfill(width) for k in range(1, n + 1)]
+
+
+def read_roster(path) -> list[tuple[str, str]]:
+    """(variant id, student id as written), in roster order; InputError for a bad roster."""
+    file = str(path)
+    try:
+        text = open(path, encoding="utf-8-sig", newline="").read()
+    except OSError as exc:
+        raise InputError([InputIssue(file, 1, "", f"cannot read the roster: {exc.strerror or exc}")])
+    except UnicodeDecodeError:
+        raise InputError([InputIssue(file, 1, "", "the roster is not UTF-8 text")])
+    reader = csv.reader(io.StringIO(text))
+    try:
+        rows = list(reader)
+    except csv.Error as exc:
+        raise InputError([InputIssue(file, reader.line_num, "", f"CSV error: {exc}")])
+    if not rows:
+        raise InputError([InputIssue(file, 1, "", "the roster is empty (expected a header with a `student` column)")])
+    header = [h.strip() for h in rows[0]]
+    if "student" not in header:
+        raise InputError([InputIssue(file, 1, "", "no `student` column" + did_you_mean("student", header)
+                                     + f" (columns: {', '.join(header) or 'none'})")])
+    col = header.index("student")
+    out, seen, issues = [], {}, []
+    for line, row in enumerate(rows[1:], start=2):
+        if not any(c.strip() for c in row):
+            continue                     # a blank line
+        student = row[col].strip() if col < len(row) else ""
+        name = safe_name(student)
+        if not name:
+            issues.append(InputIssue(file, line, "student",
+                                     f"student id {student!r} gives an empty folder name"
+                                     " (it needs a letter or a digit)"))
+            continue
+        if name in seen:
+            first_line, first = seen[name]
+            issues.append(InputIssue(file, line, "student",
+                                     f"{student!r} and {first!r} (line {first_line}) give the same "
+                                     f"folder name '{name}'"))
+            continue
+        seen[name] = (line, student)
+        out.append((name, student))
+    if issues:
+        raise InputError(issues)
+    if not out:
+        raise InputError([InputIssue(file, 1, "", "the roster has no students")])
+    return out

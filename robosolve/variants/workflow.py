@@ -1,0 +1,278 @@
+"""`robosolve variants`: draw the variants, write their problem files, solve them.
+
+Everything that can fail on input (the problem, the roster, `require`, too few distinct
+variants, a variant that does not load) fails before anything is written; the outputs are
+written into a staging folder beside DIR that replaces DIR at the end (DIR is an output
+folder, problem-format.md §2), so an error or an interrupt leaves DIR as it was.
+
+Each variant's solution is computed from the very text written to its problem.yaml, so
+`robosolve solve DIR/<name>-<id>/problem.yaml` gives the same report and results.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import yaml
+
+from robosolve.errors import EXIT_INPUT, EXIT_OK, InputError, InputIssue
+from robosolve.execution import make_task, run_tasks
+
+# what a variants folder holds, for the working directory written in place (robosolve.outputs)
+OWN_FILES = ("variants.csv", "*/problem.yaml", "*/report.md", "*/report.html", "*/report.ipynb",
+             "*/results.json", "*/figures/*.png")
+
+
+@dataclass
+class Variant:
+    id: str                       # the folder's id: 001 or jo-smith
+    student: str                  # the roster's id as written ('' with --count)
+    values: dict                  # parameter name -> exact sympy value
+    folder: str = ""              # <name>-<id>
+    text: str = ""                # its problem.yaml
+
+
+@dataclass
+class Plan:
+    problem: object
+    spec: object
+    seed: int
+    variants: list = field(default_factory=list)
+
+
+# ---------------------------------------------------------------------------
+# problem.yaml of a variant
+
+class _Dumper(yaml.SafeDumper):
+    """Block style for the structure, flow style for leaf lists and mappings, `|` for text."""
+
+
+def _str(dumper, value):
+    style = "|" if "\n" in value else None
+    return dumper.represent_scalar("tag:yaml.org,2002:str", value, style=style)
+
+
+_Dumper.add_representer(str, _str)
+
+
+def dump_problem(data: dict) -> str:
+    return yaml.dump(data, Dumper=_Dumper, sort_keys=False, allow_unicode=True,
+                     default_flow_style=None, width=100)
+
+
+def yaml_value(value):
+    """An exact value for a problem file: a YAML integer, else an expression string."""
+    import sympy as sp
+
+    if isinstance(value, sp.Integer):
+        return int(value)
+    return sp.sstr(value)
+
+
+def variant_data(data: dict, name: str, values: dict) -> dict:
+    out = {k: v for k, v in data.items() if k != "variants"}
+    out["name"] = name
+    params = dict(out.get("parameters") or {})
+    for k, v in values.items():
+        params[k] = yaml_value(v) if v is not None else None
+    out["parameters"] = params
+    return out
+
+
+# ---------------------------------------------------------------------------
+# planning: load, name, check, draw (nothing written)
+
+def load_source(path: Path):
+    from robosolve.load.loader import load_problem_text
+    from robosolve.load.yamlsource import parse_yaml
+
+    file = str(path)
+    try:
+        text = path.read_bytes().decode("utf-8")
+    except OSError as exc:
+        raise InputError([InputIssue(file, 1, "", f"cannot read the file: {exc.strerror or exc}")])
+    except UnicodeDecodeError:
+        raise InputError([InputIssue(file, 1, "", "the file is not UTF-8 text")])
+    problem = load_problem_text(text, file)
+    if problem.variants is None:
+        raise InputError([InputIssue(file, 1, "", "no `variants` section: nothing to vary "
+                                     "(see docs/variants.md)")])
+    source, _ = parse_yaml(text, file)
+    return problem, source.data
+
+
+def template_problem(data: dict, problem):
+    """The problem with every varied parameter null: plain real symbols for the checks."""
+    from robosolve.load.loader import load_problem_text
+
+    tdata = variant_data(data, problem.name, {p.name: None for p in problem.variants.parameters})
+    return load_problem_text(dump_problem(tdata), problem.file)
+
+
+def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
+    """ids: [(variant id, student)] in order. Raises InputError (exit 2) on any problem."""
+    from robosolve.variants.draw import Drawer
+    from robosolve.variants.require import RequirementChecker
+
+    problem, data = load_source(path)
+    spec = problem.variants
+    checker = RequirementChecker(template_problem(data, problem), spec, problem.file)
+    drawer = Drawer(spec, checker, seed, problem.file)
+    step = progress.task("checking the conditions over the grid", checker.table_work()) if progress else None
+    n_valid = drawer.count(step)
+    if n_valid is not None and n_valid < len(ids):
+        what = "meet `require`" if spec.require else "exist"
+        raise InputError([InputIssue(problem.file, spec.line, "variants",
+                                     f"only {n_valid} distinct variant{'s' if n_valid != 1 else ''} "
+                                     f"{what.replace('meet', 'meets') if n_valid == 1 else what} "
+                                     f"({len(ids)} asked)")])
+    plan = Plan(problem, spec, seed)
+    step = progress.task("drawing", len(ids)) if progress else None
+    for vid, student in ids:
+        values = drawer.values(drawer.next())
+        v = Variant(vid, student, values, folder=f"{problem.name}-{vid}")
+        v.text = dump_problem(variant_data(data, v.folder, values))
+        plan.variants.append(v)
+        if step:
+            step()
+    return plan
+
+
+def variants_csv(plan: Plan) -> bytes:
+    import sympy as sp
+
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    names = [p.name for p in plan.spec.parameters]
+    w.writerow(["variant", "student", "seed"] + names)
+    for v in plan.variants:
+        w.writerow([v.id, v.student, plan.seed] + [sp.sstr(v.values[n]) for n in names])
+    return buf.getvalue().encode("utf-8")
+
+
+# ---------------------------------------------------------------------------
+# running
+
+def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=None, progress=None,
+        inputs=()):
+    """Load (and solve) every variant, then write DIR as one output folder (robosolve.outputs).
+    Returns (status, results in variant order)."""
+    from robosolve.outputs import write_output_folder
+
+    tasks = [make_task(v.text, f"{out}/{v.folder}/problem.yaml", formats, solve) for v in plan.variants]
+    results = [None] * len(tasks)
+    files = {"variants.csv": variants_csv(plan)}
+    step = progress.task("solving" if solve else "checking the variants", len(tasks)) if progress else None
+    for i, res in run_tasks(tasks, jobs, scheduler):
+        results[i] = res
+        v = plan.variants[i]
+        files[f"{v.folder}/problem.yaml"] = v.text.encode("utf-8")
+        for rel, data in (res.pop("files") or {}).items():
+            files[f"{v.folder}/{rel}"] = data
+        if step:
+            step()
+    bad = [r for r in results if r["status"] == EXIT_INPUT]
+    if bad:
+        raise VariantInvalid([m for r in bad for m in r["messages"]])
+    write_output_folder(out, dict(sorted(files.items())), inputs=inputs, own=OWN_FILES)
+    status = max([r["status"] for r in results] + [EXIT_OK])
+    return status, results
+
+
+class VariantInvalid(Exception):
+    """A drawn variant does not load (its values break a rule of the problem file)."""
+
+    def __init__(self, messages):
+        self.messages = messages
+        super().__init__("\n".join(messages))
+
+
+def check_out(out: Path, inputs=()) -> str | None:
+    """Why DIR cannot be the output folder (problem-format.md §2), or None. Touches nothing."""
+    from robosolve.outputs import OutputFolderError, check_output_folder
+
+    try:
+        check_output_folder(out, inputs)
+    except OutputFolderError as exc:
+        return str(exc)
+    return None
+
+
+# ---------------------------------------------------------------------------
+# the command (printing lives here so that cli.py stays a few lines)
+
+class Steps:
+    """Progress bars on standard error: `task(description, total)` returns an advance()."""
+
+    def __init__(self, progress):
+        self.progress = progress
+
+    def task(self, description, total):
+        tid = self.progress.add_task(description, total=total or None)
+        return lambda: self.progress.advance(tid)
+
+
+def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, formats: tuple,
+            jobs: int, scheduler) -> int:
+    from rich.console import Console
+    from rich.progress import Progress
+
+    from robosolve.execution import SchedulerError
+    from robosolve.outputs import OutputFolderError
+    from robosolve.variants.naming import count_ids, read_roster
+
+    console = Console(stderr=True)
+
+    def say(text):
+        # plain lines: an editor can jump to FILE:LINE (rich would wrap them)
+        sys.stderr.write(text + "\n")
+
+    inputs = [problem] + ([roster] if roster is not None else [])
+    reason = check_out(out, inputs)
+    if reason:
+        say(reason)
+        return EXIT_INPUT
+    try:
+        ids = [(i, "") for i in count_ids(count)] if roster is None else read_roster(roster)
+        with Progress(console=console, transient=True) as bar:
+            plan = plan_variants(problem, ids, seed, Steps(bar))
+            status, results = run(plan, out, formats, solve, jobs, scheduler, Steps(bar), inputs)
+    except InputError as exc:
+        say(str(exc))
+        return EXIT_INPUT
+    except SchedulerError as exc:
+        say(str(exc))
+        return EXIT_INPUT
+    except OutputFolderError as exc:
+        say(str(exc))
+        return EXIT_INPUT
+    except VariantInvalid as exc:
+        say("\n".join(exc.messages))
+        say(f"some variants are not valid problems: nothing written to {out} "
+            "(narrow the ranges or add a `require` condition)")
+        return EXIT_INPUT
+    summary(console, plan, results, solve)
+    say(f"{len(plan.variants)} variants of {plan.problem.name} (seed {seed}) -> {out}")
+    return status
+
+
+def summary(console, plan, results, solved: bool):
+    from rich.table import Table
+
+    from robosolve.errors import EXIT_ANSWER_ERROR
+
+    table = Table(title=f"robosolve variants of {plan.problem.name}")
+    for col in ("variant", "student", "answered" if solved else "questions", "status"):
+        table.add_column(col)
+    for v, r in zip(plan.variants, results):
+        label = {EXIT_OK: "ok", EXIT_ANSWER_ERROR: "errors", EXIT_INPUT: "invalid"}[r["status"]]
+        answered = f"{r['answered']}/{r['total']}" if solved else str(r["total"])
+        table.add_row(v.folder, v.student or "—", answered, label if solved else "valid")
+    console.print(table)
+    for r in results:
+        for m in r["messages"]:
+            sys.stderr.write(m + "\n")
