@@ -145,6 +145,8 @@ class _QuestionLoader:
                 chk.error(path, f"law {law} needs gains_d")
             if law == "p" and "gains_d" in item:
                 chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
+        if t == "forward_dynamics":
+            self._forward_dynamics_rules(path, item)
         if t == "dof":
             if opts.get("space", "planar") == "planar" and "joints_3dof" in item:
                 chk.error(path + ("joints_3dof",), "3-DOF joints exist only with space: spatial")
@@ -351,6 +353,73 @@ class _QuestionLoader:
             return {"config": self.v_joint_values(path, value, q)}
         m = self.chk.matrix(path, value, self.params_ns, shapes=((4, 4),))
         return {"matrix": m} if m is not None else None
+
+    # -- forward_dynamics ---------------------------------------------
+    def v_start_state(self, path, value, q):
+        """`start`: joint values and `<joint>_dot` rates at t = 0 (missing ones: 0)."""
+        chk, joints = self.chk, self.b.joints
+        if not isinstance(value, dict):
+            chk.error(path, "expected a mapping joint: value and <joint>_dot: rate (e.g. {theta: 0, theta_dot: 1})")
+            return None
+        allowed = [j.name for j in joints] + [j.dot.name for j in joints]
+        ddots = {j.ddot.name for j in joints}
+        out = {}
+        for key, v in value.items():
+            if key in ddots:
+                chk.error(path + (key,), f"'{key}' cannot be given: the accelerations follow from the "
+                          "equations of motion (give joint values and <joint>_dot rates)")
+                continue
+            if key not in allowed:
+                chk.error(path + (key,), f"unknown joint or joint rate '{key}'" + did_you_mean(key, allowed)
+                          + f" (expected: {', '.join(allowed)})")
+                continue
+            e = chk.expr(path + (key,), v, self.params_ns)
+            if e is not None:
+                out[key] = e
+        return {k: out[k] for k in allowed if k in out}
+
+    def v_actuator_laws(self, path, value, q):
+        """`actuators`: actuator -> expression in t, the joints, their rates and the parameters."""
+        chk, b = self.chk, self.b
+        if not isinstance(value, dict):
+            chk.error(path, "expected a mapping actuator: law (e.g. {C: 70*sin(t)})")
+            return None
+        acts = [str(j.actuator) for j in b.joints]
+        names = {s.name: s for s in b.parameters}
+        for j in b.joints:
+            names[j.name], names[j.dot.name] = j.symbol, j.dot
+        names["t"] = b.names["t"]
+        ns = Namespace(names, what="name in the law (it may use t, the joints, their _dot rates, the parameters)")
+        out = {}
+        for key, v in value.items():
+            if key not in acts:
+                chk.error(path + (str(key),), f"unknown actuator '{key}'" + did_you_mean(str(key), acts)
+                          + f" (actuators: {', '.join(acts)})")
+                continue
+            e = chk.expr(path + (key,), v, ns)
+            if e is not None:
+                out[key] = e
+        return {a: out[a] for a in acts if a in out}
+
+    def v_duration(self, path, value, q):
+        e = self.chk.expr(path, value, self.params_ns)
+        if e is not None and e.is_number and not (e.is_real and e.is_positive and e.is_finite):
+            self.chk.error(path, f"expected a positive duration in seconds, got {value!r}")
+            return None
+        return e
+
+    def _forward_dynamics_rules(self, path, item):
+        at = item.get("at")
+        if not isinstance(at, dict):
+            return
+        motion = {}
+        for j in self.b.joints:
+            motion[j.name] = motion[j.dot.name] = motion[j.ddot.name] = j.name
+        for key in at:
+            if key in motion:
+                self.chk.error(path + ("at", key), f"a forward_dynamics question's `at` may override "
+                               f"parameters only: give the starting value of '{key}' in `start` "
+                               "(joint values and <joint>_dot rates)")
 
     def v_rotation_matrix(self, path, value, q):
         return self.chk.matrix(path, value, self.params_ns, shapes=((3, 3), (4, 4)))

@@ -286,6 +286,25 @@ _TYPES = [
         figures=(("tracking", "control_tracking"), ("effort", "control_effort")),
     ),
     QuestionType(
+        "forward_dynamics", "Forward dynamics (the motion under given actuators)", "§6.5",
+        options={"start": "start_state", "actuators": "actuator_laws", "duration": "duration"},
+        required=("duration",),
+        needs_dynamics=True,
+        answers=(
+            _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, symbolic=False),
+            _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True,
+               symbolic=False),
+            _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True,
+               symbolic=False),
+            _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False),
+            _k("energy", RECORD, "total energy T + U", symbolic=False, fields=(
+                _k("start", SCALAR, "at t = 0"), _k("end", SCALAR, "at the end of the run"))),
+            _k("equations", EQUATIONS, "the equations of motion with the actuator laws substituted",
+               numeric=False),
+        ),
+        figures=(("joint_<name>", "forward_dynamics"),),
+    ),
+    QuestionType(
         "displacement", "Rigid displacement (helical axis)", "§3.1",
         options={"from": "pose_or_config", "to": "pose_or_config"},
         required=("from", "to"),
