@@ -38,6 +38,11 @@ def load_questions(builder, value) -> list:
     return questions
 
 
+def _has_time(force) -> bool:
+    parts = list(force.force or []) + list(force.torque or [])
+    return any("t" in {s.name for s in getattr(e, "free_symbols", ())} for e in parts)
+
+
 class _QuestionLoader:
     def __init__(self, b):
         self.b = b
@@ -147,6 +152,13 @@ class _QuestionLoader:
                 chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
         if t == "forward_dynamics":
             self._forward_dynamics_rules(path, item)
+        if t == "equations_of_motion" and "at" in item:
+            timed = [f.name for f in b.problem.forces if _has_time(f)]
+            if timed:
+                chk.error(path + ("at",), f"the force{'s' if len(timed) > 1 else ''} {', '.join(timed)} "
+                          "vary with time t, so the numbers at a configuration would need a time: drop `at` "
+                          "(the symbolic equations keep t), or follow the motion with a forward_dynamics "
+                          "question")
         if t == "dof":
             if opts.get("space", "planar") == "planar" and "joints_3dof" in item:
                 chk.error(path + ("joints_3dof",), "3-DOF joints exist only with space: spatial")

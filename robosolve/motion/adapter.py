@@ -102,5 +102,7 @@ def fast_dynamics(dyn, subs: dict):
     from robosolve.motion.numeric import FastDynamics
 
     params = {sp.sympify(k): sp.sympify(v) for k, v in subs.items()}
+    # forces given as functions of time use the loader's t (a real symbol)
     return FastDynamics.from_symbolic(dyn.mass_matrix, dyn.velocity_terms, dyn.gravity_terms,
-                                      dyn.q, dyn.qd, external=dyn.external_forces, subs=params)
+                                      dyn.q, dyn.qd, external=dyn.external_forces, subs=params,
+                                      time=sp.Symbol("t", real=True))

@@ -142,14 +142,14 @@ def simulate(dyn: FastDynamics, plan: NumericPlan, law: str, kp, kd=None, start=
     nfev = 0
     for a, b, coeffs in intervals:
         if fast is not None:
-            rhs = _fast_rhs(fast, a, coeffs.tolist(), n)
+            rhs = _fast_rhs(fast, a, coeffs.tolist(), n, timed=dyn.timed)
         else:
             def rhs(t, yy, a=a, coeffs=coeffs):
                 p, dp, ddp = _powers(t - a, deg)
                 qdes, vdes, ades = coeffs @ p, coeffs @ dp, coeffs @ ddp
                 e, ed = yy[:n], yy[n:]
                 q, qd = qdes - e, vdes - ed
-                m, c, g, f = dyn.terms(q, qd)
+                m, c, g, f = dyn.terms(q, qd, t)
                 tau = _law_torque(law, kp, kd, e, ed, ades, m, c, g)
                 qdd = np.linalg.solve(m, tau + f - c - g)
                 return np.concatenate([ed, ades - qdd])
@@ -183,7 +183,7 @@ def simulate(dyn: FastDynamics, plan: NumericPlan, law: str, kp, kd=None, start=
             e, ed = yy[:n], yy[n:]
             q_des[:, lo:hi] = qdes
             err[:, lo:hi] = e
-            effort[:, lo:hi] = _effort_many(dyn, law, kp, kd, qdes - e, vdes - ed, e, ed, ades)
+            effort[:, lo:hi] = _effort_many(dyn, law, kp, kd, qdes - e, vdes - ed, e, ed, ades, ts)
         lo = hi
 
     # max |e|: the solver's own steps sample every oscillation finely; the best few
@@ -238,7 +238,7 @@ def _too_long(dyn, law, kp, kd, q0, duration, limit) -> str:
     """Explain a simulation that ran out of time: the fastest closed-loop oscillation."""
     msg = f"the closed-loop simulation did not finish in {limit:g} s"
     try:
-        m, _c, _g, _f = dyn.terms(np.asarray(q0, dtype=float), np.zeros(dyn.n))
+        m, _c, _g, _f = dyn.terms(np.asarray(q0, dtype=float), np.zeros(dyn.n), 0.0)
         stiff = np.diag(kp) if law != "computed_torque" else m @ np.diag(kp)
         w = np.sqrt(np.max(np.abs(np.linalg.eigvals(np.linalg.solve(m, stiff)))))
         cycles = w * duration / (2 * np.pi)
@@ -251,7 +251,7 @@ def _too_long(dyn, law, kp, kd, q0, duration, limit) -> str:
     return msg
 
 
-def _fast_rhs(fast, a: float, coeffs: list, n: int):
+def _fast_rhs(fast, a: float, coeffs: list, n: int, timed: bool = False):
     """Right-hand side in pure Python floats: Horner for the desired polynomials."""
     rows = [list(reversed(r)) for r in coeffs]      # highest power first
     drows = [[(len(r) - 1 - k) * v for k, v in enumerate(rev[:-1])] for r, rev in zip(coeffs, rows)]
@@ -271,7 +271,7 @@ def _fast_rhs(fast, a: float, coeffs: list, n: int):
         q = [horner(rows[i], x) - e[i] for i in range(n)]
         qd = [horner(drows[i], x) - ed[i] for i in range(n)]
         ad = [horner(ddrows[i], x) for i in range(n)]
-        qdd = fast(*q, *qd, *e, *ed, *ad)
+        qdd = fast(*q, *qd, *e, *ed, *ad, t) if timed else fast(*q, *qd, *e, *ed, *ad)
         return asarray(ed + [ad[i] - qdd[i] for i in range(n)])
 
     return rhs
@@ -291,7 +291,7 @@ def _top_local_maxima(vals: np.ndarray, keep: int = 12) -> list[int]:
     return sorted(int(near[k]) for k in order)
 
 
-def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades):
+def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades, ts=None):
     """Actuator forces of the law at many samples (arrays (n, N))."""
     kp_, kd_ = kp[:, None], kd[:, None]
     if law == "p":
@@ -301,11 +301,11 @@ def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades):
     out = np.empty_like(q)
     many = getattr(dyn, "_terms_many", None)
     if many is not None:
-        m, c, g, _f = many(q, qd)
+        m, c, g, _f = dyn.terms_many(q, qd, ts)
         if law == "pd_gravity":
             return kp_ * e + kd_ * ed + g
         return np.einsum("ijk,jk->ik", m, ades + kd_ * ed + kp_ * e) + c + g
     for k in range(q.shape[1]):
-        m, c, g, _f = dyn.terms(q[:, k], qd[:, k])
+        m, c, g, _f = dyn.terms(q[:, k], qd[:, k], None if ts is None else ts[k])
         out[:, k] = _law_torque(law, kp, kd, e[:, k], ed[:, k], ades[:, k], m, c, g)
     return out

@@ -25,18 +25,28 @@ class FastDynamics:
     ``inverse_many(Q, QD, QDD)`` takes arrays of shape (n, N).
     """
 
-    def __init__(self, n: int, terms: Callable, terms_many: Callable | None = None, symbolic=None):
+    def __init__(self, n: int, terms: Callable, terms_many: Callable | None = None, symbolic=None,
+                 time=None):
         self.n = n
         self._terms = terms
         self._terms_many = terms_many
         self._symbolic = symbolic        # (M, c, g, f, q, qd) with numbers only, when known
+        # the time symbol when the external forces vary with time (then every evaluation takes t)
+        self.time = time
+
+    @property
+    def timed(self) -> bool:
+        return self.time is not None
 
     # ---------------------------------------------------------- construction
     @classmethod
     def from_symbolic(cls, mass, velocity_terms, gravity_terms, q: Sequence[sp.Symbol],
-                      qd: Sequence[sp.Symbol], external=None, subs: dict | None = None) -> "FastDynamics":
+                      qd: Sequence[sp.Symbol], external=None, subs: dict | None = None,
+                      time: sp.Symbol | None = None) -> "FastDynamics":
         """Lambdify M, c, g (and f_ext, default 0) after substituting ``subs``.
 
+        ``time``: the symbol t that forces given as functions of time use; when f_ext has it,
+        every evaluation takes t as its last argument.
         Raises ValueError naming the symbols left over (a parameter without a value).
         """
         n = len(q)
@@ -48,29 +58,34 @@ class FastDynamics:
         if subs:
             flat = [sp.sympify(e).xreplace(_sympified(subs)) for e in flat]
         args = list(q) + list(qd)
-        extra = set().union(*(sp.sympify(e).free_symbols for e in flat)) - set(args)
+        free = set().union(*(sp.sympify(e).free_symbols for e in flat))
+        timed = time is not None and time in free
+        if timed:
+            args.append(time)
+        extra = free - set(args)
         if extra:
             names = ", ".join(sorted(str(s) for s in extra))
             raise ValueError(f"no value for {names}")
         scalar = sp.lambdify(args, flat, modules="math", cse=True)
         nn = n * n
 
-        def terms(qv, qdv):
-            out = scalar(*qv, *qdv)
+        def terms(qv, qdv, t=None):
+            out = scalar(*qv, *qdv, *_time_arg(timed, t))
             return (np.array(out[:nn], dtype=float).reshape(n, n), np.array(out[nn:nn + n], dtype=float),
                     np.array(out[nn + n:nn + 2 * n], dtype=float), np.array(out[nn + 2 * n:], dtype=float))
 
         vec = sp.lambdify(args, flat, modules="numpy", cse=True)
 
-        def terms_many(Q, QD):
+        def terms_many(Q, QD, T=None):
             size = Q.shape[1]
-            out = [np.broadcast_to(np.asarray(v, dtype=float), (size,)) for v in vec(*Q, *QD)]
+            out = [np.broadcast_to(np.asarray(v, dtype=float), (size,))
+                   for v in vec(*Q, *QD, *_time_arg(timed, T))]
             arr = np.vstack(out)
             return arr[:nn].reshape(n, n, size), arr[nn:nn + n], arr[nn + n:nn + 2 * n], arr[nn + 2 * n:]
 
         sym = (sp.Matrix(n, n, flat[:nn]), sp.Matrix(flat[nn:nn + n]), sp.Matrix(flat[nn + n:nn + 2 * n]),
                sp.Matrix(flat[nn + 2 * n:]), list(q), list(qd))
-        return cls(n, terms, terms_many, sym)
+        return cls(n, terms, terms_many, sym, time=time if timed else None)
 
     @classmethod
     def from_callables(cls, n: int, mass, velocity_terms, gravity, external=None) -> "FastDynamics":
@@ -118,28 +133,41 @@ class FastDynamics:
             qdd = adv + kdm * edv + kpm * ev + m.LUsolve(f)      # M^-1 (tau + f - c - g)
         else:
             qdd = m.LUsolve(tau + f - c - g)
-        return sp.lambdify(list(q) + list(qd) + list(e) + list(ed) + list(ad), list(qdd),
-                           modules="math", cse=True)
+        return sp.lambdify(list(q) + list(qd) + list(e) + list(ed) + list(ad)
+                           + ([self.time] if self.timed else []), list(qdd), modules="math", cse=True)
 
     # ------------------------------------------------------------- evaluation
-    def terms(self, q, qd):
-        return self._terms(q, qd)
+    # ``t`` (``T`` for arrays): the time, needed when the external forces vary with it.
+    def terms(self, q, qd, t=None):
+        return self._terms(q, qd, t) if self.timed else self._terms(q, qd)
 
-    def inverse(self, q, qd, qdd):
-        m, c, g, f = self._terms(q, qd)
+    def inverse(self, q, qd, qdd, t=None):
+        m, c, g, f = self.terms(q, qd, t)
         return m @ np.asarray(qdd, dtype=float) + c + g - f
 
-    def forward(self, q, qd, tau):
+    def forward(self, q, qd, tau, t=None):
         """qdd = M^-1 (tau + f_ext - c - g)."""
-        m, c, g, f = self._terms(q, qd)
+        m, c, g, f = self.terms(q, qd, t)
         return np.linalg.solve(m, tau + f - c - g)
 
-    def inverse_many(self, Q, QD, QDD):
+    def terms_many(self, Q, QD, T=None):
+        return self._terms_many(Q, QD, T) if self.timed else self._terms_many(Q, QD)
+
+    def inverse_many(self, Q, QD, QDD, T=None):
         Q, QD, QDD = (np.asarray(a, dtype=float) for a in (Q, QD, QDD))
         if self._terms_many is not None:
-            m, c, g, f = self._terms_many(Q, QD)
+            m, c, g, f = self.terms_many(Q, QD, T)
             return np.einsum("ijk,jk->ik", m, QDD) + c + g - f
-        return np.column_stack([self.inverse(Q[:, k], QD[:, k], QDD[:, k]) for k in range(Q.shape[1])])
+        return np.column_stack([self.inverse(Q[:, k], QD[:, k], QDD[:, k], None if T is None else T[k])
+                                for k in range(Q.shape[1])])
+
+
+def _time_arg(timed: bool, t) -> tuple:
+    if not timed:
+        return ()
+    if t is None:
+        raise ValueError("the external forces vary with time: give t")
+    return (t,)
 
 
 def _sympified(subs: dict) -> dict:

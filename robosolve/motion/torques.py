@@ -122,13 +122,13 @@ def torques_along(profile: SyncProfile, dyn: FastDynamics, names: Sequence[str],
         intervals.append((a, b))
         ts = np.linspace(a, b, samples_per_interval)
         Q, QD, QDD = plan.evaluate(ts, k=k)
-        tau = dyn.inverse_many(Q, QD, QDD)
+        tau = dyn.inverse_many(Q, QD, QDD, ts)
         ts_all.append(ts)
         vals_all.append(tau)
 
         def at(s, i, k=k):
             Qs, QDs, QDDs = plan.evaluate([s], k=k)
-            return float(dyn.inverse(Qs[:, 0], QDs[:, 0], QDDs[:, 0])[i])
+            return float(dyn.inverse(Qs[:, 0], QDs[:, 0], QDDs[:, 0], s)[i])
 
         for i in range(n):
             j = int(np.argmax(np.abs(tau[i])))
@@ -145,12 +145,13 @@ def torques_along(profile: SyncProfile, dyn: FastDynamics, names: Sequence[str],
                 best[i] = (mag, cand, tc)
     if not intervals:                       # nothing moves: the holding forces
         Q, QD, QDD = plan.evaluate([0.0])
-        tau = dyn.inverse_many(Q, QD, QDD)
+        tau = dyn.inverse_many(Q, QD, QDD, np.array([0.0]))
         ts_all, vals_all = [np.array([0.0])], [tau]
         best = [(abs(float(tau[i, 0])), float(tau[i, 0]), 0.0) for i in range(n)]
     # one-sided values at every switching instant (the arm holds still before 0 and after T)
-    hold0 = dyn.inverse(plan.start, np.zeros(n), np.zeros(n))
-    hold1 = dyn.inverse(plan.hold, np.zeros(n), np.zeros(n))
+    # the holding forces just before 0 and just after T (a force varying with time: at 0 and T)
+    hold0 = dyn.inverse(plan.start, np.zeros(n), np.zeros(n), 0.0)
+    hold1 = dyn.inverse(plan.hold, np.zeros(n), np.zeros(n), float(plan.T))
     jumps = []
     if intervals:
         edges = [iv[0] for iv in intervals] + [intervals[-1][1]]

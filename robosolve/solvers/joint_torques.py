@@ -59,7 +59,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
         try:
             with ctx.time_limit(CLOSED_FORM_SECONDS):
-                pieces, pw = closed_form_pieces(prof, list(tau), qs, qds, qdds, params)
+                # a force varying with time uses the loader's t: the profile's own t replaces it
+                timed = [sp.sympify(e).xreplace({sp.Symbol("t", real=True): prof.t}) for e in tau]
+                pieces, pw = closed_form_pieces(prof, timed, qs, qds, qdds, params)
         except SymbolicTimeout:
             ans.note("the closed-form torque profiles took too long: given numerically only")
             pw = None
