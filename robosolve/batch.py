@@ -6,12 +6,11 @@ not compared: PNG bytes depend on the matplotlib build).
 
 from __future__ import annotations
 
+import contextlib
 import difflib
 import glob
 import json
 import os
-import shutil
-import tempfile
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
@@ -31,98 +30,185 @@ def collect(source: str) -> list[Path]:
     return sorted(files)
 
 
-def solve_one(path: str, out_dir: str) -> dict:
-    """Worker: load, solve, write. Returns a summary (never raises on bad input)."""
+def solve_one(path: str) -> dict:
+    """Worker: load, solve, render. Returns a summary and the files (never raises on bad input).
+
+    Workers write nothing: the parent writes every folder, so stopping a worker at any point
+    leaves no debris.
+    """
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem, write_outputs
+    from robosolve.pipeline import render_files, solve_problem
 
     try:
         problem = load_problem(path)
     except InputError as exc:
         return {"file": path, "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
-                "messages": [str(i) for i in exc.issues]}
+                "messages": [str(i) for i in exc.issues], "files": {}}
     report = solve_problem(problem)
-    target = Path(out_dir) / problem.name
-    write_outputs(report, target)
-    failed = [f"{a.id}: {a.error}" for a in report.answers if a.error is not None]
+    files = render_files(report)
+    failed = [f"{path}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
     return {"file": path, "name": problem.name, "status": report.exit_status,
             "answered": len(report.answers) - len(failed), "total": len(report.answers),
-            "messages": failed}
+            "messages": failed, "files": files}
+
+
+def declared_names(files) -> dict[str, str | None]:
+    """file -> the problem name it declares (None when unreadable or not a valid name).
+
+    A quick YAML read, so that duplicate names and refused output folders stop the batch
+    before any work; the full validation happens in the workers.
+    """
+    import yaml
+
+    from robosolve.load.loader import NAME_RE
+
+    names = {}
+    for f in files:
+        try:
+            data = yaml.safe_load(Path(f).read_text(encoding="utf-8"))
+            name = data.get("name") if isinstance(data, dict) else None
+        except Exception:  # reported properly by the loader later
+            name = None
+        names[str(f)] = name if isinstance(name, str) and NAME_RE.fullmatch(name) else None
+    return names
+
+
+def refusals(names: dict, out, golden, update) -> list[str]:
+    """Why the batch must not start (duplicate names, output folders robosolve does not own)."""
+    from robosolve.outputs import OutputFolderError, check_collection, check_output_folder
+
+    by_name: dict[str, list[str]] = {}
+    for f, n in names.items():
+        if n is not None:
+            by_name.setdefault(n, []).append(f)
+    msgs = [f"several problem files have the name '{n}' ({', '.join(fs)}): their outputs would "
+            "overwrite each other; give each a different `name`" for n, fs in sorted(by_name.items())
+            if len(fs) > 1]
+    root = Path(out) if golden is None else (Path(golden) if update else None)
+    if root is None or msgs:
+        return msgs
+    try:
+        check_collection(root)
+        for n in sorted(by_name):
+            check_output_folder(root / n, inputs=list(names), legacy=GOLDEN_FILES if golden else ())
+    except OutputFolderError as exc:
+        msgs.append(str(exc))
+    return msgs
+
+
+def _results(files, jobs):
+    """Yield each file's summary as it is solved; on an interrupt stop the workers at once."""
+    if jobs == 1 or len(files) == 1:
+        for f in files:
+            yield solve_one(str(f))
+        return
+    from robosolve.interrupts import worker_init
+
+    pool = ProcessPoolExecutor(max_workers=min(jobs, len(files)), initializer=worker_init)
+    futures = {pool.submit(solve_one, str(f)): str(f) for f in files}
+    clean = False
+    try:
+        for fut in as_completed(futures):
+            try:
+                yield fut.result()
+            except Exception as exc:  # a crashed worker is reported, not fatal
+                yield {"file": futures[fut], "name": None, "status": EXIT_ANSWER_ERROR, "answered": 0,
+                       "total": 0, "messages": [f"{futures[fut]}: the worker failed ({exc!r})"], "files": {}}
+        clean = True
+    finally:
+        if clean:
+            pool.shutdown(wait=True)
+        else:  # interrupted: a waiting shutdown could hang on a busy worker, so terminate them
+            for proc in list((getattr(pool, "_processes", None) or {}).values()):
+                proc.terminate()
+            pool.shutdown(wait=False, cancel_futures=True)
 
 
 def run(files, out=None, jobs=0, golden=None, update=False) -> int:
+    import sys
+
     from rich.console import Console
     from rich.progress import Progress
     from rich.table import Table
 
+    from robosolve.outputs import OutputFolderError, write_output_folder
+
     console = Console(stderr=True)
     jobs = jobs or os.cpu_count() or 1
-    tmp = None
-    if golden is not None:
-        tmp = Path(tempfile.mkdtemp(prefix="robosolve-check-"))
-        out_dir = tmp
-    else:
-        out_dir = Path(out)
-        out_dir.mkdir(parents=True, exist_ok=True)
-    results = []
-    try:
-        with Progress(console=console, transient=True) as progress:
-            task = progress.add_task("solving", total=len(files))
-            if jobs == 1 or len(files) == 1:
-                for f in files:
-                    results.append(solve_one(str(f), str(out_dir)))
-                    progress.advance(task)
-            else:
-                with ProcessPoolExecutor(max_workers=min(jobs, len(files))) as pool:
-                    futures = [pool.submit(solve_one, str(f), str(out_dir)) for f in files]
-                    for fut in as_completed(futures):
-                        try:
-                            results.append(fut.result())
-                        except Exception as exc:  # a crashed worker is reported, not fatal
-                            results.append({"file": "?", "name": None, "status": EXIT_ANSWER_ERROR,
-                                            "answered": 0, "total": 0, "messages": [repr(exc)]})
-                        progress.advance(task)
-        results.sort(key=lambda r: r["file"])
-        names = [r["name"] for r in results if r["name"]]
-        dup = sorted({n for n in names if names.count(n) > 1})
-        status = max([r["status"] for r in results] + [EXIT_OK])
-        table = Table(title="robosolve batch")
-        for col in ("file", "problem", "answered", "status"):
-            table.add_column(col)
-        for r in results:
-            label = {EXIT_OK: "ok", EXIT_ANSWER_ERROR: "errors", EXIT_INPUT: "invalid"}[r["status"]]
-            table.add_row(r["file"], r["name"] or "—", f"{r['answered']}/{r['total']}", label)
-        console.print(table)
-        for r in results:
-            for m in r["messages"]:
-                console.print(f"{r['file']}: {m}", markup=False, highlight=False)
-        if dup:
-            console.print(f"several files share the problem name(s) {', '.join(dup)}: outputs overwrote "
-                          "each other", markup=False)
-            status = max(status, EXIT_INPUT)
-        if golden is not None:
-            golden = Path(golden)
-            if update:
-                for n in names:
-                    dest = golden / n
-                    dest.mkdir(parents=True, exist_ok=True)
-                    for g in GOLDEN_FILES:
-                        shutil.copyfile(out_dir / n / g, dest / g)
-                console.print(f"golden folder {golden} updated ({len(names)} problems)", markup=False)
-            else:
-                diffs = compare_tree(out_dir, golden, names)
-                for line in diffs:
-                    print(line)
-                if diffs:
-                    status = max(status, EXIT_ANSWER_ERROR)
-                    console.print("golden check: differences found (rerun with --update to accept them)",
-                                  markup=False)
-                else:
-                    console.print(f"golden check: {len(names)} problems identical", markup=False)
-        return status
-    finally:
-        if tmp is not None:
-            shutil.rmtree(tmp, ignore_errors=True)
+    names = declared_names(files)
+    refused = refusals(names, out, golden, update)
+    if refused:
+        for m in refused:
+            sys.stderr.write(m + "\n")
+        return EXIT_INPUT
+    results, diffs, write_errors = [], {}, []
+    with contextlib.ExitStack() as stack:
+        progress = stack.enter_context(Progress(console=console, transient=True))
+        task = progress.add_task("solving", total=len(files))
+        for r in stack.enter_context(contextlib.closing(_results(files, jobs))):
+            out_files = r.pop("files")
+            if r["name"] and golden is None:
+                try:
+                    write_output_folder(Path(out) / r["name"], out_files, inputs=list(names))
+                except (OutputFolderError, OSError) as exc:
+                    write_errors.append(str(exc))
+            elif r["name"] and update:
+                try:
+                    write_output_folder(Path(golden) / r["name"], {g: out_files[g] for g in GOLDEN_FILES},
+                                        inputs=list(names), legacy=GOLDEN_FILES)
+                except (OutputFolderError, OSError) as exc:
+                    write_errors.append(str(exc))
+            elif r["name"]:
+                diffs[r["file"]] = compare_files(out_files, Path(golden), r["name"])
+            results.append(r)
+            progress.advance(task)
+    results.sort(key=lambda r: r["file"])
+    solved = [r["name"] for r in results if r["name"]]
+    status = max([r["status"] for r in results] + [EXIT_OK])
+    table = Table(title="robosolve batch")
+    for col in ("file", "problem", "answered", "status"):
+        table.add_column(col)
+    for r in results:
+        label = {EXIT_OK: "ok", EXIT_ANSWER_ERROR: "errors", EXIT_INPUT: "invalid"}[r["status"]]
+        table.add_row(r["file"], r["name"] or "—", f"{r['answered']}/{r['total']}", label)
+    console.print(table)
+    # plain writes, one line each: an editor can jump to FILE:LINE (rich would wrap them)
+    for r in results:
+        for m in r["messages"]:
+            sys.stderr.write(m + "\n")
+    for m in write_errors:
+        sys.stderr.write(m + "\n")
+    if write_errors:
+        status = max(status, EXIT_INPUT)
+    if golden is not None and update:
+        sys.stderr.write(f"golden folder {golden} updated ({len(solved) - len(write_errors)} problems)\n")
+    elif golden is not None:
+        lines = [line for f in sorted(diffs) for line in diffs[f]]
+        for line in lines:
+            print(line)
+        if lines:
+            status = max(status, EXIT_ANSWER_ERROR)
+            sys.stderr.write("golden check: differences found (rerun with --update to accept them)\n")
+        else:
+            sys.stderr.write(f"golden check: {len(solved)} problems identical\n")
+    return status
+
+
+def compare_files(new_files: dict, golden_root: Path, name: str) -> list[str]:
+    """Differences between one problem's new files (relative path -> bytes) and its golden folder."""
+    out = []
+    for g in GOLDEN_FILES:
+        old = golden_root / name / g
+        if not old.exists():
+            out.append(f"--- {old}: missing in the golden folder")
+            continue
+        a, b = old.read_text(encoding="utf-8"), new_files[g].decode("utf-8")
+        if g.endswith(".json"):
+            out += [f"{old}: {d}" for d in compare_json(json.loads(a), json.loads(b))]
+        elif a != b:
+            out += list(difflib.unified_diff(a.splitlines(), b.splitlines(), str(old), f"{name}/{g} (new)",
+                                             lineterm=""))
+    return out
 
 
 def compare_tree(new_root: Path, golden_root: Path, names) -> list[str]:

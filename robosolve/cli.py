@@ -28,20 +28,18 @@ def _err(text: str) -> None:
     sys.stderr.write(text + "\n")
 
 
-def _default_out(problem_name: str) -> Path:
-    return Path("out") / problem_name
-
-
 @app.command()
 def solve(
     files: List[Path] = typer.Argument(..., help="Problem files (YAML)."),
-    out: Optional[Path] = typer.Option(
+    out: Optional[str] = typer.Option(
         None, "--out", "-o",
         help="Output folder. With one file: the folder itself (DIR/report.md). "
-             "With several: DIR/<problem name>/. Default: out/<problem name>/."),
+             "With several: DIR/<problem name>/. Default: out/<problem name>/. "
+             "robosolve only replaces folders that are new, empty or its own (marked .robosolve)."),
 ) -> None:
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
+    from robosolve.outputs import OutputFolderError
     from robosolve.pipeline import solve_problem, write_outputs
 
     # Validate every file first: nothing is written when any input is invalid.
@@ -54,17 +52,14 @@ def solve(
             status = EXIT_INPUT
     if status == EXIT_INPUT:
         raise typer.Exit(EXIT_INPUT)
-    names = [p.name for p in problems]
-    if out is not None and len(files) > 1 and len(set(names)) != len(names):
-        _err("several problem files have the same name; their outputs would overwrite each other")
-        raise typer.Exit(EXIT_INPUT)
-    for problem in problems:
+    targets = _solve_targets(problems, out)
+    for problem, target in zip(problems, targets):
         report = solve_problem(problem)
-        if out is None:
-            target = _default_out(problem.name)
-        else:
-            target = out if len(files) == 1 else out / problem.name
-        write_outputs(report, target)
+        try:
+            write_outputs(report, target, inputs=files)
+        except (OutputFolderError, OSError) as exc:
+            _err(_write_error(target, exc))
+            raise typer.Exit(EXIT_INPUT)
         failed = [a for a in report.answers if a.error is not None]
         msg = f"{problem.file}: {len(report.answers) - len(failed)}/{len(report.answers)} questions answered -> {target}"
         typer.echo(msg)
@@ -72,6 +67,40 @@ def solve(
             _err(f"{problem.file}: {a.id}: {a.error}")
         status = max(status, report.exit_status)
     raise typer.Exit(status)
+
+
+def _write_error(target, exc) -> str:
+    if isinstance(exc, OSError):
+        return f"{target}: cannot write the outputs ({exc.strerror or exc})"
+    return str(exc)
+
+
+def _solve_targets(problems, out: Optional[str]) -> list:
+    """Each problem's output folder, every one checked before any work (exit 2 when refused)."""
+    from robosolve.outputs import OutputFolderError, check_collection, check_output_folder
+
+    names = [p.name for p in problems]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        for n in dup:
+            _err("several problem files have the name '" + n + "' ("
+                 + ", ".join(str(p.file) for p in problems if p.name == n)
+                 + "): their outputs would overwrite each other; give each a different `name`")
+        raise typer.Exit(EXIT_INPUT)
+    if out is not None and len(problems) == 1:
+        collection, targets = None, [out]
+    else:
+        collection = "out" if out is None else out
+        targets = [Path(collection) / n for n in names]
+    try:
+        if collection is not None:
+            check_collection(collection)
+        for target in targets:
+            check_output_folder(target, inputs=[p.file for p in problems])
+    except OutputFolderError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
+    return targets
 
 
 @app.command()
@@ -93,10 +122,10 @@ def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).
 @app.command()
 def batch(
     source: str = typer.Argument(..., help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
-    out: Optional[Path] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
-    jobs: int = typer.Option(0, "--jobs", "-j", help="Parallel processes (default: number of cores)."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
+    jobs: int = typer.Option(0, "--jobs", "-j", min=0, help="Parallel processes (default: number of cores)."),
     check: Optional[Path] = typer.Option(
-        None, "--check", help="Golden folder: regenerate into a temporary folder and compare."),
+        None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
 ) -> None:
     """Solve many problem files in parallel; optionally compare with golden outputs."""
@@ -117,11 +146,23 @@ def batch(
 
 
 def main() -> None:
+    from robosolve import interrupts
+
+    interrupts.install()
     try:
         app()
+        status = EXIT_OK
     except KeyboardInterrupt:
+        status = interrupts.EXIT_SIGINT
+    except SystemExit as exc:
+        status = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    # click turns KeyboardInterrupt into "Aborted!" and exit 1, and a library may swallow it:
+    # a signal received at any point decides the status (spec §4: SIGINT exits 130).
+    owed = interrupts.received()
+    if owed is not None:
         _err("interrupted")
-        sys.exit(130)
+        status = owed
+    sys.exit(status)
 
 
 __all__ = ["app", "main", "EXIT_ANSWER_ERROR"]

@@ -1,15 +1,13 @@
 """load -> model -> solve -> render, as library functions (the CLI is a thin layer).
 
-`solve_file` returns a `Report` and writes nothing; `write_outputs` is the only
-writer, and it writes into a temporary folder that replaces the target at the
-end, so a run never leaves half-written outputs.
+`solve_file` returns a `Report` and writes nothing; `render_files` turns it into
+bytes (relative path -> content) and `write_outputs` hands them to
+`robosolve.outputs.write_output_folder`, the only writer of output folders (ownership
+mark, atomic swap, umask, interrupts held back while it writes).
 """
 
 from __future__ import annotations
 
-import os
-import shutil
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -61,43 +59,39 @@ def solve_file(path) -> Report:
     return solve_problem(load_problem(path))
 
 
-def render_outputs(report: Report, folder: Path) -> None:
-    """Write report.md, results.json and figures/ into an existing empty folder."""
+def render_files(report: Report) -> dict[str, bytes]:
+    """report.md, results.json and figures/*.png as a mapping relative path -> bytes."""
+    import io
+
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
+    files: dict[str, bytes] = {}
     figure_paths: dict[str, list[str]] = {}
     for answer in report.answers:
         for spec in answer.figures:
             rel = f"figures/{answer.id}-{spec.name}.png"
-            (folder / "figures").mkdir(exist_ok=True)
             try:
                 from robosolve.render.plots import draw
 
-                draw(spec, folder / rel)
+                buffer = io.BytesIO()
+                draw(spec, buffer)
             except Exception as exc:  # a figure that fails must not lose the answers
                 answer.note(f"figure {spec.name} could not be drawn ({type(exc).__name__}: {exc})")
                 continue
+            files[rel] = buffer.getvalue()
             figure_paths.setdefault(answer.id, []).append(rel)
-    (folder / "results.json").write_text(render_results_json(report, figure_paths), encoding="utf-8")
-    (folder / "report.md").write_text(render_report(report, figure_paths), encoding="utf-8")
+    files["results.json"] = render_results_json(report, figure_paths).encode("utf-8")
+    files["report.md"] = render_report(report, figure_paths).encode("utf-8")
+    return files
 
 
-def write_outputs(report: Report, out_dir) -> Path:
-    """Render into a temporary sibling folder, then replace `out_dir` with it."""
-    out_dir = Path(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
-        render_outputs(report, tmp)
-        if out_dir.exists():
-            old = out_dir.with_name(f".{out_dir.name}.old-{os.getpid()}")
-            out_dir.rename(old)
-            tmp.rename(out_dir)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            tmp.rename(out_dir)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    return out_dir
+def write_outputs(report: Report, out_dir, inputs=()) -> Path:
+    """Write the report as the output folder `out_dir` (robosolve.outputs: ownership, atomic swap).
+
+    Raises robosolve.outputs.OutputFolderError, with nothing touched, when the folder is not
+    robosolve's; `inputs` are the problem files read (a replaced folder must not hold them).
+    """
+    from robosolve.outputs import write_output_folder
+
+    return write_output_folder(out_dir, render_files(report), inputs=inputs)

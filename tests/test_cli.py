@@ -59,12 +59,27 @@ def test_invalid_input_exit_2_and_nothing_written(write_problem, tmp_path):
     assert not out.exists()
 
 
-def test_unsupported_or_failed_question_exit_1(write_problem, tmp_path):
-    # a question type whose solver reports an error still gets its entry; exit 1
+def test_unsupported_or_failed_question_exit_1(write_problem, tmp_path, monkeypatch):
+    # a question whose solver reports an error still gets its entry, the others are answered; exit 1
+    import robosolve.solvers.position as position
+    from robosolve.errors import SolverError
+
+    real = position.solve
+
+    def failing_second(question, ctx):
+        if question.id == "second":
+            raise SolverError("cannot answer this one")
+        return real(question, ctx)
+
+    monkeypatch.setattr(position, "solve", failing_second)
     src = write_problem(MINI + "  - {type: position, at: {q: 0}, id: second}\n")
     out = tmp_path / "o"
     result = runner.invoke(app, ["solve", str(src), "--out", str(out)])
-    assert result.exit_code == 0
+    assert result.exit_code == 1, result.output
+    answers = json.loads((out / "results.json").read_text())["answers"]
+    assert answers["second"]["error"] == "cannot answer this one"
+    assert "error" not in answers["position"]
+    assert "second: cannot answer this one" in result.output
 
 
 def test_validate(write_problem):
