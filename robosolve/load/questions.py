@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import re
 
+import sympy as sp
+
 from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
 from robosolve.load.problem import Question
 from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES
@@ -152,6 +154,8 @@ class _QuestionLoader:
                 chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
         if t == "forward_dynamics":
             self._forward_dynamics_rules(path, item)
+        if t == "displacement":
+            self._displacement_rules(path, item, q)
         if t == "equations_of_motion" and "at" in item:
             timed = [f.name for f in b.problem.forces if _has_time(f)]
             if timed:
@@ -259,6 +263,10 @@ class _QuestionLoader:
 
     def v_exprs(self, path, value, q):
         v = self.chk.vector(path, value, self.b.ns, length=None)
+        return list(v) if v is not None else None
+
+    def v_vector3_params(self, path, value, q):
+        v = self.chk.vector(path, value, self.params_ns, length=3)
         return list(v) if v is not None else None
 
     def v_vector3(self, path, value, q):
@@ -419,6 +427,35 @@ class _QuestionLoader:
             self.chk.error(path, f"expected a positive duration in seconds, got {value!r}")
             return None
         return e
+
+    def _displacement_rules(self, path, item, q):
+        """Two forms: `from` and `to`, or a screw (`axis`, `angle`, `through`, `translation`)."""
+        chk = self.chk
+        screw_keys = [k for k in ("axis", "angle", "through", "translation") if k in item]
+        pose_keys = [k for k in ("from", "to") if k in item]
+        if screw_keys and pose_keys:
+            chk.error(path, f"give either from/to or a screw (axis, angle, through, translation), not both "
+                      f"(found {', '.join(pose_keys + screw_keys)})")
+            return
+        if not screw_keys:
+            for k in ("from", "to"):
+                if k not in item:
+                    chk.error(path, f"missing required key '{k}' (or give a screw: axis and angle)")
+            return
+        if "axis" not in item:
+            chk.error(path, f"{', '.join(screw_keys)} describe a screw: give its axis too")
+            return
+        if "angle" not in item:
+            chk.error(path, "missing required key 'angle' (the rotation about the axis, any real value)")
+        if "frame" in item:
+            chk.error(path + ("frame",), "a screw is given in frame 0: `frame` goes with from/to")
+        axis = q.options.get("axis")
+        if axis is not None:
+            values = self.b._values()
+            vals = [sp.sympify(e).xreplace(values) for e in axis]
+            if all(v.is_number for v in vals) and all(abs(complex(v)) <= 1e-12 for v in vals):
+                chk.error(path + ("axis",), "the zero vector has no direction (give the axis direction, "
+                          "any non-zero length)")
 
     def _forward_dynamics_rules(self, path, item):
         at = item.get("at")
