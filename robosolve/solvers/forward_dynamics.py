@@ -132,7 +132,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ans.note(n)
     _limit_notes(ans, model, run, values[0])
     ans.steps.append(_step_results(model, run, values))
-    ans.steps.append(_step_energy(question, model, st, run, values[0]))
+    ans.steps.append(_step_energy(question, model, st, run, values[0], ans.numeric["energy"]))
     ans.figures.extend(_figures(model, st, run))
     return ans
 
@@ -205,15 +205,23 @@ def _closed_form_work(model, st, params, start, final):
     return float(total)
 
 
-def _step_energy(question, model, st, run, params) -> Step:
-    e0, e1 = run.energy_start, run.energy_end
+def _bound(x: float) -> str:
+    """A power of ten above x (round-off sized numbers are shown as a bound, not as noise)."""
+    import math
+
+    exp = max(-14, math.ceil(math.log10(x))) if x > 0 else -14
+    return f"$10^{{{exp}}}$"
+
+
+def _step_energy(question, model, st, run, params, energy) -> Step:
+    e0, e1 = energy["start"], energy["end"]
     scale = run.energy_scale or 1.0
     eqs = [("E = T + U", _tex(model, st.kinetic + st.potential)),
            ("E(0)", e0), (f"E({report_number(run.duration)})", e1), ("\\Delta E", e1 - e0)]
     nothing_acts = all(sp.sympify(f).xreplace(params) == 0 for f in st.forces)
     if nothing_acts:
         text = ("No actuator and no external force acts: only gravity, which is conservative, so the "
-                f"energy is conserved; the run keeps it to {report_number(abs(e1 - e0) / scale)} of the "
+                f"energy is conserved; the run keeps it to within {_bound(run.energy_drift / scale)} of the "
                 f"energy scale ({report_number(scale)} J, the largest $T + |U|$ along the run).")
         return Step("Energy balance", text, equations=eqs)
     text = ("The actuators and the external forces do the work "
@@ -227,7 +235,7 @@ def _step_energy(question, model, st, run, params) -> Step:
         eqs.append(("W \\text{ (closed form)}", closed))
     else:
         text += "The force depends on time or on the rates, so the work has no closed form here. "
-    text += (f"The balance holds to {report_number(run.energy_drift / scale)} of the energy scale "
+    text += (f"The balance holds to within {_bound(run.energy_drift / scale)} of the energy scale "
              f"({report_number(scale)} J) all along the run.")
     return Step("Energy balance", text, equations=eqs)
 
