@@ -224,3 +224,22 @@ def test_joint_torques_with_a_force_varying_in_time_against_pinocchio_rnea():
                 best = tau
     assert a.numeric["actuators"]["C"]["peak"] == pytest.approx(best, rel=1e-6)
     assert "cos(3*t)" in str(a.symbolic["profiles"]["C"])
+
+
+def test_joint_torques_symbolic_profile_keeps_the_parameters_and_matches_pinocchio():
+    import sympy as sp
+    from robosolve.motion.profiles import synchronize
+
+    a = answers(PROFILE + "  - {type: joint_torques}\n", F="3", force="-F*cos(3*t)")["joint_torques"]
+    prof = a.symbolic["profiles"]["C"]
+    names = {s.name for s in prof.free_symbols}
+    assert {"L", "m1", "m2", "g", "F", "t"} <= names          # the dynamics stay symbolic
+    values = {sp.Symbol(n, real=True): v for n, v in dict(L=1, m1=2, m2=1, g=9.81, F=3).items()}
+    values.update({s: values[sp.Symbol(s.name, real=True)] for s in prof.free_symbols if s.name != "t"})
+    tsym = next(s for s in prof.free_symbols if s.name == "t")
+    pin, model, data, fext = pin_arm(lambda t: -3 * math.cos(3 * t))
+    plan = synchronize(["theta"], [0], [sp.pi / 2], [4]).numeric_plan()
+    for t in (0.1, 0.4, 0.7, 1.1, 1.5):
+        q, qd, qdd = (x[:, 0] for x in plan.evaluate([t]))
+        ref = pin.rnea(model, data, q, qd, qdd, fext(t))[0]
+        assert float(prof.xreplace(values).subs(tsym, t)) == pytest.approx(ref, rel=1e-9)

@@ -72,8 +72,8 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
         for i, j in enumerate(profile.joints):
             rep[q[i]], rep[qd[i]], rep[qdd[i]] = joint_state(j, a, b)
         for i, e in enumerate(exprs):
-            pieces[i].append(e.xreplace(rep))
-    before, after = rest(False), rest(True)
+            pieces[i].append(merge_terms(e.xreplace(rep), t))
+    before, after = [merge_terms(e, t) for e in rest(False)], [merge_terms(e, t) for e in rest(True)]
     pw = []
     for i in range(len(exprs)):
         if not pieces[i]:
@@ -84,6 +84,26 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
         args.append((after[i], True))
         pw.append(sp.Piecewise(*args, evaluate=False))
     return pieces, pw
+
+
+def merge_terms(expr: sp.Expr, t: sp.Symbol) -> sp.Expr:
+    """One term per function of time: the additive terms with the same t-dependent factor
+    (a power of t times a sine, say) are merged and their parameter coefficients factored.
+
+    The substituted profile leaves the same factor in several terms (from M q'', c and g);
+    merging them is cheap (no trigonometric simplification) and deterministic.
+    """
+    groups: dict = {}
+    for term in sp.Add.make_args(sp.expand(expr, trig=False, mul=True, multinomial=False,
+                                           power_base=False, power_exp=False, log=False)):
+        coeff, factor = term.as_independent(t, as_Add=False)
+        groups.setdefault(factor, []).append(coeff)
+    out = []
+    for factor in sorted(groups, key=sp.default_sort_key):
+        coeff = sp.factor_terms(sp.Add(*groups[factor]))
+        if coeff != 0:
+            out.append(coeff * factor)
+    return sp.Add(*out)
 
 
 def golden_max(f, lo: float, hi: float, iterations: int = 64) -> float:
