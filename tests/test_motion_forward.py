@@ -139,7 +139,7 @@ def reference(pin_model, law, q0, qd0, duration):
 
 
 # ---------------------------------------------------------------- robosolve's side
-def robosolve_run(text, laws, q0, qd0, duration, **kw):
+def robosolve_run(text, laws, q0, qd0, duration, numeric_solve=False, **kw):
     """Integrate the problem's own equations of motion with the actuator laws (t, q, qd)."""
     problem = load_problem_text(text)
     model = RobotModel(problem)
@@ -153,7 +153,8 @@ def robosolve_run(text, laws, q0, qd0, duration, **kw):
     plant = compile_plant(dyn.mass_matrix.xreplace(params), dyn.velocity_terms.xreplace(params),
                           dyn.gravity_terms.xreplace(params), forces, dyn.q, dyn.qd, t,
                           kinetic=num(sp.Add(*dyn.kinetic_energy.values())),
-                          potential=num(sp.Add(*dyn.potential_energy.values())))
+                          potential=num(sp.Add(*dyn.potential_energy.values())),
+                          symbolic_solve_up_to=0 if numeric_solve else 3)
     return integrate(plant, q0, qd0, duration, **kw)
 
 
@@ -210,6 +211,14 @@ def test_two_r_against_pinocchio(case):
     sym, num = CASES_2R[case]
     q0, qd0 = np.array([0.3, -0.2]), np.array([0.0, 0.5])
     run = robosolve_run(TWO_R, sym, q0, qd0, 3.0)
+    check(run, reference(pin_two_r(), num, q0, qd0, 3.0))
+
+
+def test_two_r_numeric_solve_path_against_pinocchio():
+    # the path of robots with more than 3 joints (M solved by numpy at each evaluation)
+    sym, num = CASES_2R["time_varying"]
+    q0, qd0 = np.array([0.3, -0.2]), np.array([0.0, 0.5])
+    run = robosolve_run(TWO_R, sym, q0, qd0, 3.0, numeric_solve=True)
     check(run, reference(pin_two_r(), num, q0, qd0, 3.0))
 
 

@@ -98,13 +98,15 @@ def _numeric_only(exprs, args, what):
 
 
 def compile_plant(mass, velocity_terms, gravity_terms, forces, q: Sequence[sp.Symbol],
-                  qd: Sequence[sp.Symbol], t: sp.Symbol, kinetic=None, potential=None) -> Plant:
+                  qd: Sequence[sp.Symbol], t: sp.Symbol, kinetic=None, potential=None,
+                  symbolic_solve_up_to: int = 3) -> Plant:
     """Compile M, c, g and the generalized forces tau + f_ext (functions of t, q, q').
 
     Every expression must be numeric apart from t, q and q' (ValueError otherwise).
     ``kinetic`` / ``potential``: total T(q, q') and U(q), for the energy balance.
-    Up to 3 joints M is solved symbolically (LU) so that each right-hand side is one
-    scalar function of floats; beyond, M and the forces are evaluated and solved by numpy.
+    Up to ``symbolic_solve_up_to`` joints M is solved symbolically (LU) so that each right-hand
+    side is one scalar function of floats; beyond, M and the forces are evaluated and solved by
+    numpy (the symbolic LU of a big M would be far longer than the numeric solve).
     """
     n = len(q)
     m = sp.Matrix(mass)
@@ -112,7 +114,7 @@ def compile_plant(mass, velocity_terms, gravity_terms, forces, q: Sequence[sp.Sy
     args = [t] + list(q) + list(qd)
     _numeric_only(list(m) + list(rest), args, "the equations of motion")
     power = sum((sp.sympify(forces[i]) * qd[i] for i in range(n)), sp.S.Zero)
-    if n <= 3:
+    if n <= symbolic_solve_up_to:
         qdd = list(m.LUsolve(rest))
         accel = sp.lambdify(args, qdd + [power], modules="math", cse=True)
     else:
