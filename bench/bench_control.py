@@ -21,7 +21,7 @@ RUNS = 5
 def in_process():
     from robosolve.load.loader import load_problem
     from robosolve.model import RobotModel
-    from robosolve.motion import adapter
+    from robosolve.dynamics.numeric import NumericDynamics
     from robosolve.motion.control import simulate
     from robosolve.solvers import motion_profile, p_control
     from robosolve.solvers.base import SolveContext
@@ -43,11 +43,11 @@ def in_process():
         # breakdown
         ctx = SolveContext(problem, RobotModel(problem))
         motion_profile.solve(qp, ctx)
-        prof = adapter.profile_for(ctx, qp.id)
+        prof = ctx.profile(qp.id)
         t0 = time.perf_counter()
-        dyn = adapter.symbolic_dynamics(ctx)
+        dyn = ctx.dynamics()
         t1 = time.perf_counter()
-        fast = adapter.fast_dynamics(dyn, ctx.substitutions({}))
+        fast = NumericDynamics.from_dynamics(dyn, ctx.substitutions({}))
         fast.closed_loop("p", [5000, 5000], [0, 0])
         t2 = time.perf_counter()
         res = simulate(fast, prof.numeric_plan(), "p", [5000, 5000])

@@ -25,7 +25,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 
 def _robot(key):
-    from robosolve.dynamics import examples as ex
+    from tests.support import robots as ex
 
     return {
         "2r": ex.planar_2r,
@@ -51,7 +51,7 @@ def task_robosolve(key):
 def task_kane(key, simplify=False):
     import sympy as sp
 
-    from robosolve.dynamics import reference as ref
+    from tests.support import mechanics as ref
 
     r = _robot(key)
     t = time.perf_counter()
@@ -73,7 +73,7 @@ def task_kane_trigsimp(key):
 def task_lagrange(key):
     import sympy as sp
 
-    from robosolve.dynamics import reference as ref
+    from tests.support import mechanics as ref
 
     r = _robot(key)
     t = time.perf_counter()

@@ -122,14 +122,13 @@ def engine_time(text_or_path):
 
     from robosolve.load.loader import load_problem, load_problem_text
     from robosolve.model import RobotModel
-    from robosolve.motion.adapter import symbolic_dynamics
     from robosolve.motion.forward import compile_plant, integrate
     from robosolve.solvers import forward_dynamics as fd
     from robosolve.solvers.base import SolveContext
 
     problem = load_problem(text_or_path) if isinstance(text_or_path, Path) else load_problem_text(text_or_path)
     ctx = SolveContext(problem, RobotModel(problem))
-    dyn = symbolic_dynamics(ctx)
+    dyn = ctx.dynamics()
     prepared = []
     for q in problem.questions:
         st = fd.setup(q, ctx, dyn)

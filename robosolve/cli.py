@@ -145,6 +145,36 @@ def batch(
     raise typer.Exit(status)
 
 
+@app.command()
+def check(
+    answers: Path = typer.Argument(..., help="An answers file (YAML, grading.md)."),
+    problem: Optional[Path] = typer.Option(None, "--problem", "-p", help="Problem file (default: the answers file's `problem:`)."),
+    json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
+    rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default 0.005, or the problem's grading:)."),
+    atol: Optional[float] = typer.Option(None, "--atol", help="Absolute tolerance (default 1e-6, or the problem's grading:)."),
+) -> None:
+    """Check a student's answers against robosolve's solution: a verdict per key, and what is wrong."""
+    from robosolve.grading.commands import run_check
+
+    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol))
+
+
+@app.command()
+def grade(
+    submissions: List[Path] = typer.Argument(..., help="Answers files, or folders of them (*.yaml, *.yml)."),
+    out: Path = typer.Option(..., "--out", "-o", help="Output folder: grades.csv, summary.csv, <student>.json, feedback/."),
+    problem: Optional[Path] = typer.Option(None, "--problem", "-p", help="Grade every submission against this problem."),
+    variants: Optional[Path] = typer.Option(None, "--variants", help="A `robosolve variants` folder: each student's own variant."),
+    jobs: int = typer.Option(0, "--jobs", "-j", help="Parallel processes (default: number of cores)."),
+    rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default 0.005, or the problem's grading:)."),
+    atol: Optional[float] = typer.Option(None, "--atol", help="Absolute tolerance (default 1e-6, or the problem's grading:)."),
+) -> None:
+    """Grade a class: every submission against its problem (solved once), with marks and feedback."""
+    from robosolve.grading.commands import run_grade_command
+
+    raise typer.Exit(run_grade_command(submissions, out, problem, variants, jobs, rtol, atol))
+
+
 def main() -> None:
     from robosolve import interrupts
 

@@ -53,3 +53,11 @@ class SymbolicTimeout(BaseException):
 
 class SolverError(RobosolveError):
     """A question cannot be answered; the message becomes the answer's `error`."""
+
+
+class MissingValues(Exception):
+    """Numeric evaluation needs values that are not given (null parameters, joints)."""
+
+    def __init__(self, names):
+        self.names = sorted(set(names))
+        super().__init__(", ".join(self.names))

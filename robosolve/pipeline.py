@@ -27,13 +27,14 @@ class Report:
         return EXIT_ANSWER_ERROR if any(a.error is not None for a in self.answers) else EXIT_OK
 
 
-def solve_problem(problem: Problem) -> Report:
+def solve_problem(problem: Problem, budgets=None) -> Report:
+    """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work."""
     from robosolve.model import RobotModel
     from robosolve.solvers import solver_for
     from robosolve.solvers.base import Answer, SolveContext
 
     model = RobotModel(problem) if problem.has_robot else None
-    ctx = SolveContext(problem, model)
+    ctx = SolveContext(problem, model, budgets)
     report = Report(problem, model)
     for q in problem.questions:
         solve = solver_for(q.type)

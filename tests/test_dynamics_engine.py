@@ -7,8 +7,9 @@ import pytest
 import sympy as sp
 
 from robosolve.dynamics import derive_dynamics, numeric_dynamics
-from robosolve.dynamics import examples as ex
+from tests.support import robots as ex
 from robosolve.dynamics.engine import DynamicsEngine
+from robosolve.dynamics.numeric import lambdify_dynamics
 
 
 def _derive(robot, **kw):
@@ -80,7 +81,7 @@ def test_planar_2r_textbook_closed_form():
 
 
 def test_planar_2r_lagranges_method():
-    from robosolve.dynamics import reference as ref
+    from tests.support import mechanics as ref
 
     r = ex.planar_2r()
     d = _derive(r)
@@ -99,7 +100,7 @@ def test_planar_2r_lagranges_method():
     pytest.param(ex.anthropomorphic_3r, id="anthropomorphic-3r"),
 ])
 def test_against_kanes_method(robot):
-    from robosolve.dynamics import reference as ref
+    from tests.support import mechanics as ref
 
     r = robot()
     d = _derive(r)
@@ -168,7 +169,7 @@ def test_non_polynomial_joint_use_falls_back():
 def test_mass_matrix_symmetric_positive_definite():
     for robot in (ex.anthropomorphic_3r(), ex.scara()):
         d = _derive(robot)
-        nd = d.numeric(robot.values)
+        nd = lambdify_dynamics(d, robot.values)
         rng = np.random.default_rng(5)
         for _ in range(20):
             m = nd.mass(rng.uniform(-3, 3, len(d.q)))
@@ -181,7 +182,7 @@ def test_energy_conserved_free_motion():
 
     r = ex.anthropomorphic_3r()
     d = _derive(r)
-    nd = d.numeric(r.values)
+    nd = lambdify_dynamics(d, r.values)
     n = len(d.q)
     rhs = lambda t, x: np.concatenate([x[n:], nd.forward(x[:n], x[n:], np.zeros(n))])  # noqa
     energy_expr = sp.Add(*d.kinetic_energy.values(), *d.potential_energy.values())
@@ -222,7 +223,7 @@ def _pin_puma():
 def puma():
     r = ex.puma560()
     d = _derive(r)
-    return r, d, d.numeric(r.values)
+    return r, d, lambdify_dynamics(d, r.values)
 
 
 def test_puma560_against_robotics_toolbox(puma):
@@ -270,7 +271,7 @@ def test_puma560_numeric_only_path(puma):
 def test_puma560_symbolic_parameters_against_numeric():
     r = ex.puma560(symbolic_parameters=True)
     d = _derive(r)
-    nd = d.numeric(r.values)
+    nd = lambdify_dynamics(d, r.values)
     p = _rtb_puma()
     rng = np.random.default_rng(11)
     q, qd, qdd = rng.uniform(-np.pi, np.pi, (3, 6))
@@ -282,8 +283,8 @@ def test_puma560_symbolic_parameters_against_numeric():
 def test_tree_two_branches_against_kane():
     """A base joint carrying two independent arms (a tree): each branch's joint moves only
     its own bodies."""
-    from robosolve.dynamics import reference as ref
-    from robosolve.dynamics.examples import RobotDef, _joint, _rod, _point
+    from tests.support import mechanics as ref
+    from tests.support.robots import RobotDef, _joint, _rod, _point
 
     L1, L2, L3, m1, m2, m3, g, F = sp.symbols("L1 L2 L3 m1 m2 m3 g F", positive=True)
     j1, j2, j3 = (_joint(f"q{i}", index=i) for i in (1, 2, 3))
@@ -318,8 +319,8 @@ def test_tree_two_branches_against_kane():
 
 def test_offsets_and_symbolic_angles_against_kane():
     """Joint angles with offsets and a symbolic fixed twist stay in the cos/sin ring."""
-    from robosolve.dynamics import reference as ref
-    from robosolve.dynamics.examples import RobotDef, _joint, _rod, _point
+    from tests.support import mechanics as ref
+    from tests.support.robots import RobotDef, _joint, _rod, _point
 
     L1, L2, m1, m2, g, alpha = sp.symbols("L1 L2 m1 m2 g alpha", positive=True)
     j1, j2 = _joint("q1", index=1), _joint("q2", index=2)

@@ -5,7 +5,7 @@ import pytest
 import sympy as sp
 
 from robosolve.motion.control import simulate
-from robosolve.motion.numeric import FastDynamics
+from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import synchronize
 
 try:
@@ -17,7 +17,7 @@ except ImportError:
 @pytest.fixture(scope="module")
 def arm():
     M, c, g, q, qd, qdd, params = symbolic()
-    return FastDynamics.from_symbolic(M, c, g, q, qd, subs=params)
+    return NumericDynamics.from_symbolic(M, c, g, q, qd, subs=params)
 
 
 @pytest.fixture(scope="module")

@@ -7,6 +7,7 @@ import pytest
 
 from robosolve.load.loader import load_problem_text
 from robosolve.pipeline import solve_problem
+from robosolve.solvers.base import Budgets
 
 ARM = """
 robosolve: 1
@@ -33,9 +34,13 @@ PROFILE = """  - {type: motion_profile, id: prof, from: {theta1: 0, theta2: 0}, 
 """
 
 
-def run(questions, F="5"):
-    report = solve_problem(load_problem_text(ARM % (F, PROFILE + questions)))
+def run(questions, F="5", budgets=None):
+    report = solve_problem(load_problem_text(ARM % (F, PROFILE + questions)), budgets)
     return {a.id: a for a in report.answers}
+
+
+# A dynamics budget no derivation meets: the solvers take the numeric-only path.
+NO_SYMBOLIC_DYNAMICS = Budgets(dynamics_seconds=1e-6)
 
 
 def test_motion_profile_answers():
@@ -116,14 +121,11 @@ def test_profile_that_failed_gives_an_error_answer():
     assert ans["joint_torques"].error is None
 
 
-def test_numeric_only_path_when_the_symbolic_derivation_times_out(monkeypatch):
+def test_numeric_only_path_when_the_symbolic_derivation_times_out():
+    # two routes of one engine (symbolic M, c, g lambdified vs the numeric-only assembly)
     qs = "  - {type: joint_torques}\n  - {type: p_control, gains: {theta1: 500, theta2: 500}}\n"
     sym = run(qs)
-    import robosolve.motion.adapter as adapter
-    monkeypatch.setattr(adapter, "symbolic_dynamics", lambda ctx, seconds=None: None)
-    import robosolve.solvers.joint_torques as jt
-    monkeypatch.setattr(jt, "symbolic_dynamics", lambda ctx, seconds=None: None)
-    num = run(qs)
+    num = run(qs, budgets=NO_SYMBOLIC_DYNAMICS)
     assert "profiles" not in num["joint_torques"].symbolic
     assert any("numerically" in n for n in num["joint_torques"].notes)
     for act in ("C1", "C2"):
@@ -144,7 +146,7 @@ questions:
 """
 
 
-def test_scara_prismatic_three_joints_symbolic_vs_numeric_only(monkeypatch):
+def test_scara_prismatic_three_joints_symbolic_vs_numeric_only():
     # the compiled 3-joint closed loop (M solved by symbolic LU) against the engine's
     # numeric-only M, c, g with numpy solves; and the prismatic joint's holding force
     from pathlib import Path
@@ -152,19 +154,15 @@ def test_scara_prismatic_three_joints_symbolic_vs_numeric_only(monkeypatch):
     base = (Path(__file__).resolve().parent.parent / "problems" / "scara-rrp.yaml").read_text()
     text = base[:base.index("questions:")] + SCARA_QUESTIONS
 
-    def solve_all():
-        return {a.id: a for a in solve_problem(load_problem_text(text)).answers}
+    def solve_all(budgets=None):
+        return {a.id: a for a in solve_problem(load_problem_text(text), budgets).answers}
 
     sym = solve_all()
     f3 = sym["joint_torques"].numeric["actuators"]["F3"]
     # l is measured downwards (M23 = Tz(-l)): the actuator holds the payload (m3 g = 19.62 N)
     # and brakes its descent at 1 m/s^2 at the end: -m3 (g + a) = -21.62 N
     assert f3["peak"] == pytest.approx(-2 * (9.81 + 1), rel=1e-12)
-    import robosolve.motion.adapter as adapter
-    import robosolve.solvers.joint_torques as jt
-    monkeypatch.setattr(adapter, "symbolic_dynamics", lambda ctx, seconds=None: None)
-    monkeypatch.setattr(jt, "symbolic_dynamics", lambda ctx, seconds=None: None)
-    num = solve_all()
+    num = solve_all(NO_SYMBOLIC_DYNAMICS)
     for act in ("C1", "C2", "F3"):
         assert num["joint_torques"].numeric["actuators"][act]["peak"] == pytest.approx(
             sym["joint_torques"].numeric["actuators"][act]["peak"], rel=1e-9)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from robosolve.motion.numeric import FastDynamics
+from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import synchronize
 from robosolve.motion.torques import closed_form_pieces, torques_along
 
@@ -17,7 +17,7 @@ except ImportError:                      # tests/ imported as a package
 @pytest.fixture(scope="module")
 def arm():
     M, c, g, q, qd, qdd, params = symbolic()
-    dyn = FastDynamics.from_symbolic(M, c, g, q, qd, subs=params)
+    dyn = NumericDynamics.from_symbolic(M, c, g, q, qd, subs=params)
     tau = M * sp.Matrix(qdd) + c + g
     return dict(M=M, c=c, g=g, q=q, qd=qd, qdd=qdd, params=params, dyn=dyn, tau=list(tau))
 

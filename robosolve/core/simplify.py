@@ -69,3 +69,12 @@ def _has_trig_products(expr) -> bool:
 
 def tidy_matrix(m: sp.Matrix, seconds: float = 5.0) -> sp.Matrix:
     return m.applyfunc(lambda e: tidy(e, seconds))
+
+
+def small_trig(expr):
+    """Trig-simplify a *small* expression (the dynamics engine's sympy fallback algebra:
+    pieces of one link at a time); expressions without sin/cos are only expanded."""
+    expr = sp.sympify(expr)
+    if expr.is_number or not expr.has(sp.sin, sp.cos):
+        return sp.expand(expr)
+    return sp.trigsimp(sp.expand(expr))

@@ -34,21 +34,13 @@ import sympy as sp
 
 from robosolve.core.matrices import action_matrix
 from robosolve.core.transforms import skew, vex
-from robosolve.dynamics.api import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
+from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra, fourier_terms, product_terms
+from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
 
-__all__ = ["DynamicsEngine", "tsimp"]
+__all__ = ["DynamicsEngine"]
 
 BASE = "0"
 COMPACT_MAX_JOINTS = 4  # robots up to this size get the sum-of-angles compaction
-
-
-def tsimp(expr):
-    """Trig-simplify a *small* expression (cheap canonical form otherwise)."""
-    expr = sp.sympify(expr)
-    if expr.is_number or not expr.has(sp.sin, sp.cos):
-        return sp.expand(expr)
-    out = sp.trigsimp(sp.expand(expr))
-    return out
 
 
 class DynamicsEngine:
@@ -97,8 +89,6 @@ class DynamicsEngine:
 
     # ------------------------------------------------------------------ algebra
     def _setup_algebra(self, algebra):
-        from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra
-
         exprs, self._slot = [], {}
 
         def put(key, values):
@@ -345,8 +335,6 @@ class DynamicsEngine:
         both the terms are grouped by their trig factor with the parameter coefficient
         factored. No `trigsimp`: both forms come from the polynomial in microseconds.
         """
-        from robosolve.dynamics.trigpoly import TrigAlgebra, fourier_terms, product_terms
-
         alg = self.alg
         if not isinstance(alg, TrigAlgebra):
             expr = sp.sympify(p)

@@ -1,24 +1,37 @@
-"""The bridge between a problem's `RobotModel` and the dynamics engine (one derivation per
-model, shared by `equations_of_motion`, `joint_torques` and the control solvers).
+"""The one bridge between a problem's `RobotModel` and the dynamics engine (one derivation
+per model, shared by `equations_of_motion`, `joint_torques` and the control solvers).
 
     dyn = dynamics_for(model)                 # Dynamics (symbolic), cached per model
     nd, note = numeric_for(model, subs)       # NumericDynamics; numeric-only fallback
+    nd, dyn = simulation_dynamics(model, subs)  # NumericDynamics compiled in one function
+                                              # (closed-loop ODE), dyn None on the fallback
+
+The model is read duck-typed (frames, joints, bodies, forces, M_local, J_local): this
+module imports nothing above the engines.
 """
 
 from __future__ import annotations
 
 import weakref
 
-from robosolve.dynamics.api import (BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec,
-                                    NumericDynamics)
+from robosolve.core.timing import time_limit
+from robosolve.dynamics.api import derive_dynamics, numeric_dynamics
+from robosolve.dynamics.numeric import NumericDynamics, lambdify_dynamics
+from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
+from robosolve.errors import SymbolicTimeout
 
-__all__ = ["engine_inputs", "dynamics_for", "numeric_for", "DYNAMICS_SECONDS"]
+__all__ = ["engine_inputs", "dynamics_for", "numeric_for", "simulation_dynamics",
+           "DYNAMICS_SECONDS"]
 
 # Budget of the symbolic derivation before the numeric-only path takes over. The PUMA 560
 # (6 joints, 51 symbolic parameters) takes ~5 s on a 2-core machine.
 DYNAMICS_SECONDS = 90.0
 
 _CACHE: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+NUMERIC_ONLY_NOTE = ("the symbolic equations of motion took too long: the numeric values come "
+                     "from the numeric-only path (mass matrix and velocity terms assembled "
+                     "numerically from the body-frame L matrices)")
 
 
 def _ordered_frames(model) -> list[str]:
@@ -70,20 +83,18 @@ def dynamics_for(model, seconds: float | None = DYNAMICS_SECONDS) -> Dynamics:
     Raises robosolve.errors.SymbolicTimeout past `seconds` (the failure is cached too, so
     the next solver goes straight to the numeric path).
     """
-    from robosolve.core.timing import time_limit
-    from robosolve.dynamics.api import derive_dynamics
-    from robosolve.errors import SymbolicTimeout
-
     store = _store(model)
     if "dynamics" in store:
         if isinstance(store["dynamics"], SymbolicTimeout):
             raise store["dynamics"]
         return store["dynamics"]
+    token = None
     try:
         with time_limit(seconds or 0) as token:
             dyn = derive_dynamics(**engine_inputs(model))
     except SymbolicTimeout as exc:
-        if getattr(exc, "token", token) is not token:
+        # (token None: the limit expired while it was being set up, so it is ours)
+        if token is not None and getattr(exc, "token", token) is not token:
             raise  # an enclosing limit expired: not ours to record
         store["dynamics"] = exc
         raise
@@ -91,26 +102,50 @@ def dynamics_for(model, seconds: float | None = DYNAMICS_SECONDS) -> Dynamics:
     return dyn
 
 
+def _joint_free(model, subs: dict) -> dict:
+    joint_syms = set(model.q) | set(model.qd) | set(model.qdd)
+    return {k: v for k, v in subs.items() if k not in joint_syms}
+
+
+def _subs_key(kind: str, subs: dict) -> tuple:
+    return (kind, tuple(sorted((str(k), str(v)) for k, v in subs.items())))
+
+
 def numeric_for(model, subs: dict, seconds: float | None = DYNAMICS_SECONDS
                 ) -> tuple[NumericDynamics, str | None]:
     """NumericDynamics with the values `subs` (parameters); a note when the symbolic
     derivation was cut short and the numeric-only path answered."""
-    from robosolve.dynamics.api import numeric_dynamics
-    from robosolve.errors import SymbolicTimeout
-
-    joint_syms = set(model.q) | set(model.qd) | set(model.qdd)
-    subs = {k: v for k, v in subs.items() if k not in joint_syms}
-    key = ("numeric", tuple(sorted((str(k), str(v)) for k, v in subs.items())))
+    subs = _joint_free(model, subs)
+    key = _subs_key("numeric", subs)
     store = _store(model)
     if key in store:
         return store[key]
     try:
         dyn = dynamics_for(model, seconds)
-        out = (dyn.numeric(subs), None)
+        out = (lambdify_dynamics(dyn, subs), None)
     except SymbolicTimeout:
-        nd = numeric_dynamics(**engine_inputs(model), subs=subs)
-        out = (nd, "the symbolic equations of motion took too long: the numeric values come "
-                   "from the numeric-only path (mass matrix and velocity terms assembled "
-                   "numerically from the body-frame L matrices)")
+        out = (numeric_dynamics(**engine_inputs(model), subs=subs), NUMERIC_ONLY_NOTE)
     store[key] = out
     return out
+
+
+def simulation_dynamics(model, subs: dict, seconds: float | None = DYNAMICS_SECONDS
+                        ) -> tuple[NumericDynamics, Dynamics | None]:
+    """(NumericDynamics, Dynamics or None) for simulations and torque samples.
+
+    From the symbolic Dynamics (M, c, g, f_ext lambdified in one function, which the
+    closed-loop ODE calls thousands of times) when it can be derived in time; otherwise
+    the numeric-only path (cached per parameter values), with None for the Dynamics.
+    Raises ValueError naming the parameters without a value.
+    """
+    try:
+        dyn = dynamics_for(model, seconds)
+    except SymbolicTimeout:
+        dyn = None
+    if dyn is not None:
+        return NumericDynamics.from_dynamics(dyn, subs), dyn
+    key = _subs_key("numeric-only", subs)
+    store = _store(model)
+    if key not in store:
+        store[key] = numeric_dynamics(**engine_inputs(model), subs=subs)
+    return store[key], None

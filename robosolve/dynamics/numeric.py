@@ -1,15 +1,215 @@
-"""Numeric evaluation of the equations of motion (lambdify with cse, or numeric-only)."""
+"""Numeric evaluation of the equations of motion: the one numeric type `NumericDynamics`
+(lambdified with cse from the symbolic equations, or assembled numerically)."""
 
 from __future__ import annotations
 
-from typing import Mapping
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 import sympy as sp
 
-from robosolve.dynamics.api import Dynamics, NumericDynamics
+from robosolve.dynamics.types import Dynamics
 
-__all__ = ["lambdify_dynamics", "numeric_from_engine", "free_symbols_left"]
+__all__ = ["NumericDynamics", "lambdify_dynamics", "numeric_from_engine", "free_symbols_left"]
+
+
+class NumericDynamics:
+    """The one numeric form of the equations of motion M(q) qdd + c(q, qd) + g(q) = tau + f_ext(q).
+
+    Evaluation (1-D states in joint order, numpy results):
+    ``mass(q)``, ``velocity_terms(q, qd)``, ``gravity(q)``, ``external(q)``;
+    ``terms(q, qd) -> (M, c, g, f_ext)`` in one call; ``actuators(q, qd, qdd)`` (alias
+    ``inverse``) gives tau = M qdd + c + g - f_ext; ``forward(q, qd, tau)`` the
+    accelerations; ``inverse_many(Q, QD, QDD)`` takes arrays of shape (n, N);
+    ``closed_loop(...)`` compiles a control law (symbolic construction only).
+
+    Built three ways: :meth:`from_symbolic` (one lambdified function for M, c, g, f_ext:
+    what the closed-loop ODE calls thousands of times), :func:`lambdify_dynamics` (one
+    function per term, from a `Dynamics`), :func:`numeric_from_engine` (numeric-only path
+    for big robots). ``note`` says which path answered when that matters to a reader.
+    """
+
+    def __init__(self, n: int, terms: Callable | None = None, terms_many: Callable | None = None,
+                 symbolic=None, *, mass: Callable | None = None,
+                 velocity_terms: Callable | None = None, gravity: Callable | None = None,
+                 external: Callable | None = None, actuators: Callable | None = None,
+                 note: str = "", time: sp.Symbol | None = None):
+        self.n = n
+        self.note = note
+        # the time symbol when the external forces vary with time: every evaluation that
+        # involves them takes t (``terms(q, qd, t)``); None otherwise
+        self.time = time
+        self._symbolic = symbolic        # (M, c, g, f, q, qd) with numbers only, when known
+        self._terms_many = terms_many
+        self._actuators = actuators
+        if terms is None:
+            zero = np.zeros(n)
+
+            def terms(qv, qdv):
+                return (np.asarray(mass(qv), dtype=float).reshape(n, n),
+                        np.asarray(velocity_terms(qv, qdv), dtype=float).reshape(n),
+                        np.asarray(gravity(qv), dtype=float).reshape(n),
+                        zero if external is None else np.asarray(external(qv), dtype=float).reshape(n))
+        self._terms = terms
+        zeros = np.zeros(n)
+        # M, c and g never depend on time: any t serves to evaluate them
+        steady = (lambda qv, qdv: terms(qv, qdv, 0.0)) if time is not None else terms
+        self._mass = mass or (lambda qv: steady(qv, zeros)[0])
+        self._velocity = velocity_terms or (lambda qv, qdv: steady(qv, qdv)[1])
+        self._gravity = gravity or (lambda qv: steady(qv, zeros)[2])
+        self._external = external or (lambda qv, t=None: terms(qv, zeros, *_time_arg(time is not None, t))[3])
+
+    @property
+    def timed(self) -> bool:
+        return self.time is not None
+
+    # ---------------------------------------------------------- construction
+    @classmethod
+    def from_symbolic(cls, mass, velocity_terms, gravity_terms, q: Sequence[sp.Symbol],
+                      qd: Sequence[sp.Symbol], external=None, subs: dict | None = None,
+                      time: sp.Symbol | None = None) -> "NumericDynamics":
+        """Lambdify M, c, g (and f_ext, default 0) after substituting ``subs``.
+
+        ``time``: the symbol t of forces given as functions of time; when f_ext has it,
+        every evaluation of the terms takes t as its last argument.
+        Raises ValueError naming the symbols left over (a parameter without a value).
+        """
+        n = len(q)
+        mass = sp.Matrix(mass)
+        c = sp.Matrix(velocity_terms)
+        g = sp.Matrix(gravity_terms)
+        f = sp.zeros(n, 1) if external is None else sp.Matrix(external)
+        flat = list(mass) + list(c) + list(g) + list(f)
+        if subs:
+            flat = [sp.sympify(e).xreplace(_sympified(subs)) for e in flat]
+        args = list(q) + list(qd)
+        free = set().union(*(sp.sympify(e).free_symbols for e in flat))
+        timed = time is not None and time in free
+        if timed:
+            args.append(time)
+        extra = free - set(args)
+        if extra:
+            names = ", ".join(sorted(str(s) for s in extra))
+            raise ValueError(f"no value for {names}")
+        scalar = sp.lambdify(args, flat, modules="math", cse=True)
+        nn = n * n
+
+        def terms(qv, qdv, t=None):
+            out = scalar(*qv, *qdv, *_time_arg(timed, t))
+            return (np.array(out[:nn], dtype=float).reshape(n, n), np.array(out[nn:nn + n], dtype=float),
+                    np.array(out[nn + n:nn + 2 * n], dtype=float), np.array(out[nn + 2 * n:], dtype=float))
+
+        vec = sp.lambdify(args, flat, modules="numpy", cse=True)
+
+        def terms_many(Q, QD, T=None):
+            size = Q.shape[1]
+            out = [np.broadcast_to(np.asarray(v, dtype=float), (size,))
+                   for v in vec(*Q, *QD, *_time_arg(timed, T))]
+            arr = np.vstack(out)
+            return arr[:nn].reshape(n, n, size), arr[nn:nn + n], arr[nn + n:nn + 2 * n], arr[nn + 2 * n:]
+
+        sym = (sp.Matrix(n, n, flat[:nn]), sp.Matrix(flat[nn:nn + n]), sp.Matrix(flat[nn + n:nn + 2 * n]),
+               sp.Matrix(flat[nn + 2 * n:]), list(q), list(qd))
+        return cls(n, terms, terms_many, sym, time=time if timed else None)
+
+    @classmethod
+    def from_dynamics(cls, dyn: Dynamics, subs: Mapping | None = None) -> "NumericDynamics":
+        """:meth:`from_symbolic` on a `Dynamics` (external forces included; forces given as
+        functions of time use the loader's t, a real symbol)."""
+        return cls.from_symbolic(dyn.mass_matrix, dyn.velocity_terms, dyn.gravity_terms,
+                                 dyn.q, dyn.qd, external=dyn.external_forces,
+                                 subs=None if subs is None else _sympified(subs),
+                                 time=sp.Symbol("t", real=True))
+
+    def closed_loop(self, law: str, kp, kd):
+        """A fast scalar function qdd(q, qd, e, ed, qdd_d) -> list of floats, or None.
+
+        The plant's acceleration under the control law, compiled in one piece: M is
+        solved symbolically (LU) for up to 3 joints, so each call of the ODE's
+        right-hand side is a single lambdified function of floats (no small numpy
+        arrays, whose overhead would dominate).  None when only callables are known
+        or the arm has more than 3 joints (the caller then uses :meth:`forward`).
+        """
+        if self._symbolic is None or self.n > 3:
+            return None
+        m, c, g, f, q, qd = self._symbolic
+        n = self.n
+        e = sp.symbols(f"e0:{n}", real=True)
+        ed = sp.symbols(f"ed0:{n}", real=True)
+        ad = sp.symbols(f"ad0:{n}", real=True)
+        ev, edv, adv = sp.Matrix(e), sp.Matrix(ed), sp.Matrix(ad)
+        kpm = sp.diag(*[sp.Float(float(k)) for k in kp])
+        kdm = sp.diag(*[sp.Float(float(k)) for k in kd])
+        if law == "p":
+            tau = kpm * ev
+        elif law == "pd":
+            tau = kpm * ev + kdm * edv
+        elif law == "pd_gravity":
+            tau = kpm * ev + kdm * edv + g
+        elif law == "computed_torque":
+            tau = m * (adv + kdm * edv + kpm * ev) + c + g
+        else:
+            raise ValueError(f"unknown control law {law!r}")
+        if law == "computed_torque":
+            qdd = adv + kdm * edv + kpm * ev + m.LUsolve(f)      # M^-1 (tau + f - c - g)
+        else:
+            qdd = m.LUsolve(tau + f - c - g)
+        return sp.lambdify(list(q) + list(qd) + list(e) + list(ed) + list(ad)
+                           + ([self.time] if self.timed else []), list(qdd), modules="math", cse=True)
+
+    # ------------------------------------------------------------- evaluation
+    # ``t`` (``T`` for arrays): the time, needed when the external forces vary with it.
+    def terms(self, q, qd, t=None):
+        return self._terms(q, qd, t) if self.timed else self._terms(q, qd)
+
+    def terms_many(self, Q, QD, T=None):
+        return self._terms_many(Q, QD, T) if self.timed else self._terms_many(Q, QD)
+
+    def mass(self, q):
+        return self._mass(q)
+
+    def velocity_terms(self, q, qd):
+        return self._velocity(q, qd)
+
+    def gravity(self, q):
+        return self._gravity(q)
+
+    def external(self, q, t=None):
+        return self._external(q, t) if self.timed else self._external(q)
+
+    def actuators(self, q, qd, qdd, t=None):
+        """Actuator values needed: M qdd + c + g - f_ext."""
+        if self._actuators is not None and not self.timed:
+            return self._actuators(q, qd, qdd)
+        m, c, g, f = self.terms(q, qd, t)
+        return m @ np.asarray(qdd, dtype=float) + c + g - f
+
+    inverse = actuators
+
+    def forward(self, q, qd, tau, t=None):
+        """qdd = M^-1 (tau + f_ext - c - g)."""
+        m, c, g, f = self.terms(q, qd, t)
+        return np.linalg.solve(m, np.asarray(tau, dtype=float) + f - c - g)
+
+    def inverse_many(self, Q, QD, QDD, T=None):
+        Q, QD, QDD = (np.asarray(a, dtype=float) for a in (Q, QD, QDD))
+        if self._terms_many is not None:
+            m, c, g, f = self.terms_many(Q, QD, T)
+            return np.einsum("ijk,jk->ik", m, QDD) + c + g - f
+        return np.column_stack([self.inverse(Q[:, k], QD[:, k], QDD[:, k], None if T is None else T[k])
+                                for k in range(Q.shape[1])])
+
+
+def _time_arg(timed: bool, t) -> tuple:
+    if not timed:
+        return ()
+    if t is None:
+        raise ValueError("the external forces vary with time: give t")
+    return (t,)
+
+
+def _sympified(subs: Mapping) -> dict:
+    return {sp.sympify(k): sp.sympify(v) for k, v in subs.items()}
 
 
 def _subs(expr, rep):
@@ -53,12 +253,12 @@ def lambdify_dynamics(dyn: Dynamics, subs: Mapping) -> NumericDynamics:
         return v.tolist() if isinstance(v, np.ndarray) else [float(x) for x in v]
 
     return NumericDynamics(
-        n=n,
+        n,
         mass=lambda qv: np.array(fm(floats(qv)), dtype=float),
         velocity_terms=lambda qv, qdv: np.array(fc(floats(qv), floats(qdv)), dtype=float),
         gravity=lambda qv: np.array(fg(floats(qv)), dtype=float),
         external=lambda qv: np.array(fe(floats(qv)), dtype=float),
-        actuators_fn=lambda qv, qdv, qddv: np.array(
+        actuators=lambda qv, qdv, qddv: np.array(
             ft(floats(qv), floats(qdv), floats(qddv)), dtype=float),
     )
 
@@ -116,7 +316,7 @@ def numeric_from_engine(eng) -> NumericDynamics:
                 - 0.5 * np.einsum("jki,j,k->i", dm, qdv, qdv))
 
     return NumericDynamics(
-        n=n, mass=mass, velocity_terms=velocity_terms,
+        n, mass=mass, velocity_terms=velocity_terms,
         gravity=lambda qv: np.array(f_g(qv), dtype=float),
         external=lambda qv: np.array(f_ext(qv), dtype=float),
         note="numeric-only dynamics (mass matrix assembled numerically at each call)",

@@ -16,6 +16,8 @@ from __future__ import annotations
 import sympy as sp
 from sympy.polys.rings import sring
 
+from robosolve.core.simplify import small_trig
+
 __all__ = ["TrigAlgebra"]
 
 
@@ -174,11 +176,9 @@ class SympyAlgebra:
     half = sp.S.Half
 
     def __init__(self, q, exprs, simplify=True):
-        from robosolve.dynamics.engine import tsimp
-
         self.q = list(q)
         self.elements = [sp.sympify(e) for e in exprs]
-        self._simp = tsimp if simplify else (lambda e: e)
+        self._simp = small_trig if simplify else (lambda e: e)
 
     def element(self, k):
         return self.elements[k]

@@ -11,13 +11,13 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from robosolve.errors import MissingValues
+
 
 def _num(obj, subs) -> np.ndarray:
     m = sp.Matrix(obj).xreplace(subs).evalf(17)
     missing = sorted(s.name for s in m.free_symbols)
     if missing:
-        from robosolve.solvers.base import MissingValues
-
         raise MissingValues(missing)
     return np.array(m.tolist(), dtype=float)
 

@@ -7,6 +7,9 @@ Pure engines on plain sympy/numpy inputs (no loader, no I/O):
 * :mod:`robosolve.motion.torques`: actuator forces along a profile, closed form
   piecewise in t and signed peaks;
 * :mod:`robosolve.motion.control`: closed-loop simulation (p, pd, pd_gravity,
-  computed_torque) with max and final errors;
-* :mod:`robosolve.motion.numeric`: fast numeric M(q), c(q, qd), g(q) from sympy.
+  computed_torque) with max and final errors.
+
+The numeric equations of motion they take are
+:class:`robosolve.dynamics.numeric.NumericDynamics` (built by the model bridge,
+:mod:`robosolve.dynamics.model`).
 """

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from robosolve.motion.numeric import FastDynamics
+from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import NumericPlan
 
 __all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT"]
@@ -104,7 +104,7 @@ def _law_torque(law, kp, kd, e, ed, qdd_d, m, c, g):
     return m @ (qdd_d + kd * ed + kp * e) + c + g
 
 
-def simulate(dyn: FastDynamics, plan: NumericPlan, law: str, kp, kd=None, start=None,
+def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, start=None,
              duration: float | None = None, samples: int = 801,
              rtol: float = RTOL, atol=None, method: str = "LSODA",
              time_limit: float | None = TIME_LIMIT) -> ControlResult:

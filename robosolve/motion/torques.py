@@ -18,7 +18,7 @@ from typing import Sequence
 import numpy as np
 import sympy as sp
 
-from robosolve.motion.numeric import FastDynamics
+from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import SyncProfile
 
 __all__ = ["TorqueResult", "torques_along", "closed_form_pieces"]
@@ -128,7 +128,7 @@ def golden_max(f, lo: float, hi: float, iterations: int = 64) -> float:
     return (a + b) / 2
 
 
-def torques_along(profile: SyncProfile, dyn: FastDynamics, names: Sequence[str],
+def torques_along(profile: SyncProfile, dyn: NumericDynamics, names: Sequence[str],
                   samples_per_interval: int = 241) -> TorqueResult:
     """Sample tau(t) on every interval (closed at both ends) and find the signed peaks."""
     plan = profile.numeric_plan()

@@ -72,6 +72,19 @@ class AnswerKey:
     numeric: bool = True
     top: bool = False
     fields: tuple = ()            # for RECORD / ACTUATOR_RECORDS: AnswerKeys of the fields
+    # -- for the grader (grading.md) --
+    by_value: bool = False        # values compared as numbers even when written as expressions
+    pose: bool = False            # a 4x4 homogeneous pose: the `inverse` diagnosis applies
+    notation: str = ""            # the course's symbol in feedback ("{sub}": the question's frame
+                                  #   as a subscript); hints may use {frame} and {symbol}
+    hints: tuple = ()             # (diagnosis, sentence in the course's words) pairs
+
+    @property
+    def symbol(self) -> str:
+        return self.notation or self.name
+
+    def hint(self, diagnosis: str) -> str:
+        return dict(self.hints).get(diagnosis, "")
 
     def field(self, name: str) -> "AnswerKey | None":
         return next((f for f in self.fields if f.name == name), None)
@@ -170,7 +183,12 @@ _TYPES = [
         "position", "Position (direct kinematics)", "§8 question 1",
         options={},
         answers=(
-            _k("M", MATRIX, "pose ⁰Mₖ of the frame in frame 0", principal=True, shape=(4, 4)),
+            _k("M", MATRIX, "pose ⁰Mₖ of the frame in frame 0", principal=True, shape=(4, 4),
+               pose=True, notation="⁰M{sub}", hints=(
+                   ("transposed", "the columns of R are the axes of frame {frame} in frame 0, and the "
+                                  "last column is the origin of frame {frame} in frame 0"),
+                   ("inverse", "that is the pose of frame 0 in frame {frame}; {symbol} gives frame "
+                               "{frame} in frame 0 ({symbol} = ⁰M₁·¹M₂·…)"))),
             _k("position", VECTOR, "the point in frame 0", principal=True, shape=(3,)),
             _k("chain", MATRIX_LIST, "ⁱ⁻¹Mᵢ of each frame in its parent, from frame 1 on"),
         ),
@@ -195,11 +213,13 @@ _TYPES = [
         options={"coordinates": "coordinates", "geometric": "bool", "bodies": "bool"},
         defaults={"geometric": False, "bodies": False},
         answers=(
-            _k("J", MATRIX, "the Jacobian of the coordinates", principal=True, shape=(R, N)),
+            _k("J", MATRIX, "the Jacobian of the coordinates", principal=True, shape=(R, N),
+               hints=(("transposed", "J has one row per coordinate and one column per joint: "
+                                     "column i is ∂(coordinates)/∂qᵢ"),)),
             _k("det", SCALAR, "det J (square J)", principal=True),
             _k("manipulability", SCALAR, "product of the singular values (J not square)", principal=True),
             _k("singularities", JOINT_MAP_SET, "conditions joint -> value making J lose rank",
-               principal=True, angle=True, unordered=True),
+               principal=True, angle=True, unordered=True, by_value=True),
             _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N)),
         ),
     ),
@@ -208,7 +228,9 @@ _TYPES = [
         options={"force": "exprs", "torque": "vector3", "weight": "bool", "coordinates": "coordinates"},
         defaults={"weight": False},
         answers=(
-            _k("Fq", JOINT_MAP, "joint forces balancing the load, Fq = −Jᵀ·Fs", principal=True),
+            _k("Fq", JOINT_MAP, "joint forces balancing the load, Fq = −Jᵀ·Fs", principal=True,
+               hints=(("negated", "Fq = −Jᵀ·Fs is what the joints exert to balance the load; "
+                                  "+Jᵀ·Fs is the load's own action on the joints"),)),
         ),
     ),
     QuestionType(
@@ -264,7 +286,7 @@ _TYPES = [
         options={},
         needs_dynamics=True,
         answers=(
-            _k("mass_matrix", MATRIX, "M(q)", principal=True, shape=(N, N)),
+            _k("mass_matrix", MATRIX, "M(q)", principal=True, shape=(N, N), notation="M(q)"),
             _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, shape=(N,)),
             _k("gravity_terms", VECTOR, "g(q)", principal=True, shape=(N,)),
             _k("generalized_forces", JOINT_MAP, "actuator plus external forces, per joint",
@@ -332,7 +354,8 @@ _TYPES = [
             _k("alpha", SCALAR, "rotation angle in [0, π]", principal=True, angle=True),
             _k("h", SCALAR, "translation along the axis", principal=True),
             _k("P", VECTOR, "the axis point nearest the origin", principal=True, shape=(3,)),
-            _k("Q", MATRIX, "the displacement matrix", shape=(4, 4)),
+            _k("Q", MATRIX, "the displacement matrix", shape=(4, 4), pose=True,
+               hints=(("inverse", "this is the displacement back, from `to` to `from`"),)),
             _k("pitch", SCALAR, "h / α"),
             _k("L", MATRIX, "[[u], P×u + pitch·u; 0, 0] (given a screw)", shape=(4, 4)),
         ),

@@ -12,10 +12,32 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.timing import time_limit
+from robosolve.dynamics.model import simulation_dynamics, dynamics_for
+from robosolve.dynamics.numeric import NumericDynamics
+from robosolve.dynamics.types import Dynamics
+from robosolve.errors import MissingValues, SymbolicTimeout
 from robosolve.load.problem import Problem
+from robosolve.motion.profiles import SyncProfile
+
+__all__ = ["Answer", "Budgets", "FigureSpec", "MissingValues", "SolveContext", "Step",
+           "missing_note"]
+
+
+@dataclass(frozen=True)
+class Budgets:
+    """How much symbolic work a solve may spend before answering numerically.
+
+    Frozen: a solve reads its budgets from its context; a test that wants a tiny budget
+    builds a context with one (``SolveContext(problem, model, budgets=Budgets(...))``).
+    """
+
+    symbolic_seconds: float = 30.0      # one symbolic step (Jacobian, statics, ellipsoids)
+    closed_form_seconds: float = 20.0   # a closed form (IK derivation, torques along a profile)
+    dynamics_seconds: float = 90.0      # the symbolic equations of motion of one robot
+
 
 # Default budget of one symbolic step before a solver falls back to numbers.
-SYMBOLIC_SECONDS = 30.0
+SYMBOLIC_SECONDS = Budgets().symbolic_seconds
 
 
 @dataclass
@@ -62,22 +84,47 @@ class Answer:
             self.notes.append(text)
 
 
-class MissingValues(Exception):
-    """Numeric evaluation needs values that are not given (null parameters, joints)."""
-
-    def __init__(self, names):
-        self.names = sorted(set(names))
-        super().__init__(", ".join(self.names))
-
-
 class SolveContext:
-    """Shared state of one problem's solve: the model and numeric helpers."""
+    """What one problem's solve shares: the problem, the model, the budgets, earlier
+    results (by question id, through typed accessors) and numeric helpers."""
 
-    def __init__(self, problem: Problem, model=None):
+    def __init__(self, problem: Problem, model=None, budgets: Budgets | None = None):
         self.problem = problem
         self.model = model
+        self.budgets = budgets or Budgets()
         self.answers: dict[str, Answer] = {}      # earlier answers, by question id
-        self.shared: dict = {}                    # solver-to-solver cache (e.g. dynamics)
+        self._profiles: dict[str, SyncProfile] = {}
+
+    # -- results of earlier questions ------------------------------------
+    def record_profile(self, qid: str, profile: SyncProfile) -> None:
+        """The synchronized profile of motion_profile question `qid` (for joint_torques, p_control)."""
+        self._profiles[qid] = profile
+
+    def profile(self, qid: str) -> SyncProfile | None:
+        """The SyncProfile of motion_profile question `qid` (None if it has no answer)."""
+        return self._profiles.get(qid)
+
+    # -- dynamics (one derivation per model, cached by the bridge) --------
+    def dynamics(self) -> Dynamics | None:
+        """The symbolic equations of motion, or None past the dynamics budget."""
+        try:
+            return dynamics_for(self.model, self.budgets.dynamics_seconds)
+        except SymbolicTimeout:
+            return None
+
+    def simulation_dynamics(self, subs: dict) -> tuple[NumericDynamics, Dynamics | None]:
+        """(NumericDynamics, Dynamics or None) with the parameters of `subs`.
+
+        Raises ValueError naming the parameters without a value.
+        """
+        params = {k: v for k, v in subs.items() if k in self.problem.parameters}
+        if self.dynamics() is not None:
+            return simulation_dynamics(self.model, subs, self.budgets.dynamics_seconds)
+        missing = sorted(s.name for s, v in self.problem.parameters.items()
+                         if v is None and s not in params)
+        if missing:
+            raise ValueError("no value for " + ", ".join(missing))
+        return simulation_dynamics(self.model, params, self.budgets.dynamics_seconds)
 
     # -- numbers ---------------------------------------------------------
     def parameter_values(self, overrides: dict | None = None) -> dict:
@@ -133,9 +180,9 @@ class SolveContext:
             answer.note(missing_note(what or key, exc.names, self.problem))
             return None
 
-    @staticmethod
-    def time_limit(seconds: float = SYMBOLIC_SECONDS):
-        return time_limit(seconds)
+    def time_limit(self, seconds: float | None = None):
+        """A time limit of `seconds` (default: the symbolic-step budget)."""
+        return time_limit(self.budgets.symbolic_seconds if seconds is None else seconds)
 
     @staticmethod
     @contextlib.contextmanager

@@ -13,7 +13,7 @@ import sympy as sp
 from robosolve.kinematics.ellipsoids_math import ellipsoids, exact_values, joint_rates
 from robosolve.kinematics.task import symbolic_budget, limited, position_axes, task_space
 from robosolve.solvers.base import (
-    SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note)
+    Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note)
 
 
 def _col(labels):
@@ -37,11 +37,8 @@ def _units(question, model, ts):
     return "N or N·m", "m/s or rad/s", "m or rad"
 
 
-SYMBOLIC_SECONDS = _BASE_SECONDS      # per symbolic step (monkeypatched in tests)
-
-
 def _budget(ctx) -> float:
-    return symbolic_budget(ctx.model, SYMBOLIC_SECONDS)
+    return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
 
 
 def solve(question, ctx: SolveContext) -> Answer:

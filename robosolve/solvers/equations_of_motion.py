@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from robosolve.dynamics.model import DYNAMICS_SECONDS, dynamics_for, numeric_for
+from robosolve.dynamics.model import numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
@@ -42,10 +42,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         raise SolverError("equations_of_motion needs a robot (joints and frames)")
     if not model.bodies:
         ans.note("no bodies are given: every mass is zero, so M = c = g = 0")
-    try:
-        dyn = dynamics_for(model, DYNAMICS_SECONDS)
-    except SymbolicTimeout:
-        dyn = None
+    dyn = ctx.dynamics()
     if dyn is None:
         return _numeric_only(question, ctx, ans)
 
@@ -264,7 +261,7 @@ def _numeric(question, ctx, ans, dyn):
 def _numeric_only(question, ctx, ans):
     """The symbolic derivation was cut short: M, c, g and actuators at `at` numerically."""
     model = ctx.model
-    ans.note(f"the symbolic equations of motion took longer than {DYNAMICS_SECONDS:g} s: "
+    ans.note(f"the symbolic equations of motion took longer than {ctx.budgets.dynamics_seconds:g} s: "
              "answered numerically at `at` (mass matrix, velocity and gravity terms, actuators)")
     if not question.at:
         ans.note("give `at` (joint values, rates, accelerations) for numeric answers")
@@ -272,7 +269,7 @@ def _numeric_only(question, ctx, ans):
     subs = ctx.substitutions(question.at)
     params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
     try:
-        nd, note = numeric_for(model, params)
+        nd, note = numeric_for(model, params, ctx.budgets.dynamics_seconds)
     except ValueError as exc:
         ans.note(f"numeric answers omitted: {exc}")
         return ans

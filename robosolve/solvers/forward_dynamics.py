@@ -15,7 +15,6 @@ import sympy as sp
 
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
-from robosolve.motion.adapter import symbolic_dynamics
 from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
@@ -106,7 +105,7 @@ def compute(question: Question, ctx: SolveContext, dyn, st: Setup, values):
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
-    dyn = symbolic_dynamics(ctx)
+    dyn = ctx.dynamics()
     if dyn is None:
         raise SolverError("the symbolic equations of motion took too long: the run needs them")
     st = setup(question, ctx, dyn)

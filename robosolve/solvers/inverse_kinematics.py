@@ -24,7 +24,6 @@ from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
 
-CLOSED_FORM_SECONDS = 20.0
 
 
 def _is_point_coordinate(e) -> bool:
@@ -128,7 +127,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         select_num = {k: ctx.numeric(v, params) for k, v in select.items()}
 
     res = solve_ik(equations, ik_joints, values, select=select_num or "limits",
-                   time_limit_s=CLOSED_FORM_SECONDS, target_symbols=target_syms,
+                   time_limit_s=ctx.budgets.closed_form_seconds, target_symbols=target_syms,
                    latex_names=names, tex=tex, labels=[t for t, _, _, _ in shown])
 
     if res.status == "redundant":
@@ -243,7 +242,7 @@ def _symbolic_only(ans, ctx, equations, ik_joints, names, tex, missing):
         raise SolverError(f"{len(exprs)} equations for {len(ik_joints)} joints, and numeric values "
                           f"are missing ({', '.join(missing)})")
     try:
-        with ctx.time_limit(CLOSED_FORM_SECONDS):
+        with ctx.time_limit(ctx.budgets.closed_form_seconds):
             cf = cfm.derive(exprs, [j.symbol for j in ik_joints], [j.revolute for j in ik_joints], names,
                             tex=tex)
             branches = cf.branches()

@@ -19,7 +19,7 @@ from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
 from robosolve.kinematics.task import (
     joint_kinds, joint_l0, limited, symbolic_budget, task_space, tidy_limited)
-from robosolve.solvers.base import SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, MissingValues, SolveContext, Step
+from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
 
 def _col(labels):
@@ -30,11 +30,8 @@ def _qtex(model):
     return [sp.latex(s) for s in model.q]
 
 
-SYMBOLIC_SECONDS = _BASE_SECONDS      # per symbolic step (monkeypatched in tests)
-
-
 def _budget(ctx) -> float:
-    return symbolic_budget(ctx.model, SYMBOLIC_SECONDS)
+    return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
 
 
 def solve(question, ctx: SolveContext) -> Answer:

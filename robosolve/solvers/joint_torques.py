@@ -14,12 +14,10 @@ import sympy as sp
 
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
-from robosolve.motion.adapter import numeric_engine, profile_for, symbolic_dynamics
 from robosolve.motion.torques import closed_form_pieces, torques_along
 from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
-CLOSED_FORM_SECONDS = 20.0
 
 
 def _unit(kind: str) -> str:
@@ -29,7 +27,7 @@ def _unit(kind: str) -> str:
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ref = question.options.get("profile")
-    prof = profile_for(ctx, ref)
+    prof = ctx.profile(ref)
     if prof is None:
         raise SolverError(f"the motion profile '{ref}' has no answer")
     ans = Answer(question.type, question.id)
@@ -37,7 +35,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     joints = model.joints
     act_names = [str(j.actuator) for j in joints]
 
-    dyn = symbolic_dynamics(ctx)
+    dyn = ctx.dynamics()
     qs, qds, qdds = model.q, model.qd, model.qdd
     lines = [f"{sp.latex(j.actuator)}" for j in joints]
     if dyn is not None:
@@ -57,7 +55,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     pw = None
     if tau is not None and prof.T.is_number and prof.T != 0:
         try:
-            with ctx.time_limit(CLOSED_FORM_SECONDS):
+            with ctx.time_limit(ctx.budgets.closed_form_seconds):
                 # a force varying with time uses the loader's t: the profile's own t replaces it
                 timed = [sp.sympify(e).xreplace({sp.Symbol("t", real=True): prof.t}) for e in tau]
                 # the dynamics stay symbolic (spec: symbolic answers keep every parameter); the
@@ -86,7 +84,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ans.note(missing_note("torques", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
         return ans
     try:
-        fast, _ = numeric_engine(ctx, subs)
+        fast, _ = ctx.simulation_dynamics(subs)
     except ValueError as exc:
         ans.note(f"numeric torques omitted: {exc}")
         return ans

@@ -12,7 +12,6 @@ import sympy as sp
 
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
-from robosolve.motion.adapter import store_profile
 from robosolve.motion.profiles import ProfileError, synchronize
 from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
@@ -51,7 +50,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         prof = synchronize(names, start, end, acc, shape=shape, max_velocity=vel, t=T_SYMBOL)
     except ProfileError as exc:
         raise SolverError(str(exc)) from None
-    store_profile(ctx, question.id, prof)
+    ctx.record_profile(question.id, prof)
 
     syms = {j.name: sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in joints}
     # -- step 1: displacements and own times

@@ -13,7 +13,6 @@ import sympy as sp
 
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
-from robosolve.motion.adapter import numeric_engine, profile_for
 from robosolve.motion.control import simulate
 from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
@@ -62,7 +61,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     opts = question.options
     ref = opts.get("profile")
-    prof = profile_for(ctx, ref)
+    prof = ctx.profile(ref)
     if prof is None:
         raise SolverError(f"the motion profile '{ref}' has no answer")
     ans = Answer(question.type, question.id)
@@ -98,7 +97,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                    ("", gains_tex)],
     ))
     try:
-        fast, _ = numeric_engine(ctx, subs)
+        fast, _ = ctx.simulation_dynamics(subs)
     except ValueError as exc:
         ans.note(f"numeric simulation omitted: {exc}")
         return ans

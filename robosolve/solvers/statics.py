@@ -15,18 +15,15 @@ import sympy as sp
 
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
 from robosolve.kinematics.task import symbolic_budget, limited, task_space, tidy_limited
-from robosolve.solvers.base import SYMBOLIC_SECONDS as _BASE_SECONDS, Answer, SolveContext, Step
+from robosolve.solvers.base import Answer, SolveContext, Step
 
 
 def _actuator_tex(model):
     return [sp.latex(j.actuator) for j in model.joints]
 
 
-SYMBOLIC_SECONDS = _BASE_SECONDS      # per symbolic step (monkeypatched in tests)
-
-
 def _budget(ctx) -> float:
-    return symbolic_budget(ctx.model, SYMBOLIC_SECONDS)
+    return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
 
 
 def solve(question, ctx: SolveContext) -> Answer:

@@ -14,7 +14,7 @@ import sympy as sp
 
 from robosolve.core.matrices import pseudo_inertia_from_com, pseudo_inertia_rod
 from robosolve.core.transforms import ELEMENTARY
-from robosolve.dynamics.api import BodySpec, FrameSpec, JointSpec, LoadSpec
+from robosolve.dynamics.types import BodySpec, FrameSpec, JointSpec, LoadSpec
 
 __all__ = ["RobotDef", "BodyDef", "planar_2r", "scara", "anthropomorphic_3r", "puma560",
            "one_link", "rp_vertical", "rod_com_inertia"]

@@ -1,0 +1,190 @@
+"""Answers files (grading.md "The answers file"): YAML with line numbers -> `Submission`.
+
+Two stages, so that `grade` can read a file before it knows which problem it names:
+`read_answers` checks the file's own layout (YAML, `robosolve-answers: 1`, `problem`,
+`student`, `answers` a mapping of mappings); `resolve_answers` checks the question ids
+and answer keys against the problem and the question-type registry, flattening nested
+mappings of record keys into dotted keys. Both report every issue as
+`FILE:LINE: path: message` (the loader's `InputIssue`), with a did-you-mean.
+The values themselves are parsed later, key by key (a value that does not parse is
+that key's `invalid` verdict, not an error of the file).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from robosolve.errors import InputError, InputIssue
+from robosolve.load.expressions import did_you_mean
+from robosolve.load.loader import path_str, type_name
+from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml
+from robosolve.questions.registry import RECORD, question_type
+
+FORMAT_KEY = "robosolve-answers"
+TOP_KEYS = (FORMAT_KEY, "problem", "student", "answers")
+
+
+@dataclass
+class Given:
+    """One answer key as the file gives it: the raw YAML value and where it is."""
+
+    key: str                       # dotted path, e.g. "force.lengths"
+    value: object                  # plain YAML data (numbers, strings, lists, mappings)
+    path: tuple                    # YAML path, for FILE:LINE messages
+    line: int
+
+
+@dataclass
+class Submission:
+    file: str
+    student: str
+    problem_file: Path | None      # resolved against the answers file's folder
+    raw: dict                      # question id -> raw mapping (before resolve_answers)
+    source: Source
+    answers: dict = field(default_factory=dict)   # question id -> {dotted key: Given}
+    issues: list = field(default_factory=list)    # layout issues found by read_answers (not fatal)
+
+    def where(self, path) -> tuple[int, str]:
+        return self.source.line(path), path_str(path)
+
+
+def safe_name(student: str) -> str:
+    """variants.md's rule: lower case, runs outside [a-z0-9_-] -> '-', no '-' at the ends."""
+    return re.sub(r"[^a-z0-9_-]+", "-", student.lower()).strip("-")
+
+
+class _Issues:
+    def __init__(self, source: Source):
+        self.src = source
+        self.items: list[InputIssue] = []
+
+    def error(self, path, message: str) -> None:
+        self.items.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
+
+    def raise_if_any(self) -> None:
+        if self.items:
+            raise InputError(self.items)
+
+
+def read_answers(file) -> Submission:
+    """Read an answers file and check its layout.
+
+    Raises InputError when nothing can be checked further (YAML, not a mapping, format key,
+    `answers`); smaller issues are kept in `issues` and raised by `resolve_answers` together
+    with those of the questions and keys, so one run reports every mistake.
+    """
+    name = str(file)
+    try:
+        text = Path(file).read_bytes().decode("utf-8")
+    except OSError as exc:
+        raise InputError([InputIssue(name, 1, "", f"cannot read the file: {exc.strerror or exc}")])
+    except UnicodeDecodeError:
+        raise InputError([InputIssue(name, 1, "", "the file is not UTF-8 text")])
+    return read_answers_text(text, name)
+
+
+def read_answers_text(text: str, file: str = "<answers>") -> Submission:
+    try:
+        source, duplicates = parse_yaml(text, file)
+    except YamlProblem as exc:
+        message = exc.message.replace("expected a mapping with `robosolve: 1`",
+                                      f"expected a mapping with `{FORMAT_KEY}: 1`")
+        raise InputError([InputIssue(file, exc.line, "", message)])
+    issues = _Issues(source)
+    for line, path, key in duplicates:
+        issues.items.append(InputIssue(file, line, path_str(path), f"duplicate key '{key}'"))
+    data = source.data
+    if not isinstance(data, dict):
+        issues.error((), f"an answers file is a mapping with `{FORMAT_KEY}: 1`, got {type_name(data)}")
+        issues.raise_if_any()
+    for key in data:
+        if key == "robosolve" and FORMAT_KEY not in data:
+            continue              # a problem file given as answers: one message below says so
+        if key not in TOP_KEYS:
+            issues.error((key,), f"unknown key '{key}'" + did_you_mean(key, TOP_KEYS)
+                         + f" (expected one of: {', '.join(TOP_KEYS)})")
+    if FORMAT_KEY not in data:
+        hint = " (this looks like a problem file)" if "robosolve" in data else ""
+        issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1){hint}")
+    elif data[FORMAT_KEY] != 1 or isinstance(data[FORMAT_KEY], bool):
+        issues.error((FORMAT_KEY,), f"unsupported answers format {data[FORMAT_KEY]!r} (expected 1)")
+    problem_file = None
+    if data.get("problem") is not None:
+        if isinstance(data["problem"], str) and data["problem"].strip():
+            problem_file = Path(file).parent / data["problem"]
+        else:
+            issues.error(("problem",), f"expected the path of the problem file, got {type_name(data['problem'])}")
+    student = Path(file).stem
+    if "student" in data:
+        s = data["student"]
+        if isinstance(s, (str, int)) and not isinstance(s, bool) and str(s).strip():
+            student = str(s).strip()
+        else:
+            issues.error(("student",), f"expected the student's id, got {type_name(s)}")
+    raw = {}
+    if "answers" not in data:
+        issues.error((), "missing required key 'answers' (question id -> answer key -> value)")
+    elif not isinstance(data["answers"], dict):
+        issues.error(("answers",), f"expected a mapping question id -> answers, got {type_name(data['answers'])}")
+    else:
+        for qid, value in data["answers"].items():
+            if not isinstance(value, dict):
+                issues.error(("answers", qid), f"expected a mapping answer key -> value, got {type_name(value)}")
+            else:
+                raw[qid] = value
+    if any(i.path in ("", FORMAT_KEY, "answers") for i in issues.items):
+        issues.raise_if_any()     # no answers to check against a problem: stop here
+    return Submission(file, student, problem_file, raw, source, issues=list(issues.items))
+
+
+def resolve_answers(sub: Submission, problem) -> Submission:
+    """Check question ids and keys against `problem`; fill `sub.answers`. Raises InputError."""
+    issues = _Issues(sub.source)
+    issues.items = list(sub.issues)
+    questions = {q.id: q for q in problem.questions}
+    sub.answers = {}
+    for qid, mapping in sub.raw.items():
+        path = ("answers", qid)
+        q = questions.get(qid)
+        if q is None:
+            issues.error(path, f"unknown question id '{qid}'" + did_you_mean(qid, questions)
+                         + f" (the problem's questions: {', '.join(questions)})")
+            continue
+        qt = question_type(q.type)
+        out: dict[str, Given] = {}
+        _flatten(issues, sub.source, qt, mapping, path, "", out)
+        sub.answers[qid] = out
+    issues.raise_if_any()
+    return sub
+
+
+def known_keys(qt) -> list[str]:
+    """Every key (dotted for record fields) an answers file may give for this type."""
+    out = []
+    for a in qt.answers:
+        out.append(a.name)
+        if a.kind == RECORD:
+            out += [f"{a.name}.{f.name}" for f in a.fields]
+    return out
+
+
+def _flatten(issues, source, qt, mapping, path, prefix, out) -> None:
+    for key, value in mapping.items():
+        dotted = f"{prefix}{key}"
+        kpath = path + (key,)
+        ak = qt.key(dotted)
+        parent = qt.key(dotted.rpartition(".")[0]) if "." in dotted else None
+        if ak is None or (parent is not None and parent.kind != RECORD):
+            known = known_keys(qt)
+            issues.error(kpath, f"unknown answer key '{dotted}'"
+                         + did_you_mean(dotted, known) + f" (keys of {qt.name} questions: {', '.join(known)})")
+            continue
+        if ak.kind == RECORD and isinstance(value, dict):
+            _flatten(issues, source, qt, value, kpath, dotted + ".", out)
+            continue
+        if dotted in out or any(k.startswith(dotted + ".") or dotted.startswith(k + ".") for k in out):
+            issues.error(kpath, f"answer key '{dotted}' given twice")
+            continue
+        out[dotted] = Given(dotted, value, kpath, source.line(kpath))

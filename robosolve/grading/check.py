@@ -1,0 +1,43 @@
+"""`robosolve check`: one answers file against its problem (library side; no printing)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from robosolve.errors import InputError, InputIssue
+from robosolve.grading.answers import read_answers, resolve_answers
+from robosolve.grading.grader import Grader, SubmissionResult
+from robosolve.grading.reference import Reference
+
+
+def problem_path(sub, override) -> Path:
+    if override is not None:
+        return Path(override)
+    if sub.problem_file is None:
+        raise InputError(sub.issues + [InputIssue(sub.file, sub.source.line(()), "",
+                                                  "no problem: give `problem: FILE` in the answers file "
+                                                  "or --problem")])
+    return sub.problem_file
+
+
+def solve_reference(path, rtol=None, atol=None) -> Reference:
+    """Load and solve a problem once (InputError when it is not valid input)."""
+    from robosolve.load.loader import load_problem
+    from robosolve.pipeline import solve_problem
+
+    return Reference.from_report(solve_problem(load_problem(path)), rtol=rtol, atol=atol)
+
+
+def check_file(answers, problem=None, rtol=None, atol=None) -> tuple[SubmissionResult, Reference]:
+    """Grade one answers file. Raises InputError (exit 2) for an invalid file or problem."""
+    sub = read_answers(answers)
+    from robosolve.load.loader import load_problem
+    from robosolve.pipeline import solve_problem
+
+    try:
+        prob = load_problem(problem_path(sub, problem))
+    except InputError as exc:
+        raise InputError(list(dict.fromkeys(sub.issues + exc.issues))) from None
+    resolve_answers(sub, prob)
+    ref = Reference.from_report(solve_problem(prob), rtol=rtol, atol=atol)
+    return Grader(ref).grade(sub.student, sub.answers), ref

@@ -1,0 +1,199 @@
+"""Answer values -> one tree layout per answer kind, for the given and the expected alike.
+
+A tree is built of lists, dicts (names in order) and leaves: a sympy expression (or a
+float), `None` (null), a bool or a str (BOOL/TEXT kinds), or an `Equation` (the residual
+lhs − rhs of an `"lhs = rhs"` string). The kind of each key comes from the registry's
+answer schema, never from the question type's name.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from robosolve.load.expressions import ExpressionError
+from robosolve.load.loader import type_name
+from robosolve.questions import registry as R
+
+
+class ValueProblem(Exception):
+    """A given value that cannot be read (the key's verdict is `invalid`)."""
+
+    def __init__(self, message: str, wrong_shape: bool = False):
+        super().__init__(message)
+        self.wrong_shape = wrong_shape
+
+
+@dataclass(frozen=True)
+class Equation:
+    """An equation `lhs = rhs`, kept as its residual lhs − rhs."""
+
+    residual: object
+    text: str = ""
+
+
+MAP_KINDS = (R.JOINT_MAP, R.ACTUATOR_MAP, R.BODY_MAP)
+SET_KINDS = (R.JOINT_MAP_SET, R.VECTOR_SET)
+
+
+def _label(where: str) -> str:
+    return f"{where}: " if where else ""
+
+
+class Reader:
+    """Builds trees from YAML data (given) or from an Answer's values (expected)."""
+
+    def __init__(self, namespace, expected: bool = False):
+        self.ns = namespace
+        self.expected = expected
+
+    # -- leaves -----------------------------------------------------------
+    def scalar(self, value, where=""):
+        if value is None:
+            return None
+        if self.expected and isinstance(value, (float, int, sp.Basic)) and not isinstance(value, bool):
+            return value
+        if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+            raise ValueProblem(f"{_label(where)}expected a number or an expression, got {type_name(value)}")
+        try:
+            return self.ns.parse(value)
+        except ExpressionError as exc:
+            raise ValueProblem(f"{_label(where)}{exc}") from None
+
+    def equation(self, value, where=""):
+        if not isinstance(value, str) or value.count("=") != 1:
+            raise ValueProblem(f"{_label(where)}expected an equation \"lhs = rhs\", got "
+                               + (repr(value) if isinstance(value, str) else type_name(value)))
+        lhs, rhs = value.split("=")
+        return Equation(self.scalar(lhs, where) - self.scalar(rhs, where), value)
+
+    # -- containers -------------------------------------------------------
+    def vector(self, value, where=""):
+        if isinstance(value, sp.MatrixBase):
+            value = list(value)
+        if not isinstance(value, (list, tuple)):
+            raise ValueProblem(f"{_label(where)}expected a list (a vector), got {type_name(value)}",
+                               wrong_shape=True)
+        return [self.scalar(v, _join(where, f"entry {i + 1}")) for i, v in enumerate(value)]
+
+    def matrix(self, value, where=""):
+        if isinstance(value, sp.MatrixBase):
+            value = value.tolist()
+        if (not isinstance(value, (list, tuple)) or not value
+                or not all(isinstance(r, (list, tuple)) for r in value)
+                or any(len(r) != len(value[0]) for r in value)):
+            raise ValueProblem(f"{_label(where)}expected a matrix as a list of rows of equal length",
+                               wrong_shape=True)
+        return [[self.scalar(v, _join(where, f"entry ({i + 1}, {j + 1})")) for j, v in enumerate(r)]
+                for i, r in enumerate(value)]
+
+    def mapping(self, value, leaf, where=""):
+        if not isinstance(value, dict):
+            raise ValueProblem(f"{_label(where)}expected a mapping name -> value, got {type_name(value)}",
+                               wrong_shape=True)
+        return {str(k): leaf(v, _join(where, str(k))) for k, v in value.items()}
+
+    def joint_map_or_equations(self, value, where=""):
+        """A set element: a mapping joint -> value, or an equation string (singularities)."""
+        if isinstance(value, str):
+            return tuple(self.equation(part, where) for part in _split_equations(value))
+        return self.mapping(value, self.scalar, where)
+
+    # -- by kind ----------------------------------------------------------
+    def read(self, ak, value, where=""):
+        kind = ak.kind
+        if kind == R.SCALAR:
+            return self.scalar(value, where)
+        if kind == R.VECTOR:
+            return self.vector(value, where)
+        if kind == R.MATRIX:
+            return self.matrix(value, where)
+        if kind == R.MATRIX_LIST:
+            return [self.matrix(m, _join(where, f"matrix {i + 1}")) for i, m in enumerate(self._list(value, where))]
+        if kind in MAP_KINDS:
+            return self.mapping(value, self.scalar, where)
+        if kind == R.MATRIX_MAP:
+            return self.mapping(value, self.matrix, where)
+        if kind in (R.JOINT_MAP_SET, R.JOINT_MAP_LIST):
+            return [self.joint_map_or_equations(v, _join(where, f"element {i + 1}"))
+                    for i, v in enumerate(self._list(value, where))]
+        if kind in (R.VECTOR_SET, R.AXES):
+            return [self.vector(v, _join(where, f"element {i + 1}")) for i, v in enumerate(self._list(value, where))]
+        if kind == R.EQUATIONS:
+            return [self.equation(v, _join(where, f"equation {i + 1}")) for i, v in enumerate(self._list(value, where))]
+        if kind == R.RECORD:
+            if not isinstance(value, dict):
+                raise ValueProblem(f"{_label(where)}expected a mapping of "
+                                   + ", ".join(f.name for f in ak.fields), wrong_shape=True)
+            out = {}
+            for k, v in value.items():
+                f = ak.field(str(k))
+                if f is None:
+                    continue          # the answers loader already refused unknown fields
+                out[str(k)] = self.read(f, v, _join(where, str(k)))
+            return out
+        if kind == R.ACTUATOR_RECORDS:
+            def record(v, w):
+                return self.mapping(v, self.scalar, w)
+            return self.mapping(value, record, where)
+        if kind == R.BOOL:
+            if value is not None and not isinstance(value, bool):
+                raise ValueProblem(f"{_label(where)}expected true or false, got {type_name(value)}")
+            return value
+        if kind == R.TEXT:
+            return None if value is None else str(value)
+        raise ValueProblem(f"answers of kind {kind} cannot be checked")
+
+    def _list(self, value, where):
+        if not isinstance(value, (list, tuple)):
+            raise ValueProblem(f"{_label(where)}expected a list, got {type_name(value)}", wrong_shape=True)
+        return value
+
+
+def _join(where: str, more: str) -> str:
+    return f"{where}, {more}" if where else more
+
+
+def _split_equations(text: str) -> list[str]:
+    """'a = 0, theta2 = pi' -> ['a = 0', 'theta2 = pi'] (commas inside brackets kept)."""
+    parts, depth, cur = [], 0, ""
+    for ch in text:
+        if ch in "([":
+            depth += 1
+        elif ch in ")]":
+            depth -= 1
+        if ch == "," and depth == 0:
+            parts.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    parts.append(cur)
+    return [p.strip() for p in parts if p.strip()]
+
+
+def free_symbols(tree) -> set:
+    if isinstance(tree, dict):
+        return set().union(*[free_symbols(v) for v in tree.values()]) if tree else set()
+    if isinstance(tree, (list, tuple)):
+        return set().union(*[free_symbols(v) for v in tree]) if tree else set()
+    if isinstance(tree, Equation):
+        return free_symbols(tree.residual)
+    if isinstance(tree, sp.Basic):
+        return set(tree.free_symbols)
+    return set()
+
+
+def substitute(tree, subs: dict):
+    """The tree with `subs` put in (exact), e.g. the parameters' values."""
+    if isinstance(tree, dict):
+        return {k: substitute(v, subs) for k, v in tree.items()}
+    if isinstance(tree, list):
+        return [substitute(v, subs) for v in tree]
+    if isinstance(tree, tuple):
+        return tuple(substitute(v, subs) for v in tree)
+    if isinstance(tree, Equation):
+        return Equation(substitute(tree.residual, subs), tree.text)
+    if isinstance(tree, sp.Basic):
+        return tree.xreplace(subs)
+    return tree

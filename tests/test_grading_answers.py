@@ -1,0 +1,163 @@
+"""Answers files: exact FILE:LINE messages, did-you-mean; `robosolve check` exit statuses and --json."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pytest
+from typer.testing import CliRunner
+
+from robosolve.cli import app
+from robosolve.errors import InputError
+from robosolve.grading.answers import read_answers, resolve_answers
+from tests._grading import TWO_R, dedent
+
+runner = CliRunner(mix_stderr=False) if "mix_stderr" in CliRunner.__init__.__code__.co_varnames else CliRunner()
+
+
+@pytest.fixture
+def folder(tmp_path):
+    (tmp_path / "two-r.yaml").write_text(dedent(TWO_R), encoding="utf-8")
+    return tmp_path
+
+
+def write(folder, text, name="a.yaml"):
+    path = folder / name
+    path.write_text(dedent(text), encoding="utf-8")
+    return path
+
+
+def messages(folder, text, problem=True):
+    from robosolve.load.loader import load_problem
+
+    path = write(folder, text)
+    with pytest.raises(InputError) as exc:
+        sub = read_answers(path)
+        if problem:
+            resolve_answers(sub, load_problem(folder / "two-r.yaml"))
+    return [str(i).replace(str(path), "A") for i in exc.value.issues]
+
+
+def test_unknown_question_and_key_with_did_you_mean(folder):
+    out = messages(folder, """
+        robosolve-answers: 1
+        problem: two-r.yaml
+        answers:
+          positon:
+            M: 1
+          jacobian:
+            dett: "L1"
+          ellipsoids:
+            force: {lenghts: [1, 2]}
+        """)
+    assert out == [
+        "A:4: answers.positon: unknown question id 'positon' (did you mean 'position'?) (the problem's "
+        "questions: position, jacobian, statics, inverse_kinematics, ellipsoids, orientation)",
+        "A:7: answers.jacobian.dett: unknown answer key 'dett' (did you mean 'det'?) (keys of jacobian "
+        "questions: J, det, manipulability, singularities, com_jacobians)",
+        "A:9: answers.ellipsoids.force.lenghts: unknown answer key 'force.lenghts' (did you mean "
+        "'force.lengths'?) (keys of ellipsoids questions: force, force.semi_axes, force.lengths, "
+        "force.directions, velocity, velocity.semi_axes, velocity.lengths, velocity.directions, "
+        "condition_number, compliance, compliance.semi_axes, compliance.lengths, compliance.directions, "
+        "A, eigenvalues, q_dot)",
+    ]
+
+
+def test_layout_errors(folder):
+    assert messages(folder, "robosolve: 1\nanswers: {}\n", problem=False) == [
+        "A:1: missing required key 'robosolve-answers' (the answers format, 1) (this looks like a problem file)"]
+    assert messages(folder, "robosolve-answers: 2\nanswers: {}\n", problem=False) == [
+        "A:1: robosolve-answers: unsupported answers format 2 (expected 1)"]
+    assert messages(folder, "robosolve-answers: 1\nanswers:\n  position:\n    M: [1\n", problem=False) == [
+        "A:5: YAML syntax error: expected ',' or ']', but got '<stream end>'"]
+    assert messages(folder, "- 1\n", problem=False) == [
+        "A:1: an answers file is a mapping with `robosolve-answers: 1`, got a list"]
+    assert messages(folder, "robosolve-answers: 1\nanswers:\n  position: 3\n") == [
+        "A:3: answers.position: expected a mapping answer key -> value, got a number"]
+
+
+def test_one_run_reports_every_mistake(folder):
+    out = messages(folder, """
+        robosolve-answers: 1
+        studnt: x
+        problem: two-r.yaml
+        answers:
+          jacobian: {det: 1, det: 2}
+          statics:
+            Fq.q1: 1
+        """)
+    assert out == [
+        "A:2: studnt: unknown key 'studnt' (did you mean 'student'?) (expected one of: robosolve-answers, "
+        "problem, student, answers)",
+        "A:5: answers.jacobian.det: duplicate key 'det'",
+        "A:7: answers.statics.Fq.q1: unknown answer key 'Fq.q1' (did you mean 'Fq'?) (keys of statics questions: Fq)",
+    ]
+
+
+def test_dotted_and_nested_both_given_is_an_error(folder):
+    out = messages(folder, """
+        robosolve-answers: 1
+        problem: two-r.yaml
+        answers:
+          ellipsoids:
+            force.lengths: [1, 2]
+            force: {lengths: [1, 2]}
+        """)
+    assert out == ["A:6: answers.ellipsoids.force.lengths: answer key 'force.lengths' given twice"]
+
+
+def _run(args):
+    result = runner.invoke(app, args)
+    stderr = getattr(result, "stderr", "") if "mix_stderr" in CliRunner.__init__.__code__.co_varnames else ""
+    return result.exit_code, result.stdout, stderr
+
+
+def test_check_exit_statuses_and_json(folder):
+    x = 0.5 * math.cos(math.pi / 6) + 0.4 * math.cos(math.pi / 2)
+    y = 0.5 * math.sin(math.pi / 6) + 0.4 * math.sin(math.pi / 2)
+    good = write(folder, f"""
+        robosolve-answers: 1
+        problem: two-r.yaml
+        answers:
+          position: {{M: [[0, -1, 0, {x:.4f}], [1, 0, 0, {y:.4f}], [0, 0, 1, 0], [0, 0, 0, 1]],
+                      position: [{x:.4f}, {y:.4f}, 0]}}
+          jacobian: {{J: [["-L1*sin(q1) - L2*sin(q1 + q2)", "-L2*sin(q1 + q2)"],
+                          ["L1*cos(q1) + L2*cos(q1 + q2)", "L2*cos(q1 + q2)"]],
+                      det: "L1*L2*sin(q2)", singularities: [{{q2: 0}}, {{q2: pi}}]}}
+          statics: {{Fq: {{q1: "F*(L1*cos(q1) + L2*cos(q1 + q2))", q2: "F*L2*cos(q1 + q2)"}}}}
+        """, "good.yaml")
+    code, out, _ = _run(["check", str(good), "--json", "-"])
+    assert code == 1            # inverse_kinematics, ellipsoids and orientation are missing
+    record = json.loads(out[out.index("{"):])
+    assert record["student"] == "good" and record["problem"] == "two-r"
+    assert record["questions"]["position"]["score"] == 1
+    assert record["questions"]["statics"] == {"marks": 2, "score": 2, "keys": {"Fq": {
+        "verdict": "correct", "compared": "symbolic", "diagnosis": "", "feedback": ""}}}
+    assert record["score"] == 4 and record["max_score"] == 7
+    assert list(record["questions"]) == ["position", "jacobian", "statics", "inverse_kinematics",
+                                         "ellipsoids", "orientation"]
+    # with --grade limited to the given questions every graded key is right: exit 0
+    only = folder / "two-r.yaml"
+    text = only.read_text().split("  - {type: inverse_kinematics")[0]
+    (folder / "small.yaml").write_text(text, encoding="utf-8")
+    code, _, _ = _run(["check", str(good), "--problem", str(folder / "small.yaml"), "--json",
+                       str(folder / "r.json")])
+    assert code == 0
+    assert json.loads((folder / "r.json").read_text())["score"] == 4
+
+
+def test_check_invalid_input_exit_2(folder):
+    bad = write(folder, "robosolve-answers: 1\nproblem: two-r.yaml\nanswers:\n  positon: {M: 1}\n")
+    code, _, _ = _run(["check", str(bad)])
+    assert code == 2
+    missing = write(folder, "robosolve-answers: 1\nproblem: nope.yaml\nanswers: {}\n", "m.yaml")
+    assert _run(["check", str(missing)])[0] == 2
+    # a value that does not parse is a key verdict, not an exit 2
+    value = write(folder, "robosolve-answers: 1\nproblem: two-r.yaml\nanswers:\n  jacobian: {det: 'L1*'}\n",
+                  "v.yaml")
+    code, out, _ = _run(["check", str(value), "--json", "-"])
+    assert code == 1
+    rec = json.loads(out[out.index("{"):])
+    assert rec["questions"]["jacobian"]["keys"]["det"]["verdict"] == "invalid"
+    assert "cannot parse expression 'L1*'" in rec["questions"]["jacobian"]["keys"]["det"]["feedback"]

@@ -1,0 +1,387 @@
+"""Comparison rules and diagnoses (grading.md), on the textbook planar 2R arm.
+
+The given answers are written from the arm's closed forms (independent of robosolve's
+solvers): M = Rz(q1)Tx(L1)Rz(q2)Tx(L2), J, det J = L1·L2·sin q2, Fq = −Jᵀ·Fs, the IK by the
+law of cosines, the ellipse from numpy's eigen-decomposition of J·Jᵀ.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from robosolve.grading.compare import Tolerance
+from tests._grading import TWO_R, grade_text, key, reference_of
+
+L1, L2, F = 0.5, 0.4, 5.0
+Q1, Q2 = math.pi / 6, math.pi / 3
+
+M_SYM = [["cos(q1 + q2)", "-sin(q1 + q2)", 0, "L1*cos(q1) + L2*cos(q1 + q2)"],
+         ["sin(q1 + q2)", "cos(q1 + q2)", 0, "L1*sin(q1) + L2*sin(q1 + q2)"],
+         [0, 0, 1, 0], [0, 0, 0, 1]]
+
+
+def ik_solutions(x=0.6, y=0.3):
+    c2 = (x * x + y * y - L1 * L1 - L2 * L2) / (2 * L1 * L2)
+    out = []
+    for q2 in (math.acos(c2), -math.acos(c2)):
+        q1 = math.atan2(y, x) - math.atan2(L2 * math.sin(q2), L1 + L2 * math.cos(q2))
+        out.append((q1, q2))
+    return out
+
+
+def jac(q1=Q1, q2=Q2):
+    return np.array([[-L1 * math.sin(q1) - L2 * math.sin(q1 + q2), -L2 * math.sin(q1 + q2)],
+                     [L1 * math.cos(q1) + L2 * math.cos(q1 + q2), L2 * math.cos(q1 + q2)]])
+
+
+@pytest.fixture(scope="module")
+def ref():
+    return reference_of(TWO_R)
+
+
+def answers(body: str) -> str:
+    return "robosolve-answers: 1\nstudent: s1\nanswers:\n" + body
+
+
+def yaml_matrix(rows) -> str:
+    def cell(v):
+        return f'"{v}"' if isinstance(v, str) else repr(v)
+    return "[" + ", ".join("[" + ", ".join(cell(v) for v in r) + "]" for r in rows) + "]"
+
+
+def one(ref, question, name, value_yaml, **kw):
+    res = grade_text(ref, answers(f"  {question}:\n    {name}: {value_yaml}\n"), **kw)
+    return key(res, question, name)
+
+
+# -- expressions -----------------------------------------------------------------
+def test_symbolic_pose_correct(ref):
+    r = one(ref, "position", "M", yaml_matrix(M_SYM))
+    assert (r.verdict, r.compared) == ("correct", "symbolic")
+
+
+def test_expanded_trig_equals_reference(ref):
+    rows = [list(r) for r in M_SYM]
+    rows[0][3] = "L1*cos(q1) + L2*(cos(q1)*cos(q2) - sin(q1)*sin(q2))"
+    rows[1][3] = "L1*sin(q1) + L2*(sin(q1)*cos(q2) + cos(q1)*sin(q2))"
+    rows[0][0] = "cos(q1)*cos(q2) - sin(q1)*sin(q2)"
+    assert one(ref, "position", "M", yaml_matrix(rows)).verdict == "correct"
+
+
+def test_rounded_coefficients_within_rtol(ref):
+    # 0.866*L2 for sqrt(3)/2*L2 is right (3 significant digits)
+    assert one(ref, "jacobian", "det", '"L1*L2*sin(q2)"').verdict == "correct"
+    r = one(ref, "position", "position",
+            '["L1*cos(q1) + L2*cos(q1 + q2)", "L1*sin(q1) + L2*sin(q1 + q2)", 0]')
+    assert r.verdict == "correct"
+
+
+def test_wrong_expression_names_entries(ref):
+    rows = [list(r) for r in M_SYM]
+    rows[0][3] = "L1*cos(q1) + L2*cos(q2)"
+    r = one(ref, "position", "M", yaml_matrix(rows))
+    assert (r.verdict, r.diagnosis) == ("incorrect", "")
+    assert r.feedback.startswith("entry (1, 4) is L1*cos(q1) + L2*cos(q2); expected L1*cos(q1) + L2*cos(q1 + q2)")
+
+
+def test_parameters_substituted(ref):
+    r = one(ref, "jacobian", "det", '"0.2*sin(q2)"')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "parameters_substituted")
+    assert "L1, L2" in r.feedback
+
+
+def test_unknown_symbol_is_invalid(ref):
+    r = one(ref, "jacobian", "det", '"L1*L3*sin(q2)"')
+    assert r.verdict == "invalid"
+    assert "unknown name 'L3'" in r.feedback and "did you mean" in r.feedback
+
+
+# -- diagnoses --------------------------------------------------------------------
+def test_transposed_pose(ref):
+    rows = [list(c) for c in zip(*M_SYM)]
+    r = one(ref, "position", "M", yaml_matrix(rows))
+    assert (r.verdict, r.diagnosis) == ("incorrect", "transposed")
+    assert r.feedback.startswith("this is ⁰M₂ transposed: the columns of R are the axes of frame 2 in frame 0")
+    assert "expected ⁰M₂ = " in r.feedback
+
+
+def test_inverse_pose(ref):
+    c, s = math.cos(Q1 + Q2), math.sin(Q1 + Q2)
+    px, py = L1 * math.cos(Q1) + L2 * c, L1 * math.sin(Q1) + L2 * s
+    inv = [[c, s, 0, -(c * px + s * py)], [-s, c, 0, s * px - c * py], [0, 0, 1, 0], [0, 0, 0, 1]]
+    r = one(ref, "position", "M", yaml_matrix(inv))
+    assert (r.verdict, r.compared, r.diagnosis) == ("incorrect", "numeric", "inverse")
+
+
+def test_negated_fq(ref):
+    r = one(ref, "statics", "Fq", '{q1: "-F*(L1*cos(q1) + L2*cos(q1 + q2))", q2: "-F*L2*cos(q1 + q2)"}')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "negated")
+    assert "Fq = −Jᵀ·Fs" in r.feedback
+    ok = one(ref, "statics", "Fq", '{q1: "F*(L1*cos(q1) + L2*cos(q1 + q2))", q2: "F*L2*cos(q1 + q2)"}')
+    assert ok.verdict == "correct"
+
+
+def test_ik_in_another_order_and_plus_two_pi_is_correct(ref):
+    (a1, a2), (b1, b2) = ik_solutions()
+    value = f"[{{q1: {b1 + 2 * math.pi:.5f}, q2: {b2:.5f}}}, {{q1: {a1:.5f}, q2: {a2 - 2 * math.pi:.5f}}}]"
+    r = one(ref, "inverse_kinematics", "solutions", value)
+    assert (r.verdict, r.compared) == ("correct", "numeric")
+
+
+def test_ik_in_degrees(ref):
+    sols = ik_solutions()
+    value = "[" + ", ".join(f"{{q1: {math.degrees(a):.3f}, q2: {math.degrees(b):.3f}}}" for a, b in sols) + "]"
+    r = one(ref, "inverse_kinematics", "solutions", value)
+    assert (r.verdict, r.diagnosis) == ("incorrect", "degrees")
+
+
+def test_ik_incomplete_and_extra(ref):
+    (a1, a2), (b1, b2) = ik_solutions()
+    r = one(ref, "inverse_kinematics", "solutions", f"[{{q1: {a1:.5f}, q2: {a2:.5f}}}]")
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set")
+    value = f"[{{q1: {a1:.5f}, q2: {a2:.5f}}}, {{q1: {b1:.5f}, q2: {b2:.5f}}}, {{q1: 0, q2: 0}}]"
+    r = one(ref, "inverse_kinematics", "solutions", value)
+    assert (r.verdict, r.diagnosis) == ("incorrect", "extra_in_set")
+
+
+def test_singularities_any_order_and_form(ref):
+    assert one(ref, "jacobian", "singularities", "[{q2: pi}, {q2: 0}]").verdict == "correct"
+    # as numbers, and -pi for pi (modulo 2π)
+    assert one(ref, "jacobian", "singularities", "[{q2: -3.1416}, {q2: 0.0}]").verdict == "correct"
+    r = one(ref, "jacobian", "singularities", "[{q2: 0}]")
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set")
+    r = one(ref, "jacobian", "singularities", "[{q2: 0}, {q2: 180}]")
+    assert r.verdict == "incorrect"
+
+
+def test_wrong_shape(ref):
+    r = one(ref, "position", "M", "[[1, 0, 0], [0, 1, 0], [0, 0, 1]]")
+    assert (r.verdict, r.diagnosis) == ("invalid", "wrong_shape")
+    r = one(ref, "position", "position", "[0.1, 0.2]")
+    assert (r.verdict, r.diagnosis) == ("invalid", "wrong_shape")
+
+
+def test_transposed_jacobian(ref):
+    jt = jac().T.tolist()
+    r = one(ref, "jacobian", "J", yaml_matrix(jt))
+    assert (r.verdict, r.diagnosis) == ("incorrect", "transposed")
+    assert one(ref, "jacobian", "J", yaml_matrix(jac().tolist())).verdict == "correct"
+
+
+# -- numbers, tolerances ---------------------------------------------------------------
+def test_numbers_with_tolerance(ref):
+    det = L1 * L2 * math.sin(Q2)
+    assert one(ref, "jacobian", "det", f"{det * 1.004}").verdict == "correct"
+    r = one(ref, "jacobian", "det", f"{det * 1.006}")
+    assert (r.verdict, r.compared) == ("incorrect", "numeric")
+    # --rtol wins
+    assert one(ref, "jacobian", "det", f"{det * 1.006}", tolerance=Tolerance(0.01, 1e-6)).verdict == "correct"
+
+
+def test_problem_grading_tolerances():
+    text = TWO_R.replace("questions:", "grading: {rtol: 0.02}\nquestions:")
+    ref = reference_of(text)
+    assert ref.tolerance == Tolerance(0.02, 1e-6)
+    det = L1 * L2 * math.sin(Q2)
+    assert one(ref, "jacobian", "det", f"{det * 1.015}").verdict == "correct"
+    ref2 = reference_of(text, rtol=0.001)
+    assert ref2.tolerance.rtol == 0.001
+
+
+def test_position_numbers_feedback(ref):
+    x = L1 * math.cos(Q1) + L2 * math.cos(Q1 + Q2)
+    y = L1 * math.sin(Q1) + L2 * math.sin(Q1 + Q2)
+    assert one(ref, "position", "position", f"[{x:.4f}, {y:.4f}, 0]").verdict == "correct"
+    r = one(ref, "position", "position", f"[{x:.4f}, 0.9, 0]")
+    assert r.feedback.startswith(f"entry 2 is 0.9; expected {y:.4g}")
+
+
+def test_ellipse_axes_ignore_sign(ref):
+    J = jac()
+    w, v = np.linalg.eigh(J @ J.T)
+    order = np.argsort(-(1 / np.sqrt(w)))
+    axes = [(v[:, i] / math.sqrt(w[i])).tolist() for i in order]
+    flipped = [[-c for c in axes[0]], axes[1]]
+    r = one(ref, "ellipsoids", "force.semi_axes", yaml_matrix(flipped))
+    assert r.verdict == "correct"
+    swapped = [axes[1], axes[0]]
+    assert one(ref, "ellipsoids", "force.semi_axes", yaml_matrix(swapped)).verdict == "incorrect"
+    cond = max(w) / min(w)
+    assert one(ref, "ellipsoids", "condition_number", f"{cond:.4f}").verdict == "correct"
+
+
+def test_nested_and_dotted_keys_agree(ref):
+    J = jac()
+    w = sorted(np.linalg.eigvalsh(J @ J.T))
+    lengths = f"[{1 / math.sqrt(w[0]):.5f}, {1 / math.sqrt(w[1]):.5f}]"
+    a = grade_text(ref, answers(f"  ellipsoids:\n    force.lengths: {lengths}\n"))
+    b = grade_text(ref, answers(f"  ellipsoids:\n    force: {{lengths: {lengths}}}\n"))
+    assert key(a, "ellipsoids", "force.lengths") == key(b, "ellipsoids", "force.lengths")
+    assert key(a, "ellipsoids", "force.lengths").verdict == "correct"
+
+
+def test_euler_angle_sets_ignore_order(ref):
+    # R = Rz(90°): RPY (roll, pitch, yaw) = (0, 0, pi/2) or (pi, pi, -pi/2)
+    r = one(ref, "orientation", "rpy", "{solutions: [[pi, pi, -pi/2], [0, 0, pi/2]], singular: false}")
+    assert r.verdict == "correct"
+    r = one(ref, "orientation", "rpy", "{solutions: [[0, 0, pi/2]], singular: false}")
+    assert r.verdict == "incorrect"
+
+
+def test_graded_keys_scores_and_extra_keys(ref):
+    res = grade_text(ref, answers('  statics:\n    Fq: {q1: "F*(L1*cos(q1) + L2*cos(q1 + q2))", q2: "F*L2*cos(q1 + q2)"}\n'
+                                  '  position:\n    chain: []\n'))
+    statics = next(q for q in res.questions if q.id == "statics")
+    assert statics.score == 2 and statics.marks == 2
+    position = next(q for q in res.questions if q.id == "position")
+    assert list(position.keys) == ["M", "position", "chain"]          # graded first, then extras
+    assert position.keys["M"].verdict == "missing"
+    assert position.keys["chain"].verdict == "invalid"                 # 0 matrices where 2 are expected
+    ell = next(q for q in res.questions if q.id == "ellipsoids")
+    assert ell.graded == ("force.semi_axes", "condition_number")        # the question's grade list
+    assert res.max_score == 7
+
+
+NULL_F = """
+robosolve: 1
+name: null-load
+parameters: {L1: 1/2, F: ~}
+joints: [{name: q1, type: revolute}]
+frames: {"1": {parent: "0", pose: "Rz(q1) Tx(L1)"}}
+questions:
+  - {type: statics, force: [0, -F], coordinates: [E.x, E.y], at: {q1: pi/6}}
+"""
+
+
+def test_null_parameter():
+    ref = reference_of(NULL_F)
+    assert one(ref, "statics", "Fq", '{q1: "F*L1*cos(q1)"}').verdict == "correct"
+    r = one(ref, "statics", "Fq", "{q1: 2.165}")
+    assert r.verdict == "invalid" and "F" in r.feedback
+    r = one(ref, "statics", "Fq", '{q1: "F*L1*sin(q1)"}')
+    assert r.verdict == "incorrect"
+
+
+ONE_LINK = """
+robosolve: 1
+name: one-link
+parameters: {L: 1, m1: 2, m2: 1, g: 9.81, F: 3}
+joints: [{name: theta, type: revolute, actuator: C}]
+frames: {"1": {parent: "0", pose: "Rx(theta) Ty(L)"}}
+bodies:
+  - {name: link1, frame: "1", mass: m1, rod: {from: [0, -L, 0], to: [0, 0, 0]}}
+  - {name: payload, frame: "1", mass: m2, point: [0, 0, 0]}
+forces:
+  - {name: F, frame: "1", at: [0, -L/3, 0], force: [0, 0, -F]}
+questions:
+  - {type: equations_of_motion, at: {theta: pi/6, theta_dot: 0, theta_ddot: 0}, grade: [equations, mass_matrix]}
+"""
+
+
+def test_equations_up_to_a_constant_factor():
+    # rod about its end: m1·L²/3, tip mass m2·L²; weight (m1/2 + m2)·g·L·cos θ; F at 2L/3
+    ref = reference_of(ONE_LINK)
+    eq = "(m1/3 + m2)*L**2*theta_ddot + (m1/2 + m2)*g*L*cos(theta) = C - 2*F*L/3"
+    res = grade_text(ref, answers(f'  equations_of_motion:\n    equations: ["{eq}"]\n'
+                                  '    mass_matrix: [["L**2*(m1/3 + m2)"]]\n'))
+    assert key(res, "equations_of_motion", "equations").verdict == "correct"
+    assert key(res, "equations_of_motion", "mass_matrix").verdict == "correct"
+    twice = "2*(m1/3 + m2)*L**2*theta_ddot + (m1 + 2*m2)*g*L*cos(theta) - 2*C = -4*F*L/3"
+    assert one(ref, "equations_of_motion", "equations", f'["{twice}"]').verdict == "correct"
+    wrong = "(m1/3 + m2)*L**2*theta_ddot + (m1 + m2)*g*L*cos(theta) = C - 2*F*L/3"
+    assert one(ref, "equations_of_motion", "equations", f'["{wrong}"]').verdict == "incorrect"
+    bad = one(ref, "equations_of_motion", "equations", '["C"]')
+    assert bad.verdict == "invalid" and "lhs = rhs" in bad.feedback
+
+
+def test_points_are_seeded_and_cover_the_rules(ref):
+    from robosolve.grading.points import sample
+
+    qref = ref.question("jacobian")
+    syms = {ref.problem.names[n] for n in ("L1", "L2", "q1", "q2")}
+    a = sample(syms, qref.roles, "x/jacobian/det")
+    b = sample(syms, qref.roles, "x/jacobian/det")
+    assert all((a.columns[s] == b.columns[s]).all() for s in syms)
+    L1s = ref.problem.names["L1"]
+    fixed, moved = a.columns[L1s][a.fixed], a.columns[L1s][~a.fixed]
+    assert (fixed == 0.5).all() and len(fixed) >= 2
+    assert len(moved) >= 2 and ((moved >= 0.4) & (moved <= 0.625) & (moved != 0.5)).all()
+    q1 = a.columns[ref.problem.names["q1"]]
+    assert ((q1 > -math.pi) & (q1 <= math.pi)).all() and a.size >= 6
+
+
+def test_direct_evaluator_agrees_with_sympy_evalf():
+    import sympy as sp
+
+    from robosolve.grading.points import tree_values
+
+    x, y = sp.symbols("x y", real=True)
+    e = (sp.sqrt(x ** 2 + 1) * sp.cos(x - y) / (2 + sp.sin(y)) ** 2 + sp.atan2(y, x + 3)
+         - sp.Rational(3, 7) * sp.exp(-x) * sp.Abs(y) + sp.log(x ** 2 + 2) ** sp.Rational(3, 2) - sp.pi * x ** -1)
+    xs, ys = np.array([0.3, -1.2, 2.5]), np.array([1.1, 0.4, -2.0])
+    got = tree_values(e, {x: xs, y: ys}, {})
+    want = [float(e.subs({x: a, y: b}).evalf(30)) for a, b in zip(xs, ys)]
+    assert np.allclose(got, want, rtol=1e-12, atol=0)
+
+
+def _rules(revolute=("q1",), rtol=0.005, atol=1e-6, n=1):
+    from robosolve.grading.compare import Rules
+
+    return Rules(Tolerance(rtol, atol), np.ones(n, dtype=bool), frozenset(revolute))
+
+
+def _arr(x, n=1):
+    return np.full(n, float(x))
+
+
+def test_only_revolute_joint_values_wrap():
+    from robosolve.grading.compare import compare
+    from robosolve.questions.registry import JOINT_MAP_SET, AnswerKey
+
+    ak = AnswerKey("solutions", JOINT_MAP_SET, angle=True, unordered=True)
+    e = [{"q1": _arr(0.4), "d": _arr(0.3)}]
+    assert compare(ak, [{"q1": _arr(0.4 + 2 * math.pi), "d": _arr(0.3)}], e, _rules()).ok
+    assert not compare(ak, [{"q1": _arr(0.4), "d": _arr(0.3 + 2 * math.pi)}], e, _rules()).ok
+
+
+def test_unwrapped_values_when_the_schema_says_not_angle():
+    # forward-dynamics `final`/`max`/`min` are joint maps without `angle`: 4π is not 0
+    from robosolve.grading.compare import compare
+    from robosolve.questions.registry import JOINT_MAP, AnswerKey
+
+    ak = AnswerKey("final", JOINT_MAP)
+    e = {"q1": _arr(4 * math.pi)}
+    assert compare(ak, {"q1": _arr(4 * math.pi * 1.001)}, e, _rules()).ok
+    assert not compare(ak, {"q1": _arr(0.0)}, e, _rules()).ok
+    wrapped = AnswerKey("final", JOINT_MAP, angle=True)
+    assert compare(wrapped, {"q1": _arr(0.0)}, e, _rules()).ok
+
+
+def test_booleans_and_null_exact():
+    from robosolve.grading.compare import compare
+    from robosolve.questions.registry import BOOL, SCALAR, AnswerKey
+
+    assert compare(AnswerKey("singular", BOOL), True, True, _rules()).ok
+    assert not compare(AnswerKey("singular", BOOL), False, True, _rules()).ok
+    assert compare(AnswerKey("x", SCALAR), None, None, _rules()).ok
+    assert not compare(AnswerKey("x", SCALAR), _arr(0.0), None, _rules()).ok
+
+
+def test_tolerance_formula_at_the_boundary():
+    from robosolve.grading.compare import leaf_ok
+
+    r = _rules(rtol=0.01, atol=0.001)
+    assert leaf_ok(_arr(10.0 + 0.1 + 0.001 - 1e-9), _arr(10.0), False, r)      # atol + rtol·|e|
+    assert not leaf_ok(_arr(10.0 + 0.1 + 0.001 + 1e-6), _arr(10.0), False, r)
+    assert leaf_ok(_arr(-math.pi), _arr(math.pi), True, r)
+    assert not leaf_ok(_arr(-math.pi), _arr(math.pi), False, r)
+
+
+def test_maximum_matching_not_greedy():
+    from robosolve.grading.compare import max_matching
+
+    # given 0 matches both expected; given 1 only the first: a greedy match would find 1
+    assert max_matching([[True, True], [True, False]]) == 2
