@@ -124,3 +124,14 @@ def test_principal_keys_depend_on_the_form():
     qt = QUESTION_TYPES["displacement"]
     assert qt.principal_keys_for({"axis": [0, 0, 1], "angle": 1}) == ("Q", "L")
     assert qt.principal_keys_for({"from": {}, "to": {}}) == ("u", "alpha", "h", "P")
+
+
+def test_grading_reference_grades_q_and_l_given_a_screw():
+    from robosolve.grading.reference import Reference
+
+    text = HEAD + ("  - {id: s, type: displacement, axis: [0, 0, 1], angle: pi/2}\n"
+                   "  - {id: m, type: displacement, from: [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]],"
+                   " to: [[0,-1,0,0],[1,0,0,0],[0,0,1,0],[0,0,0,1]]}\n")
+    ref = Reference.from_report(solve_problem(load_problem_text(text)))
+    assert ref.question("s").graded_keys() == ("Q", "L")
+    assert ref.question("m").graded_keys() == ("u", "alpha", "h", "P")
