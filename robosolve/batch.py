@@ -30,7 +30,7 @@ def collect(source: str) -> list[Path]:
     return sorted(files)
 
 
-def solve_one(path: str) -> dict:
+def solve_one(path: str, formats=("md",)) -> dict:
     """Worker: load, solve, render. Returns a summary and the files (never raises on bad input).
 
     Workers write nothing: the parent writes every folder, so stopping a worker at any point
@@ -45,7 +45,7 @@ def solve_one(path: str) -> dict:
         return {"file": path, "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
                 "messages": [str(i) for i in exc.issues], "files": {}}
     report = solve_problem(problem)
-    files = render_files(report)
+    files = render_files(report, formats)
     failed = [f"{path}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
     return {"file": path, "name": problem.name, "status": report.exit_status,
             "answered": len(report.answers) - len(failed), "total": len(report.answers),
@@ -96,16 +96,16 @@ def refusals(names: dict, out, golden, update) -> list[str]:
     return msgs
 
 
-def _results(files, jobs):
+def _results(files, jobs, formats=("md",)):
     """Yield each file's summary as it is solved; on an interrupt stop the workers at once."""
     if jobs == 1 or len(files) == 1:
         for f in files:
-            yield solve_one(str(f))
+            yield solve_one(str(f), formats)
         return
     from robosolve.interrupts import worker_init
 
     pool = ProcessPoolExecutor(max_workers=min(jobs, len(files)), initializer=worker_init)
-    futures = {pool.submit(solve_one, str(f)): str(f) for f in files}
+    futures = {pool.submit(solve_one, str(f), formats): str(f) for f in files}
     clean = False
     try:
         for fut in as_completed(futures):
@@ -124,7 +124,7 @@ def _results(files, jobs):
             pool.shutdown(wait=False, cancel_futures=True)
 
 
-def run(files, out=None, jobs=0, golden=None, update=False) -> int:
+def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",)) -> int:
     import sys
 
     from rich.console import Console
@@ -145,7 +145,7 @@ def run(files, out=None, jobs=0, golden=None, update=False) -> int:
     with contextlib.ExitStack() as stack:
         progress = stack.enter_context(Progress(console=console, transient=True))
         task = progress.add_task("solving", total=len(files))
-        for r in stack.enter_context(contextlib.closing(_results(files, jobs))):
+        for r in stack.enter_context(contextlib.closing(_results(files, jobs, formats))):
             out_files = r.pop("files")
             if r["name"] and golden is None:
                 try:

@@ -28,6 +28,21 @@ def _err(text: str) -> None:
     sys.stderr.write(text + "\n")
 
 
+FORMAT_HELP = ("Reports to write, comma-separated: md (report.md), html (report.html, one "
+               "self-contained page), ipynb (report.ipynb, a notebook that recomputes the answers). "
+               "Default: md. results.json and figures/ are always written.")
+
+
+def _formats(text: Optional[str]) -> tuple:
+    from robosolve.render.formats import parse_formats
+
+    try:
+        return parse_formats(text)
+    except ValueError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
+
+
 @app.command()
 def solve(
     files: List[Path] = typer.Argument(..., help="Problem files (YAML)."),
@@ -36,11 +51,14 @@ def solve(
         help="Output folder. With one file: the folder itself (DIR/report.md). "
              "With several: DIR/<problem name>/. Default: out/<problem name>/. "
              "robosolve only replaces folders that are new, empty or its own (marked .robosolve)."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
 ) -> None:
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
     from robosolve.outputs import OutputFolderError
-    from robosolve.pipeline import solve_problem, write_outputs
+    from robosolve.pipeline import render_outputs, solve_problem
+
+    formats = _formats(format)
 
     # Validate every file first: nothing is written when any input is invalid.
     problems, status = [], EXIT_OK
@@ -56,7 +74,7 @@ def solve(
     for problem, target in zip(problems, targets):
         report = solve_problem(problem)
         try:
-            write_outputs(report, target, inputs=files)
+            render_outputs(report, target, formats, inputs=files)
         except (OutputFolderError, OSError) as exc:
             _err(_write_error(target, exc))
             raise typer.Exit(EXIT_INPUT)
@@ -127,9 +145,12 @@ def batch(
     check: Optional[Path] = typer.Option(
         None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
+    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
 ) -> None:
     """Solve many problem files in parallel; optionally compare with golden outputs."""
     from robosolve import batch as batch_mod
+
+    formats = _formats(format)
 
     files = batch_mod.collect(source)
     if not files:
@@ -141,7 +162,7 @@ def batch(
     if check is None and out is None:
         _err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(EXIT_INPUT)
-    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update)
+    status = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, formats=formats)
     raise typer.Exit(status)
 
 

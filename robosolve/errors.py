@@ -27,7 +27,8 @@ class InputIssue:
 
     def __str__(self) -> str:
         where = f"{self.path}: " if self.path else ""
-        return f"{self.file}:{self.line}: {where}{self.message}"
+        line = f":{self.line}" if self.line > 0 else ""  # 0: about the whole file (cannot read it)
+        return f"{self.file}{line}: {where}{self.message}"
 
 
 class InputError(RobosolveError):

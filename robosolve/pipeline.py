@@ -28,42 +28,67 @@ class Report:
 
 
 def solve_problem(problem: Problem, budgets=None) -> Report:
-    """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work."""
-    from robosolve.model import RobotModel
-    from robosolve.solvers import solver_for
-    from robosolve.solvers.base import Answer, SolveContext
+    """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work, each
+    question (`question_seconds`) and the whole file (`file_seconds`)."""
+    import time
 
+    from robosolve.model import RobotModel
+    from robosolve.solvers.base import Answer, Budgets, SolveContext
+
+    budgets = budgets or Budgets()
+    started = time.process_time()
     model = RobotModel(problem) if problem.has_robot else None
     ctx = SolveContext(problem, model, budgets)
     report = Report(problem, model)
     for q in problem.questions:
-        solve = solver_for(q.type)
-        if solve is None:
-            answer = Answer(q.type, q.id, error=f"question type '{q.type}' is not supported yet")
+        left = budgets.file_seconds - (time.process_time() - started)
+        if left <= 0:
+            answer = Answer(q.type, q.id, error=f"not attempted: the file's budget of {budgets.file_seconds:g} s "
+                                               "of CPU time is spent (a safety net)")
         else:
-            try:
-                answer = solve(q, ctx)
-            except SolverError as exc:
-                answer = Answer(q.type, q.id, error=str(exc))
-            except SymbolicTimeout as exc:
-                answer = Answer(q.type, q.id, error=f"a symbolic step took too long ({exc})")
-            except RecursionError:
-                answer = Answer(q.type, q.id, error="the expressions are too deeply nested to handle")
-            except Exception as exc:  # a bug must not hide the other answers
-                answer = Answer(q.type, q.id, error=f"internal error ({type(exc).__name__}: {exc})")
+            answer = _solve_question(q, ctx, min(budgets.question_seconds, left))
         ctx.answers[q.id] = answer
         report.answers.append(answer)
     return report
+
+
+def _solve_question(q, ctx, seconds: float):
+    """One answer, whatever happens: a SolverError, a budget past, or a bug become its error."""
+    from robosolve.core.timing import time_limit
+    from robosolve.solvers import solver_for
+    from robosolve.solvers.base import Answer
+
+    solve = solver_for(q.type)
+    if solve is None:
+        return Answer(q.type, q.id, error=f"question type '{q.type}' is not supported yet")
+    try:
+        with time_limit(seconds, repeat=True, what="the question") as token:
+            return solve(q, ctx)
+    except SolverError as exc:
+        return Answer(q.type, q.id, error=str(exc))
+    except SymbolicTimeout as exc:
+        if exc.token is token:
+            return Answer(q.type, q.id, error=f"the question exceeded its budget of {seconds:g} s of CPU "
+                                              "time (a safety net; the symbolic steps have counted budgets)")
+        return Answer(q.type, q.id, error=f"a symbolic step took too long ({exc})")
+    except RecursionError:
+        return Answer(q.type, q.id, error="the expressions are too deeply nested to handle")
+    except MemoryError:
+        return Answer(q.type, q.id, error="the question needs more memory than the machine has")
+    except Exception as exc:  # a bug must not hide the other answers
+        return Answer(q.type, q.id, error=f"internal error ({type(exc).__name__}: {exc})")
 
 
 def solve_file(path) -> Report:
     return solve_problem(load_problem(path))
 
 
-def render_files(report: Report) -> dict[str, bytes]:
-    """report.md, results.json and figures/*.png as a mapping relative path -> bytes."""
+def render_files(report: Report, formats=("md",)) -> dict[str, bytes]:
+    """results.json, figures/*.png and the reports of `formats` (robosolve.render.formats:
+    md -> report.md, html -> report.html, ipynb -> report.ipynb) as relative path -> bytes."""
     import io
 
+    from robosolve.render.formats import FORMATS
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
@@ -83,11 +108,14 @@ def render_files(report: Report) -> dict[str, bytes]:
             files[rel] = buffer.getvalue()
             figure_paths.setdefault(answer.id, []).append(rel)
     files["results.json"] = render_results_json(report, figure_paths).encode("utf-8")
-    files["report.md"] = render_report(report, figure_paths).encode("utf-8")
+    markdown = render_report(report, figure_paths)
+    for name in formats:
+        fmt = FORMATS[name]
+        files[fmt.filename] = fmt.render(report, markdown, figure_paths, files).encode("utf-8")
     return files
 
 
-def write_outputs(report: Report, out_dir, inputs=()) -> Path:
+def write_outputs(report: Report, out_dir, inputs=(), formats=("md",)) -> Path:
     """Write the report as the output folder `out_dir` (robosolve.outputs: ownership, atomic swap).
 
     Raises robosolve.outputs.OutputFolderError, with nothing touched, when the folder is not
@@ -95,4 +123,10 @@ def write_outputs(report: Report, out_dir, inputs=()) -> Path:
     """
     from robosolve.outputs import write_output_folder
 
-    return write_output_folder(out_dir, render_files(report), inputs=inputs)
+    return write_output_folder(out_dir, render_files(report, formats), inputs=inputs)
+
+
+def render_outputs(report: Report, folder, formats=("md",), inputs=()) -> Path:
+    """The output folder of one report in the `formats` asked for (`--format`): what the
+    `solve`, `batch` and `variants` commands call; same rules as write_outputs."""
+    return write_outputs(report, folder, inputs=inputs, formats=formats)

@@ -150,8 +150,14 @@ def test_not_a_rotation_is_an_error_not_a_traceback(write_problem):
             from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
             to: [[1, 1, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
     """)
-    report = solve_file(path)
-    assert all(a.error for a in report.answers)
+    # not valid input: refused where it is read (exit 2), with the line of each matrix
+    from robosolve.errors import InputError
+
+    with pytest.raises(InputError) as info:
+        solve_file(path)
+    text = str(info.value)
+    assert ":5: questions[0].matrix: not a rotation" in text
+    assert ":8: questions[1].to: not a rototranslation" in text
 
 
 def test_displacement_expressed_in_another_frame(write_problem):

@@ -161,3 +161,14 @@ def test_check_invalid_input_exit_2(folder):
     rec = json.loads(out[out.index("{"):])
     assert rec["questions"]["jacobian"]["keys"]["det"]["verdict"] == "invalid"
     assert "cannot parse expression 'L1*'" in rec["questions"]["jacobian"]["keys"]["det"]["feedback"]
+
+
+def test_check_rtol_option_wins(folder):
+    det = 0.5 * 0.4 * math.sin(math.pi / 3) * 1.008
+    a = write(folder, f"robosolve-answers: 1\nproblem: two-r.yaml\nanswers:\n  jacobian: {{det: {det}}}\n", "t.yaml")
+    small = folder / "small.yaml"
+    head = (folder / "two-r.yaml").read_text().split("questions:")[0]
+    small.write_text(head + "questions:\n  - {type: jacobian, coordinates: [E.x, E.y], "
+                     "at: {q1: pi/6, q2: pi/3}, grade: [det]}\n", encoding="utf-8")
+    assert _run(["check", str(a), "--problem", str(small)])[0] == 1
+    assert _run(["check", str(a), "--problem", str(small), "--rtol", "0.01"])[0] == 0

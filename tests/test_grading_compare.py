@@ -385,3 +385,75 @@ def test_maximum_matching_not_greedy():
 
     # given 0 matches both expected; given 1 only the first: a greedy match would find 1
     assert max_matching([[True, True], [True, False]]) == 2
+
+
+def test_sympy_proof_when_points_fail(ref):
+    # an expected value undefined at the sample points is settled by sympy, briefly
+    import sympy as sp
+
+    from robosolve.grading.grader import Grader
+    from robosolve.questions.registry import question_type
+
+    g = Grader(ref)
+    qref = ref.question("jacobian")
+    ak = question_type("jacobian").key("det")
+    L1 = ref.problem.names["L1"]
+    e = sp.sqrt(-L1) * sp.sqrt(-L1)            # = -L1, but nan at every point with numpy
+    assert g._prove(qref, ak, "det", -L1, e).verdict == "correct"
+    assert g._prove(qref, ak, "det", L1, e).verdict == "incorrect"
+
+
+def test_sampling_ranges_of_every_role():
+    import sympy as sp
+
+    from robosolve.grading.points import SymbolRoles, sample
+
+    L, F, q, qd, C, t = sp.symbols("L F q q_dot C t", real=True)
+    roles = SymbolRoles(parameters={L: 2.0, F: None}, joints={q: (-0.5, 1.0)}, rates={qd},
+                        actuators={C}, t_symbol=t, t_range=(0.0, 1.7))
+    s = sample({L, F, q, qd, C, t}, roles, "seed")
+    col = s.columns
+    assert ((col[F] >= 0.5) & (col[F] <= 2)).all()                       # null parameter
+    assert ((col[q] >= -0.5) & (col[q] <= 1.0)).all()                    # joint limits
+    assert ((col[qd] >= -2) & (col[qd] <= 2)).all()
+    assert ((col[C] >= -5) & (col[C] <= 5)).all()
+    assert ((col[t] >= 0) & (col[t] <= 1.7)).all()
+    assert (col[L][s.fixed] == 2.0).all() and ((col[L][~s.fixed] >= 1.6) & (col[L][~s.fixed] <= 2.5)).all()
+    # a symbol's values do not depend on the other symbols sampled with it
+    alone = sample({q}, roles, "seed")
+    assert (alone.columns[q] == col[q]).all()
+
+
+def test_expression_for_a_numeric_reference_is_evaluated_at_the_values(ref):
+    # ellipse quantities are numbers (at `at`) even in symbolic form: an expression of the
+    # parameters is evaluated at their values, not diagnosed as substituted
+    J = jac()
+    w = np.linalg.eigvalsh(J @ J.T)
+    cond = max(w) / min(w)
+    r = one(ref, "ellipsoids", "condition_number", f'"{cond / (2 * 0.5 / 1.1)}*2*L1/(L1 + 0.6)"')
+    assert (r.verdict, r.compared) == ("correct", "numeric")
+    r = one(ref, "ellipsoids", "condition_number", f'"{cond}*3*L1"')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "")
+
+
+def test_parameters_substituted_needs_a_missing_parameter(ref):
+    # wrong at the moved points but every parameter kept: not "substituted"
+    r = one(ref, "jacobian", "det", '"L1*L2*sin(q2) + (L1 - 1/2)"')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "")
+
+
+def test_question_without_reference_is_not_graded(ref):
+    import copy
+
+    from robosolve.grading.record import grade_rows
+
+    broken = copy.deepcopy(ref)
+    broken.question("jacobian").error = "the Jacobian could not be derived"
+    res = grade_text(broken, answers('  jacobian: {det: "L1*L2*sin(q2)"}\n'))
+    jac_q = next(q for q in res.questions if q.id == "jacobian")
+    assert {k: r.verdict for k, r in jac_q.keys.items()} == {
+        "J": "no_reference", "det": "no_reference", "manipulability": "no_reference",
+        "singularities": "no_reference"}
+    assert res.max_score == 6 and jac_q.score == 0
+    rows = [r for r in grade_rows(res) if r[1] == "jacobian"]
+    assert all(r[3] == "no_reference" and r[5:] == ("0", "0") for r in rows)

@@ -222,3 +222,39 @@ def test_each_problem_is_solved_once(classroom, monkeypatch):
     jobs, refs = prepare([subs / "alice.yaml", subs / "bob-file.yaml", subs / "alice2.yaml"])
     assert len(calls) == 1 and len(refs) == 1
     assert [j.duplicate for j in jobs] == [False, False, True]
+
+
+def test_unknown_keys_are_invalid_for_that_key_only_in_grade(classroom):
+    from robosolve.grading.grade import grade_all, prepare
+    from robosolve.grading.record import record
+
+    dan = classroom / "dan.yaml"
+    dan.write_text(dedent("""
+        robosolve-answers: 1
+        problem: p.yaml
+        answers:
+          positon: {M: 1}
+          jacobian: {dett: 1, det: "L1*L2*sin(q2)"}
+        """), encoding="utf-8")
+    jobs, refs = prepare([dan])
+    (result,) = grade_all(jobs, refs, 1)
+    rec = record(result)
+    assert rec["notes"] == [f"{dan}:4: answers.positon: unknown question id 'positon' (did you mean "
+                            "'position'?) (the problem's questions: position, jacobian, statics)"]
+    keys = rec["questions"]["jacobian"]["keys"]
+    assert list(keys) == ["det", "singularities", "dett"]
+    assert keys["det"]["verdict"] == "correct"
+    assert keys["dett"]["verdict"] == "invalid" and "did you mean 'det'?" in keys["dett"]["feedback"]
+    assert rec["score"] == 1           # det: half of jacobian's 2 marks
+
+
+def test_variants_table_with_roster_names(tmp_path):
+    from robosolve.grading.grade import read_variants
+
+    for v in ("smith", "jo-smith"):
+        (tmp_path / f"exam-{v}").mkdir()
+        (tmp_path / f"exam-{v}" / "problem.yaml").write_text("robosolve: 1\n")
+    (tmp_path / "variants.csv").write_text("variant,student,seed,L1\nsmith,Smith,0,1/2\njo-smith,Jo Smith,0,3/5\n")
+    table = read_variants(tmp_path)
+    assert table["Jo Smith"] == table["jo-smith"] == tmp_path / "exam-jo-smith" / "problem.yaml"
+    assert table["Smith"] == tmp_path / "exam-smith" / "problem.yaml"

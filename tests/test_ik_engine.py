@@ -16,6 +16,7 @@ import sympy as sp
 from robosolve.ik import closed_form as cfm
 from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
 from robosolve.ik.numeric import lambdify_system, solve_all, wrap_angle
+from robosolve.render.numbers import text  # reasons keep raw numbers; the renderer formats them
 
 t1, t2, t3, l = sp.symbols("theta1 theta2 theta3 l")
 L1, L2, L3, h, x, y, z, phi = sp.symbols("L1 L2 L3 h x y z phi")
@@ -88,17 +89,17 @@ def test_boundary_double_solution_and_just_outside():
     vals[x] = 1.1 + 1e-6
     res = solve_ik(list(zip(P2R, [x, y])), J2, vals, target_symbols={x, y})
     assert res.status == "unreachable" and res.solutions == []
-    assert "L1 + L2" in res.reason and "distance" in res.reason
+    assert "L1 + L2" in text(res.reason) and "distance" in text(res.reason)
 
 
 def test_unreachable_reason_distance():
     vals = {L1: 0.6, L2: 0.5, x: 1.31, y: 0.0}
     res = solve_ik(list(zip(P2R, [x, y])), J2, vals, target_symbols={x, y})
     assert res.status == "unreachable"
-    assert "1.31 > L1 + L2 = 1.1" in res.reason
+    assert "1.31 > L1 + L2 = 1.1" in text(res.reason)
     vals = {L1: 0.6, L2: 0.5, x: 0.05, y: 0.0}
     res = solve_ik(list(zip(P2R, [x, y])), J2, vals, target_symbols={x, y})
-    assert res.status == "unreachable" and "too close" in res.reason
+    assert res.status == "unreachable" and "too close" in text(res.reason)
 
 
 def test_singular_configuration_continuum():
@@ -117,11 +118,11 @@ def test_limits_reject_and_select_nearest():
     assert len(res.solutions) == 1 and len(res.rejected) == 1
     assert res.solutions[0]["theta2"] > 0
     broken = res.rejected[0][1]
-    assert any("theta2" in b and "lower limit" in b for b in broken)
+    assert any("theta2" in b and "lower limit" in b for b in map(text, broken))
     # every solution rejected: unreachable, with the limits as reason
     joints = [IKJoint(t1, limits=(-1.0, 1.0)), IKJoint(t2, limits=(0.0, 1.0))]
     res = solve_ik(list(zip(P2R, [x, y])), joints, vals)
-    assert res.status == "unreachable" and "joint limit" in res.reason
+    assert res.status == "unreachable" and "joint limit" in text(res.reason)
     # nearest
     res = solve_ik(list(zip(P2R, [x, y])), J2, vals, select={"theta1": 1.0, "theta2": -1.0})
     assert res.selected["theta2"] < 0
@@ -164,7 +165,7 @@ def test_scara_and_polar_closed_forms():
 def test_overdetermined_and_redundant_counts():
     vals = {L1: 0.6, L2: 0.5, x: 0.7, y: 0.4, phi: 0.5}
     res = solve_ik(list(zip(P2R + [t1 + t2], [x, y, phi])), J2, vals)
-    assert res.status == "overdetermined" and "Choose 2 of the 3" in res.reason
+    assert res.status == "overdetermined" and "Choose 2 of the 3" in text(res.reason)
     assert len(res.subsets) == 3 and all(len(s["solutions"]) == 2 for s in res.subsets)
     # consistent extra equation: accepted
     vals = {L1: 0.6, L2: 0.5, x: 0.6 + 0.5 * math.cos(1.2), y: 0.5 * math.sin(1.2), phi: 1.2}
@@ -189,7 +190,7 @@ def test_velocity_ik_inverse_and_singular():
     assert np.allclose((p1 - p0) / eps, [0.1, -0.2], atol=1e-6)
     # stretched arm: singular, least squares with a note
     v = velocity_ik(P2R, [0.1, 0.0], J2, {"theta1": 0.0, "theta2": 0.0}, vals)
-    assert v.method == "least_squares" and "singular" in v.note
+    assert v.method == "least_squares" and "singular" in text(v.note)
 
 
 def test_numeric_deterministic_and_wrapped():

@@ -137,3 +137,19 @@ def test_time_budget_explains_the_oscillation(arm, plan):
 
     with pytest.raises(SimulationTooLong, match="oscillates at up to .* Hz"):
         simulate(arm, plan, "p", [5e6, 5e6], time_limit=0.05)
+
+
+def test_counted_budget_stops_a_stiff_loop_the_same_way_on_any_machine(arm, plan):
+    """The budget is a count of right-hand-side evaluations, not seconds (issue 11): the same
+    input stops at the same point whatever the load."""
+    from robosolve.motion.control import SimulationTooLong
+
+    with pytest.raises(SimulationTooLong, match="budget of 2,000 evaluations.*oscillates at up to"):
+        simulate(arm, plan, "p", [5e6, 5e6], time_limit=None, max_evaluations=2000)
+
+
+def test_negative_gain_is_described_as_unstable(arm, plan):
+    from robosolve.motion.control import SimulationTooLong
+
+    with pytest.raises(SimulationTooLong, match="negative gain makes the loop unstable"):
+        simulate(arm, plan, "p", [-5000, 100], time_limit=None, max_evaluations=2000)

@@ -59,8 +59,11 @@ def test_q_against_spatialmath_twist(axis, angle, through, h):
 def test_round_trip_through_the_from_to_form(axis, angle, through, h):
     # robosolve's own from/to form (itself checked against spatialmath elsewhere)
     a = screw(axis, angle, through, h)
-    q = a.numeric["Q"]
-    back = solve(f"{{id: b, type: displacement, from: {np.eye(4).tolist()}, to: {q}}}")["b"]
+    # the exact (symbolic) Q: the loader checks that a given matrix is a rototranslation
+    q = [[f"'{x}'" for x in row] for row in sp.Matrix(a.symbolic["Q"]).tolist()]
+    rows = "[" + ", ".join("[" + ", ".join(r) + "]" for r in q) + "]"
+    eye = "[[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]"
+    back = solve(f"{{id: b, type: displacement, from: {eye}, to: {rows}}}")["b"]
     for key in ("u", "alpha", "h", "P", "pitch"):
         assert np.allclose(back.numeric[key], a.numeric[key], atol=1e-9), key
 

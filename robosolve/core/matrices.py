@@ -1,19 +1,20 @@
 """The course's 4x4 matrices beyond M: L, W, H, pseudo-inertia J, actions Phi.
 
-Conventions are the spec's §3 and ERRATA §D:
+Conventions are the spec's §3 and docs/course-notes.md:
 
 * L of a joint = dM/dq * M^-1 (generated from M, never written by hand, §D.4);
 * W = Mdot M^-1, H = Mddot M^-1 = Wdot + W^2, both expressed in the fixed frame;
 * pseudo-inertia J = integral of p p^T dm with homogeneous p (§D.8);
 * matrix of actions Phi = sum(F P^T - P F^T) + [C]  (§D.5);
 * pseudo scalar product A (x) B over entries [3,2],[1,3],[2,1],[1,4],[2,4],[3,4]
-  (1-based; ERRATA item 92: [3,2], not [3,1]).
+  (1-based; course-notes#note-pseudo-scalar-product: [3,2], not [3,1]).
 """
 
 from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.simplify import tidy
 from robosolve.core.transforms import rigid_inverse, skew
 
 __all__ = [
@@ -25,7 +26,38 @@ __all__ = [
 
 def l_matrix(m: sp.Matrix, q: sp.Symbol) -> sp.Matrix:
     """L = dM/dq * M^-1 for a rototranslation M depending on joint variable q."""
-    return (m.diff(q) * rigid_inverse(m)).applyfunc(lambda e: sp.trigsimp(sp.expand(e)))
+    return (m.diff(q) * rigid_inverse(m)).applyfunc(lambda e: tidy(sp.expand(e)))
+
+
+# dF/da F^-1 of each elementary motion F(a): constant twists (Rx: [e_x], Tx: e_x, ...).
+_UNIT_TWIST = {
+    "Rx": ((1, 0, 0), (0, 0, 0)), "Ry": ((0, 1, 0), (0, 0, 0)), "Rz": ((0, 0, 1), (0, 0, 0)),
+    "Tx": ((0, 0, 0), (1, 0, 0)), "Ty": ((0, 0, 0), (0, 1, 0)), "Tz": ((0, 0, 0), (0, 0, 1)),
+}
+
+
+def l_matrix_of_factors(factors, q: sp.Symbol) -> sp.Matrix | None:
+    """L = dM/dq M^-1 of M = F1 F2 ... (elementary motions `(op, arg)`) by structure,
+    when q appears in one factor Fk only, linearly: L = P (c L_op) P^-1 with P = F1...Fk-1
+    and c = d arg/dq (the same matrix as differentiating M, without simplifying products
+    of sines). None when that shape does not apply (the caller differentiates M)."""
+    from robosolve.core.transforms import ELEMENTARY
+
+    hits = [k for k, (_, arg) in enumerate(factors) if sp.sympify(arg).has(q)]
+    if len(hits) != 1:
+        return None
+    op, arg = factors[hits[0]]
+    c = sp.diff(arg, q)
+    if c.has(q) or op not in _UNIT_TWIST:
+        return None
+    prefix = sp.eye(4)
+    for pop, parg in factors[:hits[0]]:
+        prefix = prefix * ELEMENTARY[pop](parg)
+    w, v = _UNIT_TWIST[op]
+    r, t = prefix[:3, :3], prefix[:3, 3]
+    omega = r * sp.Matrix(w) * c
+    vel = r * sp.Matrix(v) * c - omega.cross(t)
+    return velocity_matrix(omega.applyfunc(sp.expand), vel.applyfunc(sp.expand))
 
 
 def change_frame(m: sp.Matrix, a: sp.Matrix) -> sp.Matrix:
@@ -61,7 +93,7 @@ def pseudo_inertia_rod(mass, start, end) -> sp.Matrix:
 def pseudo_inertia_from_com(mass, com, inertia=None) -> sp.Matrix:
     """J from the centre of mass c and the classical inertia tensor I_G about it.
 
-    J3x3 = (tr I_G / 2) 1 - I_G + m c c^T, J[:3, 3] = m c, J[3, 3] = m (ERRATA §D.8).
+    J3x3 = (tr I_G / 2) 1 - I_G + m c c^T, J[:3, 3] = m c, J[3, 3] = m (course-notes#note-pseudo-inertia).
     """
     c = sp.Matrix(com)
     ig = sp.zeros(3, 3) if inertia is None else sp.Matrix(inertia)
@@ -83,7 +115,7 @@ def pseudo_inertia_parts(j: sp.Matrix) -> dict:
 
 
 def gravity_matrix(gravity) -> sp.Matrix:
-    """H_g: zero but for the gravity vector in the last column (ERRATA §D.9)."""
+    """H_g: zero but for the gravity vector in the last column (course-notes#note-gravity)."""
     out = sp.zeros(4, 4)
     out[:3, 3] = sp.Matrix(gravity)
     return out

@@ -1,10 +1,36 @@
-"""One simplification policy for every solver (stable goldens, bounded time).
+"""The one simplification policy of robosolve: named variants, one memo, op-count budgets.
 
-`tidy` is the cheap default: trig products collapsed entry by entry
-(c1*c2 - s1*s2 -> cos(theta1 + theta2)), never a blanket `simplify`.
+Every simplification in robosolve goes through a variant below (tests/test_simplify_policy.py
+fails on a `simplify`, `trigsimp`, `fu`, `factor`, ... call anywhere else). Each variant says
+what it is for and how much work it may do; the work is measured deterministically by
+sympy's `count_ops` (an expression above its variant's budget is left as it is), so the same
+input gives the same output on every machine. Budgets come from `SimplifyBudgets` (the
+solve context carries one: `ctx.budgets.simplify`); engines use the defaults.
+
+| variant | for | budget |
+| --- | --- | --- |
+| `chain_product` (alias `tidy`) | entries of chain products M, W, H, L (c1 c2 - s1 s2 -> cos(q1 + q2)) | `chain_ops` (+ `chain_seconds` safety net) |
+| `jacobian_entry` | Jacobian entries: trigsimp, then factor if shorter | none (entries are small) |
+| `small_trig` | small pieces: the dynamics engine's sympy fallback, twists L = dM/dq M^-1 | none |
+| `exact_geometry` | rotation / displacement quantities (angles, axes, quaternions) | `geometry_ops` |
+| `full` | a blanket `simplify` on the few small exact expressions of one helical axis or one atan2 branch | none (callers pass small inputs) |
+| `bounded_full` | `full` below `root_ops`, else unchanged (roots of a singular factor) | `root_ops` |
+| `ik_fraction` | IK closed forms: one fraction, numerator expanded, no -(...) around a sum | none |
+| `determinant_factors`, `factored_determinant` | factors of det J (trig identities may reveal products) | none |
+| `coefficient` | parameter coefficients of the equations of motion: factored when small | `coefficient_ops` |
+| `factored` | a polynomial shown factored (profile derivatives, radicands) | none |
+| `radicals` | exact numbers with radicals: the shortest of expand / sqrtdenest / radsimp | none |
+| `eigenvalue` | an exact eigenvalue: simplify, then radicals collected | none |
+| `rational` | a float written as the rational it stands for (nsimplify) | none |
+| `is_zero` | equivalence checks: simplify(a - b) == 0 | none |
+
+`memoised` keeps every complete result in one table keyed by (variant, expression).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import wraps
 
 import sympy as sp
 from sympy.simplify.fu import TR10i
@@ -12,48 +38,120 @@ from sympy.simplify.fu import TR10i
 from robosolve.core.timing import time_limit
 from robosolve.errors import SymbolicTimeout
 
+__all__ = [
+    "SimplifyBudgets", "DEFAULT_BUDGETS", "chain_product", "tidy", "tidy_matrix", "jacobian_entry",
+    "small_trig", "exact_geometry", "full", "bounded_full", "ik_fraction", "determinant_factors",
+    "factored_determinant", "coefficient", "factored", "radicals", "eigenvalue", "rational",
+    "is_zero",
+]
 
-# Above this size trigsimp costs seconds and rarely pays: the entry is left as is.
-MAX_TIDY_OPS = 300
+
+@dataclass(frozen=True)
+class SimplifyBudgets:
+    """Work budgets of the variants, in `count_ops` of the input (deterministic)."""
+
+    chain_ops: int = 300            # above: trigsimp costs seconds and rarely pays
+    chain_seconds: float = 5.0      # safety net only: the op count decides first
+    geometry_ops: int = 60          # above: trigsimp on rotation entries takes minutes
+    coefficient_ops: int = 60       # above: factor_terms only
+    root_ops: int = 40              # above: a root is shown as solve gave it
+
+
+DEFAULT_BUDGETS = SimplifyBudgets()
+
+# Above this size trigsimp costs seconds and rarely pays: the entry is left as is. The size is
+# counted (sympy operations), so the decision is the same on every machine; the time limit of
+# `tidy` is only a safety net.
+MAX_TIDY_OPS = DEFAULT_BUDGETS.chain_ops
+
+
+def expression_nodes(obj) -> int:
+    """The number of expression-tree nodes in a sympy object, a matrix, or nested lists,
+    tuples and dicts of them: the deterministic measure of symbolic work (spec §2)."""
+    if isinstance(obj, sp.MatrixBase):
+        return sum(expression_nodes(e) for e in obj)
+    if isinstance(obj, sp.Basic):
+        return sum(1 for _ in sp.preorder_traversal(obj))
+    if isinstance(obj, dict):
+        return sum(expression_nodes(v) for v in obj.values())
+    if isinstance(obj, (list, tuple)):
+        return sum(expression_nodes(e) for e in obj)
+    return 0
 
 
 _MEMO: dict = {}
-_MEMO_SIZE = 20_000
+_MEMO_SIZE = 50_000
 
 
-def tidy(expr, seconds: float = 5.0):
-    """trigsimp of one expression, or the expression unchanged past `seconds`
-    (or when it is too large to be worth it). Memoised: chain products and
-    points re-tidy the same entries many times."""
-    expr = sp.sympify(expr)
-    hit = _MEMO.get(expr)
-    if hit is not None:
-        return hit
-    out, complete = _tidy(expr, seconds)
-    if complete and len(_MEMO) < _MEMO_SIZE:
-        _MEMO[expr] = out
-        _MEMO[out] = out
-    return out
+class _Incomplete(Exception):
+    """Raised inside a variant whose work was cut short: its result is not memoised."""
+
+    def __init__(self, value):
+        self.value = value
 
 
-def _tidy(expr, seconds: float):
+def memoised(fn=None, *, fixed_point: bool = False):
+    """One memo for every variant: (variant, expression, budget) -> result.
+
+    A `seconds` keyword is not part of the key (it only decides whether the work
+    completes; an incomplete result is never stored). `fixed_point`: the result is also
+    stored as its own result (a tidied entry needs no second pass).
+    """
+    if fn is None:
+        return lambda f: memoised(f, fixed_point=fixed_point)
+    name = fn.__name__
+
+    @wraps(fn)
+    def wrapper(expr, *args, **kw):
+        expr = sp.sympify(expr)
+        budget = (args, tuple(sorted((k, v) for k, v in kw.items() if k != "seconds")))
+        hit = _MEMO.get((name, expr, budget))
+        if hit is not None:
+            return hit
+        try:
+            out = fn(expr, *args, **kw)
+        except _Incomplete as inc:
+            return inc.value
+        if len(_MEMO) < _MEMO_SIZE:
+            _MEMO[(name, expr, budget)] = out
+            if fixed_point:
+                _MEMO[(name, out, budget)] = out
+        return out
+
+    return wrapper
+
+
+# ---------------------------------------------------------------------------- chains
+
+def tidy(expr, seconds: float | None = None, budgets: SimplifyBudgets = DEFAULT_BUDGETS):
+    """`chain_product` (the model's name for it)."""
+    return chain_product(expr, budgets.chain_ops,
+                         seconds=budgets.chain_seconds if seconds is None else seconds)
+
+
+@memoised(fixed_point=True)
+def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
+                  seconds: float = DEFAULT_BUDGETS.chain_seconds):
+    """Trig products collapsed entry by entry (c1*c2 - s1*s2 -> cos(theta1 + theta2)),
+    never a blanket `simplify`; an entry above `max_ops` is left as it is. Chain products
+    and points re-tidy the same entries many times: memoised, fixed points included."""
     if expr.is_Atom or not expr.has(sp.sin, sp.cos):
-        return (sp.expand(expr) if expr.is_Add or expr.is_Mul else expr), True
-    if sp.count_ops(expr) > MAX_TIDY_OPS:
-        return expr, True
+        return sp.expand(expr) if expr.is_Add or expr.is_Mul else expr
+    if sp.count_ops(expr) > max_ops:
+        return expr
     try:
         with time_limit(seconds) as token:
             expanded = sp.expand(expr)
             # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
             # leaves trigsimp, slow on long chains, little or nothing to do.
             collapsed = TR10i(expanded)
-            if not _has_trig_products(collapsed):
-                return collapsed, True
-            return sp.trigsimp(collapsed), True
+            if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > max_ops:
+                return collapsed
+            return sp.trigsimp(collapsed)
     except SymbolicTimeout as exc:
         if exc.token is not token:
             raise          # an enclosing step's time is up
-        return expr, False
+        raise _Incomplete(expr) from None
 
 
 def _has_trig_products(expr) -> bool:
@@ -67,14 +165,181 @@ def _has_trig_products(expr) -> bool:
     return False
 
 
-def tidy_matrix(m: sp.Matrix, seconds: float = 5.0) -> sp.Matrix:
+def tidy_matrix(m: sp.Matrix, seconds: float | None = None) -> sp.Matrix:
     return m.applyfunc(lambda e: tidy(e, seconds))
 
 
+def _has_trig_squares(expr) -> bool:
+    """True when a power of sin/cos is left (room for cos² + sin² = 1)."""
+    return any(node.is_Pow and isinstance(node.base, (sp.sin, sp.cos))
+               for node in sp.preorder_traversal(expr))
+
+
+def tidy_products(expr, seconds: float | None = None):
+    """Named variant for the chain products of long arms (5+ joints): expand and apply
+    the addition formulas (TR10i); trigsimp only when a power of sin/cos is left. An entry
+    of a 6R pose is a sum of products of sines and cosines of different angles, with no
+    cos² + sin² = 1 to use: trigsimp spends seconds per entry on it and finds only the
+    factored look (a common factor pulled out), which the short arms' reports keep (they
+    use `tidy`)."""
+    expr = sp.sympify(expr)
+    if expr.is_Atom or not expr.has(sp.sin, sp.cos):
+        return tidy(expr, seconds)
+    collapsed = TR10i(sp.expand(expr))
+    return tidy(collapsed, seconds) if _has_trig_squares(collapsed) else collapsed
+
+
+def tidy_products_matrix(m: sp.Matrix, seconds: float | None = None) -> sp.Matrix:
+    return m.applyfunc(lambda e: tidy_products(e, seconds))
+
+
+# ---------------------------------------------------------------------------- kinematics
+
+@memoised
+def jacobian_entry(expr):
+    """Light, predictable simplification of one Jacobian entry: trigsimp, then factor if
+    shorter (the singularity search meets the same factors many times)."""
+    if expr.is_number or not expr.free_symbols:
+        return sp.nsimplify(expr) if expr.is_Float else expr
+    out = sp.trigsimp(expr)
+    fac = sp.factor(out)
+    if sp.count_ops(fac) < sp.count_ops(out):
+        out = fac
+    return out
+
+
+def determinant_factors(expr) -> list:
+    """Factors of expr (with multiplicity dropped): factor the raw expression, tidy each
+    factor (trig identities may reveal products, as in det J of a 2R arm), factor again."""
+    out = []
+    _, raw = sp.factor_list(sp.factor(expr))
+    for fac, _mult in raw:
+        _, again = sp.factor_list(sp.factor(jacobian_entry(fac)))
+        for f2, _m2 in again:
+            if f2.could_extract_minus_sign():
+                f2 = -f2
+            if f2 not in out:
+                out.append(f2)
+    return out
+
+
+@memoised
+def factored_determinant(expr):
+    """expr as a product of tidied factors (for display)."""
+    coeff, raw = sp.factor_list(sp.factor(expr))
+    out = coeff
+    for fac, mult in raw:
+        out *= sp.factor(jacobian_entry(fac)) ** mult
+    return out
+
+
+@memoised
 def small_trig(expr):
     """Trig-simplify a *small* expression (the dynamics engine's sympy fallback algebra:
     pieces of one link at a time); expressions without sin/cos are only expanded."""
-    expr = sp.sympify(expr)
     if expr.is_number or not expr.has(sp.sin, sp.cos):
         return sp.expand(expr)
     return sp.trigsimp(sp.expand(expr))
+
+
+@memoised
+def twist_entry(expr):
+    """An entry of a local twist dM/dq M^-1: trigsimp of the expanded entry."""
+    return sp.trigsimp(sp.expand(expr))
+
+
+# ---------------------------------------------------------------------------- geometry
+
+@memoised
+def exact_geometry(e, max_ops: int = DEFAULT_BUDGETS.geometry_ops):
+    """Rotation and displacement quantities: exact numbers fully, small symbolic
+    expressions with trigsimp, large ones (above `max_ops`) untouched."""
+    floats = e.atoms(sp.Float)
+    if floats:  # inexact input: drop round-off terms (2.8e-17*h) before anything else
+        e = e.xreplace({x: sp.Integer(0) for x in floats if abs(x) < 1e-13})
+    if not e.free_symbols:
+        return sp.simplify(e)
+    if isinstance(e, sp.atan2):
+        return sp.atan2(*(exact_geometry(a, max_ops) for a in e.args))
+    if sp.count_ops(e) > max_ops:
+        return e
+    return sp.trigsimp(sp.expand(e))
+
+
+@memoised
+def full(e):
+    """A blanket `simplify`: only for the few small exact expressions of one helical axis
+    or one atan2 branch, where it finds the shortest form."""
+    return sp.simplify(e)
+
+
+def bounded_full(e, max_ops: int = DEFAULT_BUDGETS.root_ops):
+    """`full` below `max_ops`, else the expression as it is."""
+    e = sp.sympify(e)
+    return full(e) if sp.count_ops(e) < max_ops else e
+
+
+def is_zero(e) -> bool:
+    """True when simplify proves e == 0 (equivalence checks: a - b)."""
+    return full(e) == 0
+
+
+# ---------------------------------------------------------------------------- algebra
+
+@memoised
+def ik_fraction(e):
+    """Light simplification for display and smaller expressions: one fraction, its numerator
+    expanded, no -(...) around a sum (E.x**2 + E.y**2 - L1**2 - L2**2)/(2*L1*L2)."""
+    try:
+        t = sp.together(e)
+        num, den = sp.fraction(t)
+        if den != 1:
+            return sp.expand(num) / den
+        f = sp.factor_terms(t)
+        if isinstance(f, sp.Mul) and f.args and f.args[0] == -1 and any(isinstance(a, sp.Add) for a in f.args):
+            return sp.expand(t)
+        return f
+    except Exception:  # pragma: no cover
+        return e
+
+
+@memoised
+def coefficient(coef, small: bool = True, max_ops: int = DEFAULT_BUDGETS.coefficient_ops):
+    """A parameter coefficient of the equations of motion: factored when the robot is small
+    and the coefficient within `max_ops`, else its common factors taken out."""
+    return sp.factor(coef) if small and sp.count_ops(coef) <= max_ops else sp.factor_terms(coef)
+
+
+def common_factors(e):
+    """Common factors taken out (no factoring of sums)."""
+    return sp.factor_terms(e)
+
+
+@memoised
+def factored(e):
+    """A polynomial shown factored (profile derivatives, the radicand of a distance)."""
+    return sp.factor(e)
+
+
+@memoised
+def radicals(x):
+    """Exact numbers with radicals: the shortest of expand / sqrtdenest / radsimp."""
+    cands = [x, sp.expand(x), sp.sqrtdenest(x), sp.expand(sp.sqrtdenest(x)), sp.radsimp(x)]
+    return min(cands, key=lambda c: (sp.count_ops(c), sp.default_sort_key(c)))
+
+
+@memoised
+def collected_radicals(e):
+    """An exact number with its radicals collected (radsimp: fast)."""
+    return sp.radsimp(e)
+
+
+@memoised
+def eigenvalue(val):
+    """An exact eigenvalue: simplify, then radicals collected."""
+    return sp.radsimp(sp.simplify(val))
+
+
+def rational(x):
+    """A float written as the exact rational (or simple radical) it stands for."""
+    return sp.nsimplify(x)

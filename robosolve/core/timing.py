@@ -1,8 +1,13 @@
 """Time limits for symbolic steps.
 
-sympy is pure Python, so a SIGALRM raised between bytecodes stops a runaway
+sympy is pure Python, so a signal raised between bytecodes stops a runaway
 `solve`/`simplify` cleanly. Only the main thread can receive signals; elsewhere
 the limit is not enforced (documented, and the batch runner uses processes).
+
+The limits count the process's CPU time (ITIMER_PROF: user + system), not the wall
+clock: on a machine shared with other jobs a wall-clock limit expires early and the
+same problem gets a different (numeric-only) answer; CPU time is what the step costs,
+whatever else runs, so the outputs stay the same.
 """
 
 from __future__ import annotations
@@ -14,39 +19,46 @@ import time
 
 from robosolve.errors import SymbolicTimeout
 
+_TIMER = getattr(signal, "ITIMER_PROF", None)
+_SIGNAL = getattr(signal, "SIGPROF", None)
+
 
 @contextlib.contextmanager
-def time_limit(seconds: float):
+def time_limit(seconds: float, repeat: bool = False, what: str = "symbolic step"):
     """Raise SymbolicTimeout if the block runs longer than `seconds`.
 
     Yields a token: `exc.token is token` tells whether this block expired (and
-    not an enclosing one, whose expiry must propagate).
+    not an enclosing one, whose expiry must propagate). With `repeat`, the expiry is raised
+    again every second until the block ends, so that code catching SymbolicTimeout without
+    checking its token cannot swallow an outer budget (the pipeline's per-question net).
     """
     token = object()
-    usable = (seconds and seconds > 0 and hasattr(signal, "setitimer")
+    usable = (seconds and seconds > 0 and hasattr(signal, "setitimer") and _TIMER is not None
               and threading.current_thread() is threading.main_thread())
     if not usable:
         yield token
         return
 
     def on_alarm(signum, frame):
-        raise SymbolicTimeout(f"symbolic step exceeded {seconds:g} s", token)
+        if repeat:
+            signal.setitimer(_TIMER, 1.0)
+        raise SymbolicTimeout(f"{what} exceeded {seconds:g} s", token)
 
-    previous = signal.signal(signal.SIGALRM, on_alarm)
-    remaining, _ = signal.getitimer(signal.ITIMER_REAL)
+    previous = signal.signal(_SIGNAL, on_alarm)
+    remaining, _ = signal.getitimer(_TIMER)
     if remaining and remaining < seconds:
         # an outer limit is shorter: keep it
-        signal.signal(signal.SIGALRM, previous)
+        signal.signal(_SIGNAL, previous)
         yield token
         return
-    start = time.monotonic()
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    start = time.process_time()
+    signal.setitimer(_TIMER, seconds)
     try:
         yield token
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous)
+        signal.setitimer(_TIMER, 0)
+        signal.signal(_SIGNAL, previous)
         if remaining:
             # restore the outer timer, minus the time spent here
-            elapsed = time.monotonic() - start
-            signal.setitimer(signal.ITIMER_REAL, max(remaining - elapsed, 1e-3))
+            elapsed = time.process_time() - start
+            signal.setitimer(_TIMER, max(remaining - elapsed, 1e-3))

@@ -1,6 +1,6 @@
 """Homogeneous transforms (4x4 rototranslation matrices M) on sympy.
 
-Notation (ERRATA §D.1): ``M_ij`` is the pose of frame j in frame i, so
+Notation (docs/course-notes.md#note-frame-notation): ``M_ij`` is the pose of frame j in frame i, so
 ``P_i = M_ij * P_j`` for homogeneous points and ``M_0j = M_01 * M_12 * ...``.
 Every function accepts sympy expressions or plain numbers and returns an
 explicit ``sympy.Matrix``.
@@ -60,7 +60,7 @@ ELEMENTARY = {
 
 
 def dh_standard(theta, d, a, alpha) -> sp.Matrix:
-    """Standard DH: Rz(theta) Tz(d) Tx(a) Rx(alpha) (ERRATA §D.11)."""
+    """Standard DH: Rz(theta) Tz(d) Tx(a) Rx(alpha) (course-notes#note-dh-order)."""
     ct, st = sp.cos(theta), sp.sin(theta)
     ca, sa = sp.cos(alpha), sp.sin(alpha)
     return sp.Matrix([
@@ -100,7 +100,7 @@ def homogeneous(r: sp.Matrix, t) -> sp.Matrix:
 
 
 def rigid_inverse(m: sp.Matrix) -> sp.Matrix:
-    """Inverse of a rototranslation: [R^T, -R^T t; 0 0 0 1] (ERRATA item 21)."""
+    """Inverse of a rototranslation: [R^T, -R^T t; 0 0 0 1] (course-notes#note-inverse-pose)."""
     rt = m[:3, :3].T
     return homogeneous(rt, -rt * m[:3, 3])
 

@@ -35,7 +35,7 @@ From a problem's RobotModel (what solvers use; one derivation per model, cached)
 them); joint symbols in it are ignored. Actuator order = joint order; for a chain
 f_i = actuator_i + external_i.
 
-Conventions: spec §3 and ERRATA §D items 5-9 (see ``robosolve/dynamics/engine.py``).
+Conventions: spec §3 and docs/course-notes.md, Dynamics (see ``robosolve/dynamics/engine.py``).
 """
 
 from __future__ import annotations

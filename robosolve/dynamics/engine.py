@@ -1,6 +1,6 @@
 """Equations of motion by the course's matrix method, engineered to stay small.
 
-The course (seed §6, ERRATA §D.5-9):
+The course (seed §6; docs/course-notes.md, Dynamics):
 
 * Tⱼ = ½ tr(⁰W₀ⱼ ⁰Jⱼ ⁰W₀ⱼᵀ), Uⱼ = −tr(⁰H_g ⁰Jⱼ), ℒ = Σ(Tⱼ − Uⱼ);
 * fᵢ = (Σ_{j≥i} ⁰Φⱼ) ⊗ ⁰Lᵢ;
@@ -33,6 +33,7 @@ from typing import Mapping
 import sympy as sp
 
 from robosolve.core.matrices import action_matrix
+from robosolve.core.simplify import coefficient
 from robosolve.core.transforms import skew, vex
 from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra, fourier_terms, product_terms
 from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
@@ -307,7 +308,7 @@ class DynamicsEngine:
         return self._cached(("rPhi", k), build)
 
     def _rext(self):
-        """Generalized forces of the loads: Σ Φ_b ⊗ ᵇLᵢⱼ (frame invariant, ERRATA §D.6)."""
+        """Generalized forces of the loads: Σ Φ_b ⊗ ᵇLᵢⱼ (frame invariant, course-notes#note-pseudo-scalar-product)."""
         from robosolve.core.matrices import _PSP_ENTRIES
 
         def build():
@@ -374,8 +375,7 @@ class DynamicsEngine:
             coef = sp.expand(groups[trig])
             if coef == 0:
                 continue
-            coef = sp.factor(coef) if factor and small and sp.count_ops(coef) <= 60 else \
-                sp.factor_terms(coef)
+            coef = coefficient(coef, small=factor and small)
             out.append(coef * trig)
         return sp.Add(*out)
 
@@ -451,7 +451,7 @@ class DynamicsEngine:
             [self.pretty(x) for x in self._rext()]))
 
     def hg(self) -> sp.Matrix:
-        """⁰H_g: the gravity vector in the last column (ERRATA §D.9)."""
+        """⁰H_g: the gravity vector in the last column (course-notes#note-gravity)."""
         out = sp.zeros(4, 4)
         out[:3, 3] = self.gravity
         return out
@@ -538,7 +538,7 @@ class DynamicsEngine:
 
     def link_actions0(self) -> dict[str, sp.Matrix]:
         """⁰Φ of each link: +own actuator, −next actuators' reactions, external loads on
-        any frame of the link (ERRATA §D.5)."""
+        any frame of the link (course-notes#note-matrix-of-actions)."""
         return {k: self._view(("Phi0", k), v) for k, v in self._rlink_actions0().items()}
 
     def _rL0(self, i: int, name: str):

@@ -92,7 +92,7 @@ class Dynamics:
 
     @property
     def generalized_forces(self) -> sp.Matrix:
-        """f_i = actuator_i + external_i (ERRATA §D.6-7)."""
+        """f_i = actuator_i + external_i (course-notes#note-lagrange)."""
         return sp.Matrix(self.actuators) + self.external_forces
 
     def lhs(self) -> sp.Matrix:

@@ -1,5 +1,5 @@
 """Rigid displacements and their helical (screw) axis (seed §3.1.3-3.1.6 as
-corrected by ERRATA items 22-37 and §D.13).
+corrected as in docs/course-notes.md#note-helical-axis).
 
 A body moves from pose M01 to pose M02 (both in frame 0).  The displacement
 matrix Q0 = M02 * M01^-1 maps the initial position of any body point to its
@@ -36,6 +36,7 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import full
 from robosolve.core.transforms import rigid_inverse, skew
 from robosolve.geometry.rotations import (
     ZERO_TOL, axis_angle_numeric, axis_angle_symbolic, axis_angle_matrix, is_zero,
@@ -147,8 +148,8 @@ def helical_numeric(q, tol: float = ZERO_TOL) -> HelicalAxis:
                        point=(p + 0.0).tolist(), pitch=h / alpha)
 
 
-def _default_simplify(e):
-    return sp.simplify(e)
+#: The few small exact expressions of one helical axis: the policy's blanket variant.
+_default_simplify = full
 
 
 def helical_symbolic(q, simplify: Callable = _default_simplify) -> HelicalAxis:

@@ -1,4 +1,4 @@
-"""Degrees of freedom of a mechanism (seed §1.1.3, ERRATA items 3-5 and §D.16).
+"""Degrees of freedom of a mechanism (seed §1.1.3, docs/course-notes.md#note-mobility).
 
 Gruebler (planar):   n = 3 (m - 1) - 2 c1 - c2
 Kutzbach (spatial):  n = 6 (m - 1) - 5 c1 - 4 c2 - 3 c3

@@ -1,5 +1,5 @@
 """Rotation representations: ZYZ Euler angles, roll-pitch-yaw, axis-angle and
-unit quaternion (seed §5.6, ERRATA items 77-80 and §D.12).
+unit quaternion (seed §5.6, docs/course-notes.md#note-orientation).
 
 Conventions (the spec's "Orientation" layout):
 
@@ -35,6 +35,8 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import exact_geometry
+
 __all__ = [
     "SINGULAR_TOL", "ZERO_TOL",
     "AxisAngle", "EulerAngles",
@@ -66,7 +68,7 @@ class AxisAngle:
     free symbols, ``"generic"`` (the general formulas, valid where
     sin(alpha) != 0).  ``cos_angle``/``sin_angle`` are the quantities the
     formulas start from: cos(alpha) = (tr R - 1)/2 and
-    sin(alpha) = |vex(R - R^T)|/2 (ERRATA items 25-26).
+    sin(alpha) = |vex(R - R^T)|/2 (course-notes#note-helical-axis).
     """
 
     axis: Any            # [ux, uy, uz] or None
@@ -151,25 +153,9 @@ def _rot3_symbolic(m) -> sp.Matrix:
     return a
 
 
-#: Above this operation count a symbolic expression is left as it is: trigsimp
-#: on large expressions takes minutes and rarely makes them readable.
-SIMPLIFY_MAX_OPS = 60
-
-
-def _default_simplify(e):
-    """The simplification policy: exact numbers fully, small symbolic expressions
-    with trigsimp, large ones untouched (fast and deterministic)."""
-    e = sp.sympify(e)
-    floats = e.atoms(sp.Float)
-    if floats:  # inexact input: drop round-off terms (2.8e-17*h) before anything else
-        e = e.xreplace({x: sp.Integer(0) for x in floats if abs(x) < 1e-13})
-    if not e.free_symbols:
-        return sp.simplify(e)
-    if isinstance(e, sp.atan2):
-        return sp.atan2(*(_default_simplify(a) for a in e.args))
-    if sp.count_ops(e) > SIMPLIFY_MAX_OPS:
-        return e
-    return sp.trigsimp(sp.expand(e))
+#: The simplification of every symbolic quantity here: the policy's `exact_geometry`
+#: variant (exact numbers fully, small expressions with trigsimp, large ones untouched).
+_default_simplify = exact_geometry
 
 
 def is_zero(e) -> bool:
@@ -269,7 +255,7 @@ def axis_angle_numeric(m, tol: float = ZERO_TOL) -> AxisAngle:
 
 
 def axis_angle_symbolic(m, simplify: Callable = _default_simplify) -> AxisAngle:
-    """Axis-angle of a sympy rotation matrix (ERRATA items 25-30, 79).
+    """Axis-angle of a sympy rotation matrix (course-notes#note-helical-axis).
 
     cos(alpha) = (tr R - 1)/2, sin(alpha) = |vex(R - R^T)|/2 >= 0 and
     u = vex(R - R^T)/(2 sin alpha); at alpha = pi (exact matrices only)
@@ -408,7 +394,7 @@ def zyz_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
 
 
 def rpy_matrix(roll, pitch, yaw) -> sp.Matrix:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (ERRATA item 78)."""
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (course-notes#note-orientation)."""
     from robosolve.core.transforms import rot_x, rot_y, rot_z
 
     return (rot_z(yaw) * rot_y(pitch) * rot_x(roll))[:3, :3]

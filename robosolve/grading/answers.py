@@ -34,6 +34,7 @@ class Given:
     value: object                  # plain YAML data (numbers, strings, lists, mappings)
     path: tuple                    # YAML path, for FILE:LINE messages
     line: int
+    problem: str = ""              # `grade` only: why this key cannot be graded (unknown, twice)
 
 
 @dataclass
@@ -45,6 +46,7 @@ class Submission:
     source: Source
     answers: dict = field(default_factory=dict)   # question id -> {dotted key: Given}
     issues: list = field(default_factory=list)    # layout issues found by read_answers (not fatal)
+    notes: list = field(default_factory=list)     # `grade` only: unknown question ids, as messages
 
     def where(self, path) -> tuple[int, str]:
         return self.source.line(path), path_str(path)
@@ -59,9 +61,11 @@ class _Issues:
     def __init__(self, source: Source):
         self.src = source
         self.items: list[InputIssue] = []
+        self.pending: list = []   # (dotted key, raw value, path) of each issue about a key
 
-    def error(self, path, message: str) -> None:
+    def error(self, path, message: str, key=None, value=None) -> None:
         self.items.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
+        self.pending.append((key, value, path))
 
     def raise_if_any(self) -> None:
         if self.items:
@@ -139,24 +143,42 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
     return Submission(file, student, problem_file, raw, source, issues=list(issues.items))
 
 
-def resolve_answers(sub: Submission, problem) -> Submission:
-    """Check question ids and keys against `problem`; fill `sub.answers`. Raises InputError."""
+def resolve_answers(sub: Submission, problem, strict: bool = True) -> Submission:
+    """Check question ids and keys against `problem`; fill `sub.answers`.
+
+    `strict` (check): every issue raises InputError, all at once. Not strict (grade, where
+    grading.md makes an unknown key `invalid` for that key only): the file's own layout
+    issues still raise, an unknown or repeated key becomes a Given carrying its message,
+    and an unknown question id a note of the submission.
+    """
     issues = _Issues(sub.source)
     issues.items = list(sub.issues)
+    if not strict:
+        issues.raise_if_any()
+    key_issues = _Issues(sub.source)
     questions = {q.id: q for q in problem.questions}
-    sub.answers = {}
+    sub.answers, notes = {}, []
     for qid, mapping in sub.raw.items():
         path = ("answers", qid)
         q = questions.get(qid)
         if q is None:
-            issues.error(path, f"unknown question id '{qid}'" + did_you_mean(qid, questions)
-                         + f" (the problem's questions: {', '.join(questions)})")
+            key_issues.error(path, f"unknown question id '{qid}'" + did_you_mean(qid, questions)
+                             + f" (the problem's questions: {', '.join(questions)})")
+            notes.append(str(key_issues.items[-1]))
             continue
         qt = question_type(q.type)
         out: dict[str, Given] = {}
-        _flatten(issues, sub.source, qt, mapping, path, "", out)
+        before = len(key_issues.items)
+        _flatten(key_issues, sub.source, qt, mapping, path, "", out)
+        if not strict:
+            for issue, (key, value, kpath) in zip(key_issues.items[before:], key_issues.pending[before:]):
+                out.setdefault(key, Given(key, value, kpath, issue.line, problem=str(issue)))
         sub.answers[qid] = out
-    issues.raise_if_any()
+    if strict:
+        issues.items += key_issues.items
+        issues.raise_if_any()
+    else:
+        sub.notes = notes
     return sub
 
 
@@ -179,12 +201,13 @@ def _flatten(issues, source, qt, mapping, path, prefix, out) -> None:
         if ak is None or (parent is not None and parent.kind != RECORD):
             known = known_keys(qt)
             issues.error(kpath, f"unknown answer key '{dotted}'"
-                         + did_you_mean(dotted, known) + f" (keys of {qt.name} questions: {', '.join(known)})")
+                         + did_you_mean(dotted, known) + f" (keys of {qt.name} questions: {', '.join(known)})",
+                         key=dotted, value=value)
             continue
         if ak.kind == RECORD and isinstance(value, dict):
             _flatten(issues, source, qt, value, kpath, dotted + ".", out)
             continue
         if dotted in out or any(k.startswith(dotted + ".") or dotted.startswith(k + ".") for k in out):
-            issues.error(kpath, f"answer key '{dotted}' given twice")
+            issues.error(kpath, f"answer key '{dotted}' given twice", key=dotted + " (again)", value=value)
             continue
         out[dotted] = Given(dotted, value, kpath, source.line(kpath))

@@ -42,6 +42,7 @@ class Job:
     problem_key: str | None        # the resolved problem file, or None when unknown
     answers: dict | None           # resolved answers, or None when the file is invalid
     error: str = ""
+    notes: tuple = ()              # unknown question ids (the rest is graded)
     duplicate: bool = False        # a second submission with an earlier one's student id
 
 
@@ -68,17 +69,31 @@ def read_variants(folder: Path) -> dict:
     rows = list(csv.DictReader(io.StringIO(text)))
     if rows and not {"variant", "student"} <= set(rows[0]):
         raise UsageError(f"{table}: expected the columns variant,student,seed,…")
+    name = _base_name(folder, [row["variant"] for row in rows], table)
     out = {}
     for row in rows:
         variant = row["variant"]
-        found = sorted(folder.glob(f"*-{variant}/problem.yaml"))
-        if len(found) != 1:
-            raise UsageError(f"{table}: variant {variant}: expected one folder <name>-{variant}/problem.yaml "
-                             f"in {folder}, found {len(found)}")
-        for key in {row.get("student") or "", safe_name(row.get("student") or ""), variant}:
+        problem = folder / f"{name}-{variant}" / "problem.yaml"
+        student = row.get("student") or ""
+        for key in dict.fromkeys((student, safe_name(student), variant)):   # ordered, no duplicates
             if key:
-                out.setdefault(key, found[0])
+                out.setdefault(key, problem)
     return out
+
+
+def _base_name(folder: Path, variants: list, table: Path) -> str:
+    """The problem name <name> such that every variant has DIR/<name>-<variant>/problem.yaml.
+
+    (A folder name alone is ambiguous: `exam-jo-smith` ends with `-smith` too.)
+    """
+    if not variants:
+        return ""
+    first = variants[0]
+    candidates = sorted(p.parent.name[: -len(first) - 1] for p in folder.glob(f"*-{first}/problem.yaml"))
+    for name in candidates:
+        if all((folder / f"{name}-{v}" / "problem.yaml").is_file() for v in variants):
+            return name
+    raise UsageError(f"{table}: no folder <name>-<variant>/problem.yaml for every variant in {folder}")
 
 
 def _problem_for(sub, problem, variants):
@@ -131,8 +146,8 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
             raise UsageError(str(exc)) from None
         for i, sub in subs:
             try:
-                resolve_answers(sub, references[key].problem)
-                jobs[i].answers = sub.answers
+                resolve_answers(sub, references[key].problem, strict=False)
+                jobs[i].answers, jobs[i].notes = sub.answers, tuple(sub.notes)
             except InputError as exc:
                 jobs[i].error = str(exc)
     _mark_duplicates(jobs)
@@ -177,7 +192,7 @@ def grade_job(job: Job):
     if grader is None:
         grader = _GRADERS[job.problem_key] = Grader(ref)
     try:
-        return job.index, grader.grade(job.student, job.answers)
+        return job.index, grader.grade(job.student, job.answers, job.notes)
     except Exception as exc:  # noqa: BLE001 - a grading bug must not lose the other submissions
         return job.index, invalid_result(ref, job.student, f"{job.file}: internal error while grading "
                                                            f"({type(exc).__name__}: {exc})")

@@ -15,6 +15,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
 from robosolve.grading.points import evaluate, sample, single_point
@@ -27,6 +28,7 @@ CORRECT, INCORRECT, MISSING, INVALID, NO_REFERENCE = (
     "correct", "incorrect", "missing", "invalid", "no_reference")
 MIN_POINTS = 6
 SUBSCRIPTS = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+MAX_SHOWN = 600                   # characters of an expected value quoted in feedback
 
 
 @dataclass
@@ -68,6 +70,7 @@ class SubmissionResult:
     student: str
     questions: list                               # QuestionResult, in the problem's order
     error: str = ""                               # the submission could not be read
+    notes: list = field(default_factory=list)     # answers that could not be placed (unknown question ids)
 
     @property
     def score(self) -> Fraction:
@@ -93,11 +96,16 @@ def fraction(marks) -> Fraction:
 
 # -- formatting values for feedback ---------------------------------------------
 def show(tree) -> str:
-    """A value as a student would write it: numbers to 4 significant digits."""
+    """A value as a student would write it (numbers to 4 significant digits), cut at MAX_SHOWN."""
+    text = _show(tree)
+    return text if len(text) <= MAX_SHOWN else text[:MAX_SHOWN].rstrip() + " … (see the report)"
+
+
+def _show(tree) -> str:
     if isinstance(tree, dict):
-        return "{" + ", ".join(f"{k}: {show(v)}" for k, v in tree.items()) + "}"
+        return "{" + ", ".join(f"{k}: {_show(v)}" for k, v in tree.items()) + "}"
     if isinstance(tree, (list, tuple)):
-        return "[" + ", ".join(show(v) for v in tree) + "]"
+        return "[" + ", ".join(_show(v) for v in tree) + "]"
     if isinstance(tree, Equation):
         return tree.text or f"{tree.residual} = 0"
     if tree is None:
@@ -139,6 +147,8 @@ class Grader:
         return ak.symbol.format(sub=sub, frame=frame)
 
     def grade_key(self, qref, key: str, given) -> KeyResult:
+        if given is not None and given.problem:
+            return KeyResult(INVALID, feedback=given.problem)
         qt = question_type(qref.type)
         ak = qt.key(key)
         if qref.error is not None:
@@ -176,7 +186,11 @@ class Grader:
         symbolic = bool(free) and sym is not None and not (ak.by_value and num is not None)
         if symbolic:
             e = self._expected(qref, ak, key, "symbolic", sym)
-        else:
+            if not free_symbols(e):
+                # the reference is a number even in symbolic form (e.g. ellipse lengths at `at`):
+                # the given expression is evaluated at the question's values instead
+                symbolic = False
+        if not symbolic:
             if free:
                 g = substitute(g, subs)
                 left = free_symbols(g)
@@ -204,11 +218,12 @@ class Grader:
             return KeyResult(CORRECT, compared)
         if outcome.unknown:
             return KeyResult(INVALID, compared, feedback=outcome.unknown)
-        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic)
+        substituted = (free_symbols(e) & self.parameters) - free   # parameters the answer lacks
+        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted))
         symbol = self.symbol(qref, ak)
         expected_text = f"expected {symbol} = {show(e)}"
         if diagnosis:
-            params = self._names((free_symbols(e) & self.parameters) - free)
+            params = self._names(substituted)
             text = D.sentence(diagnosis, ak, symbol=symbol, frame=qref.frame, outcome=outcome, params=params)
             verdict = INVALID if diagnosis == "wrong_shape" else INCORRECT
             return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}")
@@ -250,7 +265,7 @@ class Grader:
             return KeyResult(INCORRECT, "symbolic", "", f"expected {self.symbol(qref, ak)} = {show(e)}")
         try:
             with time_limit(2.0):
-                same = all(sp.simplify(a - b) == 0 for a, b in pairs)
+                same = all(is_zero(a - b) for a, b in pairs)
         except SymbolicTimeout:
             same = False
         if same:
@@ -259,7 +274,7 @@ class Grader:
                          f"could not be confirmed equal; expected {self.symbol(qref, ak)} = {show(e)}")
 
     # -- one submission -----------------------------------------------------
-    def grade(self, student: str, answers: dict) -> SubmissionResult:
+    def grade(self, student: str, answers: dict, notes=()) -> SubmissionResult:
         """`answers`: question id -> {dotted key: Given} (answers.resolve_answers)."""
         out = []
         for qref in self.ref.questions:
@@ -275,7 +290,7 @@ class Grader:
                     continue
                 qr.keys[key] = self.grade_key(qref, key, given[key])
             out.append(qr)
-        return SubmissionResult(self.ref.name, student, out)
+        return SubmissionResult(self.ref.name, student, out, notes=list(notes))
 
 
 def invalid_result(reference: Reference | None, student: str, error: str) -> SubmissionResult:

@@ -47,6 +47,8 @@ def record(result: SubmissionResult) -> dict:
            "score": json_number(result.score), "max_score": json_number(result.max_score)}
     if result.error:
         out["error"] = result.error
+    if result.notes:
+        out["notes"] = list(result.notes)
     out["questions"] = {
         q.id: {"marks": json_number(q.marks), "score": json_number(q.score),
                "keys": {k: r.as_dict() for k, r in q.keys.items()}}
@@ -86,11 +88,16 @@ def feedback_markdown(result: SubmissionResult, titles: dict | None = None) -> s
     if result.error:
         lines += ["The answers file could not be read, so no answer was graded:", "", "```",
                   result.error, "```", ""]
+    if result.notes:
+        lines += ["These answers could not be graded:", ""] + [f"- {n}" for n in result.notes] + [""]
     for q in result.questions:
         title = titles.get(q.id, "")
         lines.append(f"## {q.id}" + (f" — {title}" if title else ""))
         lines.append("")
-        lines.append(f"{number_text(q.score)} of {number_text(q.max_score)} marks.")
+        if q.no_reference:
+            lines.append("Not graded: robosolve could not answer this question.")
+        else:
+            lines.append(f"Score: {number_text(q.score)} / {number_text(q.max_score)}.")
         lines.append("")
         lines.append("| key | verdict | what is wrong |")
         lines.append("| --- | --- | --- |")
@@ -103,4 +110,5 @@ def feedback_markdown(result: SubmissionResult, titles: dict | None = None) -> s
 
 
 def _cell(text: str) -> str:
-    return text.replace("|", "\\|").replace("\n", " ")
+    """Table-cell text: `|` and `*` escaped (L1*cos(theta1)*L2 must not turn italic)."""
+    return text.replace("\\", "\\\\").replace("|", "\\|").replace("*", "\\*").replace("\n", " ")

@@ -32,6 +32,8 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from robosolve.core.simplify import common_factors, ik_fraction
+
 
 class NoClosedForm(Exception):
     """No rule applies: the caller answers numerically."""
@@ -156,22 +158,6 @@ def _unknowns_in(e, unknowns):
     return [q for q in unknowns if q in fs]
 
 
-def _tidy(e):
-    """Light simplification for display and smaller expressions: one fraction, its numerator
-    expanded, no -(...) around a sum (E.x**2 + E.y**2 - L1**2 - L2**2)/(2*L1*L2)."""
-    try:
-        t = sp.together(e)
-        num, den = sp.fraction(t)
-        if den != 1:
-            return sp.expand(num) / den
-        f = sp.factor_terms(t)
-        if isinstance(f, sp.Mul) and f.args and f.args[0] == -1 and any(isinstance(a, sp.Add) for a in f.args):
-            return sp.expand(t)
-        return f
-    except Exception:  # pragma: no cover
-        return e
-
-
 def _to_poly_symbols(e, qs):
     """Replace cos/sin of each joint by dummy symbols (after expanding)."""
     e = sp.expand(sp.expand_trig(e))
@@ -207,18 +193,18 @@ def _solve_single(e, q, revolute, latex_q):
         if za and zb:
             return None
         if zb:
-            K = _tidy(-c / a)
+            K = ik_fraction(-c / a)
             return Stage(q, [sp.acos(K), -sp.acos(K)], "cos", e, rf"\cos {latex_q}", K)
         if za:
-            K = _tidy(-c / b)
+            K = ik_fraction(-c / b)
             return Stage(q, [sp.asin(K), sp.pi - sp.asin(K)], "sin", e, rf"\sin {latex_q}", K)
         if zc:
-            a, b = _tidy(a), _tidy(b)
-            return Stage(q, [sp.atan2(-a, b), sp.atan2(a, -b)], "tan", e, rf"\tan {latex_q}", _tidy(-a / b))
-        a, b, c = _tidy(a), _tidy(b), _tidy(c)
+            a, b = ik_fraction(a), ik_fraction(b)
+            return Stage(q, [sp.atan2(-a, b), sp.atan2(a, -b)], "tan", e, rf"\tan {latex_q}", ik_fraction(-a / b))
+        a, b, c = ik_fraction(a), ik_fraction(b), ik_fraction(c)
         r = sp.sqrt(a**2 + b**2)
         phi = sp.atan2(b, a)
-        K = _tidy(-c / r)
+        K = ik_fraction(-c / r)
         return Stage(q, [phi + sp.acos(K), phi - sp.acos(K)], "phase", e,
                      rf"\cos({latex_q} - \varphi)", K, {"phi": phi, "a": a, "b": b, "c": c})
     ee = sp.expand(e)
@@ -231,14 +217,14 @@ def _solve_single(e, q, revolute, latex_q):
     d = p.degree()
     if d == 1:
         c1, c0 = p.all_coeffs()
-        return Stage(q, [_tidy(-c0 / c1)], "linear", e, latex_q, _tidy(-c0 / c1))
+        return Stage(q, [ik_fraction(-c0 / c1)], "linear", e, latex_q, ik_fraction(-c0 / c1))
     if d == 2:
-        a, b, c = [_tidy(x) for x in p.all_coeffs()]
-        disc = _tidy(b**2 - 4 * a * c)
+        a, b, c = [ik_fraction(x) for x in p.all_coeffs()]
+        disc = ik_fraction(b**2 - 4 * a * c)
         if _is_zero(b):
-            root = _tidy(sp.sqrt(-c / a))
-            return Stage(q, [root, -root], "quadratic", e, latex_q + "^2", _tidy(-c / a), {"disc": -c / a})
-        return Stage(q, [_tidy((-b + sp.sqrt(disc)) / (2 * a)), _tidy((-b - sp.sqrt(disc)) / (2 * a))],
+            root = ik_fraction(sp.sqrt(-c / a))
+            return Stage(q, [root, -root], "quadratic", e, latex_q + "^2", ik_fraction(-c / a), {"disc": -c / a})
+        return Stage(q, [ik_fraction((-b + sp.sqrt(disc)) / (2 * a)), ik_fraction((-b - sp.sqrt(disc)) / (2 * a))],
                      "quadratic", e, latex_q, None, {"disc": disc})
     return None
 
@@ -255,7 +241,7 @@ def _isolate_linear(e, unknowns, revolute_of):
         rest = sp.expand(ee - coeff * q)
         if rest.has(q):
             continue
-        return q, _tidy(-rest / coeff)
+        return q, ik_fraction(-rest / coeff)
     return None
 
 
@@ -279,6 +265,7 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None, tex=No
         _TEX[0] = sp.latex
 
 
+# long: one elimination loop whose branches share the stage list and the substitutions; to split into compute / steps next (issue 10 item 6)
 def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
     unknowns = list(unknowns)
     rev = dict(zip(unknowns, revolute))
@@ -305,7 +292,7 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                     if _unknowns_in(S, others) or _unknowns_in(C, others) or _unknowns_in(D, others):
                         continue
                     if rot is not None:
-                        u_, w_, X, Y = [_tidy(v) for v in rot]
+                        u_, w_, X, Y = [ik_fraction(v) for v in rot]
                         alt = sp.atan2(Y, X) - sp.atan2(w_, u_)
                         stages.append(Stage(q, [alt], "atan2", None, names[q], alt,
                                             {"S": S, "C": C, "D": D, "rot": (u_, w_, X, Y)}))
@@ -316,14 +303,14 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                             f"${names[q]}$ is the difference of their directions (one value per branch).",
                             [(names[q], alt)]))
                     else:
-                        alt = sp.atan2(_tidy(S / D), _tidy(C / D))
+                        alt = sp.atan2(ik_fraction(S / D), ik_fraction(C / D))
                         stages.append(Stage(q, [alt], "atan2", None, names[q], alt,
                                             {"S": S, "C": C, "D": D}))
                         steps.append(Step(
                             f"${names[q]}$ from the two equations it was eliminated from",
                             f"With the joints found so far, $\\cos {names[q]}$ and $\\sin {names[q]}$ follow "
                             f"from the linear system (Cramer), and the angle from atan2 (one value per branch).",
-                            [(rf"\cos {names[q]}", _tidy(C / D)), (rf"\sin {names[q]}", _tidy(S / D)),
+                            [(rf"\cos {names[q]}", ik_fraction(C / D)), (rf"\sin {names[q]}", ik_fraction(S / D)),
                              (names[q], alt)]))
                 else:  # isolate
                     expr = data
@@ -352,7 +339,7 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                 while sp.Symbol(f"rho_{aux_count[0]}") in taken:
                     aux_count[0] += 1
                 r = sp.Symbol(f"rho_{aux_count[0]}")
-                definition = _tidy(sign * known)
+                definition = ik_fraction(sign * known)
                 stages.append(Stage(r, [definition], "aux", None, _tex(r), definition))
                 steps.append(Step(f"Auxiliary quantity ${_tex(r)}$",
                                   "A known combination, named to keep the next steps short.",
@@ -470,7 +457,7 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                     num, den = sp.fraction(h)
                     dummies = {s for pair in rel for s in pair}
                     new = num if not (den.free_symbols & dummies) else g
-                new = sp.expand(sp.factor_terms(new).subs(back))
+                new = sp.expand(common_factors(new).subs(back))
                 if _is_zero(new):
                     continue
                 nonneg = _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
@@ -492,7 +479,7 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                 f"The two equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ rotate a vector by "
                 f"${names[q]}$; combining them with $\\cos {names[q]}$ and $\\sin {names[q]}$ leaves an "
                 f"equation in ${names[q]}$ alone and one without it.",
-                [("0", _tidy(Fa)), ("0", _tidy(Fb))]))
+                [("0", ik_fraction(Fa)), ("0", ik_fraction(Fb))]))
             eqs = [Fa, Fb] + rest
         else:
             new, Nc, Ns, D, rot = data
@@ -501,7 +488,7 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
                 f"The equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ are linear in "
                 f"$\\cos {names[q]}$ and $\\sin {names[q]}$. Solving for them (Cramer) and imposing "
                 f"$\\cos^2 {names[q]} + \\sin^2 {names[q]} = 1$ removes ${names[q]}$:",
-                [("0", _tidy(new))]))
+                [("0", ik_fraction(new))]))
             U.remove(q)
             pending.append((q, "atan2", (Ns, Nc, D, rot)))
             eqs = [new] + rest
@@ -548,7 +535,7 @@ def _single_step(st: Stage, name: str) -> Step:
         eq += [(name, a) for a in st.alternatives]
     else:
         text = f"This equation is linear in ${name}$."
-    return Step(f"${name}$", f"From ${_tex(_tidy(st.equation))} = 0$. " + text, eq)
+    return Step(f"${name}$", f"From ${_tex(ik_fraction(st.equation))} = 0$. " + text, eq)
 
 
 # ---------------------------------------------------------------------------

@@ -17,6 +17,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
+from robosolve.core.simplify import factored
 from robosolve.core.timing import time_limit
 from robosolve.errors import SymbolicTimeout as Timeout
 from robosolve.ik import closed_form as cfm
@@ -99,11 +101,12 @@ def _chop(e):
     return sp.expand(e.xreplace(tiny)) if tiny else e
 
 
-def _fmt(v: float) -> str:
-    return f"{v:.4g}"
+def _fmt(v: float) -> Num:
+    """A number in a reason: raw, with the 4 digits a reader needs (the renderer formats)."""
+    return Num(v, digits=4)
 
 
-def in_limits(q: dict, joints: list[IKJoint]) -> list[str]:
+def in_limits(q: dict, joints: list[IKJoint]) -> list[Text]:
     """The limits a configuration breaks (empty when inside), as sentences."""
     broken = []
     for j in joints:
@@ -124,9 +127,9 @@ def in_limits(q: dict, joints: list[IKJoint]) -> list[str]:
             ok = lo - LIMIT_TOL <= v <= hi + LIMIT_TOL
         if not ok:
             if v < lo:
-                broken.append(f"{j.name} = {_fmt(v)} < {_fmt(lo)} (lower limit)")
+                broken.append(Text(f"{j.name} = ", _fmt(v), " < ", _fmt(lo), " (lower limit)"))
             else:
-                broken.append(f"{j.name} = {_fmt(v)} > {_fmt(hi)} (upper limit)")
+                broken.append(Text(f"{j.name} = ", _fmt(v), " > ", _fmt(hi), " (upper limit)"))
     return broken
 
 
@@ -190,7 +193,7 @@ def _positive(expr):
     back = {v: k for k, v in reps.items()}
     e = expr.xreplace(reps)
     if isinstance(e, sp.Pow) and e.exp == sp.Rational(1, 2):
-        e = sp.sqrt(sp.factor(e.base))
+        e = sp.sqrt(factored(e.base))
     return e.xreplace(back)
 
 
@@ -251,11 +254,11 @@ def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt, aux
         return None
     d_sym = sp.sqrt(d2.subs(aux or {}))
     if dv > hv:
-        return (f"distance {F(d_sym)} = {dv:.4g} > {F(_positive(sp.sqrt(hi2)))} = {hv:.4g}: "
-                f"the target is beyond the reach of the arm")
+        return Text(f"distance {F(d_sym)} = ", _fmt(dv), f" > {F(_positive(sp.sqrt(hi2)))} = ", _fmt(hv),
+                    ": the target is beyond the reach of the arm")
     if dv < lv:
-        return (f"distance {F(d_sym)} = {dv:.4g} < {F(_positive(sp.sqrt(lo2)))} = {lv:.4g}: "
-                f"the target is too close, inside the unreachable inner region")
+        return Text(f"distance {F(d_sym)} = ", _fmt(dv), f" < {F(_positive(sp.sqrt(lo2)))} = ", _fmt(lv),
+                    ": the target is too close, inside the unreachable inner region")
     return None
 
 
@@ -268,11 +271,11 @@ def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt,
     if ex.what in ("acos", "asin"):
         fn = "cos" if ex.what == "acos" else "sin"
         word = "cosine" if fn == "cos" else "sine"
-        base = (f"the equation for {name} needs {F.fn(fn, lname, joint, st.rule == 'phase')} = "
-                f"{ex.value:.4g}, impossible because a {word} lies in [-1, 1]")
-        return dist + f" ({base})" if dist else base
+        base = Text(f"the equation for {name} needs {F.fn(fn, lname, joint, st.rule == 'phase')} = ",
+                    _fmt(ex.value), f", impossible because a {word} lies in [-1, 1]")
+        return dist + Text(" (", base, ")") if dist else base
     if ex.what == "sqrt":
-        return f"solving for {name} needs the square root of a negative number ({ex.value:.4g})"
+        return Text(f"solving for {name} needs the square root of a negative number (", _fmt(ex.value), ")")
     if ex.what == "atan2":
         return f"{name} is undetermined (atan2(0, 0)): the configuration is singular"
     return f"solving for {name} fails ({ex.what})"
@@ -280,6 +283,7 @@ def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt,
 
 # main entry
 
+# long: the IK decision sequence (count, closed form, numeric, merge) reads top to bottom; to split next (issue 10 item 6)
 def solve_ik(
     equations: list[tuple],
     joints: list[IKJoint],
@@ -311,8 +315,9 @@ def solve_ik(
             if abs(lv - rv) > 1e-9 * max(1.0, abs(rv)):
                 res.status = "unreachable"
                 lab = labels[k] if labels else str(sp.sympify(lhs))
-                res.reason = f"{lab} is {lv:.4g} whatever the joints, but the target asks {rv:.4g}"
-                res.reason_tex = f"`{lab}` is {lv:.4g} whatever the joints, but the target asks {rv:.4g}"
+                res.reason = Text(f"{lab} is ", _fmt(lv), " whatever the joints, but the target asks ", _fmt(rv))
+                res.reason_tex = Text(f"`{lab}` is ", _fmt(lv), " whatever the joints, but the target asks ",
+                                      _fmt(rv))
                 return res
         which = ", ".join(labels[k] if labels else f"equation {k + 1}" for k in constant)
         res.notes.append(f"{which} {'hold' if len(constant) > 1 else 'holds'} whatever the joints "
@@ -467,9 +472,9 @@ def _closed_form_subset(exprs, joints, names, tex, time_limit_s, tries=20):
     budget = time_limit_s or 20.0
     import time as _time
 
-    start = _time.monotonic()
+    start = _time.process_time()          # CPU time, as core.timing's limits
     for k, combo in enumerate(itertools.combinations(range(len(exprs)), n)):
-        left = budget - (_time.monotonic() - start)
+        left = budget - (_time.process_time() - start)
         if k >= tries or left <= 0.5:
             break
         sub = [exprs[i] for i in combo]
@@ -498,9 +503,9 @@ def _nearest_reason(res, equations, joints, values, F) -> str:
             want = float(sp.sympify(rhs).evalf(subs=subs))
         except (TypeError, ValueError):
             continue
-        parts.append(f"{F(sp.sympify(lhs))} = {got:.4g} (target {want:.4g})")
+        parts.append(Text(f"{F(sp.sympify(lhs))} = ", _fmt(got), " (target ", _fmt(want), ")"))
     return ("no configuration of the joints satisfies the equations; the closest one gives "
-            + ", ".join(parts))
+            + Text.join(", ", parts))
 
 
 def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
@@ -520,7 +525,8 @@ def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
         res.family = {"free": free, "fixed": fixed, "example": numeric[0] if numeric else None}
         res.notes.append("infinitely many solutions: the target is reached along a continuum"
                          + (f" ({', '.join(free)} can take any value" if free else "")
-                         + (", with " + ", ".join(f"{k} = {v:.6g}" for k, v in fixed.items()) if fixed else "")
+                         + (", with " + Text.join(", ", [Text(f"{k} = ", Num(v)) for k, v in fixed.items()])
+                            if fixed else "")
                          + (")" if free else "") + ".")
         numeric = numeric[:1]
     merged = list(numeric)
@@ -555,11 +561,17 @@ def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
         res.notes.append("the Jacobian of the equations is singular at a solution: the target is on "
                          "the boundary of the workspace (two solutions merge into one)")
     if not res.solutions:
-        if res.status != "family":
-            res.status = "unreachable"
-        if merged:
-            res.reason = "every solution breaks a joint limit: " + "; ".join(
-                ", ".join(b) for _, b in res.rejected)
+        # also for a family found without a verified member (a chain with zero-length links):
+        # no solution is an answer, never a selection of nothing
+        family = res.status == "family"
+        res.status = "unreachable"
+        broken = Text.join("; ", [Text.join(", ", b) for _, b in res.rejected]) if merged else ""
+        if merged and family:
+            res.reason = ("the target is reached along a continuum of configurations, but the one "
+                          "found breaks a joint limit (" + broken
+                          + "); other members of the continuum may respect the limits")
+        elif merged:
+            res.reason = "every solution breaks a joint limit: " + broken
         elif num.best_q is not None:
             res.nearest = {j.name: (wrap_angle(v) if j.revolute else v) for j, v in zip(joints, num.best_q)}
         return
@@ -626,8 +638,8 @@ def velocity_ik(coords, rates, joints: list[IKJoint], q: dict, values: dict) -> 
         qd = np.linalg.solve(J, v)
         method = "inverse"
         if cond > 1e6:
-            note = (f"J is nearly singular here (condition number {cond:.3g}): "
-                    f"small velocity errors become large joint rates")
+            note = Text("J is nearly singular here (condition number ", Num(cond, digits=3),
+                        "): small velocity errors become large joint rates")
     else:
         qd = np.linalg.lstsq(J, v, rcond=1e-9)[0]
         method = "least_squares" if m >= n else "min_norm"
@@ -640,7 +652,8 @@ def velocity_ik(coords, rates, joints: list[IKJoint], q: dict, values: dict) -> 
             note = "more velocity components than joints: least-squares q_dot"
     resid = float(np.linalg.norm(J @ qd - v))
     if resid > 1e-9 * max(1.0, float(np.linalg.norm(v))):
-        note = (note + "; " if note else "") + f"the desired velocity is not reachable exactly (residual {resid:.3g})"
+        note = (note + "; " if note else "") + Text("the desired velocity is not reachable exactly (residual ",
+                                                    Num(resid, digits=3), ")")
     big = float(np.max(np.abs(qd))) if qd.size else 0.0
     qd = np.where(np.abs(qd) < 1e-13 * max(1.0, big), 0.0, qd)
     return VelocityIK({j.name: float(x) + 0.0 for j, x in zip(joints, qd)}, J, method, note, resid, cond)

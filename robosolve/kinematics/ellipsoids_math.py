@@ -1,6 +1,6 @@
 """Force, velocity and compliance ellipsoids of a Jacobian at one configuration.
 
-ERRATA §D.10 and the spec's "Ellipsoids" layout:
+docs/course-notes.md#note-ellipsoid-axes and the spec's "Ellipsoids" layout:
 
 * A = J·Jᵀ (J of the chosen task coordinates), eigenvalues νᵢ, *unit* eigenvectors ϑ̂ᵢ;
 * force ellipsoid FᵀAF = Kf²: semi-axes (Kf/√νᵢ)·ϑ̂ᵢ;
@@ -21,6 +21,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from robosolve.core.simplify import collected_radicals, eigenvalue, radicals, rational
 
 __all__ = ["EllipsoidAxes", "EllipsoidResult", "ellipsoids", "eig_sorted", "joint_rates", "exact_values",
            "ZERO_TOL"]
@@ -224,13 +226,13 @@ def exact_values(j_exact, kf=1, kv=1, ka=1, kq=None, max_ops: int = 80):
     m, n = j.shape
     kq_m = sp.eye(n) if kq is None else (sp.diag(*kq) if not isinstance(kq, sp.MatrixBase)
                                          and not isinstance(kq[0], (list, tuple)) else sp.Matrix(kq))
-    a = (j * j.T).applyfunc(sp.nsimplify)
-    ks = (j * kq_m * j.T).applyfunc(sp.nsimplify)
+    a = (j * j.T).applyfunc(rational)
+    ks = (j * kq_m * j.T).applyfunc(rational)
 
     def eigs(mat):
         vals = []
         for val, mult in mat.eigenvals().items():
-            val = sp.radsimp(sp.simplify(val))
+            val = eigenvalue(val)
             if sp.count_ops(val) > max_ops or val.free_symbols:
                 return None
             vals += [val] * mult
@@ -240,15 +242,13 @@ def exact_values(j_exact, kf=1, kv=1, ka=1, kq=None, max_ops: int = 80):
     kappa = eigs(ks)
     if nu is None or kappa is None:
         return None
-    def nice(x):
-        cands = [x, sp.expand(x), sp.sqrtdenest(x), sp.expand(sp.sqrtdenest(x)), sp.radsimp(x)]
-        return min(cands, key=lambda c: (sp.count_ops(c), sp.default_sort_key(c)))
+    nice = radicals
 
     nz = [v for v in nu if v.evalf(30) > sp.Float(ZERO_TOL, 30) * max(1, nu[-1].evalf(30))]
-    force = [None if v not in nz else nice(sp.nsimplify(kf) / sp.sqrt(v)) for v in nu]
-    velocity = [nice(sp.nsimplify(kv) * sp.sqrt(v)) for v in nu[::-1]]
-    compliance = [nice(sp.nsimplify(ka) * k) for k in kappa[::-1]]
-    cond = sp.expand(sp.radsimp(nu[-1] / nu[0])) if len(nz) == len(nu) else None
+    force = [None if v not in nz else nice(rational(kf) / sp.sqrt(v)) for v in nu]
+    velocity = [nice(rational(kv) * sp.sqrt(v)) for v in nu[::-1]]
+    compliance = [nice(rational(ka) * k) for k in kappa[::-1]]
+    cond = sp.expand(collected_radicals(nu[-1] / nu[0])) if len(nz) == len(nu) else None
     return {"A": a, "eigenvalues": nu, "force": force,
             "velocity": velocity, "compliance": compliance, "Ks": ks,
             "compliance_eigenvalues": kappa[::-1], "condition_number": cond}

@@ -1,9 +1,9 @@
 """Jacobians of task coordinates, geometric Jacobians, centre-of-mass Jacobians.
 
-Conventions (spec §1 "Coordinates", ERRATA §D):
+Conventions (spec §1 "Coordinates", docs/course-notes.md):
 
 * analytic Jacobian J = dS/dQ of the coordinate vector S = F(Q): rows are the
-  coordinates, columns the joints, in joint order (ERRATA item 7: J is n x m);
+  coordinates, columns the joints, in joint order (course-notes#note-jacobian-shape);
 * geometric Jacobian (6 x m): column i = velocity of the point P and angular
   velocity of the moving frame produced by a unit rate of joint i alone. With
   ⁰Lᵢ = [[ω̂ᵢ], tᵢ; 0, 0] (∂M0i/∂qᵢ·M0i⁻¹), the column is (ω̂ᵢ·P + tᵢ, vex(ω̂ᵢ));
@@ -17,6 +17,7 @@ from collections.abc import Sequence
 
 import sympy as sp
 
+from robosolve.core.simplify import jacobian_entry as tidy
 from robosolve.core.transforms import vex
 
 __all__ = [
@@ -25,34 +26,8 @@ __all__ = [
 ]
 
 
-def tidy(expr):
-    """Light, predictable simplification of one entry: trigsimp, then factor if shorter.
-    Memoised (the singularity search meets the same factors many times)."""
-    expr = sp.sympify(expr)
-    hit = _TIDY_CACHE.get(expr)
-    if hit is not None:
-        return hit
-    out = _tidy(expr)
-    if len(_TIDY_CACHE) > 4096:
-        _TIDY_CACHE.clear()
-    _TIDY_CACHE[expr] = out
-    return out
-
-
-_TIDY_CACHE: dict = {}
-
-
-def _tidy(expr):
-    if expr.is_number or not expr.free_symbols:
-        return sp.nsimplify(expr) if expr.is_Float else expr
-    out = sp.trigsimp(expr)
-    fac = sp.factor(out)
-    if sp.count_ops(fac) < sp.count_ops(out):
-        out = fac
-    return out
-
-
 def tidy_matrix(m: sp.Matrix) -> sp.Matrix:
+    """Every entry through the policy's `jacobian_entry` variant."""
     return sp.Matrix(m).applyfunc(tidy)
 
 

@@ -29,7 +29,9 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from robosolve.kinematics.jacobian_math import rank_measure, tidy
+from robosolve.core.simplify import (bounded_full, determinant_factors, factored_determinant, full, is_zero,
+                                     jacobian_entry, rational)
+from robosolve.kinematics.jacobian_math import rank_measure
 
 __all__ = ["Condition", "SingularityResult", "find_singularities", "wrap_angle"]
 
@@ -81,7 +83,7 @@ def wrap_angle(value):
     except (TypeError, ValueError):
         return v
     k = math.ceil((fv - math.pi) / (2 * math.pi) - 1e-12)
-    return sp.nsimplify(v - k * _TWO_PI) if k else v
+    return rational(v - k * _TWO_PI) if k else v
 
 
 def _wrap_linear(value, joints):
@@ -138,7 +140,7 @@ def _sample_params(symbols, params: Mapping) -> dict:
 
 def _pretty_atan2(s_val, c_val, sample):
     """atan2(s, c) as acos/asin where the branch is clear, else atan2."""
-    s_val, c_val = sp.simplify(s_val), sp.simplify(c_val)
+    s_val, c_val = full(s_val), full(c_val)
     direct = sp.atan2(s_val, c_val)
     if not direct.has(sp.atan2):
         return direct
@@ -156,10 +158,14 @@ def _pretty_atan2(s_val, c_val, sample):
 
 def _solve_revolute(f, q, sample):
     """Every q in (−π, π] with f(q) = 0 (f a function of q and parameters), or None."""
-    try:
-        sol = sp.solveset(f, q, sp.Interval.Lopen(-sp.pi, sp.pi))
-    except (NotImplementedError, ValueError, TypeError):
-        sol = None
+    sol = None
+    if not (f.is_Add and f.free_symbols - {q}):
+        # solveset on a sum with symbolic coefficients (a3 sin q3 + d4 cos q3) spends
+        # seconds before giving up: such factors go straight to the polynomial system
+        try:
+            sol = sp.solveset(f, q, sp.Interval.Lopen(-sp.pi, sp.pi))
+        except (NotImplementedError, ValueError, TypeError):
+            sol = None
     if isinstance(sol, sp.FiniteSet) and all(not v.has(q) for v in sol):
         return [wrap_angle(v) for v in sol]
     # polynomial system in c = cos q, s = sin q
@@ -191,7 +197,7 @@ def _solve_prismatic(f, q):
     for v in sols:
         if v.is_number and not v.is_real:
             continue
-        out.append(sp.simplify(v) if sp.count_ops(v) < 40 else v)
+        out.append(bounded_full(v))
     return out
 
 
@@ -215,7 +221,7 @@ def _isolate(f, joints, kinds, sample):
             continue
         if poly.degree() == 1:
             a, b = poly.all_coeffs()
-            return q, [tidy(-b / a)]
+            return q, [jacobian_entry(-b / a)]
     # revolute joints through a single angle α = linear combination of joints:
     # solve g(α) = 0 in (−π, π], then isolate the last joint of α
     args = {a.args[0] for a in f.atoms(sp.sin, sp.cos, sp.tan)}
@@ -237,33 +243,9 @@ def _isolate(f, joints, kinds, sample):
 # ---------------------------------------------------------------------------
 # the search
 
-def _factor_tidy(expr):
-    """Factors of expr (with multiplicity dropped): factor the raw expression, tidy each
-    factor (trig identities may reveal products, as in det J of a 2R arm), factor again."""
-    out = []
-    _, raw = sp.factor_list(sp.factor(expr))
-    for fac, _mult in raw:
-        _, again = sp.factor_list(sp.factor(tidy(fac)))
-        for f2, _m2 in again:
-            if f2.could_extract_minus_sign():
-                f2 = -f2
-            if f2 not in out:
-                out.append(f2)
-    return out
-
-
-def factored(expr):
-    """expr as a product of tidied factors (for display)."""
-    coeff, raw = sp.factor_list(sp.factor(expr))
-    out = coeff
-    for fac, mult in raw:
-        out *= sp.factor(tidy(fac)) ** mult
-    return out
-
-
 def _joint_factors(expr, joints):
     """Distinct factors of expr that contain a joint, in a deterministic order."""
-    out = [f for f in _factor_tidy(expr) if any(f.has(q) for q in joints)]
+    out = [f for f in determinant_factors(expr) if any(f.has(q) for q in joints)]
     return sorted(out, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
 
 
@@ -271,7 +253,7 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0):
     """All conditions making every expression of exprs vanish (given fixed values)."""
     live = []
     for e in exprs:
-        e2 = factored(sp.sympify(e).subs(fixed)) if fixed else e
+        e2 = factored_determinant(sp.sympify(e).subs(fixed)) if fixed else e
         if e2 == 0:
             continue
         if not any(e2.has(q) for q in joints):
@@ -333,30 +315,34 @@ def _subsumed(small: Condition, big: Condition) -> bool:
     sv, bv = dict(small.values), dict(big.values)
     if len(sv) >= len(bv):
         return False
-    return all(q in bv and sp.simplify(bv[q] - v) == 0 for q, v in sv.items())
+    return all(q in bv and is_zero(bv[q] - v) for q, v in sv.items())
 
 
 def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping,
-                       params: Mapping | None = None) -> SingularityResult:
+                       params: Mapping | None = None, det=None) -> SingularityResult:
     """Singular configurations of J(q).
 
     ``kinds`` maps each joint symbol to 'revolute' or 'prismatic'; ``params`` maps
     parameter symbols to numbers (or None) and is used only to choose between
     equivalent closed forms, to order the results and to drop values that are not
-    real for the given parameters (with a note).
+    real for the given parameters (with a note). ``det``: det J of a square J, already
+    factored by structure (robosolve.kinematics.structured_det), used instead of expanding.
     """
     j = sp.Matrix(j)
     joints = list(joints)
     params = dict(params or {})
-    kind, measure = rank_measure(j)
+    if det is not None and j.shape[0] == j.shape[1]:
+        kind, measure = "det", det
+    else:
+        kind, measure = rank_measure(j)
     notes: list[str] = []
     minors: list[sp.Expr] = []
     if kind == "det":
-        measure = factored(measure)
+        measure = factored_determinant(measure) if det is None else measure
         exprs = [measure]
     else:
         # det(J Jᵀ) (or det(Jᵀ J)) = sum of the squares of the maximal minors
-        minors = [factored(m) for m in _maximal_minors(j)]
+        minors = [factored_determinant(m) for m in _maximal_minors(j)]
         exprs = [m for m in minors if m != 0]
         measure = sp.Add(*[m**2 for m in exprs])
     conds = _search(exprs, joints, kinds, {}, params) if exprs else [Condition()]

@@ -1,6 +1,6 @@
 """Statics by virtual work: joint actions that balance external loads.
 
-Spec §3 and ERRATA item 8 / §D.7: Fq = −Jᵀ·Fs is what the joints must exert to
+Spec §3 and docs/course-notes.md#note-statics-sign: Fq = −Jᵀ·Fs is what the joints must exert to
 balance the load Fs applied at the point (the virtual work δQᵀFq + δSᵀFs = 0).
 
 * a force in the task coordinates: Fq = −Jᵀ·F;

@@ -33,19 +33,35 @@ def joint_kinds(model) -> dict:
 
 
 def limited(ctx, seconds, fn, *args, **kwargs):
-    """Run fn under the context's time limit; (result, None) or (None, timeout message)."""
+    """Run fn under the context's time limit; (result, None) or (None, why it stopped)."""
+    from sympy.polys.polyerrors import BasePolynomialError
+
+    from robosolve.core.simplify import expression_nodes
     from robosolve.errors import SymbolicTimeout
 
+    limit = getattr(getattr(ctx, "budgets", None), "symbolic_nodes", None)
+    size = expression_nodes(args) if limit else 0
+    if limit and size > limit:
+        return None, (f"its input has {size:,} expression nodes, above the budget of {limit:,}: "
+                      "a count, so the outcome is the same on every machine")
     try:
         with ctx.time_limit(seconds):
             return fn(*args, **kwargs), None
     except SymbolicTimeout as exc:
         return None, str(exc)
+    except (BasePolynomialError, NotImplementedError) as exc:
+        # sympy cannot do this algebra (e.g. a DH alpha left symbolic gives sqrt(sin(al)**4 - 1)
+        # terms that factor() rejects): the step is skipped like one past its limit
+        return None, f"sympy cannot complete this step symbolically ({type(exc).__name__})"
 
 
-def tidy_limited(ctx, m, seconds):
-    """Tidied matrix, or the raw one past the time limit."""
-    out, _err = limited(ctx, seconds, lambda: sp.Matrix(m).applyfunc(tidy))
+def tidy_limited(ctx, m, seconds, long_chain=False):
+    """Tidied matrix, or the raw one past the time limit. Long chains (5+ joints) use the
+    addition formulas only (core.simplify.tidy_products: trigsimp and factor cost seconds
+    per entry of a 6R Jacobian and its report shows the method, not a factored look)."""
+    from robosolve.core.simplify import tidy_products
+
+    out, _err = limited(ctx, seconds, lambda mm: sp.Matrix(mm).applyfunc(tidy_products if long_chain else tidy), m)
     return out if out is not None else sp.Matrix(m)
 
 
@@ -77,12 +93,20 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
     if geometric:
         pframe, _ = model.point_local(point)
         frame = question.frame or model.problem.last_frame
-        l_point = [joint_l0(model, i, pframe) for i in range(len(q))]
-        l_frame = [joint_l0(model, i, frame) for i in range(len(q))]
         p0 = model.point0(point)
-        jp = geometric_jacobian(l_point, p0)[:3, :]
-        jw = geometric_jacobian(l_frame, p0)[3:, :]
-        J = tidy_limited(ctx, sp.Matrix.vstack(jp, jw), seconds)
+        J = None
+        if len(q) > 4:
+            # long chains: products in the trig ring, canonical entries, no trigsimp
+            from robosolve.kinematics.structured_det import geometric_jacobian_ring
+
+            J, _err = limited(ctx, seconds, geometric_jacobian_ring, model, pframe,
+                              model.point_local(point)[1], frame)
+        if J is None:
+            l_point = [joint_l0(model, i, pframe) for i in range(len(q))]
+            l_frame = [joint_l0(model, i, frame) for i in range(len(q))]
+            jp = geometric_jacobian(l_point, p0)[:3, :]
+            jw = geometric_jacobian(l_frame, p0)[3:, :]
+            J = tidy_limited(ctx, sp.Matrix.vstack(jp, jw), seconds, long_chain=len(q) > 4)
         coords = list(p0)
         labels = [f"{point}_{{{a}}}" for a in "xyz"] + [f"\\omega_{{{a}}}" for a in "xyz"]
         texts = [f"{point}.{a}" for a in "xyz"] + [f"omega_{a}" for a in "xyz"]

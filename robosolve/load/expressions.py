@@ -18,6 +18,10 @@ import sympy as sp
 MAX_EXPRESSION_CHARS = 2000
 MAX_NODES = 2000
 MAX_EXPONENT = 1000
+# Numbers are bounded by their size on the expression tree *before* anything is evaluated:
+# big-integer and mpmath work cannot be interrupted by a time limit, so exp(exp(exp(100))) or
+# ((9**999)**999)**999 must be refused before sympy starts on it.
+MAX_LOG10 = 300          # |value| < 1e300 (the range of floating-point numbers, about 1.8e308)
 
 
 def deg(x):
@@ -50,6 +54,125 @@ def did_you_mean(name: str, candidates) -> str:
     return f" (did you mean '{close[0]}'?)" if close else ""
 
 
+class _TooLarge(Exception):
+    pass
+
+
+def size_issue(expr, values: dict | None = None) -> str | None:
+    """Why `expr` (with the numeric `values` of some symbols substituted) holds a number too
+    large to compute, or None. Works on the tree, evaluating only subtrees already bounded."""
+    memo: dict = {}
+    try:
+        _log10(expr, values or {}, memo)
+    except _TooLarge as exc:
+        return str(exc)
+    except (RecursionError, MemoryError):
+        return "the expression is too deeply nested"
+    return None
+
+
+def _too_large(log10: float):
+    return _TooLarge(f"a number in it is too large (about 10^{log10:.3g}; robosolve handles magnitudes "
+                     f"up to 1e{MAX_LOG10})")
+
+
+def _numeric(expr, values) -> complex | None:
+    """The value of a subtree already known to be bounded, or None when it is symbolic."""
+    v = expr.xreplace(values) if values else expr
+    if v.free_symbols:
+        return None
+    try:
+        return complex(sp.N(v, 15))
+    except (TypeError, ValueError, OverflowError, ZeroDivisionError):
+        return None
+
+
+def _log10(e, values, memo) -> float | None:
+    """An estimate of log10|e| (None: depends on an unknown symbol); raises _TooLarge."""
+    if e in memo:
+        return memo[e]
+    est = _log10_node(e, values, memo)
+    if est is not None and est > MAX_LOG10 + 5:   # (the estimate is rough: a little slack)
+        raise _too_large(est)
+    memo[e] = est
+    return est
+
+
+def _log10_node(e, values, memo) -> float | None:
+    if e.is_Integer:
+        return max(int(e).bit_length() - 1, 0) * 0.30103
+    if e.is_Rational:
+        return _log10(sp.Integer(e.p), values, memo) or 0.0
+    if e.is_Float:
+        sign, man, exp, bc = e._mpf_ if len(e._mpf_) == 4 else (0, 0, 0, 0)
+        return (exp + bc) * 0.30103 if man else 0.0
+    if e.is_Symbol:
+        return _log10(values[e], values, memo) if e in values else None
+    if e.is_NumberSymbol or e is sp.I:
+        return 0.5
+    args = [_log10(a, values, memo) for a in e.args]
+    if any(a is None for a in args):
+        return None
+    if e.is_Add:
+        return max(args) + 0.5
+    if e.is_Mul:
+        return sum(max(a, 0.0) for a in args)
+    if e.is_Pow:
+        return _log10_power(e, args, values)
+    if isinstance(e, sp.exp):
+        x = _numeric(e.args[0], values)
+        if x is None:
+            return None
+        return x.real * 0.4343
+    if isinstance(e, (sp.sin, sp.cos, sp.asin, sp.acos, sp.atan, sp.atan2)):
+        return 0.5  # bounded for the real arguments of a problem file
+    if isinstance(e, sp.log):
+        return math.log10(max(args[0], 1.0) * 2.303 + 1.0)
+    return max(args + [0.0])
+
+
+def _log10_power(e, args, values) -> float | None:
+    base, exponent = e.args
+    if args[0] <= 1e-12 and base.is_number and abs(complex(sp.N(base, 15))) == 1:
+        return 0.0
+    k = _numeric(exponent, values)
+    if k is None:
+        return None
+    if abs(k.real) > 1e6:
+        raise _too_large(abs(k.real))
+    b = _numeric(base, values)
+    if b is not None and b != 0:
+        return k.real * math.log10(abs(b))
+    return abs(k.real) * args[0]
+
+
+def value_issue(e, values: dict, shown: str | None = None) -> str | None:
+    """Why the expression `e` with `values` substituted is not a finite real number, or None.
+
+    `shown` is the text the user wrote (sympy may have evaluated log(0) to zoo already)."""
+    issue = size_issue(e, values)
+    if issue is not None:
+        return issue
+    v = e.xreplace(values) if values else e
+    if v.free_symbols:
+        return None
+    what = shown if shown is not None else str(e)
+    given = f" (with the parameters' values it is {v})" if e.free_symbols and len(str(v)) < 80 else ""
+    undefined = f"{what} is undefined or infinite (a division by zero, log(0), tan(pi/2)?)" + given
+    if v.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+        return undefined
+    try:
+        c = complex(sp.N(v, 15))
+    except (TypeError, ValueError, ZeroDivisionError, OverflowError):
+        return f"{what} has no numeric value" + given
+    if not (math.isfinite(c.real) and math.isfinite(c.imag)):
+        return undefined
+    if abs(c.imag) > 1e-12 * max(1.0, abs(c.real)):
+        return (f"{what} is not a real number (it is {c.real:.6g}{c.imag:+.6g}i: a square root or "
+                "logarithm of a negative number, or acos/asin beyond [-1, 1]?)")
+    return None
+
+
 def number(value) -> sp.Expr:
     """A YAML number: exact when integer, a sympy Float otherwise."""
     if isinstance(value, bool):
@@ -58,9 +181,22 @@ def number(value) -> sp.Expr:
         return sp.Integer(value)
     if isinstance(value, float):
         if not math.isfinite(value):
-            raise ExpressionError(f"{value} is not a finite number")
+            raise ExpressionError(f"{value} is not a finite number" + (
+                " (too large for a floating-point number, which stops near 1.8e308)"
+                if math.isinf(value) else ""))
         return sp.Float(value)
     raise ExpressionError("expected a number or an expression")
+
+
+def _parse_hint(text: str) -> str:
+    import re
+
+    m = re.search(r"(\d+(?:\.\d*)?)\s*(?:deg|°)", text)
+    if m:
+        return f" (for an angle in degrees write deg({m.group(1)}); angles are radians otherwise)"
+    if re.search(r"\d[a-zA-Z_(]", text):
+        return " (write the multiplication: 2*L, not 2L)"
+    return ""
 
 
 class Namespace:
@@ -95,7 +231,7 @@ class Namespace:
         try:
             tree = ast.parse(text.replace("^", "**"), mode="eval")
         except SyntaxError:
-            raise ExpressionError(f"cannot parse expression {text!r}") from None
+            raise ExpressionError(f"cannot parse expression {text!r}" + _parse_hint(text)) from None
         except (RecursionError, MemoryError, ValueError):
             raise ExpressionError("expression too deeply nested") from None
         count = sum(1 for _ in ast.walk(tree))
@@ -111,6 +247,9 @@ class Namespace:
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise ExpressionError(f"unexpected {node.value!r} in {text!r}")
+            if isinstance(node.value, float) and math.isinf(node.value):
+                raise ExpressionError(f"a number in {text!r} is too large for a floating-point number "
+                                      f"(they stop near 1.8e308; robosolve handles magnitudes up to 1e{MAX_LOG10})")
             return number(node.value)
         if isinstance(node, ast.Name):
             return self._name(node.id, text)
@@ -136,7 +275,7 @@ class Namespace:
             if isinstance(node.op, ast.Sub):
                 return a - b
             if isinstance(node.op, ast.Mult):
-                return a * b
+                return self._bounded(a * b, text)
             if isinstance(node.op, ast.Div):
                 if b.is_zero:
                     raise ExpressionError(f"division by zero in {text!r}")
@@ -146,7 +285,7 @@ class Namespace:
                     raise ExpressionError(f"exponent too large in {text!r}")
                 if a.is_zero and b.is_number and b.is_negative:
                     raise ExpressionError(f"division by zero in {text!r}")
-                return a ** b
+                return self._bounded(sp.Pow(a, b, evaluate=False), text, lambda: a ** b)
             raise ExpressionError(f"operator not allowed in {text!r} (use + - * / ** or ^)")
         if isinstance(node, ast.Call):
             if not isinstance(node.func, ast.Name) or node.keywords:
@@ -157,8 +296,19 @@ class Namespace:
                                       + did_you_mean(name, FUNCTIONS))
             if len(node.args) != FUNCTION_ARITY[name]:
                 raise ExpressionError(f"{name}() takes {FUNCTION_ARITY[name]} argument(s) in {text!r}")
-            return FUNCTIONS[name](*[conv(a) for a in node.args])
+            args = [conv(a) for a in node.args]
+            if name == "exp":
+                return self._bounded(sp.exp(args[0], evaluate=False), text, lambda: sp.exp(args[0]))
+            return FUNCTIONS[name](*args)
         raise ExpressionError(f"not allowed in an expression: {text!r}")
+
+    @staticmethod
+    def _bounded(unevaluated, text, evaluate=None):
+        """`unevaluated` checked for number size first; then `evaluate()` builds the real thing."""
+        issue = size_issue(unevaluated)
+        if issue is not None:
+            raise ExpressionError(f"{text!r}: {issue}")
+        return evaluate() if evaluate is not None else unevaluated
 
     def _name(self, name: str, text: str):
         if name in self.names:

@@ -14,14 +14,14 @@ import sympy as sp
 from robosolve.errors import InputError, InputIssue
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, did_you_mean,
+    RESERVED, ExpressionError, Namespace, did_you_mean, size_issue, value_issue,
 )
 from robosolve.load.problem import (
     PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
 )
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml
 
-NAME_RE = re.compile(r"^[a-z0-9_-]+$")
+NAME_RE = re.compile(r"[a-z0-9_-]+")  # used with fullmatch: "$" would accept a final newline
 IDENT_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
 PYTHON_KEYWORDS = {
     "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
@@ -71,6 +71,10 @@ class Checker:
     def __init__(self, source: Source):
         self.src = source
         self.issues: list[InputIssue] = []
+        # numeric values of the parameters (set once they are read) and of the current
+        # question's `at`: every expression read afterwards is checked with them
+        self.values: dict | None = None
+        self.overrides: dict = {}
 
     def error(self, path, message: str):
         self.issues.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
@@ -86,15 +90,24 @@ class Checker:
                            + did_you_mean(key, allowed)
                            + f" (expected one of: {', '.join(allowed)})")
         for key in required:
-            if key not in value:
+            if key not in value and not self.misspelt(value, key, allowed):
                 self.error(path, f"missing required key '{key}'")
         return True
+
+    @staticmethod
+    def misspelt(value: dict, key: str, allowed) -> bool:
+        """True when an unknown key of `value` is a misspelling of `key`: its did-you-mean
+        already says what is wrong, so a 'missing key' would be a second message for one mistake."""
+        import difflib
+
+        unknown = [k for k in value if k not in allowed and isinstance(k, str)]
+        return any(difflib.get_close_matches(k, sorted(allowed), n=1, cutoff=0.5) == [key] for k in unknown)
 
     def string(self, path, value, pattern=None, hint="") -> str | None:
         if not isinstance(value, str):
             self.error(path, f"expected a string, got {type_name(value)}")
             return None
-        if pattern is not None and not pattern.match(value):
+        if pattern is not None and not pattern.fullmatch(value):
             self.error(path, f"invalid value {value!r}{hint}")
             return None
         return value
@@ -110,10 +123,35 @@ class Checker:
             self.error(path, f"expected a number or an expression, got {type_name(value)}")
             return None
         try:
-            return ns.parse(value)
+            e = ns.parse(value)
         except ExpressionError as exc:
             self.error(path, str(exc))
             return None
+        issue = self.value_issue(e, value if isinstance(value, str) else None)
+        if issue is not None:
+            self.error(path, issue)
+            return None
+        return e
+
+    def value_issue(self, e, shown: str | None = None) -> str | None:
+        """Why `e`, with the parameters' values (and the question's `at`), is not a finite real
+        number; None when it is one or still depends on joints, time or null parameters."""
+        if self.values is None:
+            return None
+        return value_issue(e, {**self.values, **self.overrides}, shown)
+
+    def number_value(self, e) -> float | None:
+        """The real value of `e` with the known values, or None when it has none (yet)."""
+        if self.values is None:
+            return None
+        v = e.xreplace({**self.values, **self.overrides})
+        if v.free_symbols:
+            return None
+        try:
+            c = complex(sp.N(v, 15))
+        except (TypeError, ValueError):
+            return None
+        return c.real if abs(c.imag) <= 1e-12 * max(1.0, abs(c.real)) else None
 
     def vector(self, path, value, ns: Namespace, length=3):
         if not isinstance(value, list) or (length is not None and len(value) != length):
@@ -147,11 +185,11 @@ def load_problem(file) -> Problem:
     try:
         raw = Path(file).read_bytes()
     except OSError as exc:
-        raise InputError([InputIssue(name, 1, "", f"cannot read the file: {exc.strerror or exc}")])
+        raise InputError([InputIssue(name, 0, "", f"cannot read the file: {exc.strerror or exc}")])
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
-        raise InputError([InputIssue(name, 1, "", "the file is not UTF-8 text")])
+        raise InputError([InputIssue(name, 0, "", "the file is not UTF-8 text")])
     return load_problem_text(text, name)
 
 
@@ -180,6 +218,8 @@ class _ProblemBuilder:
         self.chk = chk
         self.data = chk.src.data
         self.file = chk.src.file
+        self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
+        self.rejected_points: set[str] = set()
 
     def build(self) -> Problem | None:
         chk, data = self.chk, self.data
@@ -197,6 +237,7 @@ class _ProblemBuilder:
                        if data.get("description") is not None else None)
 
         self.parameters = self._parameters(data.get("parameters"))
+        chk.values = self._values()
         self.joints = self._joints(data.get("joints"))
         self.names = self._names()
         # time: meaningful only in forces (along a run, a simulation or a profile) and in
@@ -206,7 +247,9 @@ class _ProblemBuilder:
         self.ns_time = Namespace(self.names, what="name")
         self.frames = self._frames(data.get("frames"), data.get("dh"))
         self.points = self._points(data.get("points"))
-        self.ns_points = Namespace(static, self.points.keys(), what="name", refused={"t": TIME_REFUSED})
+        # rejected points parse (their error is already reported), so P.x is not "unknown" too
+        self.ns_points = Namespace(static, list(self.points) + sorted(self.rejected_points), what="name",
+                                   refused={"t": TIME_REFUSED})
         gravity, gravity_given = self._gravity(data.get("gravity"))
         bodies = self._bodies(data.get("bodies"))
         forces = self._forces(data.get("forces"))
@@ -249,7 +292,7 @@ class _ProblemBuilder:
             return {}
         names = []
         for key in value:
-            if not IDENT_RE.match(key) or key in PYTHON_KEYWORDS:
+            if not IDENT_RE.fullmatch(key) or key in PYTHON_KEYWORDS:
                 chk.error(("parameters", key), f"invalid parameter name '{key}' (expected a name like L1 or m_2)")
             elif key in RESERVED:
                 chk.error(("parameters", key), f"'{key}' is reserved (a function, a constant or time)")
@@ -273,7 +316,12 @@ class _ProblemBuilder:
             e = raw.get(n)
             if e is None:
                 continue
-            v = e.xreplace({plain[k]: numeric[k] for k in numeric if k in plain})
+            known = {plain[k]: numeric[k] for k in numeric if k in plain}
+            issue = size_issue(e, known)
+            if issue is not None:
+                chk.error(("parameters", n), issue)
+                continue
+            v = e.xreplace(known)
             if v.free_symbols:
                 continue          # depends on a null parameter: stays symbolic
             try:
@@ -392,9 +440,10 @@ class _ProblemBuilder:
             j.limits = (lo, hi)
         return joints
 
-    def _values(self) -> dict:
-        """Numeric values of the parameters that have one (for sanity checks)."""
-        vals, pending = {}, dict(self.parameters)
+    def _values(self, overrides: dict | None = None) -> dict:
+        """Numeric values of the parameters that have one (for sanity checks), with `overrides`
+        (a question's `at` values of parameters) replacing theirs."""
+        vals, pending = {}, {**self.parameters, **(overrides or {})}
         for _ in range(len(pending) + 1):
             for s, e in list(pending.items()):
                 if e is None:
@@ -429,6 +478,8 @@ class _ProblemBuilder:
             else:
                 for key, item in frames_value.items():
                     self._frame(str(key), item, frames, from_dh=dh_value is not None)
+                    if str(key) not in frames:
+                        self.rejected_frames.add(str(key))
         if frames and len(chk.issues) == n_issues:   # (no cascade after a bad frame)
             used = set()
             for f in frames.values():
@@ -460,6 +511,7 @@ class _ProblemBuilder:
                 continue
             vals = [chk.expr(path + (k,), row[k], self.ns) for k in keys if k in row]
             if len(vals) != 4 or any(v is None for v in vals):
+                self.rejected_frames.add(str(i + 1))
                 continue
             name = str(i + 1)
             frames[name] = Frame(name, str(i), "dh" if conv == "standard" else "mdh",
@@ -483,6 +535,8 @@ class _ProblemBuilder:
             return
         default_parent = list(frames)[-1] if frames else "0"
         parent = str(item.get("parent", default_parent))
+        if parent != "0" and parent not in frames and parent in self.rejected_frames:
+            return  # its parent was rejected (and reported): one mistake, one message
         if parent != "0" and parent not in frames:
             chk.error(path + ("parent",), f"unknown parent frame '{parent}'"
                       + did_you_mean(parent, list(frames) + ["0"])
@@ -572,6 +626,10 @@ class _ProblemBuilder:
             except ExpressionError as exc:
                 chk.error(path, str(exc))
                 return None
+            issue = chk.value_issue(e, inner.strip())
+            if issue is not None:
+                chk.error(path, f"{op}({inner.strip()}): {issue}")
+                return None
             factors.append((op, e))
             i = k + 1
         if not factors:
@@ -587,6 +645,8 @@ class _ProblemBuilder:
         name = str(value)
         if name == "0" and allow_base:
             return name
+        if name not in self.frames and name in self.rejected_frames:
+            return None  # the frame itself was rejected (and reported): no second message
         if name not in self.frames:
             known = list(self.frames) + (["0"] if allow_base else [])
             self.chk.error(path, f"unknown frame '{name}'" + did_you_mean(name, known)
@@ -604,7 +664,7 @@ class _ProblemBuilder:
             else:
                 for name, item in value.items():
                     path = ("points", name)
-                    if not IDENT_RE.match(name) or name in PYTHON_KEYWORDS:
+                    if not IDENT_RE.fullmatch(name) or name in PYTHON_KEYWORDS:
                         chk.error(path, f"invalid point name '{name}'")
                         continue
                     if name in taken:
@@ -616,6 +676,8 @@ class _ProblemBuilder:
                     at = self.chk.vector(path + ("at",), item.get("at", [0, 0, 0]), self.ns)
                     if frame is not None and at is not None:
                         points[name] = Point(name, frame, at, line=chk.src.line(path))
+                    else:
+                        self.rejected_points.add(name)
         if "E" not in points and "E" not in taken:
             points["E"] = Point("E", self.last_frame(), sp.zeros(3, 1), line=1, implicit=True)
         return points
@@ -665,10 +727,16 @@ class _ProblemBuilder:
             mass = None
             if kind != "pseudo_inertia":
                 if "mass" not in item:
-                    chk.error(path, "missing required key 'mass'")
+                    if not chk.misspelt(item, "mass", ("name", "frame", "mass") + kinds + ("inertia",)):
+                        chk.error(path, "missing required key 'mass'")
                     continue
                 mass = chk.expr(path + ("mass",), item["mass"], self.ns)
                 if mass is None:
+                    continue
+                value = chk.number_value(mass)
+                if value is not None and value < 0:
+                    chk.error(path + ("mass",), f"a mass cannot be negative, got {item['mass']!r}"
+                              + (f" (= {value:g})" if not mass.is_number else ""))
                     continue
             elif "mass" in item:
                 chk.error(path + ("mass",), "the mass is the [4,4] entry of pseudo_inertia: do not give both")

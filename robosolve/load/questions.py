@@ -11,7 +11,7 @@ import re
 
 import sympy as sp
 
-from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
+from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean, value_issue
 from robosolve.load.problem import Question
 from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES
 
@@ -75,7 +75,7 @@ class _QuestionLoader:
         q = Question(type=qtype, id="", index=i, line=chk.src.line(path))
         if "id" in item:
             ident = item["id"]
-            if not isinstance(ident, str) or not ID_RE.match(ident):
+            if not isinstance(ident, str) or not ID_RE.fullmatch(ident):
                 chk.error(path + ("id",), "expected an id of letters, digits, '_' or '-'")
             else:
                 q.id = ident
@@ -86,7 +86,9 @@ class _QuestionLoader:
                 q.frame, q.frame_given = f, True
         if "point" in item:
             p = item["point"]
-            if not isinstance(p, str) or p not in b.points:
+            if isinstance(p, str) and p in b.rejected_points:
+                pass  # the point's own error is reported: one mistake, one message
+            elif not isinstance(p, str) or p not in b.points:
                 chk.error(path + ("point",), f"unknown point {p!r}"
                           + (did_you_mean(p, b.points) if isinstance(p, str) else "")
                           + (f" (known: {', '.join(b.points)})" if b.points else ""))
@@ -94,6 +96,7 @@ class _QuestionLoader:
                 q.point, q.point_given = p, True
         if "at" in item:
             q.at = self.at(path + ("at",), item["at"])
+        chk.overrides = self.at_values(q.at)  # the question's options are checked with its `at`
         if "marks" in item:
             q.marks = self.marks(path + ("marks",), item["marks"])
         if "grade" in item:
@@ -104,7 +107,8 @@ class _QuestionLoader:
                 if v is not None:
                     q.options[key] = v
         self.type_rules(path, item, q)
-        return q if len(chk.issues) == n_before else q
+        chk.overrides = {}
+        return q
 
     def type_rules(self, path, item, q):
         chk, b = self.chk, self.b
@@ -144,8 +148,14 @@ class _QuestionLoader:
                 chk.error(path + ("max_velocity",), "max_velocity goes with shape: trapezoidal")
             for key in ("max_acceleration", "max_velocity"):
                 for name, v in opts.get(key, {}).items():
-                    if v.is_number and not v.is_positive:
-                        chk.error(path + (key, name), f"must be positive, got {v}")
+                    value = chk.number_value(v)
+                    if value is not None and not value > 0:
+                        chk.error(path + (key, name), f"must be positive, got {item[key][name]!r}"
+                                  + (f" (= {value:g})" if not v.is_number else ""))
+        if "duration" in opts:
+            value = chk.number_value(opts["duration"])
+            if value is not None and not value > 0:
+                chk.error(path + ("duration",), f"must be positive (seconds), got {item['duration']!r}")
         if t == "p_control":
             law = opts.get("law", "p")
             if law != "p" and "gains_d" not in item:
@@ -172,6 +182,10 @@ class _QuestionLoader:
                           "(the default gravity is [0, 0, -g]) or give gravity")
             if not b.problem.bodies and t != "statics":
                 chk.error(path + ("type",), "this question needs bodies (masses)")
+            masses = [chk.number_value(body.mass) for body in b.problem.bodies if body.mass is not None]
+            if t in ("p_control", "forward_dynamics") and masses and all(m == 0 for m in masses):
+                chk.error(path + ("type",), "every body has mass 0, so the mass matrix M(q) is singular "
+                          "and the motion cannot be integrated: give the bodies their masses")
             if t == "statics" and not b.problem.bodies:
                 chk.error(path + ("weight",), "weight: true needs bodies (masses)")
 
@@ -245,15 +259,36 @@ class _QuestionLoader:
             allowed[j.name], allowed[j.dot.name], allowed[j.ddot.name] = j.symbol, j.dot, j.ddot
         for s in b.parameters:
             allowed[s.name] = s
-        out = {}
-        for key, v in value.items():
-            if key not in allowed:
-                chk.error(path + (key,), f"unknown joint or parameter '{key}'" + did_you_mean(key, allowed))
-                continue
-            e = chk.expr(path + (key,), v, self.params_ns)
-            if e is not None:
-                out[allowed[key]] = e
+        out, paths = {}, {}
+        values, chk.values = chk.values, None  # checked below, joints with the overridden parameters
+        try:
+            for key, v in value.items():
+                if key not in allowed:
+                    chk.error(path + (key,), f"unknown joint or parameter '{key}'" + did_you_mean(key, allowed))
+                    continue
+                e = chk.expr(path + (key,), v, self.params_ns)
+                if e is not None:
+                    out[allowed[key]], paths[allowed[key]] = e, path + (key,)
+        finally:
+            chk.values = values
+        params = {s: e for s, e in out.items() if s in b.parameters}
+        for s, e in list(out.items()):
+            shown = value[s.name] if isinstance(value.get(s.name), str) else None
+            issue = chk.value_issue(e, shown) if s in params else (
+                None if chk.values is None else value_issue(e, {**b._values(params), **params}, shown))
+            if issue is not None:
+                chk.error(paths[s], issue)
+                out.pop(s)
         return out
+
+    def at_values(self, at: dict) -> dict:
+        """Values of every symbol a question's options may use: parameters (with the `at`
+        overrides) and the `at` joint values."""
+        if not at or self.chk.values is None:
+            return {}
+        params = {s: e for s, e in at.items() if s in self.b.parameters}
+        values = self.b._values(params)
+        return {**values, **{s: e.xreplace(values) for s, e in at.items() if s not in params}}
 
     def v_bool(self, path, value, q):
         return self.chk.boolean(path, value)
@@ -372,6 +407,10 @@ class _QuestionLoader:
         if isinstance(value, dict):
             return {"config": self.v_joint_values(path, value, q)}
         m = self.chk.matrix(path, value, self.params_ns, shapes=((4, 4),))
+        if m is not None and (list(m[3, :]) != [0, 0, 0, 1] or not self.b._is_rigid(m)):
+            self.chk.error(path, "not a rototranslation: the last row must be [0, 0, 0, 1] and the 3x3 "
+                           "rotation block orthonormal with determinant 1")
+            return None
         return {"matrix": m} if m is not None else None
 
     # -- forward_dynamics ---------------------------------------------
@@ -471,5 +510,19 @@ class _QuestionLoader:
                                "(joint values and <joint>_dot rates)")
 
     def v_rotation_matrix(self, path, value, q):
-        return self.chk.matrix(path, value, self.params_ns, shapes=((3, 3), (4, 4)))
+        import sympy as sp
+
+        m = self.chk.matrix(path, value, self.params_ns, shapes=((3, 3), (4, 4)))
+        if m is None:
+            return None
+        full = m if m.shape == (4, 4) else sp.diag(m, 1)
+        if m.shape == (4, 4) and list(m[3, :]) != [0, 0, 0, 1]:
+            self.chk.error(path, "the last row of a pose matrix must be [0, 0, 0, 1]")
+            return None
+        if not self.b._is_rigid(full):
+            self.chk.error(path, "not a rotation: the 3x3 block must be orthonormal with determinant 1"
+                           + (" (checked at sample values of " + ", ".join(sorted(s.name for s in m.free_symbols))
+                              + ")" if m.free_symbols else ""))
+            return None
+        return m
 

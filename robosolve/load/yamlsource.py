@@ -108,6 +108,10 @@ def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark else 1
         what = exc.problem or exc.context or "syntax error"
+        lines = text.splitlines()
+        near = lines[max(line - 2, 0):line + 1]
+        if "\t" in text and (any("\t" in ln for ln in near) or "tab" in what):
+            what += " (a tab character: indent with spaces, YAML does not allow tabs)"
         raise YamlProblem(line, f"YAML syntax error: {what}") from None
     except yaml.YAMLError as exc:
         raise YamlProblem(1, f"YAML error: {exc}") from None

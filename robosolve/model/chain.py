@@ -3,7 +3,7 @@
 `RobotModel` is built once per problem and memoises everything it derives, so
 solvers share one chain product, one set of L matrices, and so on.
 
-Conventions (spec §3, ERRATA §D.1-4): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
+Conventions (spec §3; docs/course-notes.md: frame-notation, w-matrix, h-matrix, l-matrix): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
 and H_0j = Mddot_0j M_0j^-1, both expressed in frame 0; the L matrix of joint i
 is dM/dq_i M^-1 moved to frame 0. Time derivatives use the chain rule with the
 symbols q, q_dot, q_ddot (no sympy Functions of t: faster and printable).
@@ -16,7 +16,7 @@ from functools import cached_property
 import sympy as sp
 
 from robosolve.core import matrices as mx
-from robosolve.core.simplify import tidy, tidy_matrix
+from robosolve.core.simplify import tidy, tidy_matrix, tidy_products_matrix
 from robosolve.core.transforms import ELEMENTARY, dh_modified, dh_standard, homogeneous, rigid_inverse
 from robosolve.load.expressions import point_symbol
 from robosolve.load.problem import Body, Problem
@@ -77,6 +77,20 @@ class RobotModel:
         return [(f"MDH({sp.latex(al)}, {sp.latex(a)}, {sp.latex(th)}, {sp.latex(d)})",
                  dh_modified(al, a, th, d))]
 
+    def elementary_factors(self, frame: str) -> list | None:
+        """The frame's pose as elementary motions [(op, arg)] (DH rows expanded), or
+        None for a pose given as a matrix."""
+        f = self.frames[frame]
+        if f.kind == "pose":
+            return list(f.factors)
+        if f.kind == "dh":
+            th, d, a, al = f.factors
+            return [("Rz", th), ("Tz", d), ("Tx", a), ("Rx", al)]
+        if f.kind == "mdh":
+            al, a, th, d = f.factors
+            return [("Rx", al), ("Tx", a), ("Rz", th), ("Tz", d)]
+        return None
+
     def M_local(self, frame: str) -> sp.Matrix:
         """Pose of `frame` in its parent (the product of its elementary factors)."""
         key = ("M_local", frame)
@@ -95,8 +109,11 @@ class RobotModel:
             # Only the new products need tidying: the parent's translation is already
             # tidy, so re-simplifying the whole growing sum (exponential in the chain
             # length) is avoided.
-            r = tidy_matrix(mp[:3, :3] * ml[:3, :3])
-            t = mp[:3, 3] + tidy_matrix(mp[:3, :3] * ml[:3, 3])
+            # Arms of 5+ joints: addition formulas only (trigsimp finds nothing more in
+            # their products and costs seconds per entry), see core.simplify.
+            tidy_m = tidy_matrix if len(self.q) <= 4 else tidy_products_matrix
+            r = tidy_m(mp[:3, :3] * ml[:3, :3])
+            t = mp[:3, 3] + tidy_m(mp[:3, :3] * ml[:3, 3])
             self._m0[frame] = homogeneous(r, t)
         return self._m0[frame]
 
@@ -172,7 +189,14 @@ class RobotModel:
         frame = frame or self.joint_frame(index)
         key = ("L_local", index, frame)
         if key not in self._cache:
-            self._cache[key] = mx.l_matrix(self.M_local(frame), self.joints[index].symbol)
+            q = self.joints[index].symbol
+            factors = self.elementary_factors(frame)
+            l_mat = mx.l_matrix_of_factors(factors, q) if factors is not None else None
+            if l_mat is not None:
+                l_mat = tidy_matrix(l_mat)
+            else:
+                l_mat = mx.l_matrix(self.M_local(frame), q)
+            self._cache[key] = l_mat
         return self._cache[key]
 
     def L0(self, index: int, frame: str | None = None) -> sp.Matrix:

@@ -1,9 +1,11 @@
 """The chain evaluated with numbers: M, W, H of every frame at one configuration.
 
-Only the small local matrices (M, L, H of each frame in its parent) are symbolic;
-products, Rivals and Coriolis are done in numpy. This gives every numeric answer
-even when a symbolic product is too large (robots with many joints), and an
-independent route to cross-check the symbolic one.
+Only the small local poses M (each frame in its parent) and their raw, unsimplified
+derivatives are symbolic; W = Mdot M^-1, H = Mddot M^-1, L = dM/dq M^-1, the products,
+Rivals and Coriolis are done in numpy. No simplified expression built for the report is
+evaluated (simplifying H costs seconds and a number needs none of it), every numeric
+answer exists even when a symbolic product is too large, and this is an independent
+route to cross-check the symbolic one.
 """
 
 from __future__ import annotations
@@ -42,8 +44,22 @@ class NumericChain:
     def M0(self, frame: str) -> np.ndarray:
         if frame not in self._m:
             parent = self.model.frames[frame].parent
-            self._m[frame] = self.M0(parent) @ _num(self.model.M_local(frame), self.subs)
+            self._m[frame] = self.M0(parent) @ self._local(frame)
         return self._m[frame]
+
+    def _local(self, frame: str, order: int = 0) -> np.ndarray:
+        """M (order 0), Mdot (1) or Mddot (2) of the frame in its parent, as numbers."""
+        key = ("local", frame, order)
+        if key not in self._m:
+            expr = self.model.M_local(frame)
+            for _ in range(order):
+                expr = self.model.time_derivative(expr)
+            self._m[key] = _num(expr, self.subs)
+        return self._m[key]
+
+    def _relative(self, frame: str, order: int) -> np.ndarray:
+        """W (order 1) or H (order 2) of the frame relative to its parent, in the parent."""
+        return self._local(frame, order) @ rigid_inverse(self._local(frame))
 
     def _moved(self, frame: str, a: np.ndarray) -> np.ndarray:
         mp = self.M0(self.model.frames[frame].parent)
@@ -52,14 +68,14 @@ class NumericChain:
     def W0(self, frame: str) -> np.ndarray:
         if frame not in self._w:
             parent = self.model.frames[frame].parent
-            self._w[frame] = self.W0(parent) + self._moved(frame, _num(self.model.W_local(frame), self.subs))
+            self._w[frame] = self.W0(parent) + self._moved(frame, self._relative(frame, 1))
         return self._w[frame]
 
     def H0(self, frame: str) -> np.ndarray:
         if frame not in self._h:
             parent = self.model.frames[frame].parent
-            w_rel = self._moved(frame, _num(self.model.W_local(frame), self.subs))
-            h_rel = self._moved(frame, _num(self.model.H_local(frame), self.subs))
+            w_rel = self._moved(frame, self._relative(frame, 1))
+            h_rel = self._moved(frame, self._relative(frame, 2))
             self._h[frame] = self.H0(parent) + 2 * self.W0(parent) @ w_rel + h_rel
         return self._h[frame]
 
@@ -74,5 +90,7 @@ class NumericChain:
         total = np.zeros((4, 4))
         for f in model.chain(frame):
             if index in model.joints_in(f):
-                total += self._moved(f, _num(model.L_local(index, f), self.subs))
+                m = model.M_local(f)
+                dm = _num(m.diff(model.joints[index].symbol), self.subs)
+                total += self._moved(f, dm @ rigid_inverse(self._local(f)))
         return total

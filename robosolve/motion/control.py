@@ -25,12 +25,19 @@ import numpy as np
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import NumericPlan
 
-__all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT"]
+__all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT", "MAX_EVALUATIONS"]
 
-# Wall-clock budget of one simulation (s).  An undamped P loop on a very light link (a
-# PUMA wrist: inertia 1e-4 kg m^2, Kp = 5000 -> 1 kHz) must resolve every oscillation and
-# could run for many minutes: it is stopped with an explanation instead of hanging.
-TIME_LIMIT = 60.0
+# Work budget of one simulation, counted (not timed) so that the outcome is the same on an idle
+# or a busy machine: at most this many evaluations of the equations of motion.  An undamped P
+# loop on a very light link (a PUMA wrist: inertia 1e-4 kg m^2, Kp = 5000 -> 1 kHz), gains of
+# 1e12 or `duration: 1e6` must resolve every oscillation and would run for many minutes and keep
+# gigabytes of solver steps (the dense output holds one interpolant per step): they are stopped
+# with an explanation instead.  Measured on the 2R test arm: Kp = 5000 needs 16k evaluations,
+# Kp = 5e5 180k; the budget also bounds the memory (about 1 kB per solver step).
+MAX_EVALUATIONS = 400_000
+# Wall-clock limit (s): only a last safety net for a machine far slower than any seen; the
+# message says so (the counted budget above decides in every normal case).
+TIME_LIMIT = 600.0
 
 
 class SimulationTooLong(RuntimeError):
@@ -60,6 +67,7 @@ class ControlResult:
     breaks: list[float] = field(default_factory=list)
     nfev: int = 0
     method: str = "LSODA"
+    external: np.ndarray | None = None   # (n, N) generalized external forces f_ext(q), for the plots
 
 
 def _intervals(plan: NumericPlan, duration: float):
@@ -104,10 +112,11 @@ def _law_torque(law, kp, kd, e, ed, qdd_d, m, c, g):
     return m @ (qdd_d + kd * ed + kp * e) + c + g
 
 
+# long: one integration loop with its restart and refine state in locals; to split next (issue 10 item 6)
 def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, start=None,
              duration: float | None = None, samples: int = 801,
              rtol: float = RTOL, atol=None, method: str = "LSODA",
-             time_limit: float | None = TIME_LIMIT) -> ControlResult:
+             time_limit: float | None = TIME_LIMIT, max_evaluations: int | None = None) -> ControlResult:
     """Simulate the closed loop from ``start`` at rest (default: the profile's start).
 
     ``kp``, ``kd``: per-joint gains (sequences of n floats; kd defaults to 0).
@@ -137,6 +146,8 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     import time
 
     deadline = None if not time_limit else time.monotonic() + time_limit
+    budget = _Budget(MAX_EVALUATIONS if max_evaluations is None else max_evaluations, deadline,
+                     lambda why: _too_long(dyn, law, kp, kd, q_start, duration, why), time_limit)
     fast = dyn.closed_loop(law, kp, kd)
     sols = []
     nfev = 0
@@ -154,7 +165,7 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
                 qdd = np.linalg.solve(m, tau + f - c - g)
                 return np.concatenate([ed, ades - qdd])
 
-        rhs = _guarded(rhs, deadline, lambda: _too_long(dyn, law, kp, kd, q_start, duration, time_limit))
+        rhs = budget.guard(rhs)
         sol = solve_ivp(rhs, (a, b), y, method=method, rtol=rtol, atol=atol, dense_output=True)
         if not sol.success:
             sol = solve_ivp(rhs, (a, b), y, method="Radau", rtol=rtol, atol=atol, dense_output=True)
@@ -169,6 +180,7 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     q_des = np.empty((n, grid.size))
     err = np.empty((n, grid.size))
     effort = np.empty((n, grid.size))
+    external = np.empty((n, grid.size))
     lo = 0
     for idx, (a, b, coeffs, sol) in enumerate(sols):
         hi = grid.size if idx == len(sols) - 1 else int(np.searchsorted(grid, b, side="right"))
@@ -184,6 +196,7 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
             q_des[:, lo:hi] = qdes
             err[:, lo:hi] = e
             effort[:, lo:hi] = _effort_many(dyn, law, kp, kd, qdes - e, vdes - ed, e, ed, ades, ts)
+            external[:, lo:hi] = _external_many(dyn, qdes - e, vdes - ed, ts)
         lo = hi
 
     # max |e|: the solver's own steps sample every oscillation finely; the best few
@@ -214,29 +227,41 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     final = sols[-1][3].y[:n, -1].copy()
     q = q_des - err
     return ControlResult(law, duration, grid, q, q_des, err, effort, max_err, t_max, final,
-                         breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method)
+                         breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method,
+                         external=external)
 
 
-def _guarded(rhs, deadline, message):
-    """rhs that raises SimulationTooLong once the deadline has passed (checked every 500 calls)."""
-    if deadline is None:
-        return rhs
-    import time
+class _Budget:
+    """Counts the evaluations of the right-hand side over the whole simulation; raises
+    SimulationTooLong past the counted budget (deterministic) or the wall-clock safety net."""
 
-    count = [0]
+    def __init__(self, evaluations: int, deadline, message, seconds=None):
+        self.left, self.deadline, self.message = evaluations, deadline, message
+        self.total, self.seconds = evaluations, seconds
 
-    def guarded(t, yy):
-        count[0] += 1
-        if count[0] % 500 == 0 and time.monotonic() > deadline:
-            raise SimulationTooLong(message())
-        return rhs(t, yy)
+    def guard(self, rhs):
+        import time
 
-    return guarded
+        def guarded(t, yy):
+            self.left -= 1
+            if self.left < 0:
+                raise SimulationTooLong(self.message(
+                    f"its budget of {self.total:,} evaluations of the equations of motion"))
+            if self.deadline is not None and self.left % 500 == 0 and time.monotonic() > self.deadline:
+                raise SimulationTooLong(self.message(
+                    f"{self.seconds:g} s (a wall-clock safety limit, reached only on a very slow machine)"))
+            return rhs(t, yy)
+
+        return guarded
 
 
-def _too_long(dyn, law, kp, kd, q0, duration, limit) -> str:
-    """Explain a simulation that ran out of time: the fastest closed-loop oscillation."""
-    msg = f"the closed-loop simulation did not finish in {limit:g} s"
+def _too_long(dyn, law, kp, kd, q0, duration, limit: str) -> str:
+    """Explain a simulation that ran out of budget: the fastest closed-loop oscillation, or
+    the instability a negative gain causes."""
+    msg = f"the closed-loop simulation did not finish within {limit}"
+    if law != "computed_torque" and (np.any(np.asarray(kp) < 0) or np.any(np.asarray(kd) < 0)):
+        return msg + (": a negative gain makes the loop unstable (the error grows exponentially "
+                      "instead of being corrected); use positive gains")
     try:
         m, _c, _g, _f = dyn.terms(np.asarray(q0, dtype=float), np.zeros(dyn.n), 0.0)
         stiff = np.diag(kp) if law != "computed_torque" else m @ np.diag(kp)
@@ -289,6 +314,16 @@ def _top_local_maxima(vals: np.ndarray, keep: int = 12) -> list[int]:
     near = idx[top >= best * (1 - 1e-2)]
     order = np.argsort(-vals[near], kind="stable")[:keep]
     return sorted(int(near[k]) for k in order)
+
+
+def _external_many(dyn, q, qd, ts=None):
+    """Generalized external forces f_ext(q) at many samples (arrays (n, N)); ``ts`` the times
+    (a force may vary with time)."""
+    many = getattr(dyn, "_terms_many", None)
+    if many is not None:
+        return np.broadcast_to(dyn.terms_many(q, qd, ts)[3], q.shape)
+    return np.column_stack([dyn.terms(q[:, k], qd[:, k], None if ts is None else ts[k])[3]
+                            for k in range(q.shape[1])]) if q.shape[1] else np.empty_like(q)
 
 
 def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades, ts=None):

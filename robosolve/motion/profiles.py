@@ -1,6 +1,6 @@
 """Synchronized joint motion profiles (the course's §7.4, corrected).
 
-Three rest-to-rest shapes (spec, "Motion profiles"; ERRATA items 121-126, §D.15):
+Three rest-to-rest shapes (spec, "Motion profiles"; docs/course-notes.md#note-motion-sync):
 
 * ``bang-bang``: constant acceleration +a up to T/2, -a after (the course's
   profile a t^2/2 | aT^2/4 - a(T - t)^2/2).  Own time T_i = sqrt(4|D_i|/a_i),
@@ -29,6 +29,8 @@ from dataclasses import dataclass, field
 from typing import Sequence
 
 import sympy as sp
+
+from robosolve.core.simplify import collected_radicals
 
 __all__ = ["SHAPES", "Segment", "JointMotion", "SyncProfile", "synchronize", "ProfileError"]
 
@@ -252,10 +254,11 @@ def _nice(e):
     """Exact numbers with their radicals collected (radsimp: fast); never a blanket simplify."""
     e = sp.sympify(e)
     if e.is_number and not e.is_Rational and not e.has(sp.Float):
-        return sp.radsimp(e)
+        return collected_radicals(e)
     return e
 
 
+# long: one case per profile shape sharing the synchronized time; to split next (issue 10 item 6)
 def synchronize(
     names: Sequence[str],
     start: Sequence,

@@ -3,7 +3,7 @@
 tau(t) = M(q) qdd + c(q, qd) + g(q) - f_ext(q) with q, qd, qdd the desired profile.
 The profile is polynomial on each interval between switching instants, so tau is
 a closed-form expression in t on each of them; it jumps where an acceleration
-jumps (0, T/2 and T for bang-bang, ERRATA item 127).
+jumps (0, T/2 and T for bang-bang, docs/course-notes.md#note-torque-jumps).
 
 Peaks (spec, "Joint torques"): the signed value of largest magnitude over [0, T],
 with the one-sided limits at the jumps included, so that t_peak is exactly a
@@ -18,6 +18,7 @@ from typing import Sequence
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import common_factors, factored
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import SyncProfile
 
@@ -55,7 +56,7 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
         for s in j.segments:
             if float(s.t0) <= float(mid) <= float(s.t1):
                 # small polynomials: factored rates read as the course writes them, a (T - t)
-                return s.position, sp.factor(sp.diff(s.position, t)), sp.factor(sp.diff(s.position, t, 2))
+                return s.position, factored(sp.diff(s.position, t)), factored(sp.diff(s.position, t, 2))
         return j.start, sp.S(0), sp.S(0)
 
     def rest(at_end: bool):
@@ -100,7 +101,7 @@ def merge_terms(expr: sp.Expr, t: sp.Symbol) -> sp.Expr:
         groups.setdefault(factor, []).append(coeff)
     out = []
     for factor in sorted(groups, key=sp.default_sort_key):
-        coeff = sp.factor_terms(sp.Add(*groups[factor]))
+        coeff = common_factors(sp.Add(*groups[factor]))
         if coeff != 0:
             out.append(coeff * factor)
     return sp.Add(*out)

@@ -57,7 +57,9 @@ class AnswerKey:
     `angle`: values are angles, compared modulo 2π (in a joint mapping or set of joint
     mappings: the revolute joints' values only). `unordered`: a set, order ignored.
     `sign_free`: each vector up to its sign. `symbolic`/`numeric`: where it may appear;
-    `top`: beside `type` in the answer (not inside symbolic/numeric).
+    `top`: beside `type` in the answer (not inside symbolic/numeric). `digits`: the
+    significant digits results.json keeps of its numbers when the computation is worth
+    fewer than the default 12 (a simulation's errors); render/numbers.py applies it.
     """
 
     name: str
@@ -72,6 +74,7 @@ class AnswerKey:
     numeric: bool = True
     top: bool = False
     fields: tuple = ()            # for RECORD / ACTUATOR_RECORDS: AnswerKeys of the fields
+    digits: int | None = None     # significant digits in results.json (None: the default)
     # -- for the grader (grading.md) --
     by_value: bool = False        # values compared as numbers even when written as expressions
     pose: bool = False            # a 4x4 homogeneous pose: the `inverse` diagnosis applies
@@ -304,7 +307,8 @@ _TYPES = [
         answers=(
             _k("actuators", ACTUATOR_RECORDS, "actuator -> signed peak and its time", principal=True,
                symbolic=False, fields=(_k("peak", SCALAR, "signed value of largest magnitude"),
-                                       _k("t_peak", SCALAR, "time of the peak"))),
+                                       # an interior peak is flat: its time is known to ~1e-8
+                                       _k("t_peak", SCALAR, "time of the peak", digits=8))),
             _k("profiles", ACTUATOR_MAP, "actuator -> piecewise expression in t", numeric=False),
         ),
         figures=(("torques", "joint_torques"),),
@@ -317,9 +321,12 @@ _TYPES = [
         defaults={"law": "p"},
         needs_dynamics=True,
         answers=(
-            _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, symbolic=False),
-            _k("final_error", JOINT_MAP, "signed e at the end", principal=True, symbolic=False),
-            _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False),
+            # the simulation is accurate to ~1e-6 relative: 6 digits, the same on every machine
+            _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, symbolic=False,
+               digits=6),
+            _k("final_error", JOINT_MAP, "signed e at the end", principal=True, symbolic=False,
+               digits=6),
+            _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False, digits=6),
         ),
         figures=(("tracking", "control_tracking"), ("effort", "control_effort")),
     ),
@@ -329,14 +336,17 @@ _TYPES = [
         required=("duration",),
         needs_dynamics=True,
         answers=(
-            _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, symbolic=False),
+            # the run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio): 10 digits
+            _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, symbolic=False,
+               digits=10),
             _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True,
-               symbolic=False),
+               symbolic=False, digits=10),
             _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True,
-               symbolic=False),
-            _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False),
+               symbolic=False, digits=10),
+            _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False, digits=10),
             _k("energy", RECORD, "total energy T + U", symbolic=False, fields=(
-                _k("start", SCALAR, "at t = 0"), _k("end", SCALAR, "at the end of the run"))),
+                _k("start", SCALAR, "at t = 0", digits=10),
+                _k("end", SCALAR, "at the end of the run", digits=10))),
             _k("equations", EQUATIONS, "the equations of motion with the actuator laws substituted",
                numeric=False),
         ),

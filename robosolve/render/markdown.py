@@ -9,19 +9,25 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.questions.registry import title as question_title
-from robosolve.render.numbers import report_number
+from robosolve.core.prose import Num, Text
+from robosolve.render.compact import CompactTrig, display_lines
+from robosolve.render.configuration import configuration_text, overrides_by_parameter
+from robosolve.render.numbers import report_number, text
 
 
 
 class Tex:
     """LaTeX of sympy objects and plain numbers with the problem's symbol names."""
 
-    def __init__(self, symbol_names: dict):
+    def __init__(self, symbol_names: dict, compact=None):
         self.names = symbol_names
+        self.compact = compact          # CompactTrig: c_{1}, s_{23} for cos/sin of joints
 
     def __call__(self, v) -> str:
         if isinstance(v, str):
             return v
+        if isinstance(v, (Num, Text)):
+            return text(v, math=True)
         if isinstance(v, bool):
             return "\\text{true}" if v else "\\text{false}"
         if v is None:
@@ -37,6 +43,9 @@ class Tex:
         if isinstance(v, dict):
             return ",\\quad ".join(f"{self(k) if not isinstance(k, str) else _text(k)} = {self(x)}"
                                    for k, x in v.items())
+        if self.compact is not None:
+            v = self.compact(v)
+            return sp.latex(v, symbol_names={**self.names, **self.compact.names})
         return sp.latex(v, symbol_names=self.names)
 
 
@@ -50,7 +59,7 @@ def display(tex: str) -> str:
 
 def render_table(header, rows) -> str:
     def cell(x):
-        return str(x).replace("|", "\\|").replace("\n", " ")
+        return text(x).replace("|", "\\|").replace("\n", " ")
     out = ["| " + " | ".join(cell(h) for h in header) + " |",
            "| " + " | ".join("---" for _ in header) + " |"]
     out += ["| " + " | ".join(cell(c) for c in r) + " |" for r in rows]
@@ -62,7 +71,13 @@ def render_data(problem, model, tex: Tex) -> list[str]:
     if problem.parameters:
         rows = [(f"${tex(s)}$", "null (symbolic)" if v is None else f"${tex(v)}$")
                 for s, v in problem.parameters.items()]
-        out += ["### Parameters", render_table(("symbol", "value"), rows)]
+        header = ("symbol", "value")
+        overrides = overrides_by_parameter(problem, tex)
+        if overrides:       # the values some questions use instead, next to the base value
+            header += ("changed by a question's `at`",)
+            rows = [r + ("; ".join(overrides.get(s, [])) or "—",)
+                    for r, s in zip(rows, problem.parameters)]
+        out += ["### Parameters", render_table(header, rows)]
     if problem.joints:
         rows = []
         for j in problem.joints:
@@ -113,43 +128,118 @@ def render_data(problem, model, tex: Tex) -> list[str]:
     return out
 
 
+def decimal_companion(value, tex: Tex) -> str | None:
+    """Decimals of an exact numeric value that is not already a plain number (√3/2, π/6,
+    atan2(…)), so that exact and numeric forms are shown together; None otherwise."""
+    def numeric_leaves(v):
+        if isinstance(v, sp.MatrixBase):
+            return list(v)
+        if isinstance(v, (list, tuple)):
+            return [x for item in v for x in numeric_leaves(item)]
+        return [v]
+
+    leaves = numeric_leaves(value)
+    if not leaves or not all(isinstance(x, sp.Basic) and x.is_number for x in leaves):
+        return None
+    if all(x.is_Rational or x.is_Float for x in leaves):
+        return None
+
+    def decimals(v):
+        if isinstance(v, sp.MatrixBase):
+            return [[decimals(x) for x in v.row(i)] for i in range(v.rows)] if v.cols > 1 else \
+                [decimals(x) for x in v]
+        if isinstance(v, (list, tuple)):
+            return [decimals(x) for x in v]
+        return float(sp.N(v, 17))
+
+    try:
+        return tex(decimals(value))
+    except (TypeError, ValueError):         # complex or infinite: the exact form alone
+        return None
+
+
 def render_step(step, tex: Tex) -> list[str]:
     out = [f"#### {step.title}"]
     if step.text:
-        out.append(step.text)
+        out.append(text(step.text))
     for lhs, value in step.equations:
-        out.append(display(f"{lhs} = {tex(value)}" if lhs else tex(value)))
+        intro, lines = display_lines(lhs, value, tex)
+        approx = decimal_companion(value, tex)
+        if intro:
+            out.append(intro)
+        elif approx is not None and len(lines) == 1:
+            lines = [f"{lines[0]} \\approx {approx}"]
+        out += [display(line) for line in lines]
     if step.table:
         header, rows = step.table
         out.append(render_table(header, rows))
     return out
 
 
-def render_answer(index: int, answer, figure_paths: list[str], tex: Tex) -> list[str]:
+def _numbers_start(steps) -> int:
+    """Index of the first step that shows numbers of the question's configuration."""
+    for k, step in enumerate(steps):
+        if step.title.startswith("Numeric") or "configuration of the question" in step.text:
+            return k
+    return 0
+
+
+def render_answer(index: int, answer, figure_paths: list[str], tex: Tex,
+                  configuration: str | None = None) -> list[str]:
     title = question_title(answer.type)
     out = [f"## {index}. {title} — `{answer.id}`"]
     if answer.error is not None:
         out.append(f"**Not answered:** {answer.error}")
         return out
-    for step in answer.steps:
+    start = _numbers_start(answer.steps) if configuration else -1
+    for k, step in enumerate(answer.steps):
+        if k == start:
+            out.append(configuration)
         out += render_step(step, tex)
     for path in figure_paths:
         out.append(f"![{answer.id}]({path})")
     if answer.notes:
         out.append("**Notes**")
-        out += [f"- {n}" for n in answer.notes]
+        out += [f"- {text(n)}" for n in answer.notes]
     return out
 
 
 def render_report(report, figure_paths: dict) -> str:
     problem, model = report.problem, report.model
-    tex = Tex(model.symbol_latex if model is not None else {})
+    names = model.symbol_latex if model is not None else {}
+    tex = Tex(names, CompactTrig(problem))
     out = [f"# {problem.title or problem.name}"]
     if problem.description:
         out.append(problem.description.strip())
     out.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
                "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
+    notation_at = len(out)
     out += render_data(problem, model, tex)
+    questions = {q.id: q for q in problem.questions}
     for i, answer in enumerate(report.answers, 1):
-        out += render_answer(i, answer, figure_paths.get(answer.id, []), tex)
+        q = questions.get(answer.id)
+        config = configuration_text(q, problem, tex) if q is not None else None
+        out += render_answer(i, answer, figure_paths.get(answer.id, []), tex, config)
+    out += render_course_notes(out)
+    notation = tex.compact.definitions("\n".join(out), names)
+    if notation:                # defined once, before the data and answers that use it
+        out.insert(notation_at, notation)
     return "\n\n".join(out) + "\n"
+
+
+def render_course_notes(blocks: list[str]) -> list[str]:
+    """The course notes the report links to, copied in so that the links work anywhere."""
+    from robosolve.core.course_notes import NOTES, cited, note_block
+
+    anchors = cited(blocks)
+    if not anchors:
+        return []
+    return (["## Notes on the course summary",
+             "Where the course summary is wrong or ambiguous, what this report does instead "
+             "(all the notes: robosolve's docs/course-notes.md)."]
+            + [note_block(NOTES[a], "####") for a in anchors])
+
+
+def render_markdown_file(report, markdown: str, figure_paths, files) -> str:
+    """The `md` format (robosolve.render.formats): report.md as rendered."""
+    return markdown

@@ -1,12 +1,17 @@
 """The one number-formatting policy of robosolve's outputs.
 
 results.json keeps 12 significant digits (enough for any exam, and it hides
-the last-bit noise between machines); report.md shows 6.
+the last-bit noise between machines), fewer where the answer schema says the value is
+worth fewer (`AnswerKey.digits`, e.g. a simulation's errors); report.md shows 6.
+Solvers put raw numbers in answers and steps, and raw `Num`s in prose
+(`robosolve.core.prose`): `text()` formats prose, `json_number` / `report_number` numbers.
 """
 
 from __future__ import annotations
 
 import math
+
+from robosolve.core.prose import Num, Text
 
 JSON_DIGITS = 12
 REPORT_DIGITS = 6
@@ -14,7 +19,8 @@ REPORT_DIGITS = 6
 ZERO = 1e-13
 
 
-def json_number(x):
+def json_number(x, digits: int | None = None):
+    """A float for results.json with `digits` (default JSON_DIGITS) significant digits."""
     if isinstance(x, bool) or x is None:
         return x
     if isinstance(x, int):
@@ -24,11 +30,35 @@ def json_number(x):
         return None
     if abs(x) < ZERO:
         return 0.0
-    r = float(f"{x:.{JSON_DIGITS}g}")
+    r = float(f"{x:.{digits or JSON_DIGITS}g}")
     return 0.0 if r == 0 else r
 
 
-def report_number(x) -> str:
+def text(v, math: bool = False) -> str:
+    """Prose with its numbers formatted: `Text` pieces joined, each `Num` as `prose_number`
+    (or `report_number` when the prose sits in a formula: `math=True`)."""
+    if isinstance(v, str):
+        return v
+    if isinstance(v, Num):
+        s = report_number(v.value, v.digits) if math else prose_number(v.value, v.digits)
+        return f"{s} {v.unit}" if v.unit else s
+    if isinstance(v, Text):
+        return "".join(text(p, math) for p in v)
+    return str(v)
+
+
+def prose_number(x, digits: int | None = None) -> str:
+    """A number in running text or a table cell (no LaTeX: 8.839e-05), round-off shown as 0."""
+    if isinstance(x, bool) or x is None or isinstance(x, int):
+        return report_number(x)
+    x = float(x)
+    if not math.isfinite(x) or abs(x) < ZERO:
+        return report_number(x)
+    s = f"{x:.{digits or REPORT_DIGITS}g}"
+    return "0" if s in ("-0", "-0.0") else s
+
+
+def report_number(x, digits: int | None = None) -> str:
     if isinstance(x, bool):
         return "true" if x else "false"
     if x is None:
@@ -40,7 +70,7 @@ def report_number(x) -> str:
         return "∞" if x > 0 else ("−∞" if x < 0 else "NaN")
     if abs(x) < ZERO:
         return "0"
-    s = f"{x:.{REPORT_DIGITS}g}"
+    s = f"{x:.{digits or REPORT_DIGITS}g}"
     if s in ("-0", "-0.0"):
         s = "0"
     if "e" in s:

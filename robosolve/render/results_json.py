@@ -6,7 +6,9 @@ import json
 
 import sympy as sp
 
-from robosolve.render.numbers import json_number
+from robosolve.core.prose import Num, Text
+from robosolve.questions.registry import QUESTION_TYPES
+from robosolve.render.numbers import json_number, text
 
 
 def symbolic_value(v):
@@ -24,14 +26,30 @@ def symbolic_value(v):
     return str(sp.sympify(v))
 
 
-def numeric_value(v):
+def numeric_value(v, key=None):
+    """Plain JSON numbers; `key` (the registry's AnswerKey) may ask for fewer digits."""
     if isinstance(v, dict):
-        return {str(k): numeric_value(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [numeric_value(x) for x in v]
+        return {str(k): numeric_value(x, _child(key, k)) for k, x in v.items()}
+    if isinstance(v, (list, tuple)) and not isinstance(v, Text):
+        return [numeric_value(x, key) for x in v]
     if isinstance(v, str):
         return v
-    return json_number(v)
+    if isinstance(v, (Num, Text)):
+        return text(v)
+    return json_number(v, key.digits if key is not None else None)
+
+
+def _child(key, name):
+    """The AnswerKey of a record's field, else the key itself (per-joint maps, sets)."""
+    if key is None:
+        return None
+    return key.field(str(name)) or key
+
+
+def _numeric_answers(answer) -> dict:
+    qt = QUESTION_TYPES.get(answer.type)
+    return {str(k): numeric_value(v, qt.key(str(k)) if qt is not None else None)
+            for k, v in answer.numeric.items()}
 
 
 def answer_record(answer, figure_paths: list[str]) -> dict:
@@ -41,9 +59,9 @@ def answer_record(answer, figure_paths: list[str]) -> dict:
     if answer.error is not None:
         rec["error"] = answer.error
     rec["symbolic"] = symbolic_value(answer.symbolic)
-    rec["numeric"] = numeric_value(answer.numeric)
+    rec["numeric"] = _numeric_answers(answer)
     rec["figures"] = list(figure_paths)
-    rec["notes"] = list(answer.notes)
+    rec["notes"] = [text(n) for n in answer.notes]
     return rec
 
 

@@ -11,6 +11,7 @@ import contextlib
 from dataclasses import dataclass, field
 import sympy as sp
 
+from robosolve.core.simplify import DEFAULT_BUDGETS, SimplifyBudgets
 from robosolve.core.timing import time_limit
 from robosolve.dynamics.model import simulation_dynamics, dynamics_for
 from robosolve.dynamics.numeric import NumericDynamics
@@ -34,6 +35,18 @@ class Budgets:
     symbolic_seconds: float = 30.0      # one symbolic step (Jacobian, statics, ellipsoids)
     closed_form_seconds: float = 20.0   # a closed form (IK derivation, torques along a profile)
     dynamics_seconds: float = 90.0      # the symbolic equations of motion of one robot
+    # The deterministic measure (spec §2: whether a step is done symbolically is decided by a
+    # count, not the clock): a symbolic step whose input has more expression-tree nodes than
+    # this is not attempted, and is answered numerically with a note. The seconds above are
+    # then only a safety net for a machine much slower than usual (their note says so).
+    symbolic_nodes: int = 800          # a 6R arm's Jacobian has ~1000 (its det search never ends)
+    # Whole-question and whole-file wall-clock safety nets (s), covering the numeric route and
+    # rendering too: past them a question is answered with an error, and the remaining
+    # questions of the file are not attempted (each says why).
+    question_seconds: float = 900.0
+    file_seconds: float = 3600.0
+    # op-count budgets of the simplification variants (robosolve/core/simplify.py)
+    simplify: SimplifyBudgets = DEFAULT_BUDGETS
 
 
 # Default budget of one symbolic step before a solver falls back to numbers.

@@ -14,27 +14,29 @@ import dataclasses
 import numpy as np
 import sympy as sp
 
+from robosolve.core.course_notes import note_link
+from robosolve.core.simplify import exact_geometry
+from robosolve.core.simplify import full as full_simplify
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.helical import (
     Screw, displacement_matrix, express_in_frame, helical_numeric, helical_symbolic, normalise_screw,
     screw_matrices,
 )
-from robosolve.geometry.rotations import _default_simplify
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, m_name
 
 CASE_TEXT = {
     "general": "$0 < \\alpha < \\pi$: $\\sin\\alpha > 0$, so the axis comes from the skew-symmetric part, "
-               "$u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$ (ERRATA item 30).",
+               "$u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$ (" + note_link("helical-axis") + ").",
     "generic": "symbolic rotation: the general formulas $u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$, "
                "valid where $\\sin\\alpha \\neq 0$.",
     "half_turn": "$\\alpha = \\pi$: $R - R^T = 0$ gives no axis, so it comes from the symmetric part, "
-                 "$u_i^2 = (R_{ii} + 1)/2$, $u_i u_j = (R_{ij} + R_{ji})/4$ (ERRATA item 28); "
+                 "$u_i^2 = (R_{ii} + 1)/2$, $u_i u_j = (R_{ij} + R_{ji})/4$ (" + note_link("helical-axis") + "); "
                  "$u$ and $-u$ are the same displacement, the one with its first non-zero component "
                  "positive is given.",
     "translation": "$\\alpha = 0$: a pure translation, $u = \\Delta T/|\\Delta T|$, $h = |\\Delta T|$; "
-                   "there is no axis point and the pitch is infinite (ERRATA item 31).",
+                   "there is no axis point and the pitch is infinite (" + note_link("helical-axis") + ").",
     "identity": "$Q = I$: no displacement; the axis is undefined.",
 }
 
@@ -52,15 +54,16 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     q = express_in_frame(q0, m0k) if m0k is not None else q0
     try:
         with ctx.time_limit(10.0):
-            q = q.applyfunc(_default_simplify)
+            ops = ctx.budgets.simplify.geometry_ops
+            q = q.applyfunc(lambda e: exact_geometry(e, ops))
     except SymbolicTimeout:
         pass
     f = frame_tex(expressed)
 
     steps = [Step(
         "Displacement matrix",
-        f"{where} Every body point moves as ${{}}^0P_2 = Q_0\\,{{}}^0P_1$ (ERRATA item 22), so "
-        "$Q_0 = {}^0M_2\\,{}^0M_1^{-1}$ (item 23)."
+        f"{where} Every body point moves as ${{}}^0P_2 = Q_0\\,{{}}^0P_1$ (" + note_link("displacement-matrix") + "), so "
+        "$Q_0 = {}^0M_2\\,{}^0M_1^{-1}$."
         + (f" In frame {expressed}: $Q_{{{f}}} = {m_name('0', expressed)}^{{-1}}\\,Q_0\\,{m_name('0', expressed)}$ "
            "(item 24)." if m0k is not None else ""),
         equations=[("{}^0M_1", m01), ("{}^0M_2", m02), (f"Q_{{{f}}}", q)],
@@ -70,11 +73,12 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     try:
         with ctx.time_limit():
             hx = helical_symbolic(q)
-        sym = {k: _tidy(v) for k, v in _layout(hx).items()}
+        ops = ctx.budgets.simplify.geometry_ops
+        sym = {k: _tidy(v, ops) for k, v in _layout(hx).items()}
         ans.symbolic.update(sym)
         hx = dataclasses.replace(hx, axis=sym["u"], angle=sym["alpha"], h=sym["h"], point=sym["P"],
-                                 pitch=sym["pitch"], cos_alpha=_tidy(hx.cos_alpha),
-                                 sin_alpha=_tidy(hx.sin_alpha))
+                                 pitch=sym["pitch"], cos_alpha=_tidy(hx.cos_alpha, ops),
+                                 sin_alpha=_tidy(hx.sin_alpha, ops))
         steps.append(_formula_step(hx))
         sym_case = hx.case
         for n in hx.notes:
@@ -166,7 +170,7 @@ def _formula_step(hx) -> Step:
     return Step(
         "Helical axis (Mozzi-Chasles)",
         "Q is a rotation by $\\alpha \\in [0, \\pi]$ about the axis $(u, P^*)$ plus a translation $h$ "
-        "along it. $\\sin\\alpha$ is taken $\\geq 0$, which fixes the sign of $u$ (ERRATA items 25-31). "
+        "along it. $\\sin\\alpha$ is taken $\\geq 0$, which fixes the sign of $u$ (" + note_link("helical-axis") + "). "
         "Case: " + CASE_TEXT[hx.case] + (" $P^*$ is the point of the axis nearest the origin "
                                          "($P^* \\cdot u = 0$)." if hx.point is not None else ""),
         equations=eqs,
@@ -198,12 +202,12 @@ def _figure_data(hn, m1, m2, mk, expressed) -> dict:
     }
 
 
-def _tidy(v):
+def _tidy(v, ops: int):
     if v is None:
         return None
     if isinstance(v, list):
-        return [_default_simplify(x) for x in v]
-    return _default_simplify(v)
+        return [exact_geometry(x, ops) for x in v]
+    return exact_geometry(v, ops)
 
 
 # --------------------------------------------------------------------------- a screw given
@@ -234,11 +238,11 @@ def _solve_screw(question: Question, ctx: SolveContext) -> Answer:
         ans.note(missing_note("screw", missing, ctx.problem))
         ans.note("without the numbers the angle is taken as given, assumed in (0, π)")
         norm = sp.sqrt(sum((sp.sympify(x) ** 2 for x in axis), sp.S.Zero))
-        u = [_default_simplify(x / norm) for x in axis]
+        u = [full_simplify(x / norm) for x in axis]
         uu = sp.Matrix(u)
         p0 = sp.Matrix(through)
-        point = [_default_simplify(x) for x in (p0 - p0.dot(uu) * uu)]
-        screw = Screw("general", u, angle, h_given, point, _default_simplify(h_given / angle))
+        point = [full_simplify(x) for x in (p0 - p0.dot(uu) * uu)]
+        screw = Screw("general", u, angle, h_given, point, full_simplify(h_given / angle))
     else:
         try:
             screw = normalise_screw(axis, angle, through, h_given, values=params)

@@ -5,6 +5,7 @@ Engine: robosolve.geometry.mobility. No robot needed.
 
 from __future__ import annotations
 
+from robosolve.core.course_notes import note_link
 from robosolve.geometry.mobility import mobility
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, SolveContext, Step
@@ -26,7 +27,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     free = 3 if space == "planar" else 6
     text = (f"Each of the $m - 1 = {r.bodies - 1}$ moving bodies has {free} DOF in "
             f"{'the plane' if space == 'planar' else 'space'}; a joint that leaves $k$ DOF removes "
-            f"${free} - k$ of them. $m$ counts the base (ERRATA items 3-5, §D.16).")
+            f"${free} - k$ of them. $m$ counts the base (" + note_link("mobility") + ").")
     formula = r.formula.replace("c1", "c_1").replace("c2", "c_2").replace("c3", "c_3")
     ans.steps.append(Step(
         f"Mobility by {name}", text,

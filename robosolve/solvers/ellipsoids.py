@@ -1,7 +1,7 @@
 """Question 5: force, velocity and compliance ellipsoids at one configuration, the
 condition number, and the joint rates for a desired end-effector velocity.
 
-ERRATA §D.10: A = J·Jᵀ with unit eigenvectors ϑ̂ᵢ; force semi-axes Kf/√νᵢ, velocity
+Conventions (docs/course-notes.md#note-ellipsoid-axes): A = J·Jᵀ with unit eigenvectors ϑ̂ᵢ; force semi-axes Kf/√νᵢ, velocity
 Kv·√νᵢ, compliance Ka·κᵢ (κᵢ eigenvalues of Ks = J·Kq·Jᵀ); condition number
 max ν / min ν = cond(J)². Layout: spec "Ellipsoids" (robosolve.kinematics.ellipsoids_math).
 """
@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
+from robosolve.core.course_notes import note_link
 from robosolve.kinematics.ellipsoids_math import ellipsoids, exact_values, joint_rates
 from robosolve.kinematics.task import symbolic_budget, limited, position_axes, task_space
 from robosolve.solvers.base import (
@@ -20,12 +22,13 @@ def _col(labels):
     return r"\begin{bmatrix}" + r" \\ ".join(labels) + r"\end{bmatrix}"
 
 
-def _vec_tex(v):
-    return "(" + ", ".join(f"{x:.4g}" for x in v) + ")"
+def _vec_tex(v) -> Text:
+    """A unit direction for a table: 4 digits are all a reader can use."""
+    return Text("(", Text.join(", ", [Num(x, digits=4) for x in v]), ")")
 
 
-def _num(x):
-    return "∞" if x is None else f"{x:.6g}"
+def _num(x, unit: str = "") -> Text:
+    return Text("∞" + (" " + unit if unit else "")) if x is None else Text(Num(x, unit))
 
 
 def _units(question, model, ts):
@@ -41,6 +44,7 @@ def _budget(ctx) -> float:
     return symbolic_budget(ctx.model, ctx.budgets.symbolic_seconds)
 
 
+# long: compute and steps still interleaved per ellipsoid; to split into compute / steps next (issue 10 item 6)
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
@@ -125,8 +129,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         "Eigenvalues and unit eigenvectors of A",
         "At the configuration of the question. The eigenvalues $\\nu_i$ are the roots of "
         "$\\det(A - \\nu I) = 0$; each eigenvector $\\hat\\vartheta_i$ solves "
-        "$(A - \\nu_i I)\\,\\vartheta_i = 0$ and is normalised to unit length (ERRATA items "
-        "50–51). A is symmetric, so the eigenvectors are orthogonal: they are the common axes "
+        "$(A - \\nu_i I)\\,\\vartheta_i = 0$ and is normalised to unit length (" + note_link("ellipsoid-axes") + "). A is symmetric, so the eigenvectors are orthogonal: they are the common axes "
         "of the three ellipsoids.",
         equations=eqs,
         table=(["i", "ν_i", "unit eigenvector ϑ̂_i"], rows),
@@ -136,7 +139,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     # -- force ---------------------------------------------------------------------
     def axes_table(ax, unit):
         return (["axis", "length", "direction", "semi-axis"],
-                [[str(i + 1), f"{_num(ln)} {unit}", _vec_tex(d),
+                [[str(i + 1), _num(ln, unit), _vec_tex(d),
                   _vec_tex(s) if s is not None else "∞ (unbounded)"]
                  for i, (ln, d, s) in enumerate(zip(ax.lengths, ax.directions, ax.semi_axes))])
 
@@ -153,7 +156,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         "The end-effector forces that the joints balance within the budget $K_f$ "
         "($F_q^T F_q = K_f^2$) satisfy $F^T A F = K_f^2$. Along $\\hat\\vartheta_i$, "
         "$s^2 \\nu_i = K_f^2$, so the semi-axes are $\\frac{K_f}{\\sqrt{\\nu_i}}\\,\\hat\\vartheta_i$ "
-        f"(ERRATA item 10), sorted by decreasing length; here $K_f = {sp.latex(kf_s)}$ {f_unit}."
+        f"(" + note_link("ellipsoid-axes") + f"), sorted by decreasing length; here $K_f = {sp.latex(kf_s)}$ {f_unit}."
         + (" A zero eigenvalue makes the force semi-axis infinite: forces along it are carried "
            "by the structure (reported as null)." if res.singular else ""),
         table=axes_table(res.force, f_unit),
@@ -165,7 +168,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     vel_text = ("With $\\dot Q^T \\dot Q = K_v^2$ and $\\dot Q = J^{-1} V$: "
                 "$V^T A^{-1} V = K_v^2$." if m == n else
                 "With $\\dot Q^T \\dot Q = K_v^2$ and the minimum-norm $\\dot Q = J^{+} V$ "
-                "(J not square): $V^T A^{-1} V = K_v^2$ (ERRATA item 12).")
+                "(J not square): $V^T A^{-1} V = K_v^2$ (" + note_link("ellipsoid-axes") + ").")
     ans.steps.append(Step(
         "Velocity ellipsoid",
         vel_text + " $A^{-1}$ has the same eigenvectors and eigenvalues $1/\\nu_i$, so the "
@@ -187,7 +190,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         "The joints yield $\\delta Q = K_q\\,\\tau$ under their actions ($K_q$ the joint "
         "compliances, rad/(N·m) or m/N); with $\\tau = -J^T F$ the end effector moves "
         "$\\delta S = K_s F$ (sign aside), $K_s = J K_q J^T$. A force budget $F^T F = K_a^2$ gives "
-        "$\\delta S^T K_s^{-T} K_s^{-1} \\delta S = K_a^2$ (ERRATA item 57), with semi-axes "
+        "$\\delta S^T K_s^{-T} K_s^{-1} \\delta S = K_a^2$ (" + note_link("compliance-ellipsoid") + "), with semi-axes "
         "$K_a\\,\\kappa_i$ along the unit eigenvectors of $K_s$ ($\\kappa_i$ its eigenvalues). "
         f"Here $K_q = \\mathrm{{diag}}({', '.join(sp.latex(x) for x in kq_s)})$ and "
         f"$K_a = {sp.latex(ka_s)}$ {c_unit}.",
@@ -212,11 +215,11 @@ def solve(question, ctx: SolveContext) -> Answer:
         ratio = res.condition_number ** 0.5
         ans.steps.append(Step(
             "Condition number",
-            "The isotropy of the robot at this configuration is measured by the condition "
-            "number of A, $\\max\\nu / \\min\\nu$ (ERRATA item 17). It equals $\\mathrm{cond}(J)^2$, "
-            "the square of the ratio of the largest to the smallest singular value of J, and the "
-            f"ratio of the ellipse's longest to shortest semi-axis is its square root "
-            f"({ratio:.6g}). 1 would be an isotropic configuration.",
+            Text("The isotropy of the robot at this configuration is measured by the condition "
+                 "number of A, $\\max\\nu / \\min\\nu$ (" + note_link("condition-number") + "). It equals $\\mathrm{cond}(J)^2$, "
+                 "the square of the ratio of the largest to the smallest singular value of J, and the "
+                 "ratio of the ellipse's longest to shortest semi-axis is its square root (",
+                 Num(ratio), "). 1 would be an isotropic configuration."),
             equations=([("\\frac{\\max \\nu}{\\min \\nu}", exact["condition_number"])]
                        if exact is not None and exact["condition_number"] is not None else [])
             + [("\\frac{\\max \\nu}{\\min \\nu}", res.condition_number)],

@@ -1,4 +1,4 @@
-"""Question 8: equations of motion by the course's matrix method (seed §6, §7.3; ERRATA §D.5-9).
+"""Question 8: equations of motion by the course's matrix method (seed §6, §7.3; docs/course-notes.md, Dynamics).
 
 Steps of the report: pseudo-inertia J of each body (own frame and frame 0), L and W
 matrices, kinetic energies ½ tr(W J Wᵀ), gravity matrix and potential energies −tr(H_g J),
@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.course_notes import note_link
 from robosolve.dynamics.model import numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
@@ -77,7 +78,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 def _steps_inertia(ans, model, eng):
     step = Step(
         "Pseudo-inertia of each body",
-        "$J = \\int p\\,p^T\\,dm$ with homogeneous $p$ (ERRATA §D.8): the upper-left block holds "
+        "$J = \\int p\\,p^T\\,dm$ with homogeneous $p$ (" + note_link("pseudo-inertia") + "): the upper-left block holds "
         "$\\int x^2 dm$, $\\int xy\\,dm$, …, the last column $m\\,x_G, m\\,y_G, m\\,z_G, m$. "
         "In frame 0: ${}^{0}J = {}^{0}M_j\\,{}^{j}J\\,{}^{0}M_j^T$.",
     )
@@ -156,14 +157,14 @@ def _steps_actions(ans, model, eng, dyn):
     n = len(dyn.joints)
     text = (
         "Each link's matrix of actions collects $+$ its own actuator, $-$ the reaction of the "
-        "next joint's actuator and the external loads on it (ERRATA §D.5): "
+        "next joint's actuator and the external loads on it (" + note_link("matrix-of-actions") + "): "
         "$\\Phi = \\sum (F P^T - P F^T) + [C]$, components rotated from their `in` frame, "
         "moved to frame 0 with ${}^{0}\\Phi = M\\,\\Phi\\,M^T$. "
         "A revolute actuator is a pure torque along the joint axis, a prismatic one a force "
         "along it. The generalized force of joint $i$ is "
         "$f_i = (\\sum_{j \\ge i} {}^{0}\\Phi_j) \\otimes {}^{0}L_i$ with the pseudo scalar "
         "product $A \\otimes B = A_{32}B_{32} + A_{13}B_{13} + A_{21}B_{21} + A_{14}B_{14} + "
-        "A_{24}B_{24} + A_{34}B_{34}$ (ERRATA item 92)."
+        "A_{24}B_{24} + A_{34}B_{34}$ (" + note_link("pseudo-scalar-product") + ")."
     )
     step = Step("Matrices of actions and generalized forces", text)
     if n > BIG_JOINTS:
@@ -190,7 +191,7 @@ def _steps_lagrange(ans, model, dyn):
     step = Step(
         "Lagrange equations",
         "$\\frac{d}{dt}\\frac{\\partial \\mathcal{L}}{\\partial \\dot q_i} - "
-        "\\frac{\\partial \\mathcal{L}}{\\partial q_i} = f_i$ (ERRATA §D.7). With "
+        "\\frac{\\partial \\mathcal{L}}{\\partial q_i} = f_i$ (" + note_link("lagrange") + "). With "
         "$\\partial\\mathcal{L}/\\partial\\dot q_i = \\sum_k M_{ik}\\dot q_k$ the left side is "
         "$\\sum_k M_{ik}\\ddot q_k + c_i + g_i$, where $c_i = \\sum_{j,k}\\Gamma_{ijk}\\dot q_j\\dot q_k$ "
         "with $\\Gamma_{ijk} = \\frac{1}{2}(\\partial M_{ij}/\\partial q_k + \\partial M_{ik}/\\partial q_j "

@@ -15,7 +15,7 @@ import sympy as sp
 
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
-from robosolve.render.numbers import report_number
+from robosolve.core.prose import Num, Text
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
 T = sp.Symbol("t", real=True)
@@ -44,10 +44,12 @@ def _unit(kind: str, rate: bool = False) -> str:
 
 
 def _sig(x: float, scale: float = 0.0) -> float:
+    """x, or 0 when it is below the run's accuracy relative to ``scale`` (integration noise);
+    the digits kept in results.json are the registry's (AnswerKey.digits)."""
     x = float(x)
     if abs(x) <= 1e-12 * abs(scale):
         return 0.0
-    return float(f"{x:.{ANSWER_DIGITS}g}") + 0.0
+    return x + 0.0
 
 
 def setup(question: Question, ctx: SolveContext, dyn) -> Setup:
@@ -170,11 +172,10 @@ def _step_results(model, run, values) -> Step:
     rows = []
     for i, j in enumerate(model.joints):
         u = _unit(j.kind)
-        rows.append([f"${_tex(model, j.symbol)}$", f"{report_number(values[1][i])} {u}",
-                     f"{report_number(run.final[i])} {u}",
-                     f"{report_number(run.q_min[i])} (t = {report_number(run.t_min[i])} s)",
-                     f"{report_number(run.q_max[i])} (t = {report_number(run.t_max[i])} s)",
-                     f"{report_number(run.final_velocity[i])} {_unit(j.kind, True)}"])
+        rows.append([f"${_tex(model, j.symbol)}$", Num(values[1][i], u), Num(run.final[i], u),
+                     Text(Num(run.q_min[i]), " (t = ", Num(run.t_min[i]), " s)"),
+                     Text(Num(run.q_max[i]), " (t = ", Num(run.t_max[i]), " s)"),
+                     Num(run.final_velocity[i], _unit(j.kind, True))])
     how = ("Radau (implicit; the equations are stiff)" if run.method == "Radau"
            else "DOP853 (explicit Runge-Kutta of order 8)")
     return Step(
@@ -183,7 +184,7 @@ def _step_results(model, run, values) -> Step:
         f"{run.steps} steps. The joint values are continuous (unwrapped): a joint that turns keeps "
         "counting its turns. The extremes are the ends or the instants where the joint's rate is "
         "zero, located on the integrator's continuous solution (not only at samples).",
-        table=(["joint", "start", f"at t = {report_number(run.duration)} s", "min", "max", "final rate"],
+        table=(["joint", "start", Text("at t = ", Num(run.duration), " s"), "min", "max", "final rate"],
                rows),
     )
 
@@ -216,12 +217,12 @@ def _step_energy(question, model, st, run, params, energy) -> Step:
     e0, e1 = energy["start"], energy["end"]
     scale = run.energy_scale or 1.0
     eqs = [("E = T + U", _tex(model, st.kinetic + st.potential)),
-           ("E(0)", e0), (f"E({report_number(run.duration)})", e1), ("\\Delta E", e1 - e0)]
+           ("E(0)", e0), (f"E({run.duration:g})", e1), ("\\Delta E", e1 - e0)]
     nothing_acts = all(sp.sympify(f).xreplace(params) == 0 for f in st.forces)
     if nothing_acts:
-        text = ("No actuator and no external force acts: only gravity, which is conservative, so the "
+        text = Text("No actuator and no external force acts: only gravity, which is conservative, so the "
                 f"energy is conserved; the run keeps it to within {_bound(run.energy_drift / scale)} of the "
-                f"energy scale ({report_number(scale)} J, the largest $T + |U|$ along the run).")
+                "energy scale (", Num(scale, "J"), ", the largest $T + |U|$ along the run).")
         return Step("Energy balance", text, equations=eqs)
     text = ("The actuators and the external forces do the work "
             "$W = \\int_0^t (\\tau + f_{ext}) \\cdot \\dot q \\, dt$, so $E(t) - E(0) = W(t)$. ")
@@ -234,8 +235,8 @@ def _step_energy(question, model, st, run, params, energy) -> Step:
         eqs.append(("W \\text{ (closed form)}", closed))
     else:
         text += "The force depends on time or on the rates, so the work has no closed form here. "
-    text += (f"The balance holds to within {_bound(run.energy_drift / scale)} of the energy scale "
-             f"({report_number(scale)} J) all along the run.")
+    text += Text(f"The balance holds to within {_bound(run.energy_drift / scale)} of the energy scale "
+             "(", Num(scale, "J"), ") all along the run.")
     return Step("Energy balance", text, equations=eqs)
 
 
@@ -250,9 +251,8 @@ def _limit_notes(ans, model, run, params):
             continue
         lo, hi = (float(sp.sympify(v).xreplace(params)) for v in j.limits)
         if run.q_min[i] < lo or run.q_max[i] > hi:
-            ans.note(f"{j.name} leaves its limits [{report_number(lo)}, {report_number(hi)}] during the run "
-                     f"(min {report_number(run.q_min[i])}, max {report_number(run.q_max[i])}); "
-                     "the limits are not enforced")
+            ans.note(Text(f"{j.name} leaves its limits [", Num(lo), ", ", Num(hi), "] during the run (min ",
+                          Num(run.q_min[i]), ", max ", Num(run.q_max[i]), "); the limits are not enforced"))
 
 
 def _figures(model, st, run) -> list:

@@ -15,12 +15,12 @@ import math
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.ik import closed_form as cfm
 from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
 from robosolve.ik.numeric import wrap_angle
 from robosolve.load.problem import Question
-from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
 
@@ -30,12 +30,13 @@ def _is_point_coordinate(e) -> bool:
     return isinstance(e, sp.Symbol) and "." in e.name
 
 
-def _angle_text(v: float, revolute: bool) -> str:
+def _angle_text(v: float, revolute: bool) -> Text:
     if not revolute:
-        return report_number(v)
-    return f"{report_number(v)} ({report_number(math.degrees(v))}°)"
+        return Text(Num(v))
+    return Text(Num(v), " (", Num(math.degrees(v)), "°)")
 
 
+# long: compute and steps still interleaved (closed form, numeric set, selection, velocity); to split next (issue 10 item 6)
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     if model is None or not model.joints:
@@ -112,7 +113,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         eq_step.text += (" An equation that is a sum of angles (an orientation) is satisfied modulo "
                          "$2\\pi$.")
     if target_syms:
-        eq_step.table = (("target", "value"), [(f"${tex(s)}$", report_number(values[s]))
+        eq_step.table = (("target", "value"), [(f"${tex(s)}$", Num(values[s]))
                                                 for s in sorted(target_syms, key=sp.default_sort_key)
                                                 if s in values])
     ans.steps.append(eq_step)
@@ -168,18 +169,18 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             ans.note(res.closed_form_note + "; solutions found numerically")
 
     # -- numeric solutions ----------------------------------------------------
-    box = ", ".join(
-        f"${names[j.symbol]}$ in " + ("(−π, π]" if j.revolute else
-                                       (f"[{report_number(j.limits[0])}, {report_number(j.limits[1])}] and beyond"
-                                        if j.limits else "a wide interval"))
-        for j in ik_joints)
+    box = Text.join(", ", [
+        f"${names[j.symbol]}$ in " + (Text("(−π, π]") if j.revolute else
+                                       (Text("[", Num(j.limits[0]), ", ", Num(j.limits[1]), "] and beyond")
+                                        if j.limits else Text("a wide interval")))
+        for j in ik_joints])
     header = ["#"] + [f"${names[j.symbol]}$" for j in ik_joints] + ["joint limits"]
     rows = []
     rejected = {id(d): b for d, b in res.rejected}
     for k, d in enumerate(res.all_solutions, 1):
-        status = "inside" if id(d) not in rejected else "rejected: " + "; ".join(rejected[id(d)])
+        status = "inside" if id(d) not in rejected else "rejected: " + Text.join("; ", rejected[id(d)])
         rows.append([str(k)] + [_angle_text(d[j.name], j.revolute) for j in ik_joints] + [status])
-    text = (f"Numerically, a multi-start Newton search ({box}) refined to machine precision finds "
+    text = ("Numerically, a multi-start Newton search (" + box + f") refined to machine precision finds "
             f"{len(res.all_solutions)} distinct solution{'s' if len(res.all_solutions) != 1 else ''}, "
             "each checked with the direct kinematics (residual below $10^{-9}$); angles wrapped into "
             "(−π, π].")
@@ -200,10 +201,10 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return ans
 
     how = ("the first of the sorted solutions inside the joint limits" if select_num is None else
-           "the solution nearest the configuration " + ", ".join(
-               f"${names[j.symbol]}$ = {report_number(select_num.get(j.name, 0.0))}" for j in ik_joints))
+           "the solution nearest the configuration " + Text.join(", ", [
+               Text(f"${names[j.symbol]}$ = ", Num(select_num.get(j.name, 0.0))) for j in ik_joints]))
     ans.numeric["selected"] = dict(res.selected)
-    ans.steps.append(Step("Selected solution", f"Selected: {how}.",
+    ans.steps.append(Step("Selected solution", Text("Selected: ", how, "."),
                           equations=[(names[j.symbol], res.selected[j.name]) for j in ik_joints]))
 
     # -- velocity -------------------------------------------------------------
@@ -288,12 +289,12 @@ def _figure(ans, ctx, params, res, ik_joints, question):
         if drw is None:
             return
         drawings.append(drw)
-        lab = ", ".join(f"{j.name}={d[j.name]:.3g}" for j in ik_joints)
+        lab = Text.join(", ", [Text(f"{j.name}=", Num(d[j.name], digits=3)) for j in ik_joints])
         if sols:
-            labels.append(f"#{k}: {lab}" + (" (rejected)" if id(d) in rej else ""))
+            labels.append(f"#{k}: " + lab + (" (rejected)" if id(d) in rej else ""))
             rejected.append(id(d) in rej)
         else:
-            labels.append(f"nearest: {lab}")
+            labels.append("nearest: " + lab)
             rejected.append(True)
     point = question.point
     target = None
@@ -325,7 +326,7 @@ def _branch_table(cf, values, tex, solutions, ik_joints):
     rows = []
     for k, bv in enumerate(cfm.evaluate(cf, values), 1):
         got = bv.q if bv.q is not None else (bv.partial or {})
-        cells = [report_number(got[st.joint]) if st.joint in got else "—" for st in stages]
+        cells = [Num(got[st.joint]) if st.joint in got else "—" for st in stages]
         if bv.failure is None:
             match = [k2 for k2, d in enumerate(solutions, 1)
                      if all(abs(wrap_angle(d[j.name] - bv.q[j.symbol]) if j.revolute else d[j.name] - bv.q[j.symbol])
@@ -336,6 +337,6 @@ def _branch_table(cf, values, tex, solutions, ik_joints):
             what = {"acos": "arccos of", "asin": "arcsin of", "sqrt": "square root of",
                     "atan2": "atan2(0, 0)", "zero": "division by zero", "nan": "undefined"}.get(ex.what, ex.what)
             val = ex.value if isinstance(ex.value, float) else None
-            result = f"no ${tex(joint)}$: {what}" + (f" {report_number(val)}" if val is not None else "")
+            result = Text(f"no ${tex(joint)}$: {what}") + (Text(" ", Num(val)) if val is not None else "")
         rows.append([str(k)] + cells + [result])
     return header, rows

@@ -3,7 +3,7 @@ and the singular configurations; optionally the geometric Jacobian and the
 centre-of-mass Jacobians.
 
 Conventions: J = ∂S/∂Q with S = F(Q) the chosen coordinates (rows) and Q the joints
-(columns, joint order), ERRATA item 7; the geometric Jacobian is 6 x n (velocity of the
+(columns, joint order; docs/course-notes.md#note-jacobian-shape); the geometric Jacobian is 6 x n (velocity of the
 point, angular velocity of the frame), built from the L matrices ⁰Lᵢ; singularities as
 in the spec ("Singularities") and robosolve.kinematics.singularities.
 """
@@ -14,6 +14,7 @@ import math
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
@@ -116,12 +117,13 @@ def _singularity_steps(ans, question, ctx, ts):
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
-    res, err = limited(ctx, _budget(ctx), find_singularities, J, model.q, kinds, params)
+    det = _structured_det_steps(ans, question, ctx, ts)
+    res, err = limited(ctx, _budget(ctx), find_singularities, J, model.q, kinds, params, det)
     if res is None:
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
                  "the numeric answers are given.")
         ans.steps.append(Step("Singular configurations",
-                              "The symbolic search exceeded its time limit: see the numeric "
+                              "The symbolic search was stopped (see the note): see the numeric "
                               "values below."))
         return
     if res.kind == "det":
@@ -179,6 +181,54 @@ def _singularity_steps(ans, question, ctx, ts):
                               "(for generic, non-zero parameters)."))
 
 
+STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its settled form
+
+
+def _structured_det_steps(ans, question, ctx, ts):
+    """det J by structure for a square J of 5+ joints (None otherwise or past the limit):
+    decoupled at the wrist centre for a 6-joint arm's geometric Jacobian, else split along
+    its zero blocks. The report shows the blocks and their determinants."""
+    from robosolve.kinematics import structured_det as sd
+
+    model = ctx.model
+    m, n = ts.J.shape
+    if m != n or n < STRUCTURE_MIN_JOINTS:
+        return None
+    if ts.geometric:
+        pframe, _ = model.point_local(question.point)
+        frame = question.frame or model.problem.last_frame
+        wrist, err = limited(ctx, _budget(ctx), sd.wrist_decoupled_det, model, pframe, frame)
+        if err is not None:
+            return None
+        if wrist is not None:
+            (_, _, j11, d11), (_, _, j22, d22) = wrist.det.blocks[:2] if len(wrist.det.blocks) == 2 else (
+                (None, None, wrist.jacobian[:3, :3], None), (None, None, wrist.jacobian[3:, 3:], None))
+            eqs = [(f"W = {{}}^{{0}}O_{{{wrist.frame}}}", wrist.centre),
+                   ("J_{11}", j11), ("J_{22}", j22)]
+            if d11 is not None:
+                eqs += [("\\det J_{11}", d11), ("\\det J_{22}", d22)]
+            ans.steps.append(Step(
+                "Decoupling at the wrist",
+                f"The axes of the last three joints meet at the origin W of frame {wrist.frame} "
+                "(a spherical wrist). Taking the velocity at W instead of at "
+                f"{question.point}, $v_W = v_{{{question.point}}} + \\omega \\times (W - {question.point})$, "
+                "multiplies J by a shear of determinant 1, and the wrist joints do not move W, so "
+                "$J_W = \\begin{bmatrix} J_{11} & 0 \\\\ J_{21} & J_{22} \\end{bmatrix}$ and "
+                "$\\det J = \\det J_{11}\\,\\det J_{22}$: the arm's factor (rows 1–3, joints 1–3: "
+                "the velocity of W) times the wrist's (the angular velocities of joints 4–6).",
+                equations=eqs))
+            return wrist.det.det
+    split, _err = limited(ctx, _budget(ctx), sd.structured_det, ts.J, model.q)
+    if split is None or len(split.blocks) < 2:
+        return split.det if split is not None else None
+    ans.steps.append(Step(
+        "Block structure",
+        "The zero entries of J split it into a block triangular form (rows and columns "
+        "reordered), so det J is the product of the diagonal blocks' determinants:",
+        equations=[(f"\\det J_{{{k + 1}}}", d) for k, (_, _, _, d) in enumerate(split.blocks)]))
+    return split.det
+
+
 def _count_text(conds):
     k = len(conds)
     return f"{k} singular condition{'s' if k != 1 else ''}."
@@ -190,7 +240,7 @@ def _joint_pose(model, i):
     return model.M0(frame) if frame is not None else sp.eye(4)
 
 
-def _within_limits(cond, model, params) -> str:
+def _within_limits(cond, model, params) -> str | Text:
     if cond.equations or not cond.values:
         return ""
     verdicts = []
@@ -204,8 +254,9 @@ def _within_limits(cond, model, params) -> str:
         except (TypeError, ValueError):
             return "depends on the other joints"
         if not (lo - 1e-12 <= val <= hi + 1e-12):
-            verdicts.append(f"no (${sp.latex(s)} \\notin [{lo:.4g}, {hi:.4g}]$)")
-    return "; ".join(verdicts) if verdicts else "yes"
+            verdicts.append(Text(f"no (${sp.latex(s)} \\notin [", Num(lo, digits=4), ", ",
+                                 Num(hi, digits=4), "]$)"))
+    return Text.join("; ", verdicts) if verdicts else "yes"
 
 
 def _check_geometric(ans, ctx, question, jn, subs):
@@ -228,7 +279,8 @@ def _check_geometric(ans, ctx, question, jn, subs):
         fd.append((np.array(p(a), dtype=float) - np.array(p(b), dtype=float)).reshape(3) / (2 * eps))
     err = float(np.max(np.abs(np.array(jn, dtype=float)[:3] - np.column_stack(fd))))
     if err > 1e-6 * max(1.0, float(np.max(np.abs(jn)))):
-        ans.note(f"internal check failed: the geometric Jacobian differs from dP/dq by {err:.3g}")
+        ans.note(Text("internal check failed: the geometric Jacobian differs from dP/dq by ",
+                      Num(err, digits=3)))
 
 
 def _com_steps(ans, ctx):

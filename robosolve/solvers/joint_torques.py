@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
-from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
 
@@ -36,7 +36,6 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     act_names = [str(j.actuator) for j in joints]
 
     dyn = ctx.dynamics()
-    qs, qds, qdds = model.q, model.qd, model.qdd
     lines = [f"{sp.latex(j.actuator)}" for j in joints]
     if dyn is not None:
         tau = dyn.actuator_expressions()
@@ -50,7 +49,31 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         tau = None
         ans.note("the symbolic equations of motion took too long: the torques are given numerically only")
 
-    # -- closed form on each interval
+    _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines)
+
+    # -- numeric: samples and signed peaks
+    if not prof.T.is_number:
+        ans.note(missing_note("torques", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
+        return ans
+    try:
+        fast, _ = ctx.simulation_dynamics(subs)
+    except ValueError as exc:
+        ans.note(f"numeric torques omitted: {exc}")
+        return ans
+    res = torques_along(prof, fast, act_names)
+    # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is
+    # flat): the answer schema keeps 8 digits of t_peak (registry: AnswerKey.digits)
+    ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": res.t_peaks[i]}
+                                for i in range(len(joints))}
+    ans.steps += peak_steps(res, prof, joints)
+    _figure(ans, res, prof, joints, act_names)
+    return ans
+
+
+def _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines) -> None:
+    """Each actuator as a closed form in t on each interval of the profile (when the
+    symbolic equations are known and the profile's time is a number)."""
+    qs, qds, qdds = ctx.model.q, ctx.model.qd, ctx.model.qdd
     bps = prof.breakpoints() if all(b.is_number for b in [prof.T]) else []
     pw = None
     if tau is not None and prof.T.is_number and prof.T != 0:
@@ -79,26 +102,17 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             ))
             ans.symbolic["profiles"] = {act_names[i]: pw[i] for i in range(len(joints))}
 
-    # -- numeric: samples and signed peaks
-    if not prof.T.is_number:
-        ans.note(missing_note("torques", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
-        return ans
-    try:
-        fast, _ = ctx.simulation_dynamics(subs)
-    except ValueError as exc:
-        ans.note(f"numeric torques omitted: {exc}")
-        return ans
-    res = torques_along(prof, fast, act_names)
-    # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is flat)
-    ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": float(f"{res.t_peaks[i]:.8g}")}
-                                for i in range(len(joints))}
+
+def peak_steps(res, prof, joints) -> list[Step]:
+    """The signed peaks and the jumps at the switching instants, as steps."""
+    steps: list[Step] = []
     rows = []
     jumps = sorted({0.0, float(prof.T), *res.breaks})
     for i, j in enumerate(joints):
         at_jump = any(abs(res.t_peaks[i] - s) <= 1e-9 * max(1.0, float(prof.T)) for s in jumps)
-        rows.append([f"${sp.latex(j.actuator)}$", f"{report_number(res.peaks[i])} {_unit(j.kind)}",
-                     report_number(res.t_peaks[i]) + (" (a switching instant: one-sided value)" if at_jump else "")])
-    ans.steps.append(Step(
+        rows.append([f"${sp.latex(j.actuator)}$", Num(res.peaks[i], _unit(j.kind)),
+                     Text(Num(res.t_peaks[i])) + (" (a switching instant: one-sided value)" if at_jump else "")])
+    steps.append(Step(
         "Peaks",
         "The peak is the signed value of largest magnitude over $[0, T]$; at a switching instant the "
         "actuator jumps, and the larger of the two one-sided values counts.",
@@ -106,20 +120,23 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ))
     if res.jumps:
         header = ["t (s)"] + [f"${sp.latex(j.actuator)}$ before → after" for j in joints]
-        jrows = [[report_number(t)] + [f"{report_number(b[i])} → {report_number(a[i])}" for i in range(len(joints))]
+        jrows = [[Num(t)] + [Text(Num(b[i]), " → ", Num(a[i])) for i in range(len(joints))]
                  for t, b, a in res.jumps]
-        ans.steps.append(Step(
+        steps.append(Step(
             "Jumps at the switching instants",
             "Where a joint acceleration jumps, so does $M(q)\\,\\ddot q$ and the actuators with it (velocities "
             "and positions are continuous). Before 0 and after T the values are the holding forces at rest.",
             table=(header, jrows),
         ))
+    return steps
+
+
+def _figure(ans, res, prof, joints, act_names) -> None:
     ans.figures.append(FigureSpec(
-        "torques", "joint_torques", f"Actuators along the profile (T = {report_number(float(prof.T))} s)",
-        {"t": [float(f"{x:.12g}") for x in res.t],
+        "torques", "joint_torques", Text("Actuators along the profile (T = ", Num(float(prof.T)), " s)"),
+        {"t": [float(x) for x in res.t],
          "T": float(prof.T), "switches": res.breaks,
          "actuators": [{"name": act_names[i], "label": sp.latex(j.actuator), "unit": _unit(j.kind),
-                        "values": [float(f"{v:.12g}") + 0.0 for v in res.values[i]],
+                        "values": [float(v) for v in res.values[i]],
                         "peak": res.peaks[i], "t_peak": res.t_peaks[i]} for i, j in enumerate(joints)]},
     ))
-    return ans

@@ -1,8 +1,8 @@
 """Question 7: synchronized joint motion profiles (bang-bang, trapezoidal, quintic).
 
 Each joint alone at its limits needs its own time; the synchronized time T is
-the largest of them (ERRATA 126), and the other joints are slowed down to end
-at T: rescaled accelerations for bang-bang (a_i = 4|D_i|/T^2, ERRATA 125),
+the largest of them (docs/course-notes.md#note-motion-sync), and the other joints are slowed down to end
+at T: rescaled accelerations for bang-bang (a_i = 4|D_i|/T^2),
 lowered cruise velocities for trapezoidal, peak accelerations for quintic.
 """
 
@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
-from robosolve.motion.profiles import ProfileError, synchronize
-from robosolve.render.numbers import report_number
+from robosolve.motion.profiles import ProfileError, SyncProfile, synchronize
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
 
 T_SYMBOL = sp.Symbol("t")
@@ -25,17 +25,19 @@ def _unit(kind: str, order: int) -> str:
     return base + ("", "/s", "/s²")[order]
 
 
-def _num(e) -> str:
+def _num(e, unit: str = "") -> Text:
+    """A value for a table: the number (the renderer formats it), or its LaTeX when symbolic."""
     try:
-        return report_number(float(sp.N(e)))
+        return Text(Num(float(sp.N(e)), unit))
     except TypeError:
-        return "$" + sp.latex(e) + "$"
+        return Text("$" + sp.latex(e) + "$" + (" " + unit if unit else ""))
 
 
-def solve(question: Question, ctx: SolveContext) -> Answer:
+def compute(question: Question, ctx: SolveContext) -> SyncProfile:
+    """The synchronized profile of the question (recorded in the context for the
+    questions that refer to it)."""
     model = ctx.model
     opts = question.options
-    ans = Answer(question.type, question.id)
     shape = opts.get("shape", "bang-bang")
     subs = ctx.substitutions(question.at)
     joints = model.joints
@@ -51,8 +53,94 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     except ProfileError as exc:
         raise SolverError(str(exc)) from None
     ctx.record_profile(question.id, prof)
+    return prof
 
+
+def solve(question: Question, ctx: SolveContext) -> Answer:
+    model = ctx.model
+    prof = compute(question, ctx)
+    ans = Answer(question.type, question.id)
+    shape = question.options.get("shape", "bang-bang")
+    subs = ctx.substitutions(question.at)
+    joints = model.joints
     syms = {j.name: sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in joints}
+    ans.steps += steps(prof, shape, joints, syms)
+    # -- answers
+    ans.symbolic["durations"] = {jm.name: jm.own_time for jm in prof.joints}
+    ans.symbolic["T"] = prof.T
+    ans.symbolic["accelerations"] = {jm.name: jm.acceleration for jm in prof.joints}
+    if shape == "trapezoidal":
+        ans.symbolic["velocities"] = {jm.name: jm.velocity for jm in prof.joints}
+    ans.symbolic["profiles"] = {jm.name: prof.position(i) for i, jm in enumerate(prof.joints)}
+
+    numeric_keys = ["durations", "T", "accelerations"] + (["velocities"] if shape == "trapezoidal" else [])
+    for key in numeric_keys:
+        ctx.try_numeric(ans, key, ans.symbolic[key], subs, key)
+
+    _figure(ans, prof, shape, joints, syms)
+    return ans
+
+
+def steps(prof: SyncProfile, shape: str, joints, syms: dict) -> list[Step]:
+    """The worked solution: own times, synchronized time, rescaled values, profiles."""
+    steps: list[Step] = []
+    steps += _own_times(prof, shape, joints, syms)
+
+    # -- step 2: synchronized time
+    slow = ", ".join(f"${syms[n]}$" for n in prof.slowest) or "—"
+    steps.append(Step(
+        "Synchronized time",
+        "All joints must start and stop together, so the motion lasts as long as the slowest joint "
+        f"(here {slow}), which keeps its limits; the others are slowed down to end at the same instant. "
+        "(The course's worked example takes joint 1's time: that holds only when joint 1 is the slowest.)",
+        equations=[("T = \\max_i T_i", prof.T)] + ([("T", float(sp.N(prof.T)))] if prof.T.is_number
+                                                     and not prof.T.is_Integer else []),
+    ))
+
+    # -- step 3: rescaled values
+    if shape == "bang-bang":
+        rule, what = "a_i = \\dfrac{4\\,\\lvert\\Delta_i\\rvert}{T^2}", "accelerations"
+    elif shape == "quintic":
+        rule, what = "a_i = \\dfrac{10\\,\\lvert\\Delta_i\\rvert}{\\sqrt{3}\\,T^2}", "peak accelerations"
+    else:
+        rule = ("v_i = \\dfrac{a_i T - \\sqrt{a_i^2 T^2 - 4 a_i \\lvert\\Delta_i\\rvert}}{2},"
+                "\\qquad t_{a,i} = v_i / a_i")
+        what = "cruise velocities (accelerations kept)"
+    eqs = [("", rule)]
+    rows = []
+    for jm, j in zip(prof.joints, joints):
+        if shape == "trapezoidal":
+            eqs.append((f"v_{{{syms[j.name]}}}", jm.velocity))
+            switches = Text.join(", ", [_num(s) for s in jm.switch_times]) if jm.switch_times else "—"
+            rows.append([f"${syms[j.name]}$", _num(jm.acceleration, _unit(j.kind, 2)),
+                         _num(jm.velocity, _unit(j.kind, 1)), switches])
+        else:
+            eqs.append((f"a_{{{syms[j.name]}}}", jm.acceleration))
+            rows.append([f"${syms[j.name]}$", _num(jm.acceleration, _unit(j.kind, 2)),
+                         _num(jm.velocity, _unit(j.kind, 1))])
+    header = ["joint", "acceleration", "cruise velocity", "switching instants (s)"] if shape == "trapezoidal" \
+        else ["joint", "acceleration" if shape == "bang-bang" else "peak acceleration", "peak velocity"]
+    steps.append(Step(f"Rescaled {what}", "At the synchronized time T:", equations=eqs,
+                          table=(header, rows)))
+
+    # -- step 4: profiles
+    forms = {
+        "bang-bang": ("With $s_i = \\operatorname{sign}(\\Delta_i)$: $q_i(t) = q_{i,0} + s_i\\,a_i t^2/2$ for "
+                      "$0 \\le t \\le T/2$ and $q_{i,0} + s_i\\,(a_i T^2/4 - a_i (T - t)^2/2)$ for "
+                      "$T/2 < t \\le T$; the joint is at rest before 0 and after T."),
+        "trapezoidal": ("With $s_i = \\operatorname{sign}(\\Delta_i)$: $q_{i,0} + s_i a_i t^2/2$ while accelerating, "
+                        "$q_{i,0} + s_i (v_i t - v_i^2/(2a_i))$ while cruising, $q_{i,f} - s_i a_i (T - t)^2/2$ "
+                        "while decelerating; at rest before 0 and after T."),
+        "quintic": "$q_i(t) = q_{i,0} + \\Delta_i\\,(10s^3 - 15s^4 + 6s^5)$, $s = t/T$; at rest before 0 and after T.",
+    }[shape]
+    steps.append(Step("Profiles", forms, equations=[
+        (f"{syms[j.name]}(t)", prof.position(i)) for i, j in enumerate(joints)]))
+    return steps
+
+
+def _own_times(prof: SyncProfile, shape: str, joints, syms: dict) -> list[Step]:
+    """Step 1: each joint's displacement and its own time at its limits."""
+    steps: list[Step] = []
     # -- step 1: displacements and own times
     own_rule = {
         "bang-bang": "T_i = \\sqrt{\\dfrac{4\\,\\lvert\\Delta_i\\rvert}{a_i}}",
@@ -77,78 +165,20 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     rows = []
     for jm, j in zip(prof.joints, joints):
         row = [f"${syms[j.name]}$", _num(jm.start), _num(jm.end), _num(jm.delta),
-               f"{_num(jm.max_acceleration)} {_unit(j.kind, 2)}"]
+               _num(jm.max_acceleration, _unit(j.kind, 2))]
         if shape == "trapezoidal":
-            row.append(f"{_num(jm.max_velocity)} {_unit(j.kind, 1)}")
+            row.append(_num(jm.max_velocity, _unit(j.kind, 1)))
         row.append(_num(jm.own_time) + ("" if jm.moves else " (does not move)"))
         rows.append(row)
-    ans.steps.append(Step("Displacements and each joint's own time", text,
+    steps.append(Step("Displacements and each joint's own time", text,
                           equations=[("", own_rule)] + [(f"T_{{{syms[jm.name]}}}", jm.own_time)
                                                          for jm in prof.joints if jm.moves],
                           table=(header, rows)))
+    return steps
 
-    # -- step 2: synchronized time
-    slow = ", ".join(f"${syms[n]}$" for n in prof.slowest) or "—"
-    ans.steps.append(Step(
-        "Synchronized time",
-        "All joints must start and stop together, so the motion lasts as long as the slowest joint "
-        f"(here {slow}), which keeps its limits; the others are slowed down to end at the same instant. "
-        "(The course's worked example takes joint 1's time: that holds only when joint 1 is the slowest.)",
-        equations=[("T = \\max_i T_i", prof.T)] + ([("T", float(sp.N(prof.T)))] if prof.T.is_number
-                                                     and not prof.T.is_Integer else []),
-    ))
 
-    # -- step 3: rescaled values
-    if shape == "bang-bang":
-        rule, what = "a_i = \\dfrac{4\\,\\lvert\\Delta_i\\rvert}{T^2}", "accelerations"
-    elif shape == "quintic":
-        rule, what = "a_i = \\dfrac{10\\,\\lvert\\Delta_i\\rvert}{\\sqrt{3}\\,T^2}", "peak accelerations"
-    else:
-        rule = ("v_i = \\dfrac{a_i T - \\sqrt{a_i^2 T^2 - 4 a_i \\lvert\\Delta_i\\rvert}}{2},"
-                "\\qquad t_{a,i} = v_i / a_i")
-        what = "cruise velocities (accelerations kept)"
-    eqs = [("", rule)]
-    rows = []
-    for jm, j in zip(prof.joints, joints):
-        if shape == "trapezoidal":
-            eqs.append((f"v_{{{syms[j.name]}}}", jm.velocity))
-            switches = ", ".join(_num(s) for s in jm.switch_times) or "—"
-            rows.append([f"${syms[j.name]}$", f"{_num(jm.acceleration)} {_unit(j.kind, 2)}",
-                         f"{_num(jm.velocity)} {_unit(j.kind, 1)}", switches])
-        else:
-            eqs.append((f"a_{{{syms[j.name]}}}", jm.acceleration))
-            rows.append([f"${syms[j.name]}$", f"{_num(jm.acceleration)} {_unit(j.kind, 2)}",
-                         f"{_num(jm.velocity)} {_unit(j.kind, 1)}"])
-    header = ["joint", "acceleration", "cruise velocity", "switching instants (s)"] if shape == "trapezoidal" \
-        else ["joint", "acceleration" if shape == "bang-bang" else "peak acceleration", "peak velocity"]
-    ans.steps.append(Step(f"Rescaled {what}", "At the synchronized time T:", equations=eqs,
-                          table=(header, rows)))
-
-    # -- step 4: profiles
-    forms = {
-        "bang-bang": ("With $s_i = \\operatorname{sign}(\\Delta_i)$: $q_i(t) = q_{i,0} + s_i\\,a_i t^2/2$ for "
-                      "$0 \\le t \\le T/2$ and $q_{i,0} + s_i\\,(a_i T^2/4 - a_i (T - t)^2/2)$ for "
-                      "$T/2 < t \\le T$; the joint is at rest before 0 and after T."),
-        "trapezoidal": ("With $s_i = \\operatorname{sign}(\\Delta_i)$: $q_{i,0} + s_i a_i t^2/2$ while accelerating, "
-                        "$q_{i,0} + s_i (v_i t - v_i^2/(2a_i))$ while cruising, $q_{i,f} - s_i a_i (T - t)^2/2$ "
-                        "while decelerating; at rest before 0 and after T."),
-        "quintic": "$q_i(t) = q_{i,0} + \\Delta_i\\,(10s^3 - 15s^4 + 6s^5)$, $s = t/T$; at rest before 0 and after T.",
-    }[shape]
-    ans.steps.append(Step("Profiles", forms, equations=[
-        (f"{syms[j.name]}(t)", prof.position(i)) for i, j in enumerate(joints)]))
-
-    # -- answers
-    ans.symbolic["durations"] = {jm.name: jm.own_time for jm in prof.joints}
-    ans.symbolic["T"] = prof.T
-    ans.symbolic["accelerations"] = {jm.name: jm.acceleration for jm in prof.joints}
-    if shape == "trapezoidal":
-        ans.symbolic["velocities"] = {jm.name: jm.velocity for jm in prof.joints}
-    ans.symbolic["profiles"] = {jm.name: prof.position(i) for i, jm in enumerate(prof.joints)}
-
-    numeric_keys = ["durations", "T", "accelerations"] + (["velocities"] if shape == "trapezoidal" else [])
-    for key in numeric_keys:
-        ctx.try_numeric(ans, key, ans.symbolic[key], subs, key)
-
+def _figure(ans: Answer, prof: SyncProfile, shape: str, joints, syms: dict) -> None:
+    """The profiles sampled on [0, T], both sides of each switching instant."""
     # -- figure
     if "T" in ans.numeric and ans.numeric["T"] > 0:
         import numpy as np
@@ -168,14 +198,10 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         Q, QD, QDD = np.hstack(q_all), np.hstack(qd_all), np.hstack(qdd_all)
         ans.figures.append(FigureSpec(
             "profile", "motion_profile",
-            f"Synchronized {shape} profile (T = {report_number(T)} s)",
-            {"t": [round(float(x), 12) for x in t_cat], "T": T,
+            Text(f"Synchronized {shape} profile (T = ", Num(T), " s)"),
+            {"t": [float(x) for x in t_cat], "T": T,
              "switches": [b for b in breaks[1:-1]],
              "joints": [{"name": j.name, "label": syms[j.name], "kind": j.kind,
-                         "q": _r(Q[i]), "qd": _r(QD[i]), "qdd": _r(QDD[i])} for i, j in enumerate(joints)]},
+                         "q": Q[i].tolist(), "qd": QD[i].tolist(), "qdd": QDD[i].tolist()}
+                        for i, j in enumerate(joints)]},
         ))
-    return ans
-
-
-def _r(a):
-    return [float(f"{float(x):.12g}") + 0.0 for x in a]

@@ -12,9 +12,12 @@ import math
 import numpy as np
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
+from robosolve.core.course_notes import note_link
+from robosolve.core.simplify import exact_geometry
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.rotations import (
-    _default_simplify, axis_angle_numeric, axis_angle_symbolic, quaternion_numeric,
+    axis_angle_numeric, axis_angle_symbolic, quaternion_numeric,
     quaternion_symbolic, rpy_numeric, rpy_symbolic, zyz_numeric, zyz_symbolic,
 )
 from robosolve.load.problem import Question
@@ -37,7 +40,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         where = f"The rotation is the orientation block of ${m_name('0', frame)}$."
     try:
         with ctx.time_limit(10.0):
-            r = r.applyfunc(_default_simplify)
+            ops = ctx.budgets.simplify.geometry_ops
+            r = r.applyfunc(lambda e: exact_geometry(e, ops))
     except SymbolicTimeout:
         pass
     steps = [Step("Rotation matrix", where, equations=[("R", r)])]
@@ -82,8 +86,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     steps.append(_numeric_step(z, y, aa, q))
     for e, name in ((z, "ZYZ"), (y, "RPY")):
         if e.singular:
-            ans.note(f"{name} singular: only {e.family[0]} = {e.family[1]:.6g} is determined; "
-                     "the representative sets the last angle to 0")
+            ans.note(Text(f"{name} singular: only {e.family[0]} = ", Num(e.family[1]),
+                          " is determined; the representative sets the last angle to 0"))
     if aa.case == "zero":
         ans.note("zero rotation: the axis of the axis-angle representation is undefined (null)")
     if aa.case == "half_turn":
@@ -106,12 +110,12 @@ def _symbolic_steps(z, y, aa, q) -> list:
     text = ("$R = R_z(\\varphi) R_y(\\theta) R_z(\\psi)$: $\\theta = \\operatorname{atan2}(\\pm\\sqrt{r_{13}^2 + "
             "r_{23}^2}, r_{33})$, $\\varphi = \\operatorname{atan2}(\\pm r_{23}, \\pm r_{13})$, "
             "$\\psi = \\operatorname{atan2}(\\pm r_{32}, \\mp r_{31})$; the upper signs give $\\theta \\in [0, \\pi]$, "
-            "the lower ones the second solution $-\\theta$. Singular where $\\sin\\theta = 0$ (ERRATA item 77).")
+            "the lower ones the second solution $-\\theta$. Singular where $\\sin\\theta = 0$ (" + note_link("orientation") + ").")
     if z.singular:
         text += " " + _family_text(z, "$(\\varphi, \\theta, \\psi)$")
     out.append(Step("ZYZ Euler angles", text, equations=[
         (f"(\\varphi, \\theta, \\psi)_{{{k + 1}}}", list(s)) for k, s in enumerate(z.solutions)]))
-    text = ("$R = R_z(\\text{yaw}) R_y(\\text{pitch}) R_x(\\text{roll})$ (ERRATA item 78): "
+    text = ("$R = R_z(\\text{yaw}) R_y(\\text{pitch}) R_x(\\text{roll})$ (" + note_link("orientation") + "): "
             "$\\text{pitch} = \\operatorname{atan2}(-r_{31}, \\pm\\sqrt{r_{11}^2 + r_{21}^2})$, "
             "$\\text{yaw} = \\operatorname{atan2}(\\pm r_{21}, \\pm r_{11})$, "
             "$\\text{roll} = \\operatorname{atan2}(\\pm r_{32}, \\pm r_{33})$; the upper signs give "
@@ -128,12 +132,12 @@ def _symbolic_steps(z, y, aa, q) -> list:
         "Axis-angle",
         "$\\alpha \\in [0, \\pi]$ with $\\sin\\alpha = \\tfrac12|\\operatorname{vex}(R - R^T)| \\geq 0$, "
         "$u = \\operatorname{vex}(R - R^T)/(2\\sin\\alpha)$; at $\\alpha = 0$ the axis is undefined, at "
-        "$\\alpha = \\pi$ it comes from the symmetric part (ERRATA items 25-30, 79).",
+        "$\\alpha = \\pi$ it comes from the symmetric part (" + note_link("helical-axis") + ").",
         equations=eqs))
     out.append(Step(
         "Unit quaternion",
         "$\\eta = \\cos(\\alpha/2) = \\tfrac12\\sqrt{1 + \\operatorname{tr} R} \\geq 0$, "
-        "$\\varepsilon = \\sin(\\alpha/2)\\,u$, $\\eta^2 + |\\varepsilon|^2 = 1$ (ERRATA item 80; "
+        "$\\varepsilon = \\sin(\\alpha/2)\\,u$, $\\eta^2 + |\\varepsilon|^2 = 1$ (" + note_link("orientation") + "; "
         "$-q$ is the same rotation).",
         equations=[("[\\eta, \\varepsilon_x, \\varepsilon_y, \\varepsilon_z]", q)]))
     return out
@@ -145,8 +149,8 @@ def _numeric_step(z, y, aa, q) -> Step:
     for name, e in (("ZYZ (φ, θ, ψ)", z), ("RPY (roll, pitch, yaw)", y)):
         for k, s in enumerate(e.solutions):
             rows.append((f"{name} #{k + 1}" + (" (singular)" if e.singular else ""),
-                         ", ".join(f"{x:.6g}" for x in s), ", ".join(f"{x * deg:.6g}" for x in s)))
-    rows.append(("axis-angle α", f"{aa.angle:.6g}", f"{aa.angle * deg:.6g}"))
+                         Text.join(", ", [Num(x) for x in s]), Text.join(", ", [Num(x * deg) for x in s])))
+    rows.append(("axis-angle α", Num(aa.angle), Num(aa.angle * deg)))
     return Step("Numeric values", "Angles in radians and degrees:",
                 equations=[("u", aa.axis), ("q", q)],
                 table=(("representation", "rad", "deg"), rows))

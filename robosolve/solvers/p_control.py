@@ -9,12 +9,13 @@ capable), restarted at each switching instant; see robosolve/motion/control.py.
 
 from __future__ import annotations
 
+import numpy as np
 import sympy as sp
 
+from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
 from robosolve.motion.control import simulate
-from robosolve.render.numbers import report_number
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
 SAMPLES = 2001
@@ -26,8 +27,9 @@ LAW_TEX = {
     "computed_torque": "\\tau = M(q)\\,(\\ddot q_d + K_d\\,\\dot e + K_p\\,e) + c(q, \\dot q) + g(q)",
 }
 LAW_TEXT = {
-    "p": "proportional control (the course's controller), with no gravity compensation: the arm settles "
-         "where the springs $K_p e$ balance gravity, so an error remains",
+    "p": "proportional control (the course's controller), with no gravity compensation: the "
+         "actuators act as springs $K_p e$ pulling each joint towards its desired value, so under "
+         "gravity or a load an error remains",
     "pd": "proportional-derivative control: the derivative term damps the oscillations",
     "pd_gravity": "PD control with gravity compensation $g(q)$",
     "computed_torque": "computed-torque control: the model is inverted, so the error obeys "
@@ -35,15 +37,10 @@ LAW_TEXT = {
 }
 
 
-ANSWER_DIGITS = 6
-
-
-def _sig(x: float, scale: float | None = None) -> float:
-    """x with ANSWER_DIGITS significant digits; below 1e-9 of ``scale`` it is 0 (noise)."""
+def _above_noise(x: float, scale: float) -> float:
+    """x, or 0 when it is below 1e-9 of ``scale`` (integration noise, not an error)."""
     x = float(x)
-    if scale is not None and abs(x) <= 1e-9 * abs(float(scale)):
-        return 0.0
-    return float(f"{x:.{ANSWER_DIGITS}g}") + 0.0
+    return 0.0 if abs(x) <= 1e-9 * abs(float(scale)) else x
 
 
 def _unit(kind: str) -> str:
@@ -55,6 +52,21 @@ def _float(ctx, expr, subs, what):
         return float(ctx.numeric(sp.sympify(expr), subs))
     except Exception:
         raise SolverError(f"{what} must be a number (got {expr})") from None
+
+
+def _external_series(res, i, r):
+    """Joint i's generalized external force along the run, or None when it is zero throughout."""
+    ext = getattr(res, "external", None)
+    if ext is None or not np.any(np.abs(ext[i]) > 1e-12):
+        return None
+    return r(ext[i])
+
+
+def _law_sentence(law: str, kp: list) -> str:
+    if law == "p" and not any(kp):
+        return ("proportional control with $K_p = 0$: the actuators exert no torque, so the arm "
+                "moves under gravity and the external loads alone")
+    return LAW_TEXT[law]
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
@@ -80,18 +92,22 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if not duration > 0:
         raise SolverError("the simulation needs a positive duration (does the profile move at all?)")
 
+    negative = [n for n, k in zip(names, kp + (kd or [])) if k < 0]
+    if negative and law != "computed_torque":
+        ans.note("a negative gain (" + ", ".join(sorted(set(negative))) + ") makes the loop unstable: "
+                 "the error grows exponentially instead of being corrected")
     syms = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in joints]
-    gains_tex = ",\\quad ".join(f"K_{{p,{syms[i]}}} = {report_number(kp[i])}" for i in range(len(joints)))
+    gains_tex = Text.join(",\\quad ", [Text(f"K_{{p,{syms[i]}}} = ", Num(kp[i])) for i in range(len(joints))])
     if kd is not None:
-        gains_tex += ",\\quad " + ",\\quad ".join(f"K_{{d,{syms[i]}}} = {report_number(kd[i])}"
-                                                  for i in range(len(joints)))
+        gains_tex += Text(",\\quad ", Text.join(",\\quad ", [Text(f"K_{{d,{syms[i]}}} = ", Num(kd[i]))
+                                                             for i in range(len(joints))]))
     start_txt = ("the profile's start" if start is None else
-                 ", ".join(f"${syms[i]} = {report_number(start[i])}$" for i in range(len(joints))))
+                 Text.join(", ", [Text(f"${syms[i]} = ", Num(start[i]), "$") for i in range(len(joints))]))
     ans.steps.append(Step(
         "Closed loop",
-        f"Error $e = q_d - q$ (desired profile `{ref}` minus actual). Law: {LAW_TEXT[law]}. "
-        "The actuators replace $\\tau$ in the equations of motion, which become a system of ODEs in $q$; "
-        f"it is integrated from {start_txt}, at rest, over $[0, {report_number(duration)}]$ s.",
+        Text(f"Error $e = q_d - q$ (desired profile `{ref}` minus actual). Law: {_law_sentence(law, kp)}. "
+             "The actuators replace $\\tau$ in the equations of motion, which become a system of ODEs in $q$; "
+             "it is integrated from ", start_txt, ", at rest, over $[0, ", Num(duration), "]$ s."),
         equations=[("", LAW_TEX[law]),
                    ("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)"),
                    ("", gains_tex)],
@@ -106,25 +122,39 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         res = simulate(fast, plan, law, kp, kd, start=start, duration=duration, samples=SAMPLES)
     except RuntimeError as exc:          # SimulationTooLong or an integration failure
         raise SolverError(str(exc)) from None
+    except (ValueError, ZeroDivisionError, np.linalg.LinAlgError) as exc:
+        if "invertible" in str(exc) or "singular" in str(exc).lower() or isinstance(exc, ZeroDivisionError):
+            raise SolverError("the mass matrix M(q) is singular (a joint moves no mass: a body of mass 0?), "
+                              "so the motion under control is not defined") from None
+        raise
 
     # The simulation is accurate to ~1e-6 relative (tests: 1e-4 required); more digits would be
-    # noise that differs between machines, so the answers keep ANSWER_DIGITS significant digits.
-    ans.numeric["max_error"] = {n: _sig(res.max_error[i]) for i, n in enumerate(names)}
-    ans.numeric["final_error"] = {n: _sig(res.final_error[i], scale=res.max_error[i]) for i, n in enumerate(names)}
-    ans.numeric["t_max_error"] = {n: _sig(res.t_max_error[i]) for i, n in enumerate(names)}
-    rows = [[f"${syms[i]}$", f"{report_number(res.max_error[i])} {_unit(j.kind)}",
-             report_number(res.t_max_error[i]), f"{report_number(res.final_error[i])} {_unit(j.kind)}"]
+    # noise that differs between machines: the answer schema keeps 6 (registry AnswerKey.digits).
+    ans.numeric["max_error"] = {n: float(res.max_error[i]) for i, n in enumerate(names)}
+    ans.numeric["final_error"] = {n: _above_noise(res.final_error[i], res.max_error[i])
+                                  for i, n in enumerate(names)}
+    ans.numeric["t_max_error"] = {n: float(res.t_max_error[i]) for i, n in enumerate(names)}
+    rows = [[f"${syms[i]}$", Num(res.max_error[i], _unit(j.kind)),
+             Num(res.t_max_error[i]), Num(res.final_error[i], _unit(j.kind))]
             for i, j in enumerate(joints)]
     ans.steps.append(Step(
         "Tracking errors",
         "Integrated with LSODA (it switches to a stiff method when the gains make the loop stiff), relative "
         "tolerance $10^{-8}$ on the error itself, restarting at each switching instant of the profile; the "
         "maximum is refined on the solver's dense output.",
-        table=(["joint", "max |e|", "at t (s)", f"e at t = {report_number(duration)} s"], rows),
+        table=(["joint", "max |e|", "at t (s)", Text("e at t = ", Num(duration), " s")], rows),
     ))
 
+    _figures(ans, res, prof, plan, duration, law, joints, syms)
+    return ans
+
+
+def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
+    """Tracking (actual vs desired, error) and effort figures of the simulation."""
+    names = [j.name for j in joints]
+
     def r(a):
-        return [float(f"{float(x):.10g}") + 0.0 for x in a]
+        return [float(x) for x in a]
 
     common = {"t": r(res.t), "T": float(prof.T), "duration": duration,
               "switches": [float(x) for x in plan.breaks[1:-1] if x < duration]}
@@ -137,7 +167,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ans.figures.append(FigureSpec(
         "effort", "control_effort", f"{law} control: actuator effort",
         dict(common, actuators=[{"name": str(j.actuator), "label": sp.latex(j.actuator),
-                                 "unit": "N·m" if j.kind == "revolute" else "N", "values": r(res.effort[i])}
+                                 "unit": "N·m" if j.kind == "revolute" else "N", "values": r(res.effort[i]),
+                                 "external": _external_series(res, i, r)}
                                 for i, j in enumerate(joints)]),
     ))
-    return ans

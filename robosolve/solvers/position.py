@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.course_notes import note_link
 from robosolve.errors import SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.model.numeric import NumericChain
@@ -23,15 +24,25 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     return ans
 
 
+def answer_chain(model, frame: str, point: str) -> list[str]:
+    """Frames whose M the answer uses: from frame 1 to the farther of `frame` and the
+    point's frame (spec: `chain`); on a branched tree, both branches in file order."""
+    used = set(model.chain(frame)) | set(model.chain(model.point_local(point)[0]))
+    return [f for f in model.frame_names() if f in used]
+
+
 def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     model = ctx.model
     frame, point = question.frame, question.point
-    chain = model.chain(frame)
+    chain = answer_chain(model, frame, point)
 
     elementary = Step(
         "Elementary rototranslations",
         "Each frame's pose in its parent is the product of elementary motions, each applied "
-        "in the current (moving) frame, so the factors multiply left to right.",
+        "in the current (moving) frame, so the factors multiply left to right ("
+        + note_link("frame-notation")
+        + (", " + note_link("dh-order") if any(model.frames[f].kind in ("dh", "mdh") for f in chain) else "")
+        + ").",
     )
     for f in chain:
         parent = model.frames[f].parent
@@ -42,8 +53,8 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         elementary.equations.append((lhs, model.M_local(f)))
     ans.steps.append(elementary)
 
-    if len(chain) > 1:
-        product = " \\, ".join(m_name(model.frames[f].parent, f) for f in chain)
+    if len(model.chain(frame)) > 1:
+        product = " \\, ".join(m_name(model.frames[f].parent, f) for f in model.chain(frame))
         ans.steps.append(Step(
             "Chain product",
             f"The pose of frame {frame} in frame 0 is the product along the chain "
@@ -75,7 +86,8 @@ def numeric_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     try:
         ans.numeric["M"] = chain.M0(frame).tolist()
         ans.numeric["position"] = chain.point0(point).tolist()
-        ans.numeric["chain"] = [ctx.numeric(model.M_local(f), subs) for f in model.chain(frame)]
+        ans.numeric["chain"] = [ctx.numeric(model.M_local(f), subs)
+                                for f in answer_chain(model, frame, point)]
     except MissingValues as exc:
         ans.numeric.clear()
         ans.note(missing_note("pose and position", exc.names, ctx.problem))

@@ -2,7 +2,8 @@
 and the velocity and acceleration of a point.
 
 W by Rivals' theorem and H by Coriolis' theorem, every term in frame 0
-(ERRATA §D.2-3); the L matrices are generated from M (dM/dq M^-1, §D.4).
+(docs/course-notes.md#note-w-matrix, #note-h-matrix); the L matrices are generated
+from M (dM/dq M^-1, #note-l-matrix).
 """
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from robosolve.core.course_notes import note_link
 from robosolve.core.simplify import tidy
 from robosolve.core.transforms import vex
 from robosolve.errors import SymbolicTimeout
@@ -86,6 +88,7 @@ def numeric_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         ans.steps.append(Step("Numeric values", "At the configuration of the question:", equations=shown))
 
 
+# long: the W / H chain of steps in the course's order, one equation list; to split next (issue 10 item 6)
 def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     model = ctx.model
     frame, point = question.frame, question.point
@@ -96,7 +99,8 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         "L matrices of the joints",
         "For joint $i$, moving frame $j$ relative to its parent $p$: "
         "${}^{p}L = \\partial\\, {}^{p}M_{j} / \\partial q_i \\cdot {}^{p}M_{j}^{-1}$, "
-        "then moved to frame 0 with ${}^{0}L = {}^{0}M_{p}\\, {}^{p}L\\, {}^{0}M_{p}^{-1}$.",
+        "then moved to frame 0 with ${}^{0}L = {}^{0}M_{p}\\, {}^{p}L\\, {}^{0}M_{p}^{-1}$ ("
+        + note_link("l-matrix") + ").",
     )
     for f in chain:
         parent = model.frames[f].parent
@@ -115,7 +119,7 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         "Velocity matrices (Rivals' theorem)",
         "Every term is expressed in frame 0: "
         "${}^{0}W_{0,j} = {}^{0}W_{0,p} + {}^{0}W_{p,j}$ with ${}^{0}W_{p,j} = \\sum {}^{0}L_i\\, \\dot q_i$ "
-        "over the joints that move frame $j$ relative to its parent.",
+        "over the joints that move frame $j$ relative to its parent (" + note_link("w-matrix") + ").",
     )
     for f in chain:
         parent = model.frames[f].parent
@@ -131,7 +135,7 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         "${}^{0}H_{0,j} = {}^{0}H_{0,p} + 2\\,{}^{0}W_{0,p}\\,{}^{0}W_{p,j} + {}^{0}H_{p,j}$, every term in "
         "frame 0; the relative term is ${}^{0}H_{p,j} = {}^{0}L\\,\\ddot q + {}^{0}L^2\\,\\dot q^2$ for one "
         "joint (in general $\\ddot M M^{-1}$ moved to frame 0). $H = \\dot W + W^2$ "
-        "(not $\\dot W\\, W^2$: ERRATA item 43).",
+        "(not $\\dot W\\, W^2$: " + note_link("h-matrix") + ").",
     )
     for f in chain:
         parent = model.frames[f].parent

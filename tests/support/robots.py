@@ -87,7 +87,7 @@ def _point(name, frame, mass, at):
 
 
 def one_link() -> RobotDef:
-    """The seed's §6.5 arm (ERRATA §C): rod + payload, follower force at 2L/3."""
+    """The seed's §6.5 arm (docs/course-notes.md#note-one-link-arm): rod + payload, follower force at 2L/3."""
     L, m1, m2, g, F = sp.symbols("L m1 m2 g F", positive=True)
     th = _joint("theta", "C")
     return RobotDef(
@@ -118,7 +118,7 @@ def planar_2r() -> RobotDef:
 
 
 def scara(loads: bool = False) -> RobotDef:
-    """The spec's SCARA RRP (ERRATA §B) with rods, a vertical rod on the prismatic link and
+    """The spec's SCARA RRP (course summary §4, with docs/course-notes.md#note-scara-frames) with rods, a vertical rod on the prismatic link and
     a payload at the end effector; `loads` adds a force on link 2 (in frame 0) and a torque
     on it."""
     L1, L2, h, m1, m2, m3, mp, g, d3 = sp.symbols("L1 L2 h m1 m2 m3 m_p g d3", positive=True)

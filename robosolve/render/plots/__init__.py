@@ -30,6 +30,24 @@ def save(fig, path):
 
 def draw(spec, path) -> None:
     """Draw one FigureSpec into a PNG file at `path`."""
+    from dataclasses import replace
+
+    from robosolve.render.numbers import text
+
     module = importlib.import_module(f"robosolve.render.plots.{spec.kind}")
     setup()
-    module.draw(spec, path)
+    module.draw(replace(spec, title=text(spec.title), data=_formatted(spec.data)), path)
+
+
+def _formatted(v):
+    """The figure's data with prose (`Text`, `Num`: labels, titles) formatted."""
+    from robosolve.core.prose import Num, Text
+    from robosolve.render.numbers import text
+
+    if isinstance(v, (Num, Text)):
+        return text(v)
+    if isinstance(v, dict):
+        return {k: _formatted(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [_formatted(x) for x in v]
+    return v

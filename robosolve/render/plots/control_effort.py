@@ -1,6 +1,7 @@
 """Closed-loop actuator effort against time, one panel per actuator.
 
-Data: t, T, duration, switches, actuators [{name, label, unit, values}].
+Data: t, T, duration, switches, actuators [{name, label, unit, values, external}]
+(external: the generalized external force on the joint, or None when zero).
 """
 
 from __future__ import annotations
@@ -14,12 +15,19 @@ def draw(spec, path):
     plt = setup()
     d = spec.data
     acts = d["actuators"]
-    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.3 * len(acts) + 0.8), sharex=True, squeeze=False)
+    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.3 * len(acts) + 0.8), sharex=True, squeeze=False,
+                             layout="constrained")
     for k, (ax, a) in enumerate(zip(axes[:, 0], acts)):
-        ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.2)
+        ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.2,
+                label=f"actuator ${a['label']}$")
+        if a.get("external") is not None:      # the loads the actuator works with or against
+            ax.plot(d["t"], a["external"], color="0.25", ls="--", lw=1.1,
+                    label="external (generalized) force $f_{ext}$")
         ax.axhline(0.0, color="0.6", lw=0.6)
         _marks(ax, d)
-        ax.set_ylabel(f"${a['label']}$ ({a['unit']})")
-    axes[0, 0].set_title(spec.title)
+        extra = ", $f_{ext}$" if a.get("external") is not None else ""
+        ax.set_ylabel(f"${a['label']}${extra} ({a['unit']})")
+        ax.legend(loc="best", fontsize=8)
+    fig.suptitle(spec.title)
     axes[-1, 0].set_xlabel("t (s)")
     save(fig, path)

@@ -21,7 +21,8 @@ def draw(spec, path):
     plt = setup()
     d = spec.data
     js = d["joints"]
-    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False)
+    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False,
+                             layout="constrained")      # keeps the suptitle above the panel titles
     for k, j in enumerate(js):
         c = COLOURS[k % len(COLOURS)]
         ax = axes[k, 0]
@@ -40,5 +41,4 @@ def draw(spec, path):
     for ax in axes[-1]:
         ax.set_xlabel("t (s)")
     fig.suptitle(spec.title)
-    fig.subplots_adjust(wspace=0.32)
     save(fig, path)

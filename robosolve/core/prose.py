@@ -1,0 +1,67 @@
+"""Prose with numbers left raw: what solvers and engines write, the renderer formats.
+
+A solver never formats or rounds a number (the number policy lives in
+``robosolve/render/numbers.py``). Where a number sits inside a sentence, a table cell, a
+figure title, a note or a reason, the solver writes a :class:`Text`, a sequence of
+strings and :class:`Num` values; the renderer turns each `Num` into digits for its
+output (report.md, results.json notes, a PNG title).
+
+    Text("peak ", Num(12.345678, unit="N·m"), " at t = ", Num(0.5), " s")
+    Text.join(", ", [Num(x) for x in xs])
+    "max |e| = " + Text(Num(e))          # str + Text -> Text
+
+`Num.digits` is the precision the value has (a condition number is worth 3 digits); None
+means the report's default.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Num", "Text"]
+
+
+@dataclass(frozen=True)
+class Num:
+    """A raw number in prose, formatted by the renderer (`unit` follows after a space)."""
+
+    value: float
+    unit: str = ""
+    digits: int | None = None
+
+
+class Text(tuple):
+    """Pieces of prose: strings and `Num` (or nested `Text`), joined by the renderer."""
+
+    def __new__(cls, *pieces):
+        return super().__new__(cls, pieces)
+
+    def __add__(self, other):
+        return Text(*self, *(other if isinstance(other, Text) else (other,)))
+
+    def __radd__(self, other):
+        return Text(other, *self)
+
+    def __contains__(self, item) -> bool:
+        """`"words" in text` looks for the words in the prose (numbers are not words),
+        so a note reads as the str it becomes."""
+        if isinstance(item, str):
+            return item in self.words()
+        return super().__contains__(item)
+
+    def words(self) -> str:
+        """The prose with every number replaced by '#'."""
+        return "".join(p.words() if isinstance(p, Text) else p if isinstance(p, str) else "#"
+                       for p in self)
+
+    def __repr__(self) -> str:
+        return "Text" + super().__repr__()
+
+    @staticmethod
+    def join(sep: str, items) -> "Text":
+        out: list = []
+        for k, item in enumerate(items):
+            if k:
+                out.append(sep)
+            out.append(item)
+        return Text(*out)

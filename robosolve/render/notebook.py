@@ -1,0 +1,389 @@
+"""report.ipynb: the report as a Jupyter notebook that recomputes its answers with sympy.
+
+* Markdown cells: report.md split at its `## ` sections (figures stay relative links to
+  figures/, which sit beside the notebook).
+* Code cells, importing only sympy, numpy and matplotlib (not robosolve, so the notebook
+  runs anywhere): one "data" cell that rebuilds the problem — parameters, joints, each
+  frame's pose from its elementary motions or DH row, points — so that a teacher can change
+  a number and re-run; then, after each question's section, a cell that recomputes the main
+  results from that data. Recomputed types: position, velocity_acceleration, jacobian,
+  statics (a force), ellipsoids, motion_profile (bang-bang), dof. The other types get a
+  cell that shows robosolve's numbers from results.json (stdlib json) and says so.
+* Cell ids are deterministic (`md-003`, `code-004`): the same problem gives the same bytes.
+"""
+
+from __future__ import annotations
+
+import re
+
+import sympy as sp
+
+SETUP = '''\
+import numpy as np
+import sympy as sp
+
+sp.init_printing()
+
+
+def Rx(a):
+    return sp.Matrix([[1, 0, 0, 0], [0, sp.cos(a), -sp.sin(a), 0], [0, sp.sin(a), sp.cos(a), 0], [0, 0, 0, 1]])
+
+
+def Ry(a):
+    return sp.Matrix([[sp.cos(a), 0, sp.sin(a), 0], [0, 1, 0, 0], [-sp.sin(a), 0, sp.cos(a), 0], [0, 0, 0, 1]])
+
+
+def Rz(a):
+    return sp.Matrix([[sp.cos(a), -sp.sin(a), 0, 0], [sp.sin(a), sp.cos(a), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def Tx(d):
+    return sp.Matrix([[1, 0, 0, d], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def Ty(d):
+    return sp.Matrix([[1, 0, 0, 0], [0, 1, 0, d], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def Tz(d):
+    return sp.Matrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, d], [0, 0, 0, 1]])
+
+
+def dh(theta, d, a, alpha):
+    """Standard Denavit-Hartenberg: Rz(theta) Tz(d) Tx(a) Rx(alpha)."""
+    return Rz(theta) * Tz(d) * Tx(a) * Rx(alpha)
+
+
+def mdh(alpha, a, theta, d):
+    """Modified Denavit-Hartenberg: Rx(alpha) Tx(a) Rz(theta) Tz(d)."""
+    return Rx(alpha) * Tx(a) * Rz(theta) * Tz(d)
+
+
+def inverse_pose(M):
+    """[R, t; 0, 1]^-1 = [R^T, -R^T t; 0, 1]."""
+    R, p = M[:3, :3], M[:3, 3]
+    return sp.Matrix(sp.BlockMatrix([[R.T, -R.T * p], [sp.zeros(1, 3), sp.ones(1, 1)]]))
+'''
+
+MODEL = '''\
+def M0(frame):
+    """Pose of `frame` in frame 0: the product of the poses along the chain."""
+    out = sp.eye(4)
+    while frame != "0":
+        parent, M = frames[frame]
+        out = M * out
+        frame = parent
+    return out
+
+
+def point0(name):
+    """Coordinates in frame 0 of a named point."""
+    frame, at = points[name]
+    return (M0(frame) * sp.Matrix([*at, 1]))[:3, :]
+
+
+def values(at=None):
+    """Parameters (with the question's overrides) and joint values, resolved to numbers."""
+    given = dict(parameters)
+    given.update(at or {})
+    out = {}
+    for _ in range(len(given) + 1):
+        out = {s: sp.sympify(v).subs(out) for s, v in given.items()}
+    return out
+
+
+def number(expr, at=None):
+    """A sympy object evaluated to floats at the data and `at`."""
+    v = sp.N(sp.sympify(expr).subs(values(at)))
+    return np.array(v.tolist(), dtype=float) if hasattr(v, "tolist") else float(v)
+
+
+np.set_printoptions(precision=6, suppress=True)
+'''
+
+
+def _s(expr) -> str:
+    """A sympy expression as Python source the notebook evaluates with S(...)."""
+    return f'S("{_str(expr)}")'
+
+
+def _str(expr) -> str:
+    expr = sp.sympify(expr)
+    rep = {s: sp.Symbol(s.name.replace(".", "_")) for s in expr.free_symbols if "." in s.name}
+    return str(expr.xreplace(rep)) if rep else str(expr)
+
+
+def _vec(v) -> str:
+    return "[" + ", ".join(_s(x) for x in v) + "]"
+
+
+def _data_cell(problem) -> str:
+    names = [s.name for s in problem.parameters] + [j.name for j in problem.joints]
+    names += [str(j.dot) for j in problem.joints] + [str(j.ddot) for j in problem.joints]
+    lines = ["# The problem's data: change a value and re-run the notebook.",
+             f'{", ".join(names)} = sp.symbols("{" ".join(names)}", real=True)' if len(names) > 1 else
+             (f'{names[0]}, = sp.symbols("{names[0]}", real=True),' if names else ""),
+             "NAMES = {s.name: s for s in [" + ", ".join(names) + "]}" if names else "NAMES = {}",
+             "", "def S(text):", "    return sp.sympify(text, locals=NAMES)", ""]
+    lines.append("parameters = {")
+    for s, v in problem.parameters.items():
+        lines.append(f"    {s.name}: {'None' if v is None else _s(v)},")
+    lines.append("}")
+    lines.append("parameters = {s: v for s, v in parameters.items() if v is not None}")
+    lines.append("joints = [" + ", ".join(j.name for j in problem.joints) + "]")
+    lines.append("rates = [" + ", ".join(str(j.dot) for j in problem.joints) + "]")
+    lines.append("accelerations = [" + ", ".join(str(j.ddot) for j in problem.joints) + "]")
+    lines.append("")
+    lines.append("# frame: (parent, pose in the parent)")
+    lines.append("frames = {")
+    for f in problem.frames.values():
+        if f.kind == "pose":
+            pose = " * ".join(f"{op}({_s(arg)})" for op, arg in f.factors) or "sp.eye(4)"
+        elif f.kind in ("dh", "mdh"):
+            pose = f"{f.kind}(" + ", ".join(_s(x) for x in f.factors) + ")"
+        else:
+            pose = "sp.Matrix([" + ", ".join(_vec(list(f.matrix.row(i))) for i in range(4)) + "])"
+        lines.append(f'    "{f.name}": ("{f.parent}", {pose}),')
+    lines.append("}")
+    lines.append("# point: (frame, coordinates in that frame)")
+    lines.append("points = {")
+    for p in problem.points.values():
+        lines.append(f'    "{p.name}": ("{p.frame}", {_vec(list(p.at))}),')
+    lines.append("}")
+    return "\n".join(lines)
+
+
+def _point_names_cell(problem) -> str:
+    """P.x, P.y, P.z of every point, usable in coordinates as P_x, P_y, P_z."""
+    lines = []
+    for p in problem.points:
+        lines.append(f'{p}_x, {p}_y, {p}_z = point0("{p}")')
+        lines.append(f'NAMES.update({{"{p}_x": {p}_x, "{p}_y": {p}_y, "{p}_z": {p}_z}})')
+    return "\n".join(lines)
+
+
+def _at(question) -> str:
+    return "{" + ", ".join(f"{s.name}: {_s(v)}" for s, v in question.at.items()) + "}"
+
+
+def _coords(question) -> str:
+    coords = question.options.get("coordinates")
+    if coords:
+        return _vec(coords)
+    p = question.point
+    return f"[{p}_x, {p}_y, {p}_z]"
+
+
+def _expected(answer, keys) -> str:
+    lines = ["# robosolve's numbers, for comparison (they hold for the data as given)"]
+    for k in keys:
+        if k in answer.numeric:
+            lines.append(f"print('robosolve: {k} =', {answer.numeric[k]!r})")
+    return "\n".join(lines)
+
+
+def _cell_position(q, answer, problem):
+    return "\n".join([
+        f'frame, point, at = "{q.frame}", "{q.point}", {_at(q)}',
+        "M = sp.simplify(M0(frame))",
+        "P = point0(point)",
+        "display(M, P)",
+        "print('M =', number(M, at), sep='\\n')",
+        "print('position =', number(P, at).ravel())",
+        _expected(answer, ["M", "position"]),
+    ])
+
+
+def _cell_velocity(q, answer, problem):
+    return "\n".join([
+        f'frame, point, at = "{q.frame}", "{q.point}", {_at(q)}',
+        "t = sp.Symbol('t')",
+        "of_t = {q: sp.Function(q.name)(t) for q in joints}",
+        "back = {}",
+        "for q, qd, qdd in zip(joints, rates, accelerations):",
+        "    back[of_t[q].diff(t, 2)] = qdd",
+        "    back[of_t[q].diff(t)] = qd",
+        "M = M0(frame).subs(values({k: v for k, v in at.items() if k not in joints + rates + accelerations}))",
+        "Mt = M.subs(of_t)",
+        "inv = inverse_pose(Mt)",
+        "W = (Mt.diff(t) * inv).subs(back).subs({v: k for k, v in of_t.items()})",
+        "H = (Mt.diff(t, 2) * inv).subs(back).subs({v: k for k, v in of_t.items()})",
+        "P = sp.Matrix([*point0(point), 1])",
+        "print('W =', number(W, at), 'H =', number(H, at), sep='\\n')",
+        "print('velocity =', number(W * P, at).ravel()[:3])",
+        "print('acceleration =', number(H * P, at).ravel()[:3])",
+        _expected(answer, ["W", "H", "velocity", "acceleration"]),
+    ])
+
+
+def _jacobian_lines(q):
+    return [f"at = {_at(q)}",
+            f"coordinates = sp.Matrix({_coords(q)})",
+            "J = coordinates.jacobian(joints)",
+            "Jn = number(J, at)"]
+
+
+def _cell_jacobian(q, answer, problem):
+    if q.options.get("geometric"):
+        return None
+    return "\n".join(_jacobian_lines(q) + [
+        "display(sp.simplify(J))",
+        "print('J =', Jn, sep='\\n')",
+        "if J.rows == J.cols:",
+        "    print('det J =', np.linalg.det(Jn))",
+        "else:",
+        "    print('manipulability =', np.prod(np.linalg.svd(Jn, compute_uv=False)))",
+        _expected(answer, ["J", "det", "manipulability"]),
+    ])
+
+
+def _cell_statics(q, answer, problem):
+    force = q.options.get("force")
+    if force is None or q.options.get("torque") is not None or q.options.get("weight"):
+        return None
+    return "\n".join(_jacobian_lines(q) + [
+        f"F = np.array({[float(sp.N(x)) for x in force]!r})",
+        "Fq = -Jn.T @ F          # what the joints exert to balance F",
+        "print('Fq =', Fq)",
+        _expected(answer, ["Fq"]),
+    ])
+
+
+def _cell_ellipsoids(q, answer, problem):
+    budgets = q.options.get("budgets") or {}
+    kf, kv, ka = (float(sp.N(budgets.get(k, 1))) for k in ("force", "velocity", "compliance"))
+    kq = q.options.get("joint_compliance")
+    lines = _jacobian_lines(q) + [
+        "A = Jn @ Jn.T",
+        "nu, vectors = np.linalg.eigh(A)          # unit eigenvectors in the columns",
+        f"Kf, Kv, Ka = {kf!r}, {kv!r}, {ka!r}",
+        "with np.errstate(divide='ignore'):",
+        "    force_lengths = Kf / np.sqrt(nu)       # infinite where nu = 0 (singular)",
+        "velocity_lengths = Kv * np.sqrt(nu)",
+        "print('A =', A, 'eigenvalues =', nu, sep='\\n')",
+        "print('force semi-axes:', np.sort(force_lengths)[::-1])",
+        "print('velocity semi-axes:', np.sort(velocity_lengths)[::-1])",
+        "print('condition number:', nu.max() / nu.min() if nu.min() > 0 else float('inf'))",
+    ]
+    if kq:
+        lines += [f"Kq = np.diag({[float(sp.N(x)) for x in kq]!r})",
+                  "kappa = np.linalg.eigvalsh(Jn @ Kq @ Jn.T)",
+                  "print('compliance semi-axes:', np.sort(Ka * kappa)[::-1])"]
+    lines.append(_expected(answer, ["condition_number"]))
+    return "\n".join(lines)
+
+
+def _cell_motion_profile(q, answer, problem):
+    if q.options.get("shape", "bang-bang") != "bang-bang":
+        return None
+    start, end, acc = (q.options.get(k) or {} for k in ("from", "to", "max_acceleration"))
+    names = [j.name for j in problem.joints if j.name in end]
+    return "\n".join([
+        "# bang-bang: each joint alone needs T_i = sqrt(4|D_i|/a_i); all end together at T = max T_i",
+        f"start = {{{', '.join(f'{n!r}: {_s(start.get(n, 0))}' for n in names)}}}",
+        f"end = {{{', '.join(f'{n!r}: {_s(end[n])}' for n in names)}}}",
+        f"max_acceleration = {{{', '.join(f'{n!r}: {_s(acc[n])}' for n in names if n in acc)}}}",
+        "durations = {n: float(sp.sqrt(4 * abs(end[n] - start[n]) / max_acceleration[n])) for n in max_acceleration}",
+        "T = max(durations.values())",
+        "accelerations = {n: float(4 * abs(end[n] - start[n]) / T**2) for n in end}",
+        "print('durations:', durations)",
+        "print('T =', T)",
+        "print('rescaled accelerations:', accelerations)",
+        _expected(answer, ["durations", "T", "accelerations"]),
+    ])
+
+
+def _cell_dof(q, answer, problem):
+    o = q.options
+    m, c1, c2, c3 = (int(o.get(k, 0)) for k in ("bodies", "joints_1dof", "joints_2dof", "joints_3dof"))
+    planar = o.get("space", "planar") == "planar"
+    formula = (f"3 * ({m} - 1) - 2 * {c1} - {c2}" if planar
+               else f"6 * ({m} - 1) - 5 * {c1} - 4 * {c2} - 3 * {c3}")
+    return f"dof = {formula}   # {'Grübler (planar)' if planar else 'Kutzbach (spatial)'}\nprint('dof =', dof)"
+
+
+RECOMPUTE = {
+    "position": _cell_position,
+    "velocity_acceleration": _cell_velocity,
+    "jacobian": _cell_jacobian,
+    "statics": _cell_statics,
+    "ellipsoids": _cell_ellipsoids,
+    "motion_profile": _cell_motion_profile,
+    "dof": _cell_dof,
+}
+
+
+def _fallback(answer) -> str:
+    return "\n".join([
+        f"# This notebook does not recompute `{answer.type}` answers; robosolve's numbers:",
+        "import json",
+        "with open('results.json', encoding='utf-8') as f:",
+        f"    print(json.dumps(json.load(f)['answers'][{answer.id!r}].get('numeric', {{}}), indent=1)[:3000])",
+    ])
+
+
+def _sections(markdown: str) -> list[str]:
+    """report.md split before each `## ` heading."""
+    parts = re.split(r"(?m)^(?=## )", markdown)
+    return [p.strip() for p in parts if p.strip()]
+
+
+def _add_setup(add, problem, report) -> None:
+    add("code", SETUP)
+    add("code", _data_cell(problem))
+    points = "\n" + _point_names_cell(problem) if problem.points and problem.frames else ""
+    add("code", MODEL + points)
+
+
+def build_notebook(report, markdown: str):
+    import nbformat
+    from nbformat import v4
+
+    problem = report.problem
+    cells, counter = [], [0]
+
+    def add(kind: str, source: str):
+        counter[0] += 1
+        cell = v4.new_markdown_cell(source) if kind == "md" else v4.new_code_cell(source)
+        cell["id"] = f"{kind}-{counter[0]:03d}"
+        cells.append(cell)
+
+    sections = _sections(markdown)
+    answers = {a.id: a for a in report.answers}
+    questions = {q.id: q for q in problem.questions}
+    intro_done = False
+    for section in sections:
+        heading = re.match(r"## \d+\. .* — `([^`]+)`", section)
+        if heading is None and not intro_done and not section.startswith("## Notes"):
+            add("md", section)                      # title, description, data
+            continue
+        if not intro_done:
+            _add_setup(add, problem, report)
+            intro_done = True
+        add("md", section)
+        if heading is not None and heading.group(1) in answers:
+            answer, q = answers[heading.group(1)], questions.get(heading.group(1))
+            make = RECOMPUTE.get(answer.type)
+            code = None
+            if answer.error is None and q is not None and make is not None:
+                try:
+                    code = make(q, answer, problem)
+                except (KeyError, TypeError, ValueError):     # an option layout the cell cannot rebuild
+                    code = None
+            add("code", code if code is not None else _fallback(answer))
+    if not intro_done:
+        _add_setup(add, problem, report)
+    nb = v4.new_notebook(cells=cells, metadata={
+        "kernelspec": {"name": "python3", "display_name": "Python 3", "language": "python"},
+        "language_info": {"name": "python"},
+        "robosolve": {"problem": problem.name}})
+    nb.nbformat, nb.nbformat_minor = 4, 5
+    nbformat.validate(nb)
+    return nb
+
+
+def render_notebook_file(report, markdown: str, figure_paths, files) -> str:
+    """The `ipynb` format (robosolve.render.formats)."""
+    import nbformat
+
+    return nbformat.writes(build_notebook(report, markdown)) + "\n"

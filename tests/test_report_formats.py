@@ -1,0 +1,131 @@
+"""--format md,html,ipynb: the HTML page is self-contained MathML with no TeX left, a
+headless Chromium renders it, and the notebook validates and runs top to bottom in a fresh
+kernel, recomputing the answers with sympy alone (compared with results.json)."""
+
+import json
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from robosolve.cli import app
+from robosolve.render.html import render_html
+
+ROOT = Path(__file__).resolve().parent.parent
+GOLDEN = ROOT / "tests" / "golden"
+runner = CliRunner()
+
+HTML_PROBLEMS = ["scara-rrp", "exam-2r-full", "rigid-displacements", "puma560-dynamics",
+                 "planar-2r-rods", "one-link-eom"]
+EXTERNAL = re.compile(r"<script|<link|<iframe|<object|@import|url\(|src=\"(?!data:|\")|https?://",
+                      re.IGNORECASE)
+
+
+def _text_outside_math(page: str) -> str:
+    page = re.sub(r"<style>.*?</style>", "", page, flags=re.S)
+    return re.sub(r"<math\b.*?</math>", "", page, flags=re.S)
+
+
+@pytest.mark.parametrize("name", HTML_PROBLEMS)
+def test_html_has_no_raw_tex_and_no_external_resources(name):
+    md = (GOLDEN / name / "report.md").read_text(encoding="utf-8")
+    page = render_html(md, None, name)
+    outside = _text_outside_math(page)
+    assert "$" not in outside
+    assert not re.search(r"\\[A-Za-z]+", outside), re.search(r".{40}\\[A-Za-z]+.{40}", outside)
+    # inside the MathML, no TeX command survived as text
+    for m in re.finditer(r">([^<>]*)<", "".join(re.findall(r"<math\b.*?</math>", page, flags=re.S))):
+        assert "\\" not in m.group(1), m.group(1)
+    assert not EXTERNAL.search(re.sub(r"<style>.*?</style>", "", page, flags=re.S))
+    assert page.count("<math") >= md.count("$$") // 2
+    # the notes' anchors survive, and every in-page link has its target
+    for target in re.findall(r'href="#([^"]+)"', page):
+        assert f'id="{target}"' in page, target
+
+
+def _solve(tmp_path, name, formats):
+    out = tmp_path / name
+    result = runner.invoke(app, ["solve", str(ROOT / "problems" / f"{name}.yaml"), "--out", str(out),
+                                 "--format", formats])
+    assert result.exit_code == 0, result.output
+    return out
+
+
+def test_solve_writes_the_formats_asked_for_with_embedded_figures(tmp_path):
+    out = _solve(tmp_path, "scara-rrp", "html,ipynb")
+    assert sorted(p.name for p in out.iterdir() if p.is_file() and not p.name.startswith(".")) == \
+        ["report.html", "report.ipynb", "results.json"]
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert 'src="data:image/png;base64,' in page and "figures/" not in page
+    assert not EXTERNAL.search(re.sub(r"<style>.*?</style>", "", page, flags=re.S))
+    assert (out / "figures").is_dir()
+
+
+def test_unknown_format_is_a_usage_error_and_nothing_is_written(tmp_path):
+    out = tmp_path / "o"
+    result = runner.invoke(app, ["solve", str(ROOT / "problems" / "scara-rrp.yaml"), "--out", str(out),
+                                 "--format", "md,htm"])
+    assert result.exit_code == 2
+    assert "did you mean 'html'" in result.output
+    assert not out.exists()
+
+
+def _chromium():
+    for name in ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable"):
+        path = shutil.which(name)
+        if path:
+            return path
+    return None
+
+
+def test_chromium_renders_the_html_report(tmp_path):
+    browser = _chromium()
+    if browser is None:
+        pytest.skip("no Chromium on this machine (.ci/run installs it where apt-get can)")
+    out = _solve(tmp_path, "scara-rrp", "html")
+    shot = tmp_path / "shot.png"
+    subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
+                    "--window-size=900,2400", f"--screenshot={shot}", (out / "report.html").as_uri()],
+                   check=True, capture_output=True, timeout=180)
+    from PIL import Image
+
+    import numpy as np
+
+    img = np.asarray(Image.open(shot).convert("L"))
+    assert img.shape == (2400, 900)
+    assert (img < 100).mean() > 0.005          # text, rules and formulas were drawn          # text, rules and formulas were drawn
+
+
+def test_notebook_validates_runs_and_recomputes_the_answers(tmp_path):
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    out = _solve(tmp_path, "scara-rrp", "ipynb")
+    text = (out / "report.ipynb").read_text(encoding="utf-8")
+    nb = nbformat.reads(text, as_version=4)
+    nbformat.validate(nb)
+    ids = [c.id for c in nb.cells]
+    assert len(set(ids)) == len(ids) and ids[0] == "md-001"
+    code = "\n".join(c.source for c in nb.cells if c.cell_type == "code")
+    imported = set(re.findall(r"^\s*(?:import|from) (\w+)", code, flags=re.M))
+    assert imported <= {"numpy", "sympy", "matplotlib", "json"}
+    # same problem, same bytes
+    again = _solve(tmp_path / "again", "scara-rrp", "ipynb")
+    assert (again / "report.ipynb").read_text(encoding="utf-8") == text
+
+    nbclient.NotebookClient(nb, timeout=600, kernel_name="python3",
+                            resources={"metadata": {"path": str(out)}}).execute()
+    printed = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code" for o in c.outputs)
+    results = json.loads((out / "results.json").read_text())["answers"]
+
+    def numbers_after(label):          # printed with numpy's 6 decimals
+        m = re.search(re.escape(label) + r"\s*\[([^\]]*)\]", printed)
+        return [float(x) for x in m.group(1).split()]
+
+    assert numbers_after("position =") == pytest.approx(results["position"]["numeric"]["position"], abs=2e-6)
+    assert numbers_after("velocity =") == pytest.approx(
+        results["velocity_acceleration"]["numeric"]["velocity"], abs=2e-6)
+    assert numbers_after("acceleration =") == pytest.approx(
+        results["velocity_acceleration"]["numeric"]["acceleration"], abs=2e-6)
