@@ -148,8 +148,15 @@ def test_principal_keys_follow_grading_md():
         "equations_of_motion": ("mass_matrix", "velocity_terms", "gravity_terms", "generalized_forces"),
         "joint_torques": ("actuators",),
         "p_control": ("max_error", "final_error"),
+        "forward_dynamics": ("final", "max", "min"),
+        "displacement": ("u", "alpha", "h", "P"),          # given from/to (the default form)
         "orientation": ("zyz", "rpy", "axis_angle", "quaternion"),
         "dof": ("dof",),
     }
     for name, keys in expected.items():
         assert reg.QUESTION_TYPES[name].principal_keys == keys, name
+    # principal keys that depend on the question's form (grading.md: Q, L given a screw)
+    disp = reg.QUESTION_TYPES["displacement"]
+    assert disp.principal_keys_for({"axis": [0, 0, 1], "angle": 1}) == ("Q", "L")
+    assert disp.principal_keys_for({"from": [], "to": []}) == ("u", "alpha", "h", "P")
+    assert reg.QUESTION_TYPES["dof"].principal_keys_for({"bodies": 3}) == ("dof",)

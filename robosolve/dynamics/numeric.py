@@ -33,9 +33,12 @@ class NumericDynamics:
                  symbolic=None, *, mass: Callable | None = None,
                  velocity_terms: Callable | None = None, gravity: Callable | None = None,
                  external: Callable | None = None, actuators: Callable | None = None,
-                 note: str = ""):
+                 note: str = "", time: sp.Symbol | None = None):
         self.n = n
         self.note = note
+        # the time symbol when the external forces vary with time: every evaluation that
+        # involves them takes t (``terms(q, qd, t)``); None otherwise
+        self.time = time
         self._symbolic = symbolic        # (M, c, g, f, q, qd) with numbers only, when known
         self._terms_many = terms_many
         self._actuators = actuators
@@ -49,17 +52,26 @@ class NumericDynamics:
                         zero if external is None else np.asarray(external(qv), dtype=float).reshape(n))
         self._terms = terms
         zeros = np.zeros(n)
-        self._mass = mass or (lambda qv: terms(qv, zeros)[0])
-        self._velocity = velocity_terms or (lambda qv, qdv: terms(qv, qdv)[1])
-        self._gravity = gravity or (lambda qv: terms(qv, zeros)[2])
-        self._external = external or (lambda qv: terms(qv, zeros)[3])
+        # M, c and g never depend on time: any t serves to evaluate them
+        steady = (lambda qv, qdv: terms(qv, qdv, 0.0)) if time is not None else terms
+        self._mass = mass or (lambda qv: steady(qv, zeros)[0])
+        self._velocity = velocity_terms or (lambda qv, qdv: steady(qv, qdv)[1])
+        self._gravity = gravity or (lambda qv: steady(qv, zeros)[2])
+        self._external = external or (lambda qv, t=None: terms(qv, zeros, *_time_arg(time is not None, t))[3])
+
+    @property
+    def timed(self) -> bool:
+        return self.time is not None
 
     # ---------------------------------------------------------- construction
     @classmethod
     def from_symbolic(cls, mass, velocity_terms, gravity_terms, q: Sequence[sp.Symbol],
-                      qd: Sequence[sp.Symbol], external=None, subs: dict | None = None) -> "NumericDynamics":
+                      qd: Sequence[sp.Symbol], external=None, subs: dict | None = None,
+                      time: sp.Symbol | None = None) -> "NumericDynamics":
         """Lambdify M, c, g (and f_ext, default 0) after substituting ``subs``.
 
+        ``time``: the symbol t of forces given as functions of time; when f_ext has it,
+        every evaluation of the terms takes t as its last argument.
         Raises ValueError naming the symbols left over (a parameter without a value).
         """
         n = len(q)
@@ -71,36 +83,43 @@ class NumericDynamics:
         if subs:
             flat = [sp.sympify(e).xreplace(_sympified(subs)) for e in flat]
         args = list(q) + list(qd)
-        extra = set().union(*(sp.sympify(e).free_symbols for e in flat)) - set(args)
+        free = set().union(*(sp.sympify(e).free_symbols for e in flat))
+        timed = time is not None and time in free
+        if timed:
+            args.append(time)
+        extra = free - set(args)
         if extra:
             names = ", ".join(sorted(str(s) for s in extra))
             raise ValueError(f"no value for {names}")
         scalar = sp.lambdify(args, flat, modules="math", cse=True)
         nn = n * n
 
-        def terms(qv, qdv):
-            out = scalar(*qv, *qdv)
+        def terms(qv, qdv, t=None):
+            out = scalar(*qv, *qdv, *_time_arg(timed, t))
             return (np.array(out[:nn], dtype=float).reshape(n, n), np.array(out[nn:nn + n], dtype=float),
                     np.array(out[nn + n:nn + 2 * n], dtype=float), np.array(out[nn + 2 * n:], dtype=float))
 
         vec = sp.lambdify(args, flat, modules="numpy", cse=True)
 
-        def terms_many(Q, QD):
+        def terms_many(Q, QD, T=None):
             size = Q.shape[1]
-            out = [np.broadcast_to(np.asarray(v, dtype=float), (size,)) for v in vec(*Q, *QD)]
+            out = [np.broadcast_to(np.asarray(v, dtype=float), (size,))
+                   for v in vec(*Q, *QD, *_time_arg(timed, T))]
             arr = np.vstack(out)
             return arr[:nn].reshape(n, n, size), arr[nn:nn + n], arr[nn + n:nn + 2 * n], arr[nn + 2 * n:]
 
         sym = (sp.Matrix(n, n, flat[:nn]), sp.Matrix(flat[nn:nn + n]), sp.Matrix(flat[nn + n:nn + 2 * n]),
                sp.Matrix(flat[nn + 2 * n:]), list(q), list(qd))
-        return cls(n, terms, terms_many, sym)
+        return cls(n, terms, terms_many, sym, time=time if timed else None)
 
     @classmethod
     def from_dynamics(cls, dyn: Dynamics, subs: Mapping | None = None) -> "NumericDynamics":
-        """:meth:`from_symbolic` on a `Dynamics` (external forces included)."""
+        """:meth:`from_symbolic` on a `Dynamics` (external forces included; forces given as
+        functions of time use the loader's t, a real symbol)."""
         return cls.from_symbolic(dyn.mass_matrix, dyn.velocity_terms, dyn.gravity_terms,
                                  dyn.q, dyn.qd, external=dyn.external_forces,
-                                 subs=None if subs is None else _sympified(subs))
+                                 subs=None if subs is None else _sympified(subs),
+                                 time=sp.Symbol("t", real=True))
 
     def closed_loop(self, law: str, kp, kd):
         """A fast scalar function qdd(q, qd, e, ed, qdd_d) -> list of floats, or None.
@@ -135,12 +154,16 @@ class NumericDynamics:
             qdd = adv + kdm * edv + kpm * ev + m.LUsolve(f)      # M^-1 (tau + f - c - g)
         else:
             qdd = m.LUsolve(tau + f - c - g)
-        return sp.lambdify(list(q) + list(qd) + list(e) + list(ed) + list(ad), list(qdd),
-                           modules="math", cse=True)
+        return sp.lambdify(list(q) + list(qd) + list(e) + list(ed) + list(ad)
+                           + ([self.time] if self.timed else []), list(qdd), modules="math", cse=True)
 
     # ------------------------------------------------------------- evaluation
-    def terms(self, q, qd):
-        return self._terms(q, qd)
+    # ``t`` (``T`` for arrays): the time, needed when the external forces vary with it.
+    def terms(self, q, qd, t=None):
+        return self._terms(q, qd, t) if self.timed else self._terms(q, qd)
+
+    def terms_many(self, Q, QD, T=None):
+        return self._terms_many(Q, QD, T) if self.timed else self._terms_many(Q, QD)
 
     def mass(self, q):
         return self._mass(q)
@@ -151,29 +174,38 @@ class NumericDynamics:
     def gravity(self, q):
         return self._gravity(q)
 
-    def external(self, q):
-        return self._external(q)
+    def external(self, q, t=None):
+        return self._external(q, t) if self.timed else self._external(q)
 
-    def actuators(self, q, qd, qdd):
+    def actuators(self, q, qd, qdd, t=None):
         """Actuator values needed: M qdd + c + g - f_ext."""
-        if self._actuators is not None:
+        if self._actuators is not None and not self.timed:
             return self._actuators(q, qd, qdd)
-        m, c, g, f = self._terms(q, qd)
+        m, c, g, f = self.terms(q, qd, t)
         return m @ np.asarray(qdd, dtype=float) + c + g - f
 
     inverse = actuators
 
-    def forward(self, q, qd, tau):
+    def forward(self, q, qd, tau, t=None):
         """qdd = M^-1 (tau + f_ext - c - g)."""
-        m, c, g, f = self._terms(q, qd)
+        m, c, g, f = self.terms(q, qd, t)
         return np.linalg.solve(m, np.asarray(tau, dtype=float) + f - c - g)
 
-    def inverse_many(self, Q, QD, QDD):
+    def inverse_many(self, Q, QD, QDD, T=None):
         Q, QD, QDD = (np.asarray(a, dtype=float) for a in (Q, QD, QDD))
         if self._terms_many is not None:
-            m, c, g, f = self._terms_many(Q, QD)
+            m, c, g, f = self.terms_many(Q, QD, T)
             return np.einsum("ijk,jk->ik", m, QDD) + c + g - f
-        return np.column_stack([self.inverse(Q[:, k], QD[:, k], QDD[:, k]) for k in range(Q.shape[1])])
+        return np.column_stack([self.inverse(Q[:, k], QD[:, k], QDD[:, k], None if T is None else T[k])
+                                for k in range(Q.shape[1])])
+
+
+def _time_arg(timed: bool, t) -> tuple:
+    if not timed:
+        return ()
+    if t is None:
+        raise ValueError("the external forces vary with time: give t")
+    return (t,)
 
 
 def _sympified(subs: Mapping) -> dict:

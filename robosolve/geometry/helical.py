@@ -215,3 +215,99 @@ def axis_l_matrix(u, point=None, pitch=0) -> sp.Matrix:
     out[:3, :3] = skew(list(u))
     out[:3, 3] = p.cross(u) + pitch * u
     return out
+
+
+# --------------------------------------------------------------------------
+# a screw (axis, angle, point, translation) -> its normalised helical parameters
+
+
+@dataclass(frozen=True)
+class Screw:
+    """A screw normalised as the from/to form gives it from Q (so the two forms round-trip).
+
+    ``case``: "general" (0 < alpha < pi), "half_turn" (alpha = pi), "translation"
+    (alpha = 0, h > 0) or "identity" (alpha = 0, h = 0).  u, P, pitch are None where the
+    spec makes them null.  ``flipped``: the given angle was brought into [0, pi] by
+    turning u around (a negative angle, or one beyond pi).
+    """
+
+    case: str
+    axis: Any
+    angle: Any
+    h: Any
+    point: Any
+    pitch: Any
+    flipped: bool = False
+    turns: Any = 0            # whole turns removed from the given angle
+
+
+def _first_nonzero_positive(u, values) -> bool:
+    for x in u:
+        v = float(sp.sympify(x).xreplace(values))
+        if abs(v) > ZERO_TOL:
+            return v > 0
+    return True
+
+
+def normalise_screw(axis, angle, through=None, translation=0, values=None,
+                    simplify: Callable = _default_simplify) -> Screw:
+    """The screw of ``axis`` (any non-zero length), ``angle`` (any real value), a point
+    ``through`` of the axis (default the origin) and ``translation`` h along the given axis.
+
+    The branch (how many turns, whether u flips) is decided from the numbers: ``values``
+    gives the parameters' values (symbols without one are an error: ValueError).
+    Exact data give exact results.
+    """
+    values = values or {}
+    a = sp.Matrix([sp.sympify(x) for x in axis])
+    norm = simplify(sp.sqrt(a.dot(a)))
+    if abs(float(norm.xreplace(values))) <= ZERO_TOL:
+        raise ValueError("the axis is the zero vector")
+    u0 = [simplify(x / norm) for x in a]
+    p0 = sp.Matrix([sp.sympify(x) for x in (through or (0, 0, 0))])
+    h0 = sp.sympify(translation)
+    theta = sp.sympify(angle)
+    two_pi = 2 * sp.pi
+    turns = sp.floor(theta.xreplace(values) / two_pi)
+    if not turns.is_number:
+        raise ValueError("the angle needs a value")
+    turns = sp.Integer(int(turns))
+    wrapped = simplify(theta - two_pi * turns)             # in [0, 2 pi)
+    w = float(wrapped.xreplace(values))
+    flipped = w > math.pi + 1e-15
+    if flipped:
+        alpha, u, h = simplify(two_pi - wrapped), [-x for x in u0], -h0
+    else:
+        alpha, u, h = wrapped, u0, h0
+    if abs(float(sp.sympify(alpha).xreplace(values))) <= ZERO_TOL and sp.sympify(alpha).is_zero is not False:
+        hv = float(h.xreplace(values))
+        if abs(hv) <= ZERO_TOL:
+            return Screw("identity", None, sp.S.Zero, sp.S.Zero, None, None, flipped, turns)
+        if hv < 0:
+            u, h = [-x for x in u], -h
+        return Screw("translation", [simplify(x) for x in u], sp.S.Zero, simplify(h), None, None,
+                     flipped, turns)
+    case = "general"
+    if abs(float(sp.sympify(alpha).xreplace(values)) - math.pi) <= ZERO_TOL:
+        case = "half_turn"
+        if not _first_nonzero_positive(u, values):
+            u, h = [-x for x in u], -h
+    uu = sp.Matrix(u)
+    point = [simplify(x) for x in (p0 - p0.dot(uu) * uu)]  # the axis point nearest the origin
+    h = simplify(h)
+    return Screw(case, [simplify(x) for x in u], simplify(alpha), h, point, simplify(h / alpha),
+                 flipped, turns)
+
+
+def screw_matrices(screw: Screw, simplify: Callable = _default_simplify):
+    """(Q, L) of a normalised screw: Q by Rodrigues with dT = (I - R) P* + h u, and
+    L = [[u], P* x u + pitch u; 0, 0] (so Q = expm(alpha L); a pure translation:
+    L = [0, u; 0, 0] and Q = expm(h L); the identity: L = 0)."""
+    if screw.case == "identity":
+        return sp.eye(4), sp.zeros(4, 4)
+    if screw.case == "translation":
+        q = sp.eye(4)
+        q[:3, 3] = sp.Matrix(screw.axis) * screw.h
+        return q.applyfunc(simplify), axis_l_matrix(screw.axis, None, None)
+    q = helical_matrix(screw.axis, screw.angle, screw.h, screw.point)
+    return q.applyfunc(simplify), axis_l_matrix(screw.axis, screw.point, screw.pitch).applyfunc(simplify)

@@ -46,6 +46,7 @@ class QuestionRef:
     subs: dict                     # Symbol -> exact value (parameters and `at`)
     roles: SymbolRoles
     frame: str
+    form: tuple = ()               # the question's option keys (principal keys may depend on its form)
 
     def has(self, key: str) -> bool:
         qt = question_type(self.type)
@@ -57,7 +58,7 @@ class QuestionRef:
     def graded_keys(self) -> tuple:
         if self.grade:
             return tuple(self.grade)
-        principal = question_type(self.type).principal_keys
+        principal = question_type(self.type).principal_keys_for(dict.fromkeys(self.form))
         if self.error is not None:
             return principal
         return tuple(k for k in principal if self.has(k))
@@ -104,7 +105,8 @@ class Reference:
             refs.append(QuestionRef(
                 id=q.id, type=q.type, marks=q.marks, grade=tuple(q.grade), error=a.error,
                 symbolic=dict(a.symbolic), numeric=dict(a.numeric), extra=dict(a.extra),
-                subs=subs, roles=_roles(problem, q, subs, answers), frame=q.frame or problem.last_frame))
+                subs=subs, roles=_roles(problem, q, subs, answers), frame=q.frame or problem.last_frame,
+                form=tuple(q.options)))
         grading = problem.grading or {}
         tol = Tolerance(
             rtol if rtol is not None else grading.get("rtol", DEFAULT_TOLERANCE.rtol),

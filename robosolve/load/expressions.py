@@ -202,16 +202,18 @@ def _parse_hint(text: str) -> str:
 class Namespace:
     """The names an expression may use, and what each one stands for."""
 
-    def __init__(self, names: dict | None = None, points=(), what: str = "name"):
+    def __init__(self, names: dict | None = None, points=(), what: str = "name", refused=None):
         self.names: dict[str, sp.Basic] = dict(names or {})
         self.points = set(points)
         self.what = what
+        # names known but meaningless here -> the message that says what to do instead
+        self.refused: dict[str, str] = dict(refused or {})
 
     def with_names(self, extra: dict) -> "Namespace":
-        return Namespace({**self.names, **extra}, self.points, self.what)
+        return Namespace({**self.names, **extra}, self.points, self.what, self.refused)
 
     def without_points(self) -> "Namespace":
-        return Namespace(self.names, (), self.what)
+        return Namespace(self.names, (), self.what, self.refused)
 
     # ------------------------------------------------------------------
     def parse(self, value) -> sp.Expr:
@@ -311,6 +313,8 @@ class Namespace:
     def _name(self, name: str, text: str):
         if name in self.names:
             return self.names[name]
+        if name in self.refused:
+            raise ExpressionError(f"{self.refused[name]} (in {text!r})")
         if name in CONSTANTS:
             return CONSTANTS[name]
         if name in FUNCTIONS:

@@ -29,6 +29,9 @@ PYTHON_KEYWORDS = {
     "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise",
     "return", "try", "while", "with", "yield",
 }
+TIME_REFUSED = ("`t` (time) has no meaning here: time may appear only in `forces` (followed along a "
+                "forward_dynamics run, a p_control simulation or a joint_torques profile) and in the "
+                "`actuators` laws of a forward_dynamics question")
 TOP_KEYS = ("robosolve", "name", "title", "description", "parameters", "joints", "frames",
             "dh", "points", "gravity", "bodies", "forces", "questions", "grading", "variants")
 POSE_OPS = ("Tx", "Ty", "Tz", "Rx", "Ry", "Rz")
@@ -237,11 +240,16 @@ class _ProblemBuilder:
         chk.values = self._values()
         self.joints = self._joints(data.get("joints"))
         self.names = self._names()
-        self.ns = Namespace(self.names, what="name")
+        # time: meaningful only in forces (along a run, a simulation or a profile) and in
+        # forward_dynamics laws; anywhere else a `t` is refused with what to do instead
+        static = {k: v for k, v in self.names.items() if k != "t"}
+        self.ns = Namespace(static, what="name", refused={"t": TIME_REFUSED})
+        self.ns_time = Namespace(self.names, what="name")
         self.frames = self._frames(data.get("frames"), data.get("dh"))
         self.points = self._points(data.get("points"))
         # rejected points parse (their error is already reported), so P.x is not "unknown" too
-        self.ns_points = Namespace(self.names, list(self.points) + sorted(self.rejected_points), what="name")
+        self.ns_points = Namespace(static, list(self.points) + sorted(self.rejected_points), what="name",
+                                   refused={"t": TIME_REFUSED})
         gravity, gravity_given = self._gravity(data.get("gravity"))
         bodies = self._bodies(data.get("bodies"))
         forces = self._forces(data.get("forces"))
@@ -792,8 +800,9 @@ class _ProblemBuilder:
             if "force" not in item and "torque" not in item:
                 chk.error(path, "expected a force, a torque, or both")
                 continue
-            force = chk.vector(path + ("force",), item["force"], self.ns) if "force" in item else None
-            torque = chk.vector(path + ("torque",), item["torque"], self.ns) if "torque" in item else None
+            # a force may vary with time t (used along forward_dynamics, p_control, joint_torques)
+            force = chk.vector(path + ("force",), item["force"], self.ns_time) if "force" in item else None
+            torque = chk.vector(path + ("torque",), item["torque"], self.ns_time) if "torque" in item else None
             if ("force" in item and force is None) or ("torque" in item and torque is None):
                 continue
             if name is None or frame is None or in_frame is None or at is None:

@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import re
 
+import sympy as sp
+
 from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean, value_issue
 from robosolve.load.problem import Question
 from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES
@@ -36,6 +38,11 @@ def load_questions(builder, value) -> list:
     ql.assign_ids(questions, value)
     ql.check_references(questions)
     return questions
+
+
+def _has_time(force) -> bool:
+    parts = list(force.force or []) + list(force.torque or [])
+    return any("t" in {s.name for s in getattr(e, "free_symbols", ())} for e in parts)
 
 
 class _QuestionLoader:
@@ -155,6 +162,17 @@ class _QuestionLoader:
                 chk.error(path, f"law {law} needs gains_d")
             if law == "p" and "gains_d" in item:
                 chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
+        if t == "forward_dynamics":
+            self._forward_dynamics_rules(path, item)
+        if t == "displacement":
+            self._displacement_rules(path, item, q)
+        if t == "equations_of_motion" and "at" in item:
+            timed = [f.name for f in b.problem.forces if _has_time(f)]
+            if timed:
+                chk.error(path + ("at",), f"the force{'s' if len(timed) > 1 else ''} {', '.join(timed)} "
+                          "vary with time t, so the numbers at a configuration would need a time: drop `at` "
+                          "(the symbolic equations keep t), or follow the motion with a forward_dynamics "
+                          "question")
         if t == "dof":
             if opts.get("space", "planar") == "planar" and "joints_3dof" in item:
                 chk.error(path + ("joints_3dof",), "3-DOF joints exist only with space: spatial")
@@ -282,6 +300,10 @@ class _QuestionLoader:
         v = self.chk.vector(path, value, self.b.ns, length=None)
         return list(v) if v is not None else None
 
+    def v_vector3_params(self, path, value, q):
+        v = self.chk.vector(path, value, self.params_ns, length=3)
+        return list(v) if v is not None else None
+
     def v_vector3(self, path, value, q):
         v = self.chk.vector(path, value, self.b.ns, length=3)
         return list(v) if v is not None else None
@@ -390,6 +412,102 @@ class _QuestionLoader:
                            "rotation block orthonormal with determinant 1")
             return None
         return {"matrix": m} if m is not None else None
+
+    # -- forward_dynamics ---------------------------------------------
+    def v_start_state(self, path, value, q):
+        """`start`: joint values and `<joint>_dot` rates at t = 0 (missing ones: 0)."""
+        chk, joints = self.chk, self.b.joints
+        if not isinstance(value, dict):
+            chk.error(path, "expected a mapping joint: value and <joint>_dot: rate (e.g. {theta: 0, theta_dot: 1})")
+            return None
+        allowed = [j.name for j in joints] + [j.dot.name for j in joints]
+        ddots = {j.ddot.name for j in joints}
+        out = {}
+        for key, v in value.items():
+            if key in ddots:
+                chk.error(path + (key,), f"'{key}' cannot be given: the accelerations follow from the "
+                          "equations of motion (give joint values and <joint>_dot rates)")
+                continue
+            if key not in allowed:
+                chk.error(path + (key,), f"unknown joint or joint rate '{key}'" + did_you_mean(key, allowed)
+                          + f" (expected: {', '.join(allowed)})")
+                continue
+            e = chk.expr(path + (key,), v, self.params_ns)
+            if e is not None:
+                out[key] = e
+        return {k: out[k] for k in allowed if k in out}
+
+    def v_actuator_laws(self, path, value, q):
+        """`actuators`: actuator -> expression in t, the joints, their rates and the parameters."""
+        chk, b = self.chk, self.b
+        if not isinstance(value, dict):
+            chk.error(path, "expected a mapping actuator: law (e.g. {C: 70*sin(t)})")
+            return None
+        acts = [str(j.actuator) for j in b.joints]
+        names = {s.name: s for s in b.parameters}
+        for j in b.joints:
+            names[j.name], names[j.dot.name] = j.symbol, j.dot
+        names["t"] = b.names["t"]
+        ns = Namespace(names, what="name in the law (it may use t, the joints, their _dot rates, the parameters)")
+        out = {}
+        for key, v in value.items():
+            if key not in acts:
+                chk.error(path + (str(key),), f"unknown actuator '{key}'" + did_you_mean(str(key), acts)
+                          + f" (actuators: {', '.join(acts)})")
+                continue
+            e = chk.expr(path + (key,), v, ns)
+            if e is not None:
+                out[key] = e
+        return {a: out[a] for a in acts if a in out}
+
+    def v_duration(self, path, value, q):
+        e = self.chk.expr(path, value, self.params_ns)
+        if e is not None and e.is_number and not (e.is_real and e.is_positive and e.is_finite):
+            self.chk.error(path, f"expected a positive duration in seconds, got {value!r}")
+            return None
+        return e
+
+    def _displacement_rules(self, path, item, q):
+        """Two forms: `from` and `to`, or a screw (`axis`, `angle`, `through`, `translation`)."""
+        chk = self.chk
+        screw_keys = [k for k in ("axis", "angle", "through", "translation") if k in item]
+        pose_keys = [k for k in ("from", "to") if k in item]
+        if screw_keys and pose_keys:
+            chk.error(path, f"give either from/to or a screw (axis, angle, through, translation), not both "
+                      f"(found {', '.join(pose_keys + screw_keys)})")
+            return
+        if not screw_keys:
+            for k in ("from", "to"):
+                if k not in item:
+                    chk.error(path, f"missing required key '{k}' (or give a screw: axis and angle)")
+            return
+        if "axis" not in item:
+            chk.error(path, f"{', '.join(screw_keys)} describe a screw: give its axis too")
+            return
+        if "angle" not in item:
+            chk.error(path, "missing required key 'angle' (the rotation about the axis, any real value)")
+        if "frame" in item:
+            chk.error(path + ("frame",), "a screw is given in frame 0: `frame` goes with from/to")
+        axis = q.options.get("axis")
+        if axis is not None:
+            values = self.b._values()
+            vals = [sp.sympify(e).xreplace(values) for e in axis]
+            if all(v.is_number for v in vals) and all(abs(complex(v)) <= 1e-12 for v in vals):
+                chk.error(path + ("axis",), "the zero vector has no direction (give the axis direction, "
+                          "any non-zero length)")
+
+    def _forward_dynamics_rules(self, path, item):
+        at = item.get("at")
+        if not isinstance(at, dict):
+            return
+        motion = {}
+        for j in self.b.joints:
+            motion[j.name] = motion[j.dot.name] = motion[j.ddot.name] = j.name
+        for key in at:
+            if key in motion:
+                self.chk.error(path + ("at", key), f"a forward_dynamics question's `at` may override "
+                               f"parameters only: give the starting value of '{key}' in `start` "
+                               "(joint values and <joint>_dot rates)")
 
     def v_rotation_matrix(self, path, value, q):
         import sympy as sp

@@ -153,14 +153,14 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     nfev = 0
     for a, b, coeffs in intervals:
         if fast is not None:
-            rhs = _fast_rhs(fast, a, coeffs.tolist(), n)
+            rhs = _fast_rhs(fast, a, coeffs.tolist(), n, timed=dyn.timed)
         else:
             def rhs(t, yy, a=a, coeffs=coeffs):
                 p, dp, ddp = _powers(t - a, deg)
                 qdes, vdes, ades = coeffs @ p, coeffs @ dp, coeffs @ ddp
                 e, ed = yy[:n], yy[n:]
                 q, qd = qdes - e, vdes - ed
-                m, c, g, f = dyn.terms(q, qd)
+                m, c, g, f = dyn.terms(q, qd, t)
                 tau = _law_torque(law, kp, kd, e, ed, ades, m, c, g)
                 qdd = np.linalg.solve(m, tau + f - c - g)
                 return np.concatenate([ed, ades - qdd])
@@ -195,8 +195,8 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
             e, ed = yy[:n], yy[n:]
             q_des[:, lo:hi] = qdes
             err[:, lo:hi] = e
-            effort[:, lo:hi] = _effort_many(dyn, law, kp, kd, qdes - e, vdes - ed, e, ed, ades)
-            external[:, lo:hi] = _external_many(dyn, qdes - e, vdes - ed)
+            effort[:, lo:hi] = _effort_many(dyn, law, kp, kd, qdes - e, vdes - ed, e, ed, ades, ts)
+            external[:, lo:hi] = _external_many(dyn, qdes - e, vdes - ed, ts)
         lo = hi
 
     # max |e|: the solver's own steps sample every oscillation finely; the best few
@@ -263,7 +263,7 @@ def _too_long(dyn, law, kp, kd, q0, duration, limit: str) -> str:
         return msg + (": a negative gain makes the loop unstable (the error grows exponentially "
                       "instead of being corrected); use positive gains")
     try:
-        m, _c, _g, _f = dyn.terms(np.asarray(q0, dtype=float), np.zeros(dyn.n))
+        m, _c, _g, _f = dyn.terms(np.asarray(q0, dtype=float), np.zeros(dyn.n), 0.0)
         stiff = np.diag(kp) if law != "computed_torque" else m @ np.diag(kp)
         w = np.sqrt(np.max(np.abs(np.linalg.eigvals(np.linalg.solve(m, stiff)))))
         cycles = w * duration / (2 * np.pi)
@@ -276,7 +276,7 @@ def _too_long(dyn, law, kp, kd, q0, duration, limit: str) -> str:
     return msg
 
 
-def _fast_rhs(fast, a: float, coeffs: list, n: int):
+def _fast_rhs(fast, a: float, coeffs: list, n: int, timed: bool = False):
     """Right-hand side in pure Python floats: Horner for the desired polynomials."""
     rows = [list(reversed(r)) for r in coeffs]      # highest power first
     drows = [[(len(r) - 1 - k) * v for k, v in enumerate(rev[:-1])] for r, rev in zip(coeffs, rows)]
@@ -296,7 +296,7 @@ def _fast_rhs(fast, a: float, coeffs: list, n: int):
         q = [horner(rows[i], x) - e[i] for i in range(n)]
         qd = [horner(drows[i], x) - ed[i] for i in range(n)]
         ad = [horner(ddrows[i], x) for i in range(n)]
-        qdd = fast(*q, *qd, *e, *ed, *ad)
+        qdd = fast(*q, *qd, *e, *ed, *ad, t) if timed else fast(*q, *qd, *e, *ed, *ad)
         return asarray(ed + [ad[i] - qdd[i] for i in range(n)])
 
     return rhs
@@ -316,16 +316,17 @@ def _top_local_maxima(vals: np.ndarray, keep: int = 12) -> list[int]:
     return sorted(int(near[k]) for k in order)
 
 
-def _external_many(dyn, q, qd):
-    """Generalized external forces f_ext(q) at many samples (arrays (n, N))."""
+def _external_many(dyn, q, qd, ts=None):
+    """Generalized external forces f_ext(q) at many samples (arrays (n, N)); ``ts`` the times
+    (a force may vary with time)."""
     many = getattr(dyn, "_terms_many", None)
     if many is not None:
-        return np.broadcast_to(many(q, qd)[3], q.shape)
-    return np.column_stack([dyn.terms(q[:, k], qd[:, k])[3] for k in range(q.shape[1])]) \
-        if q.shape[1] else np.empty_like(q)
+        return np.broadcast_to(dyn.terms_many(q, qd, ts)[3], q.shape)
+    return np.column_stack([dyn.terms(q[:, k], qd[:, k], None if ts is None else ts[k])[3]
+                            for k in range(q.shape[1])]) if q.shape[1] else np.empty_like(q)
 
 
-def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades):
+def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades, ts=None):
     """Actuator forces of the law at many samples (arrays (n, N))."""
     kp_, kd_ = kp[:, None], kd[:, None]
     if law == "p":
@@ -335,11 +336,11 @@ def _effort_many(dyn, law, kp, kd, q, qd, e, ed, ades):
     out = np.empty_like(q)
     many = getattr(dyn, "_terms_many", None)
     if many is not None:
-        m, c, g, _f = many(q, qd)
+        m, c, g, _f = dyn.terms_many(q, qd, ts)
         if law == "pd_gravity":
             return kp_ * e + kd_ * ed + g
         return np.einsum("ijk,jk->ik", m, ades + kd_ * ed + kp_ * e) + c + g
     for k in range(q.shape[1]):
-        m, c, g, _f = dyn.terms(q[:, k], qd[:, k])
+        m, c, g, _f = dyn.terms(q[:, k], qd[:, k], None if ts is None else ts[k])
         out[:, k] = _law_torque(law, kp, kd, e[:, k], ed[:, k], ades[:, k], m, c, g)
     return out

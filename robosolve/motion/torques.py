@@ -18,7 +18,7 @@ from typing import Sequence
 import numpy as np
 import sympy as sp
 
-from robosolve.core.simplify import factored
+from robosolve.core.simplify import common_factors, factored
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import SyncProfile
 
@@ -73,8 +73,8 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
         for i, j in enumerate(profile.joints):
             rep[q[i]], rep[qd[i]], rep[qdd[i]] = joint_state(j, a, b)
         for i, e in enumerate(exprs):
-            pieces[i].append(e.xreplace(rep))
-    before, after = rest(False), rest(True)
+            pieces[i].append(merge_terms(e.xreplace(rep), t))
+    before, after = [merge_terms(e, t) for e in rest(False)], [merge_terms(e, t) for e in rest(True)]
     pw = []
     for i in range(len(exprs)):
         if not pieces[i]:
@@ -85,6 +85,26 @@ def closed_form_pieces(profile: SyncProfile, exprs: Sequence[sp.Expr], q, qd, qd
         args.append((after[i], True))
         pw.append(sp.Piecewise(*args, evaluate=False))
     return pieces, pw
+
+
+def merge_terms(expr: sp.Expr, t: sp.Symbol) -> sp.Expr:
+    """One term per function of time: the additive terms with the same t-dependent factor
+    (a power of t times a sine, say) are merged and their parameter coefficients factored.
+
+    The substituted profile leaves the same factor in several terms (from M q'', c and g);
+    merging them is cheap (no trigonometric simplification) and deterministic.
+    """
+    groups: dict = {}
+    for term in sp.Add.make_args(sp.expand(expr, trig=False, mul=True, multinomial=False,
+                                           power_base=False, power_exp=False, log=False)):
+        coeff, factor = term.as_independent(t, as_Add=False)
+        groups.setdefault(factor, []).append(coeff)
+    out = []
+    for factor in sorted(groups, key=sp.default_sort_key):
+        coeff = common_factors(sp.Add(*groups[factor]))
+        if coeff != 0:
+            out.append(coeff * factor)
+    return sp.Add(*out)
 
 
 def golden_max(f, lo: float, hi: float, iterations: int = 64) -> float:
@@ -123,13 +143,13 @@ def torques_along(profile: SyncProfile, dyn: NumericDynamics, names: Sequence[st
         intervals.append((a, b))
         ts = np.linspace(a, b, samples_per_interval)
         Q, QD, QDD = plan.evaluate(ts, k=k)
-        tau = dyn.inverse_many(Q, QD, QDD)
+        tau = dyn.inverse_many(Q, QD, QDD, ts)
         ts_all.append(ts)
         vals_all.append(tau)
 
         def at(s, i, k=k):
             Qs, QDs, QDDs = plan.evaluate([s], k=k)
-            return float(dyn.inverse(Qs[:, 0], QDs[:, 0], QDDs[:, 0])[i])
+            return float(dyn.inverse(Qs[:, 0], QDs[:, 0], QDDs[:, 0], s)[i])
 
         for i in range(n):
             j = int(np.argmax(np.abs(tau[i])))
@@ -146,12 +166,13 @@ def torques_along(profile: SyncProfile, dyn: NumericDynamics, names: Sequence[st
                 best[i] = (mag, cand, tc)
     if not intervals:                       # nothing moves: the holding forces
         Q, QD, QDD = plan.evaluate([0.0])
-        tau = dyn.inverse_many(Q, QD, QDD)
+        tau = dyn.inverse_many(Q, QD, QDD, np.array([0.0]))
         ts_all, vals_all = [np.array([0.0])], [tau]
         best = [(abs(float(tau[i, 0])), float(tau[i, 0]), 0.0) for i in range(n)]
     # one-sided values at every switching instant (the arm holds still before 0 and after T)
-    hold0 = dyn.inverse(plan.start, np.zeros(n), np.zeros(n))
-    hold1 = dyn.inverse(plan.hold, np.zeros(n), np.zeros(n))
+    # the holding forces just before 0 and just after T (a force varying with time: at 0 and T)
+    hold0 = dyn.inverse(plan.start, np.zeros(n), np.zeros(n), 0.0)
+    hold1 = dyn.inverse(plan.hold, np.zeros(n), np.zeros(n), float(plan.T))
     jumps = []
     if intervals:
         edges = [iv[0] for iv in intervals] + [intervals[-1][1]]

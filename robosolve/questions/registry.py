@@ -108,6 +108,10 @@ class QuestionType:
     needs_dynamics: bool = False   # gravity, bodies and the equations of motion
     figures: tuple = ()            # (figure name, plot kind) pairs it may draw
     doc: str = ""                  # docs/questions/<name>.md unless given
+    # principal keys that depend on the question's form: options -> key paths (grading.md's
+    # table for a type with two forms, e.g. displacement from/to or from a screw); None: the
+    # AnswerKeys' `principal` flags (which then describe the default form)
+    principal_for: Callable[[dict], tuple] | None = None
 
     @property
     def doc_page(self) -> str:
@@ -130,9 +134,16 @@ class QuestionType:
             k = k.field(head)
         return k
 
+    def principal_keys_for(self, options: dict | None = None) -> tuple:
+        """The principal keys of one question (its parsed or raw options): those of its form
+        when the type has several (``principal_for``), else ``principal_keys``."""
+        if self.principal_for is not None and options is not None:
+            return tuple(self.principal_for(options))
+        return self.principal_keys
+
     @property
     def principal_keys(self) -> tuple:
-        """Dotted paths of the principal keys, in the order of grading.md."""
+        """Dotted paths of the principal keys, in the order of grading.md (default form)."""
         out = []
         for a in self.answers:
             if a.principal:
@@ -159,6 +170,11 @@ def _ellipse(name: str, what: str, principal: bool) -> AnswerKey:
 
 def _displacement_needs_robot(item: dict) -> bool:
     return any(isinstance(item.get(k), dict) for k in ("from", "to"))
+
+
+def _displacement_principal(options: dict) -> tuple:
+    """grading.md: u, alpha, h, P given from/to; Q, L given a screw."""
+    return ("Q", "L") if "axis" in options else ("u", "alpha", "h", "P")
 
 
 def _orientation_needs_robot(item: dict) -> bool:
@@ -315,9 +331,33 @@ _TYPES = [
         figures=(("tracking", "control_tracking"), ("effort", "control_effort")),
     ),
     QuestionType(
+        "forward_dynamics", "Forward dynamics (the motion under given actuators)", "§6.5",
+        options={"start": "start_state", "actuators": "actuator_laws", "duration": "duration"},
+        required=("duration",),
+        needs_dynamics=True,
+        answers=(
+            # the run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio): 10 digits
+            _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, symbolic=False,
+               digits=10),
+            _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True,
+               symbolic=False, digits=10),
+            _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True,
+               symbolic=False, digits=10),
+            _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False, digits=10),
+            _k("energy", RECORD, "total energy T + U", symbolic=False, fields=(
+                _k("start", SCALAR, "at t = 0", digits=10),
+                _k("end", SCALAR, "at the end of the run", digits=10))),
+            _k("equations", EQUATIONS, "the equations of motion with the actuator laws substituted",
+               numeric=False),
+        ),
+        figures=(("joint_<name>", "forward_dynamics"),),
+    ),
+    QuestionType(
         "displacement", "Rigid displacement (helical axis)", "§3.1",
-        options={"from": "pose_or_config", "to": "pose_or_config"},
-        required=("from", "to"),
+        # two forms: from/to (two poses or configurations) or a screw (axis, angle, through,
+        # translation); "from/to or axis" is checked by the loader's type rules
+        options={"from": "pose_or_config", "to": "pose_or_config", "axis": "vector3_params",
+                 "angle": "expr", "through": "vector3_params", "translation": "expr"},
         needs_robot=_displacement_needs_robot,
         answers=(
             _k("u", VECTOR, "unit vector of the helical axis", principal=True, shape=(3,)),
@@ -327,7 +367,9 @@ _TYPES = [
             _k("Q", MATRIX, "the displacement matrix", shape=(4, 4), pose=True,
                hints=(("inverse", "this is the displacement back, from `to` to `from`"),)),
             _k("pitch", SCALAR, "h / α"),
+            _k("L", MATRIX, "[[u], P×u + pitch·u; 0, 0] (given a screw)", shape=(4, 4)),
         ),
+        principal_for=_displacement_principal,
         figures=(("helical_axis", "helical_axis"),),
     ),
     QuestionType(

@@ -16,9 +16,11 @@ import sympy as sp
 
 from robosolve.core.course_notes import note_link
 from robosolve.core.simplify import exact_geometry
+from robosolve.core.simplify import full as full_simplify
 from robosolve.errors import SymbolicTimeout
 from robosolve.geometry.helical import (
-    displacement_matrix, express_in_frame, helical_numeric, helical_symbolic,
+    Screw, displacement_matrix, express_in_frame, helical_numeric, helical_symbolic, normalise_screw,
+    screw_matrices,
 )
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
@@ -40,6 +42,8 @@ CASE_TEXT = {
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
+    if "axis" in question.options:
+        return _solve_screw(question, ctx)
     ans = Answer(question.type, question.id)
     try:
         m01, m02, where, expressed, m0k = _poses(question, ctx)
@@ -199,3 +203,111 @@ def _tidy(v, ops: int):
     if isinstance(v, list):
         return [exact_geometry(x, ops) for x in v]
     return exact_geometry(v, ops)
+
+
+# --------------------------------------------------------------------------- a screw given
+SCREW_CASE = {
+    "general": "",
+    "half_turn": " At $\\alpha = \\pi$ the axis $u$ and $-u$ give the same displacement: the one whose "
+                 "first non-zero component is positive is kept (with $h$ following it).",
+    "translation": " The angle is a whole number of turns: the displacement is a pure translation, "
+                   "$u = \\Delta T/|\\Delta T|$, $h = |\\Delta T|$, with no axis point and no pitch.",
+    "identity": " The angle is a whole number of turns and there is no translation: $Q = I$, the axis is "
+                "undefined.",
+}
+
+
+def _solve_screw(question: Question, ctx: SolveContext) -> Answer:
+    """§3.1.5-3.1.6: Q and L from a helical axis (u, alpha, P*, h), normalised as from/to gives it."""
+    ans = Answer(question.type, question.id)
+    o = question.options
+    axis, angle = o["axis"], o["angle"]
+    through = o.get("through", [sp.S.Zero] * 3)
+    h_given = o.get("translation", sp.S.Zero)
+    subs = ctx.substitutions(question.at)
+    params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
+    given = list(axis) + [angle] + list(through) + [h_given]
+    missing = ctx.missing(given, params)
+    if missing:
+        # the branch (turns, sign of u) needs the numbers: keep the given angle, with a note
+        ans.note(missing_note("screw", missing, ctx.problem))
+        ans.note("without the numbers the angle is taken as given, assumed in (0, π)")
+        norm = sp.sqrt(sum((sp.sympify(x) ** 2 for x in axis), sp.S.Zero))
+        u = [full_simplify(x / norm) for x in axis]
+        uu = sp.Matrix(u)
+        p0 = sp.Matrix(through)
+        point = [full_simplify(x) for x in (p0 - p0.dot(uu) * uu)]
+        screw = Screw("general", u, angle, h_given, point, full_simplify(h_given / angle))
+    else:
+        try:
+            screw = normalise_screw(axis, angle, through, h_given, values=params)
+        except ValueError as exc:
+            ans.error = f"not a screw: {exc}"
+            return ans
+    q, l_mat = screw_matrices(screw)
+    ans.symbolic.update({"Q": q, "L": l_mat, "u": screw.axis, "alpha": screw.angle, "h": screw.h,
+                         "P": screw.point, "pitch": screw.pitch})
+    ans.steps.extend(_screw_steps(question, screw, q, l_mat))
+    if missing:
+        return ans
+    num = ctx.numeric({"Q": q, "L": l_mat, "u": screw.axis, "alpha": screw.angle, "h": screw.h,
+                       "P": screw.point, "pitch": screw.pitch}, subs)
+    ans.numeric = num
+    ans.steps.append(Step("Numeric values", "With the data:", equations=[
+        ("Q", num["Q"]), ("L", num["L"]), ("\\alpha", num["alpha"]), ("h", num["h"])]
+        + ([("u", num["u"])] if num["u"] is not None else [])
+        + ([("P^*", num["P"]), ("p", num["pitch"])] if num["P"] is not None else [])))
+    qn = np.array(num["Q"], dtype=float)
+    hn = helical_numeric(qn)
+    ans.figures.append(FigureSpec(
+        "helical_axis", "helical_axis", "Helical axis and the frame before and after the displacement (in frame 0)",
+        _figure_data(hn, np.eye(4), qn, np.eye(4), "0")))
+    return ans
+
+
+def _screw_steps(question, screw, q, l_mat) -> list:
+    o = question.options
+    a = sp.Matrix(o["axis"])
+    given = [("\\text{axis}", a), ("\\text{angle}", o["angle"]),
+             ("P_{\\text{given}}", sp.Matrix(o.get("through", [0, 0, 0]))),
+             ("h_{\\text{given}}", o.get("translation", 0))]
+    text = ("The screw is given by a direction of its axis, an angle, a point of the axis and a translation "
+            "along it. It is written as the from/to form would find it from $Q$, so that the two forms give "
+            "the same answers: $u = a/|a|$; the angle is brought into $[0, \\pi]$ (whole turns removed; an "
+            "angle beyond $\\pi$, e.g. a negative one, is the rotation by $2\\pi - \\alpha$ about $-u$, and "
+            "$h$ changes sign with $u$); $P^*$ is the point of the axis nearest the origin, "
+            "$P^* = P - (P \\cdot u)\\,u$; the pitch is $p = h/\\alpha$."
+            + SCREW_CASE[screw.case])
+    eqs = given + [("\\alpha", screw.angle), ("h", screw.h)]
+    if screw.axis is not None:
+        eqs.insert(len(given), ("u", sp.Matrix(screw.axis)))
+    if screw.point is not None:
+        eqs += [("P^*", sp.Matrix(screw.point)), ("p = h/\\alpha", screw.pitch)]
+    steps = [Step("Screw (helical axis)", text, equations=eqs)]
+    if screw.case == "identity":
+        steps.append(Step("Displacement and L matrices", "No motion: $Q = I$ and $L = 0$.",
+                          equations=[("Q", q), ("L", l_mat)]))
+        return steps
+    if screw.case == "translation":
+        steps.append(Step(
+            "Displacement and L matrices",
+            "A translation by $h$ along $u$: $R = I$, $\\Delta T = h\\,u$. With no rotation, "
+            "$L = [0, u; 0, 0]$ and $Q = e^{h L} = I + h L$.",
+            equations=[("Q", q), ("L", l_mat)]))
+        return steps
+    steps.append(Step(
+        "Displacement matrix (Rodrigues)",
+        "$[u]$ is the skew-symmetric matrix of $u$ ($[u]\\,v = u \\times v$). The rotation about the axis "
+        "and the translation along it give $Q = [R, \\Delta T; 0, 1]$ with",
+        equations=[("[u]", sp.Matrix([[0, -screw.axis[2], screw.axis[1]], [screw.axis[2], 0, -screw.axis[0]],
+                                      [-screw.axis[1], screw.axis[0], 0]])),
+                   ("R = I + [u]\\sin\\alpha + [u]^2(1 - \\cos\\alpha)", q[:3, :3]),
+                   ("\\Delta T = (I - R)\\,P^* + h\\,u", q[:3, 3]),
+                   ("Q", q)]))
+    steps.append(Step(
+        "L matrix",
+        "An infinitesimal turn $d\\alpha$ about the same screw moves the body by $Q(d\\alpha) = I + d\\alpha\\,L$ "
+        "with $L = [[u], t; 0, 0]$, $t = -[u]\\,P^* + p\\,u = P^* \\times u + p\\,u$; the finite displacement is "
+        "$Q = e^{\\alpha L}$.",
+        equations=[("t", l_mat[:3, 3]), ("L", l_mat)]))
+    return steps

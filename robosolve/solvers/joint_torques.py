@@ -74,10 +74,13 @@ def _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines) -> None:
     bps = prof.breakpoints() if all(b.is_number for b in [prof.T]) else []
     pw = None
     if tau is not None and prof.T.is_number and prof.T != 0:
-        params = {k: v for k, v in subs.items() if k in ctx.problem.parameters}
         try:
             with ctx.time_limit(ctx.budgets.closed_form_seconds):
-                pieces, pw = closed_form_pieces(prof, list(tau), qs, qds, qdds, params)
+                # a force varying with time uses the loader's t: the profile's own t replaces it
+                timed = [sp.sympify(e).xreplace({sp.Symbol("t", real=True): prof.t}) for e in tau]
+                # the dynamics stay symbolic (spec: symbolic answers keep every parameter); the
+                # profile's timing is numeric when its data are; the numbers go in `numeric`
+                pieces, pw = closed_form_pieces(prof, timed, qs, qds, qdds)
         except SymbolicTimeout:
             ans.note("the closed-form torque profiles took too long: given numerically only")
             pw = None
@@ -89,7 +92,8 @@ def _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines) -> None:
             ans.steps.append(Step(
                 "Closed form along the profile",
                 "On each interval between switching instants the profile is a polynomial in $t$; substituting "
-                "$q(t)$, $\\dot q(t)$, $\\ddot q(t)$ and the data gives each actuator as a function of time. "
+                "$q(t)$, $\\dot q(t)$, $\\ddot q(t)$ gives each actuator as a function of time, the parameters "
+                "kept as symbols (the numbers are in the peaks below). "
                 "Before 0 and after T the actuators hold the arm at rest (against gravity and the external forces).",
                 equations=eqs,
             ))

@@ -1,0 +1,27 @@
+"""Forward dynamics: one joint's value (top) and rate (bottom) against time, with its extremes.
+
+Data: t, q, qd, label, rate_label, unit, rate_unit, max, t_max, min, t_min.
+"""
+
+from __future__ import annotations
+
+from robosolve.render.plots import save, setup
+from robosolve.render.plots.motion_profile import COLOURS
+
+
+def draw(spec, path):
+    plt = setup()
+    d = spec.data
+    fig, (ax, axr) = plt.subplots(2, 1, figsize=(8, 5.6), sharex=True)
+    ax.plot(d["t"], d["q"], color=COLOURS[0], lw=1.5, label=f"${d['label']}(t)$")
+    ax.plot([d["t_max"]], [d["max"]], "v", color="0.25", ms=6, label=f"max {d['max']:.6g} {d['unit']}")
+    ax.plot([d["t_min"]], [d["min"]], "^", color="0.55", ms=6, label=f"min {d['min']:.6g} {d['unit']}")
+    ax.set_ylabel(f"${d['label']}$ ({d['unit']})")
+    ax.legend(loc="best", fontsize=8)
+    axr.plot(d["t"], d["qd"], color=COLOURS[1 % len(COLOURS)], lw=1.3, label=f"${d['rate_label']}(t)$")
+    axr.axhline(0.0, color="0.6", lw=0.6)
+    axr.set_ylabel(f"${d['rate_label']}$ ({d['rate_unit']})")
+    axr.set_xlabel("t (s)")
+    axr.legend(loc="best", fontsize=8)
+    fig.suptitle(spec.title)
+    save(fig, path)
