@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from robosolve.core.simplify import full, is_zero
 from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
 
 SECTION_KEYS = ("parameters", "require")
@@ -184,7 +185,7 @@ def _choices(chk, path, value, ns):
     for i in range(len(values)):
         for j in range(i):
             if abs(floats[i] - floats[j]) <= 1e-12 * max(1.0, abs(floats[j])) \
-                    and sp.simplify(values[i] - values[j]) == 0:
+                    and is_zero(values[i] - values[j]):
                 chk.error(path + (i,), f"choices must be distinct: {value[i]!r} equals {value[j]!r}")
                 return None
     return tuple(values)
@@ -202,10 +203,10 @@ def _range(chk, path, rng, step_value, ns):
     if not float(sp.N(step, 30)) > 0:
         chk.error(path + ("step",), f"the step must be positive, got {step_value!r}")
         return None
-    if float(sp.N(hi - lo, 30)) < 0 and sp.simplify(hi - lo) != 0:
+    if float(sp.N(hi - lo, 30)) < 0 and not is_zero(hi - lo):
         chk.error(path + ("range",), f"empty range [{rng[0]}, {rng[1]}]: the low end is above the high end")
         return None
-    ratio = sp.simplify((hi - lo) / step)
+    ratio = full((hi - lo) / step)
     k = sp.floor(ratio)
     if not isinstance(k, sp.Integer):
         k = math.floor(float(sp.N(ratio, 30)) + 1e-12)

@@ -8,7 +8,8 @@ evaluation per distinct sub-combination, not one per combination.
 
 - inequality: evaluated in floating point; within 1e-9 of equality, decided exactly;
 - `nonsingular`: the smallest singular value of J at the question's `at` is above 1e-6
-  times the largest (J from robosolve.kinematics' analytic / geometric Jacobian);
+  times the largest (J from robosolve.core.simplify import full
+from robosolve.kinematics' analytic / geometric Jacobian);
 - `reachable`: the IK engine's numeric search (robosolve.ik.numeric.solve_all, the same
   multi-start search and the same joint-limit rule as the inverse_kinematics solver)
   finds at least one solution inside the limits.
@@ -187,7 +188,7 @@ class RequirementChecker:
             except (ValueError, ZeroDivisionError, OverflowError, TypeError):
                 x = float("nan")
             if not math.isfinite(x) or abs(x) <= TIE * max(1.0, *[abs(f) for f in floats]):
-                v = sp.simplify(d.xreplace(dict(zip(syms, exact))))
+                v = full(d.xreplace(dict(zip(syms, exact))))
                 sign = 0 if v == 0 else (1 if v.is_positive else (-1 if v.is_negative else
                                                                   int(np.sign(float(sp.N(v, 50))))))
             else:
