@@ -14,7 +14,7 @@ from typer.testing import CliRunner
 from robosolve.cli import app
 from robosolve.render.html import render_html
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests" / "golden"
 runner = CliRunner()
 

@@ -17,7 +17,7 @@ from robosolve.cli import app
 
 pytest.importorskip("distributed")
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 SMALL = ("one-link-arm.yaml", "planar-2r-rods.yaml", "rigid-displacements.yaml")
 runner = CliRunner()
 

@@ -23,7 +23,7 @@ from robosolve.model import RobotModel
 from robosolve.pipeline import solve_problem
 from robosolve.solvers.base import SolveContext
 
-PROBLEMS = sorted((Path(__file__).parent.parent / "problems").glob("*.yaml"))
+PROBLEMS = sorted((Path(__file__).resolve().parents[2] / "problems").glob("*.yaml"))
 EXTRA = os.environ.get("ROBOSOLVE_IK_EXTRA_PROBLEMS")    # e.g. other folders, ':'-separated
 if EXTRA:
     PROBLEMS += sorted(p for d in EXTRA.split(":") for p in Path(d).glob("*.yaml"))

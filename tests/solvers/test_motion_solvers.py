@@ -151,7 +151,7 @@ def test_two_routes_scara_prismatic_three_joints_symbolic_vs_numeric_only():
     # numeric-only M, c, g with numpy solves; and the prismatic joint's holding force
     from pathlib import Path
 
-    base = (Path(__file__).resolve().parent.parent / "problems" / "scara-rrp.yaml").read_text()
+    base = (Path(__file__).resolve().parents[2] / "problems" / "scara-rrp.yaml").read_text()
     text = base[:base.index("questions:")] + SCARA_QUESTIONS
 
     def solve_all(budgets=None):

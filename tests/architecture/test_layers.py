@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-PACKAGE = Path(__file__).resolve().parent.parent / "robosolve"
+PACKAGE = Path(__file__).resolve().parents[2] / "robosolve"
 
 # layer rank of each top-level part of the package
 LAYERS = {
@@ -84,7 +84,7 @@ GRAPH = import_graph()
 def test_every_module_has_a_declared_layer():
     unknown = sorted(m for m in GRAPH if _part(m) not in LAYERS)
     assert not unknown, ("modules outside the declared layers (declare them in "
-                         f"tests/test_layers.py and docs/architecture.md): {unknown}")
+                         f"tests/architecture/test_layers.py and docs/architecture.md): {unknown}")
 
 
 def test_imports_go_down_the_layers():

@@ -9,7 +9,7 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
-PACKAGE = Path(__file__).resolve().parent.parent / "robosolve"
+PACKAGE = Path(__file__).resolve().parents[2] / "robosolve"
 MAX_LINES = 80
 
 

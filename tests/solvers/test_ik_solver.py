@@ -9,7 +9,7 @@ from robosolve.load.loader import load_problem_text
 from robosolve.pipeline import solve_problem
 from robosolve.render.results_json import results_document
 
-ROOT = Path(__file__).parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 
 PLANAR_2R = """
 robosolve: 1
@@ -109,7 +109,7 @@ def test_continuum_at_the_base():
     assert abs(abs(a["numeric"]["solutions"][0]["theta2"]) - math.pi) < 1e-9
     assert any("theta1 can take any value" in n for n in a["notes"])
 
-# The golden outputs of problems/ik-*.yaml are checked by tests/test_cli.py (robosolve batch --check).
+# The golden outputs of problems/ik-*.yaml are checked by tests/cli/test_cli.py (robosolve batch --check).
 
 
 def test_equation_without_joints():

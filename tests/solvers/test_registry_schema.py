@@ -13,7 +13,7 @@ import pytest
 from robosolve.load.loader import load_problem
 from robosolve.questions import registry as reg
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = sorted((ROOT / "tests" / "golden").glob("*/results.json"))
 
 

@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 from robosolve.cli import app
 from tests._grading import dedent
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 runner = CliRunner()
 
 PROBLEM = """

@@ -14,7 +14,7 @@ from robosolve.core.course_notes import NOTES, notes_page
 from robosolve.pipeline import solve_file
 from robosolve.render.markdown import render_report
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = ROOT / "tests" / "golden"
 FORBIDDEN = re.compile(r"errata", re.IGNORECASE)
 

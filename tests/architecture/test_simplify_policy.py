@@ -10,7 +10,7 @@ import sympy as sp
 
 from robosolve.core import simplify as S
 
-PACKAGE = Path(__file__).resolve().parent.parent / "robosolve"
+PACKAGE = Path(__file__).resolve().parents[2] / "robosolve"
 POLICY = PACKAGE / "core" / "simplify.py"
 
 # simplifiers (what changes the form of an expression to make it "simpler"); algebra that

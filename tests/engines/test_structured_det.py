@@ -16,7 +16,7 @@ from robosolve.pipeline import solve_problem
 
 rtb = pytest.importorskip("roboticstoolbox")
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 RNG = np.random.default_rng(560)
 PARAMS = {"d1": 0.6718, "a2": 0.4318, "d3": 0.15005, "a3": 0.0203, "d4": 0.4318}
 

@@ -11,7 +11,7 @@ import sympy as sp
 from robosolve.pipeline import solve_file
 from robosolve.render.results_json import results_document
 
-PROBLEM = Path(__file__).resolve().parents[1] / "problems" / "rigid-displacements.yaml"
+PROBLEM = Path(__file__).resolve().parents[2] / "problems" / "rigid-displacements.yaml"
 
 
 @pytest.fixture(scope="module")
