@@ -7,6 +7,7 @@ that `robosolve --help` answers at once.
 from __future__ import annotations
 
 import os
+import signal
 import sys
 from pathlib import Path
 from typing import List, Optional
@@ -260,6 +261,10 @@ def main() -> None:
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(owed)
+    # The work is done and its outputs written: a signal from here on must not turn a finished
+    # run into death by SIGINT (-2) during the interpreter's exit. One that came between the
+    # check above and this line raises here, and robosolve.__main__ exits 130 for it.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     sys.exit(status)
 
 

@@ -9,6 +9,7 @@ with 130 and nothing is written after it (`robosolve.outputs` calls `raise_if_in
 from __future__ import annotations
 
 import signal
+import sys
 
 EXIT_SIGINT = 130
 EXIT_SIGTERM = 143
@@ -26,8 +27,19 @@ def _on_sigterm(signum, frame):
     raise SystemExit(EXIT_SIGTERM)
 
 
+def _on_unraisable(unraisable) -> None:
+    """A KeyboardInterrupt raised inside a callback Python cannot propagate from (a weakref or
+    import-lock callback, a finaliser) is recorded, not printed as "Exception ignored ... Traceback":
+    the run then stops at its next check (`raise_if_interrupted`) with 130."""
+    if isinstance(unraisable.exc_value, KeyboardInterrupt):
+        _received.append(signal.SIGINT)
+        return
+    sys.__unraisablehook__(unraisable)
+
+
 def install() -> None:
     signal.signal(signal.SIGINT, _on_sigint)
+    sys.unraisablehook = _on_unraisable
     if hasattr(signal, "SIGTERM"):
         signal.signal(signal.SIGTERM, _on_sigterm)
 
