@@ -59,7 +59,7 @@ def draw(spec, path):
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.set_zlabel("z")
-    ax.set_title(spec.title, fontsize=10)
+    fig.suptitle(spec.title, fontsize=10)      # above the 3-D box and the legend
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", fontsize=8)
     save(fig, path)

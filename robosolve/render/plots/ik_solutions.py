@@ -67,6 +67,9 @@ def draw(spec, path):
     else:
         equal_3d(ax, drawings)
         ax.view_init(elev=25, azim=-60)
-    ax.set_title(spec.title)
+    if planar:
+        ax.set_title(spec.title)
+    else:
+        fig.suptitle(spec.title)      # above the 3-D box and the legend (Axes3D lowers axes titles)
     ax.legend(loc="upper left", fontsize=7)
     save(fig, path)

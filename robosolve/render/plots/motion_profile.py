@@ -37,7 +37,7 @@ def draw(spec, path):
         mark_switches(ax, d["switches"], d["T"])
         ax.set_ylabel(f"{what} ({_units(d['joints'], order)})")
     axes[0].legend(loc="best")
-    axes[0].set_title(spec.title)
+    axes[0].set_title(spec.title, pad=18)      # above the switching-instant tick labels
     ticks = sorted({0.0, d["T"], *d["switches"]})
     top = axes[0].secondary_xaxis("top")
     top.set_xticks(ticks)

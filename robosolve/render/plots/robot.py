@@ -73,7 +73,7 @@ def draw(spec, path):
     draw_robot_3d(ax, d, label="links")
     equal_3d(ax, [d])
     ax.view_init(elev=25, azim=-60)
-    ax.set_title(spec.title)
+    fig.suptitle(spec.title)      # above the 3-D box and the legend (Axes3D lowers axes titles)
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], color="0.25", lw=3, marker="o", label="links")]
