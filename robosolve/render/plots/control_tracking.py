@@ -6,7 +6,7 @@ Data: t, T, duration, switches, joints [{name, label, unit, q, q_desired, error}
 
 from __future__ import annotations
 
-from robosolve.render.plots import save, setup
+from robosolve.render.plots import fixed_layout, save, setup
 from robosolve.render.plots.motion_profile import COLOURS
 
 
@@ -21,8 +21,8 @@ def draw(spec, path):
     plt = setup()
     d = spec.data
     js = d["joints"]
-    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False,
-                             layout="constrained")      # keeps the suptitle above the panel titles
+    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False)
+    fixed_layout(fig, len(js), 2, top=0.75, hgap=0.2, wgap=0.9)   # suptitle above the panel titles
     for k, j in enumerate(js):
         c = COLOURS[k % len(COLOURS)]
         ax = axes[k, 0]

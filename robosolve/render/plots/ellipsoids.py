@@ -147,7 +147,7 @@ def _draw_3d(ax, spec_data, panel, color):
 
 
 def draw(spec, path):
-    from robosolve.render.plots import save, setup
+    from robosolve.render.plots import fixed_layout, save, setup
 
     plt = setup()
     data = spec.data
@@ -163,5 +163,6 @@ def draw(spec, path):
             ax = fig.add_subplot(1, len(panels), i + 1)
             _draw_2d(ax, data, panel, color)
     fig.suptitle(spec.title)
-    fig.tight_layout()
+    # room for the suptitle over the panel titles, and for semi-axis labels past a panel's edge
+    fixed_layout(fig, 1, len(panels), top=0.75, right=0.9, wgap=1.2)
     save(fig, path)

@@ -5,7 +5,7 @@ Data: t, q, qd, label, rate_label, unit, rate_unit, max, t_max, min, t_min.
 
 from __future__ import annotations
 
-from robosolve.render.plots import save, setup
+from robosolve.render.plots import fixed_layout, save, setup
 from robosolve.render.plots.motion_profile import COLOURS
 
 
@@ -13,6 +13,7 @@ def draw(spec, path):
     plt = setup()
     d = spec.data
     fig, (ax, axr) = plt.subplots(2, 1, figsize=(8, 5.6), sharex=True)
+    fixed_layout(fig, 2, 1, top=0.5, hgap=0.2)
     ax.plot(d["t"], d["q"], color=COLOURS[0], lw=1.5, label=f"${d['label']}(t)$")
     ax.plot([d["t_max"]], [d["max"]], "v", color="0.25", ms=6, label=f"max {d['max']:.6g} {d['unit']}")
     ax.plot([d["t_min"]], [d["min"]], "^", color="0.55", ms=6, label=f"min {d['min']:.6g} {d['unit']}")

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import save, setup
+from robosolve.render.plots import fixed_layout, save, setup
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 FRAME_STYLE = {"initial": ("-", 1.0), "final": ("--", 1.0)}
@@ -20,6 +20,7 @@ def draw(spec, path):
     d = spec.data
     fig = plt.figure(figsize=(7, 6.5))
     ax = fig.add_subplot(projection="3d")
+    fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)   # 3-D labels sit inside the box
     origins = np.array([f["origin"] for f in d["frames"]], dtype=float)
     span = float(np.max(np.ptp(origins, axis=0))) if len(origins) > 1 else 1.0
     scale = max(span, 1e-3) * 0.25 if span > 0 else 0.5
@@ -58,7 +59,7 @@ def draw(spec, path):
     ax.set_xlabel("x")
     ax.set_ylabel("y")
     ax.set_zlabel("z")
-    ax.set_title(spec.title, fontsize=10)
+    fig.suptitle(spec.title, fontsize=10)      # above the 3-D box and the legend
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="upper left", fontsize=8)
     save(fig, path)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import save, setup
+from robosolve.render.plots import fixed_layout, save, setup
 from robosolve.render.plots.robot import equal_3d
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
@@ -30,9 +30,11 @@ def draw(spec, path):
     planar = _planar(drawings)
     if planar:
         fig, ax = plt.subplots(figsize=(6.5, 6))
+        fixed_layout(fig, top=0.4)
     else:
         fig = plt.figure(figsize=(7, 6.5))
         ax = fig.add_subplot(projection="3d")
+        fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)   # 3-D labels sit inside the box
     for k, (drw, lab, rej) in enumerate(zip(drawings, labels, rejected)):
         colour = COLOURS[k % len(COLOURS)]
         style = "--" if rej else "-"
@@ -65,6 +67,9 @@ def draw(spec, path):
     else:
         equal_3d(ax, drawings)
         ax.view_init(elev=25, azim=-60)
-    ax.set_title(spec.title)
+    if planar:
+        ax.set_title(spec.title)
+    else:
+        fig.suptitle(spec.title)      # above the 3-D box and the legend (Axes3D lowers axes titles)
     ax.legend(loc="upper left", fontsize=7)
     save(fig, path)

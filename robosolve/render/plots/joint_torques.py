@@ -6,7 +6,7 @@ unit, values, peak, t_peak}].
 
 from __future__ import annotations
 
-from robosolve.render.plots import save, setup
+from robosolve.render.plots import fixed_layout, save, setup
 from robosolve.render.plots.motion_profile import COLOURS, mark_switches
 
 
@@ -15,6 +15,7 @@ def draw(spec, path):
     d = spec.data
     acts = d["actuators"]
     fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.4 * len(acts) + 0.8), sharex=True, squeeze=False)
+    fixed_layout(fig, len(acts), 1, top=0.4, hgap=0.2)
     for k, (ax, a) in enumerate(zip(axes[:, 0], acts)):
         ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.6)
         mark_switches(ax, d["switches"], d["T"])

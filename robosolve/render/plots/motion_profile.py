@@ -6,7 +6,7 @@ q, qd, qdd}].
 
 from __future__ import annotations
 
-from robosolve.render.plots import save, setup
+from robosolve.render.plots import fixed_layout, save, setup
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
 
@@ -29,6 +29,7 @@ def draw(spec, path):
     d = spec.data
     t = d["t"]
     fig, axes = plt.subplots(3, 1, figsize=(7.5, 7.5), sharex=True)
+    fixed_layout(fig, 3, 1, top=0.7, hgap=0.2)      # the title above the switching-instant ticks
     titles = (("q", "position"), ("qd", "velocity"), ("qdd", "acceleration"))
     for order, (ax, (key, what)) in enumerate(zip(axes, titles)):
         for k, j in enumerate(d["joints"]):
@@ -36,7 +37,7 @@ def draw(spec, path):
         mark_switches(ax, d["switches"], d["T"])
         ax.set_ylabel(f"{what} ({_units(d['joints'], order)})")
     axes[0].legend(loc="best")
-    axes[0].set_title(spec.title)
+    axes[0].set_title(spec.title, pad=18)      # above the switching-instant tick labels
     ticks = sorted({0.0, d["T"], *d["switches"]})
     top = axes[0].secondary_xaxis("top")
     top.set_xticks(ticks)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import save, setup
+from robosolve.render.plots import fixed_layout, save, setup
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
@@ -69,10 +69,11 @@ def draw(spec, path):
     d = spec.data
     fig = plt.figure(figsize=(6.5, 6))
     ax = fig.add_subplot(projection="3d")
+    fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)   # 3-D labels sit inside the box
     draw_robot_3d(ax, d, label="links")
     equal_3d(ax, [d])
     ax.view_init(elev=25, azim=-60)
-    ax.set_title(spec.title)
+    fig.suptitle(spec.title)      # above the 3-D box and the legend (Axes3D lowers axes titles)
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], color="0.25", lw=3, marker="o", label="links")]
