@@ -101,6 +101,44 @@ def number(expr, at=None):
 np.set_printoptions(precision=6, suppress=True)
 '''
 
+DYNAMICS = '''\
+def lagrange(at=None):
+    """M(q), c(q, q'), g(q) and the external forces' generalized forces Q, by Lagrange:
+    T = 1/2 sum tr(dM J dM^T) over the bodies (J the pseudo-inertia, dM = d(0M_i)/dt),
+    U = -sum m g.G, so that M q'' + c + g = tau + Q. Parameters are fixed from the data and
+    `at`; joints and rates stay symbols."""
+    moving = set(joints) | set(rates) | set(accelerations)
+    fixed = {s: v for s, v in values(at).items() if s not in moving}
+    n = len(joints)
+    T, U = sp.Integer(0), sp.Integer(0)
+    for name, (frame, J) in pseudo_inertia.items():
+        M = M0(frame).subs(fixed)
+        J = J.subs(fixed)
+        dM = sp.zeros(4, 4)
+        for q, r in zip(joints, rates):
+            dM += M.diff(q) * r
+        T += (dM * J * dM.T).trace() / 2
+        mG = M * J[:, 3]                          # (m G, m) in frame 0
+        U -= (gravity.subs(fixed).T * mG[:3, :])[0]
+    mass = sp.Matrix(n, n, lambda i, j: sp.expand(T.diff(rates[i], rates[j])))
+    grav = sp.Matrix([U.diff(q) for q in joints])
+    momenta = sp.Matrix([T.diff(r) for r in rates])
+    c = momenta.jacobian(joints) * sp.Matrix(rates) - sp.Matrix([T.diff(q) for q in joints])
+    Q = sp.zeros(n, 1)
+    for name, (frame, point, f, tau, in_frame) in forces.items():
+        R = M0(in_frame).subs(fixed)[:3, :3]
+        M = M0(frame).subs(fixed)
+        if f is not None:
+            P = (M * sp.Matrix([*point, 1]))[:3, :]
+            Q += P.jacobian(joints).T * R * sp.Matrix(f)
+        if tau is not None:                       # angular Jacobian from dM/dq_j M^-1
+            inv = inverse_pose(M)
+            Jw = sp.Matrix.hstack(*[sp.Matrix([(M.diff(q) * inv)[k] for k in ((2, 1), (0, 2), (1, 0))])
+                                    for q in joints])
+            Q += Jw.T * R * sp.Matrix(tau)
+    return mass, c, grav, Q.subs(fixed)
+'''
+
 
 def _s(expr) -> str:
     """A sympy expression as Python source the notebook evaluates with S(...)."""
@@ -154,12 +192,48 @@ def _data_cell(problem) -> str:
                 lines.append(f'    "{b.name}": ("{b.frame}", {_s(b.mass)}, {_vec(com)}),')
         lines.append("}")
         lines.append(f"gravity = sp.Matrix({_vec(list(problem.gravity))})")
+        lines.extend(_pseudo_inertia_lines(problem))
+        lines.extend(_force_lines(problem))
     lines.append("# point: (frame, coordinates in that frame)")
     lines.append("points = {")
     for p in problem.points.values():
         lines.append(f'    "{p.name}": ("{p.frame}", {_vec(list(p.at))}),')
     lines.append("}")
     return "\n".join(lines)
+
+
+def _pseudo_inertia_lines(problem) -> list[str]:
+    """Each body's pseudo-inertia J in its own frame (the course's 4x4 matrix of moments)."""
+    from robosolve.core import matrices as mx
+
+    lines = ["# body: (frame, pseudo-inertia J in that frame)", "pseudo_inertia = {"]
+    for b in problem.bodies:
+        d = b.data
+        if b.kind == "point":
+            J = mx.pseudo_inertia_point(b.mass, d["at"])
+        elif b.kind == "rod":
+            J = mx.pseudo_inertia_rod(b.mass, d["from"], d["to"])
+        elif b.kind == "com":
+            J = mx.pseudo_inertia_from_com(b.mass, d["com"], d["inertia"])
+        else:
+            J = d["J"]
+        J = sp.Matrix(J)
+        rows = ", ".join(_vec(list(J.row(i))) for i in range(4))
+        lines.append(f'    "{b.name}": ("{b.frame}", sp.Matrix([{rows}])),')
+    lines.append("}")
+    return lines
+
+
+def _force_lines(problem) -> list[str]:
+    """External forces: (frame, point in that frame, force, torque, frame of the components)."""
+    lines = ["# force: (frame it acts on, point in that frame, force, torque, components' frame)",
+             "forces = {"]
+    for f in getattr(problem, "forces", None) or []:
+        force = _vec(list(f.force)) if f.force is not None else "None"
+        torque = _vec(list(f.torque)) if f.torque is not None else "None"
+        lines.append(f'    "{f.name}": ("{f.frame}", {_vec(list(f.at))}, {force}, {torque}, "{f.in_frame}"),')
+    lines.append("}")
+    return lines
 
 
 def _centre_of_mass(body):
@@ -323,10 +397,10 @@ def _cell_motion_profile(q, answer, problem):
         f"max_acceleration = {{{', '.join(f'{n!r}: {_s(acc[n])}' for n in names if n in acc)}}}",
         "durations = {n: float(sp.sqrt(4 * abs(end[n] - start[n]) / max_acceleration[n])) for n in max_acceleration}",
         "T = max(durations.values())",
-        "accelerations = {n: float(4 * abs(end[n] - start[n]) / T**2) for n in end}",
+        "rescaled_accelerations = {n: float(4 * abs(end[n] - start[n]) / T**2) for n in end}",
         "print('durations:', durations)",
         "print('T =', T)",
-        "print('rescaled accelerations:', accelerations)",
+        "print('rescaled accelerations:', rescaled_accelerations)",
         _expected(answer, ["durations", "T", "accelerations"]),
     ])
 
@@ -340,7 +414,25 @@ def _cell_dof(q, answer, problem):
     return f"dof = {formula}   # {'Grübler (planar)' if planar else 'Kutzbach (spatial)'}\nprint('dof =', dof)"
 
 
+def _cell_equations_of_motion(q, answer, problem):
+    names = [j.name for j in problem.joints]
+    return "\n".join([
+        f"at = {_at(q)}",
+        "mass, c, grav, Q = lagrange(at)",
+        "if len(joints) <= 3:",
+        "    display(sp.simplify(mass), sp.simplify(grav))",
+        "tau = mass * sp.Matrix(accelerations) + c + grav - Q   # what the joints exert",
+        "print('recomputed M =', number(mass, at), sep='\\n')",
+        "print('recomputed c =', number(c, at).ravel())",
+        "print('recomputed g =', number(grav, at).ravel())",
+        "print('recomputed Q (external forces) =', number(Q, at).ravel())",
+        f"print('recomputed joint actions tau = M q\\'\\' + c + g - Q:', dict(zip({names!r}, number(tau, at).ravel().tolist())))",
+        _expected(answer, ["mass_matrix", "velocity_terms", "gravity_terms", "actuators"]),
+    ])
+
+
 RECOMPUTE = {
+    "equations_of_motion": _cell_equations_of_motion,
     "position": _cell_position,
     "velocity_acceleration": _cell_velocity,
     "jacobian": _cell_jacobian,
@@ -371,6 +463,8 @@ def _add_setup(add, problem, report) -> None:
     add("code", _data_cell(problem))
     points = "\n" + _point_names_cell(problem) if problem.points and problem.frames else ""
     add("code", MODEL + points)
+    if problem.bodies:
+        add("code", DYNAMICS)
 
 
 def build_notebook(report, markdown: str):
