@@ -101,6 +101,48 @@ def number(expr, at=None):
 np.set_printoptions(precision=6, suppress=True)
 '''
 
+GEOMETRY = '''\
+def skew(u):
+    return np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+
+
+def canonical(u):
+    """Of +u and -u, the one whose first non-zero component is positive."""
+    first = next(x for x in u if abs(x) > 1e-9)
+    return u if first > 0 else -u
+
+
+def axis_angle(R):
+    """alpha in [0, pi] and the unit axis u (None for the identity); near pi from R's symmetric part."""
+    v = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]) / 2
+    alpha = np.arctan2(np.linalg.norm(v), (np.trace(R) - 1) / 2)
+    if alpha < 1e-9:
+        return 0.0, None
+    if np.pi - alpha < 1e-6:
+        w, V = np.linalg.eigh((R + R.T) / 2)
+        return alpha, canonical(V[:, np.argmax(w)])
+    return alpha, v / np.linalg.norm(v)
+
+
+def helical_axis(Q):
+    """u, alpha, h, P (nearest the origin) and the pitch of a displacement Q = [R, dT; 0, 1]."""
+    R, dT = Q[:3, :3], Q[:3, 3]
+    alpha, u = axis_angle(R)
+    if u is None:                                  # pure translation (or the identity)
+        h = np.linalg.norm(dT)
+        return (dT / h if h > 1e-12 else None), 0.0, h, None, None
+    h = u @ dT
+    A = np.vstack([np.eye(3) - R, u])              # (I - R) P = dT - h u and P.u = 0
+    P = np.linalg.lstsq(A, np.append(dT - h * u, 0), rcond=None)[0]
+    return u, alpha, h, P, h / alpha
+
+
+def wrap(a):
+    """An angle in (-pi, pi]."""
+    a = (a + np.pi) % (2 * np.pi) - np.pi
+    return np.pi if abs(a + np.pi) < 1e-12 else a
+'''
+
 DYNAMICS = '''\
 def lagrange(at=None):
     """M(q), c(q, q'), g(q) and the external forces' generalized forces Q, by Lagrange:
@@ -431,7 +473,96 @@ def _cell_equations_of_motion(q, answer, problem):
     ])
 
 
+def _matrix(m) -> str:
+    m = sp.Matrix(m)
+    return "sp.Matrix([" + ", ".join(_vec(list(m.row(i))) for i in range(m.rows)) + "])"
+
+
+def _pose_source(side, q) -> str:
+    """One end of a displacement: a given matrix, or 0M of the frame at a configuration."""
+    if "matrix" in side:
+        return _matrix(side["matrix"])
+    config = "{" + ", ".join(f"NAMES[{k!r}]: {_s(v)}" for k, v in side["config"].items()) + "}"
+    return f'M0("{q.frame}").subs({config})'
+
+
+def _cell_displacement(q, answer, problem):
+    o = q.options
+    if "axis" in o:
+        lines = [
+            "# from a screw: Q = [R, (I - R) P + h u; 0, 1], R = I + [u] sin(alpha) + [u]^2 (1 - cos(alpha))",
+            f"axis = np.array({[float(sp.N(x)) for x in o['axis']]!r})",
+            f"alpha_given = {float(sp.N(o['angle']))!r}",
+            f"through = np.array({[float(sp.N(x)) for x in o.get('through') or [0, 0, 0]]!r})",
+            f"h_given = {float(sp.N(o.get('translation') or 0))!r}",
+            "u0 = axis / np.linalg.norm(axis)",
+            "K = skew(u0)",
+            "R = np.eye(3) + K * np.sin(alpha_given) + K @ K * (1 - np.cos(alpha_given))",
+            "Q = np.eye(4)",
+            "Q[:3, :3], Q[:3, 3] = R, (np.eye(3) - R) @ through + h_given * u0",
+        ]
+    else:
+        if "matrix" in o["from"] and "matrix" in o["to"] and problem.frames and q.options.get("frame"):
+            return None                              # Q written in another frame: not rebuilt here
+        lines = [
+            "# Q = M_to * M_from^-1: every body point P2 = Q P1 (in frame 0)",
+            f"M_from = {_pose_source(o['from'], q)}",
+            f"M_to = {_pose_source(o['to'], q)}",
+            f"at = {_at(q)}",
+            "Q = number(M_to * inverse_pose(M_from), at)",
+        ]
+    lines += [
+        "Q = np.round(Q, 12) + 0.0                  # no -0.0 in the print",
+        "u, alpha, h, P, pitch = helical_axis(Q)",
+        "print('recomputed Q =', Q, sep='\\n')",
+    ]
+    if "axis" in o:                                  # L from the normalised u, P*, pitch
+        lines += [
+            "L = np.zeros((4, 4))",
+            "L[:3, :3], L[:3, 3] = skew(u), np.cross(P, u) + pitch * u",
+            "print('recomputed L =', np.round(L, 12) + 0.0, sep='\\n')",
+        ]
+    lines += [
+        "print('recomputed u =', u, ' alpha =', alpha, ' h =', h, ' P =', P, ' pitch =', pitch)",
+        _expected(answer, ["Q", "L", "u", "alpha", "h", "P", "pitch"]),
+    ]
+    return "\n".join(lines)
+
+
+def _cell_orientation(q, answer, problem):
+    if q.options.get("matrix") is not None:
+        source = _matrix(q.options["matrix"])
+    else:
+        source = f'M0("{q.frame}")'
+    return "\n".join([
+        f"at = {_at(q)}",
+        f"R = number({source}, at)[:3, :3]",
+        "# ZYZ: R = Rz(phi) Ry(theta) Rz(psi); RPY: R = Rz(yaw) Ry(pitch) Rx(roll)",
+        "theta = np.arctan2(np.hypot(R[0, 2], R[1, 2]), R[2, 2])",
+        "if abs(np.sin(theta)) > 1e-9:",
+        "    phi, psi = np.arctan2(R[1, 2], R[0, 2]), np.arctan2(R[2, 1], -R[2, 0])",
+        "    zyz = [[wrap(phi), theta, wrap(psi)], [wrap(phi + np.pi), -theta, wrap(psi + np.pi)]]",
+        "else:                                    # only phi +- psi is fixed: psi = 0",
+        "    zyz = [[wrap(np.arctan2(R[1, 0], R[0, 0]) if R[2, 2] > 0 else np.arctan2(-R[1, 0], -R[0, 0])), theta, 0.0]]",
+        "pitch = np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0]))",
+        "if abs(np.cos(pitch)) > 1e-9:",
+        "    roll, yaw = np.arctan2(R[2, 1], R[2, 2]), np.arctan2(R[1, 0], R[0, 0])",
+        "    rpy = [[roll, pitch, yaw], [wrap(roll + np.pi), wrap(np.pi - pitch), wrap(yaw + np.pi)]]",
+        "else:                                    # only roll -+ yaw is fixed: yaw = 0",
+        "    rpy = [[np.arctan2(R[0, 1], R[1, 1]) * np.sign(pitch), pitch, 0.0]]",
+        "alpha, u = axis_angle(R)",
+        "quaternion = [np.cos(alpha / 2)] + ([0.0] * 3 if u is None else list(np.sin(alpha / 2) * u))",
+        "print('recomputed zyz =', np.round(zyz, 12).tolist())",
+        "print('recomputed rpy =', np.round(rpy, 12).tolist())",
+        "print('recomputed axis-angle =', u, alpha)",
+        "print('recomputed quaternion =', np.round(quaternion, 12).tolist())",
+        _expected(answer, ["zyz", "rpy", "axis_angle", "quaternion"]),
+    ])
+
+
 RECOMPUTE = {
+    "displacement": _cell_displacement,
+    "orientation": _cell_orientation,
     "equations_of_motion": _cell_equations_of_motion,
     "position": _cell_position,
     "velocity_acceleration": _cell_velocity,
@@ -463,6 +594,8 @@ def _add_setup(add, problem, report) -> None:
     add("code", _data_cell(problem))
     points = "\n" + _point_names_cell(problem) if problem.points and problem.frames else ""
     add("code", MODEL + points)
+    if any(q.type in ("displacement", "orientation") for q in problem.questions):
+        add("code", GEOMETRY)
     if problem.bodies:
         add("code", DYNAMICS)
 
