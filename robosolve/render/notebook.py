@@ -519,7 +519,10 @@ def _cell_displacement(q, answer, problem):
     if "axis" in o:                                  # L from the normalised u, P*, pitch
         lines += [
             "L = np.zeros((4, 4))",
-            "L[:3, :3], L[:3, 3] = skew(u), np.cross(P, u) + pitch * u",
+            "if P is None:                              # pure translation: Q = exp(h L)",
+            "    L[:3, 3] = np.zeros(3) if u is None else u",
+            "else:",
+            "    L[:3, :3], L[:3, 3] = skew(u), np.cross(P, u) + pitch * u",
             "print('recomputed L =', np.round(L, 12) + 0.0, sep='\\n')",
         ]
     lines += [
@@ -560,7 +563,50 @@ def _cell_orientation(q, answer, problem):
     ])
 
 
+def _cell_inverse_kinematics(q, answer, problem):
+    target = q.options.get("target") or []
+    if not target or any(not re.fullmatch(r"\w+\.[xyz]", str(name)) or str(name).split(".")[0]
+                         not in problem.points for name, _, _ in target):
+        return None                                  # orientation targets: not rebuilt here
+    limits = []
+    for j in problem.joints:
+        lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-1, 1))
+        limits.append((float(sp.N(lo)), float(sp.N(hi))))
+    revolute = [j.kind == "revolute" for j in problem.joints]
+    residual = ", ".join(f"{str(name).replace('.', '_')} - {float(sp.N(v))!r}" for name, _, v in target)
+    return "\n".join([
+        f"at = {_at(q)}",
+        "# Newton iterations (least-squares steps) from a grid of starts, kept within the joint limits",
+        f"residual = sp.Matrix([{residual}]).subs(values({{k: v for k, v in at.items() if k not in joints}}))",
+        "f = sp.lambdify([joints], residual, 'numpy')",
+        "jac = sp.lambdify([joints], residual.jacobian(joints), 'numpy')",
+        f"limits = np.array({limits!r})",
+        f"revolute = np.array({revolute!r})",
+        "per_joint = max(2, int(round(200 ** (1 / len(joints)))))",
+        "grid = np.meshgrid(*[np.linspace(lo, hi, per_joint + 2)[1:-1] for lo, hi in limits])",
+        "solutions = []",
+        "for start in np.stack([g.ravel() for g in grid], axis=1):",
+        "    x = start.astype(float)",
+        "    for _ in range(60):",
+        "        r = np.asarray(f(x), dtype=float).ravel()",
+        "        if np.linalg.norm(r) < 1e-12:",
+        "            break",
+        "        x = x - np.linalg.lstsq(np.asarray(jac(x), dtype=float), r, rcond=None)[0]",
+        "    x = np.where(revolute, (x + np.pi) % (2 * np.pi) - np.pi, x)",
+        "    ok = np.linalg.norm(np.asarray(f(x), dtype=float)) < 1e-9",
+        "    inside = np.all((x >= limits[:, 0] - 1e-9) & (x <= limits[:, 1] + 1e-9))",
+        "    if ok and inside and not any(np.allclose(x, s, atol=1e-6) for s in solutions):",
+        "        solutions.append(x)",
+        "solutions.sort(key=lambda s: tuple(np.round(s, 9)))",
+        f"names = {[j.name for j in problem.joints]!r}",
+        "for s in solutions:",
+        "    print('recomputed solution:', dict(zip(names, np.round(s, 12).tolist())))",
+        _expected(answer, ["solutions"]),
+    ])
+
+
 RECOMPUTE = {
+    "inverse_kinematics": _cell_inverse_kinematics,
     "displacement": _cell_displacement,
     "orientation": _cell_orientation,
     "equations_of_motion": _cell_equations_of_motion,
