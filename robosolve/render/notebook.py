@@ -605,7 +605,59 @@ def _cell_inverse_kinematics(q, answer, problem):
     ])
 
 
+def _cell_forward_dynamics(q, answer, problem):
+    laws = q.options.get("actuators") or {}
+    by_actuator = {str(j.actuator): j for j in problem.joints}
+    if any(str(a) not in by_actuator for a in laws):
+        return None
+    start = q.options.get("start") or {}
+    tau = ", ".join(_s(laws.get(str(j.actuator), 0)) for j in problem.joints)
+    q0 = [_s(start.get(j.name, 0)) for j in problem.joints]
+    v0 = [_s(start.get(f"{j.name}_dot", 0)) for j in problem.joints]
+    duration = float(sp.N(q.options["duration"]))
+    names = [j.name for j in problem.joints]
+    return "\n".join([
+        f"at = {_at(q)}",
+        "# M(q) q'' + c + g = tau + Q, integrated by fixed-step RK4 (step 1 ms)",
+        "mass, c, grav, Q = lagrange(at)",
+        "t = sp.Symbol('t')",
+        "fixed = {s: v for s, v in values(at).items() if s not in joints + rates}",
+        f"tau = sp.Matrix([{tau}]).subs(fixed)",
+        "mass_f = sp.lambdify([t, joints, rates], mass, 'numpy')",
+        "rest_f = sp.lambdify([t, joints, rates], tau + Q - c - grav, 'numpy')",
+        "",
+        "def derivative(time, state):",
+        "    n = len(joints)",
+        "    x, v = state[:n], state[n:]",
+        "    a = np.linalg.solve(np.asarray(mass_f(time, x, v), dtype=float),",
+        "                        np.asarray(rest_f(time, x, v), dtype=float).ravel())",
+        "    return np.concatenate([v, a])",
+        "",
+        f"duration, steps = {duration!r}, {max(1000, int(round(duration * 1000)))}",
+        f"state = np.array([float(number(x, at)) for x in [{', '.join(q0 + v0)}]])",
+        "dt = duration / steps",
+        "track = [state]",
+        "for k in range(steps):",
+        "    time = k * dt",
+        "    k1 = derivative(time, state)",
+        "    k2 = derivative(time + dt / 2, state + dt / 2 * k1)",
+        "    k3 = derivative(time + dt / 2, state + dt / 2 * k2)",
+        "    k4 = derivative(time + dt, state + dt * k3)",
+        "    state = state + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)",
+        "    track.append(state)",
+        "track = np.array(track)",
+        "n = len(joints)",
+        f"names = {names!r}",
+        "print('recomputed final =', dict(zip(names, np.round(track[-1, :n], 8).tolist())))",
+        "print('recomputed final_velocity =', dict(zip(names, np.round(track[-1, n:], 8).tolist())))",
+        "print('recomputed max (samples) =', dict(zip(names, np.round(track[:, :n].max(axis=0), 8).tolist())))",
+        "print('recomputed min (samples) =', dict(zip(names, np.round(track[:, :n].min(axis=0), 8).tolist())))",
+        _expected(answer, ["final", "final_velocity", "max", "min"]),
+    ])
+
+
 RECOMPUTE = {
+    "forward_dynamics": _cell_forward_dynamics,
     "inverse_kinematics": _cell_inverse_kinematics,
     "displacement": _cell_displacement,
     "orientation": _cell_orientation,
