@@ -7,8 +7,15 @@
   frame's pose from its elementary motions or DH row, points — so that a teacher can change
   a number and re-run; then, after each question's section, a cell that recomputes the main
   results from that data. Recomputed types: position, velocity_acceleration, jacobian,
-  statics (a force, or the weight), ellipsoids, motion_profile (bang-bang), dof. The other types get a
-  cell that shows robosolve's numbers from results.json (stdlib json) and says so.
+  statics (a force, or the weight), ellipsoids, motion_profile (bang-bang), dof,
+  equations_of_motion (Lagrange with T = 1/2 tr(dM J dM^T) from each body's pseudo-inertia,
+  U from gravity, generalized external forces), inverse_kinematics (numpy Newton steps from a
+  grid of starts, within the joint limits; point-coordinate targets), displacement (Q and its
+  helical axis, or Q and L from a screw), orientation (ZYZ, RPY, axis-angle, quaternion) and
+  forward_dynamics (fixed-step RK4 of the recomputed equations). Each prints "recomputed ..."
+  beside robosolve's numbers. The other types (joint_torques, p_control, and option layouts a
+  cell cannot rebuild) get a cell that shows robosolve's numbers from results.json (stdlib
+  json) and says so.
 * Cell ids are deterministic (`md-003`, `code-004`): the same problem gives the same bytes.
 """
 
