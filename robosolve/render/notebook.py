@@ -7,8 +7,15 @@
   frame's pose from its elementary motions or DH row, points — so that a teacher can change
   a number and re-run; then, after each question's section, a cell that recomputes the main
   results from that data. Recomputed types: position, velocity_acceleration, jacobian,
-  statics (a force, or the weight), ellipsoids, motion_profile (bang-bang), dof. The other types get a
-  cell that shows robosolve's numbers from results.json (stdlib json) and says so.
+  statics (a force, or the weight), ellipsoids, motion_profile (bang-bang), dof,
+  equations_of_motion (Lagrange with T = 1/2 tr(dM J dM^T) from each body's pseudo-inertia,
+  U from gravity, generalized external forces), inverse_kinematics (numpy Newton steps from a
+  grid of starts, within the joint limits; point-coordinate targets), displacement (Q and its
+  helical axis, or Q and L from a screw), orientation (ZYZ, RPY, axis-angle, quaternion) and
+  forward_dynamics (fixed-step RK4 of the recomputed equations). Each prints "recomputed ..."
+  beside robosolve's numbers. The other types (joint_torques, p_control, and option layouts a
+  cell cannot rebuild) get a cell that shows robosolve's numbers from results.json (stdlib
+  json) and says so.
 * Cell ids are deterministic (`md-003`, `code-004`): the same problem gives the same bytes.
 """
 
@@ -101,6 +108,86 @@ def number(expr, at=None):
 np.set_printoptions(precision=6, suppress=True)
 '''
 
+GEOMETRY = '''\
+def skew(u):
+    return np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+
+
+def canonical(u):
+    """Of +u and -u, the one whose first non-zero component is positive."""
+    first = next(x for x in u if abs(x) > 1e-9)
+    return u if first > 0 else -u
+
+
+def axis_angle(R):
+    """alpha in [0, pi] and the unit axis u (None for the identity); near pi from R's symmetric part."""
+    v = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]) / 2
+    alpha = np.arctan2(np.linalg.norm(v), (np.trace(R) - 1) / 2)
+    if alpha < 1e-9:
+        return 0.0, None
+    if np.pi - alpha < 1e-6:
+        w, V = np.linalg.eigh((R + R.T) / 2)
+        return alpha, canonical(V[:, np.argmax(w)])
+    return alpha, v / np.linalg.norm(v)
+
+
+def helical_axis(Q):
+    """u, alpha, h, P (nearest the origin) and the pitch of a displacement Q = [R, dT; 0, 1]."""
+    R, dT = Q[:3, :3], Q[:3, 3]
+    alpha, u = axis_angle(R)
+    if u is None:                                  # pure translation (or the identity)
+        h = np.linalg.norm(dT)
+        return (dT / h if h > 1e-12 else None), 0.0, h, None, None
+    h = u @ dT
+    A = np.vstack([np.eye(3) - R, u])              # (I - R) P = dT - h u and P.u = 0
+    P = np.linalg.lstsq(A, np.append(dT - h * u, 0), rcond=None)[0]
+    return u, alpha, h, P, h / alpha
+
+
+def wrap(a):
+    """An angle in (-pi, pi]."""
+    a = (a + np.pi) % (2 * np.pi) - np.pi
+    return np.pi if abs(a + np.pi) < 1e-12 else a
+'''
+
+DYNAMICS = '''\
+def lagrange(at=None):
+    """M(q), c(q, q'), g(q) and the external forces' generalized forces Q, by Lagrange:
+    T = 1/2 sum tr(dM J dM^T) over the bodies (J the pseudo-inertia, dM = d(0M_i)/dt),
+    U = -sum m g.G, so that M q'' + c + g = tau + Q. Parameters are fixed from the data and
+    `at`; joints and rates stay symbols."""
+    moving = set(joints) | set(rates) | set(accelerations)
+    fixed = {s: v for s, v in values(at).items() if s not in moving}
+    n = len(joints)
+    T, U = sp.Integer(0), sp.Integer(0)
+    for name, (frame, J) in pseudo_inertia.items():
+        M = M0(frame).subs(fixed)
+        J = J.subs(fixed)
+        dM = sp.zeros(4, 4)
+        for q, r in zip(joints, rates):
+            dM += M.diff(q) * r
+        T += (dM * J * dM.T).trace() / 2
+        mG = M * J[:, 3]                          # (m G, m) in frame 0
+        U -= (gravity.subs(fixed).T * mG[:3, :])[0]
+    mass = sp.Matrix(n, n, lambda i, j: sp.expand(T.diff(rates[i], rates[j])))
+    grav = sp.Matrix([U.diff(q) for q in joints])
+    momenta = sp.Matrix([T.diff(r) for r in rates])
+    c = momenta.jacobian(joints) * sp.Matrix(rates) - sp.Matrix([T.diff(q) for q in joints])
+    Q = sp.zeros(n, 1)
+    for name, (frame, point, f, tau, in_frame) in forces.items():
+        R = M0(in_frame).subs(fixed)[:3, :3]
+        M = M0(frame).subs(fixed)
+        if f is not None:
+            P = (M * sp.Matrix([*point, 1]))[:3, :]
+            Q += P.jacobian(joints).T * R * sp.Matrix(f)
+        if tau is not None:                       # angular Jacobian from dM/dq_j M^-1
+            inv = inverse_pose(M)
+            Jw = sp.Matrix.hstack(*[sp.Matrix([(M.diff(q) * inv)[k] for k in ((2, 1), (0, 2), (1, 0))])
+                                    for q in joints])
+            Q += Jw.T * R * sp.Matrix(tau)
+    return mass, c, grav, Q.subs(fixed)
+'''
+
 
 def _s(expr) -> str:
     """A sympy expression as Python source the notebook evaluates with S(...)."""
@@ -154,12 +241,48 @@ def _data_cell(problem) -> str:
                 lines.append(f'    "{b.name}": ("{b.frame}", {_s(b.mass)}, {_vec(com)}),')
         lines.append("}")
         lines.append(f"gravity = sp.Matrix({_vec(list(problem.gravity))})")
+        lines.extend(_pseudo_inertia_lines(problem))
+        lines.extend(_force_lines(problem))
     lines.append("# point: (frame, coordinates in that frame)")
     lines.append("points = {")
     for p in problem.points.values():
         lines.append(f'    "{p.name}": ("{p.frame}", {_vec(list(p.at))}),')
     lines.append("}")
     return "\n".join(lines)
+
+
+def _pseudo_inertia_lines(problem) -> list[str]:
+    """Each body's pseudo-inertia J in its own frame (the course's 4x4 matrix of moments)."""
+    from robosolve.core import matrices as mx
+
+    lines = ["# body: (frame, pseudo-inertia J in that frame)", "pseudo_inertia = {"]
+    for b in problem.bodies:
+        d = b.data
+        if b.kind == "point":
+            J = mx.pseudo_inertia_point(b.mass, d["at"])
+        elif b.kind == "rod":
+            J = mx.pseudo_inertia_rod(b.mass, d["from"], d["to"])
+        elif b.kind == "com":
+            J = mx.pseudo_inertia_from_com(b.mass, d["com"], d["inertia"])
+        else:
+            J = d["J"]
+        J = sp.Matrix(J)
+        rows = ", ".join(_vec(list(J.row(i))) for i in range(4))
+        lines.append(f'    "{b.name}": ("{b.frame}", sp.Matrix([{rows}])),')
+    lines.append("}")
+    return lines
+
+
+def _force_lines(problem) -> list[str]:
+    """External forces: (frame, point in that frame, force, torque, frame of the components)."""
+    lines = ["# force: (frame it acts on, point in that frame, force, torque, components' frame)",
+             "forces = {"]
+    for f in getattr(problem, "forces", None) or []:
+        force = _vec(list(f.force)) if f.force is not None else "None"
+        torque = _vec(list(f.torque)) if f.torque is not None else "None"
+        lines.append(f'    "{f.name}": ("{f.frame}", {_vec(list(f.at))}, {force}, {torque}, "{f.in_frame}"),')
+    lines.append("}")
+    return lines
 
 
 def _centre_of_mass(body):
@@ -323,10 +446,10 @@ def _cell_motion_profile(q, answer, problem):
         f"max_acceleration = {{{', '.join(f'{n!r}: {_s(acc[n])}' for n in names if n in acc)}}}",
         "durations = {n: float(sp.sqrt(4 * abs(end[n] - start[n]) / max_acceleration[n])) for n in max_acceleration}",
         "T = max(durations.values())",
-        "accelerations = {n: float(4 * abs(end[n] - start[n]) / T**2) for n in end}",
+        "rescaled_accelerations = {n: float(4 * abs(end[n] - start[n]) / T**2) for n in end}",
         "print('durations:', durations)",
         "print('T =', T)",
-        "print('rescaled accelerations:', accelerations)",
+        "print('rescaled accelerations:', rescaled_accelerations)",
         _expected(answer, ["durations", "T", "accelerations"]),
     ])
 
@@ -340,7 +463,212 @@ def _cell_dof(q, answer, problem):
     return f"dof = {formula}   # {'Grübler (planar)' if planar else 'Kutzbach (spatial)'}\nprint('dof =', dof)"
 
 
+def _cell_equations_of_motion(q, answer, problem):
+    names = [j.name for j in problem.joints]
+    return "\n".join([
+        f"at = {_at(q)}",
+        "mass, c, grav, Q = lagrange(at)",
+        "if len(joints) <= 3:",
+        "    display(sp.simplify(mass), sp.simplify(grav))",
+        "tau = mass * sp.Matrix(accelerations) + c + grav - Q   # what the joints exert",
+        "print('recomputed M =', number(mass, at), sep='\\n')",
+        "print('recomputed c =', number(c, at).ravel())",
+        "print('recomputed g =', number(grav, at).ravel())",
+        "print('recomputed Q (external forces) =', number(Q, at).ravel())",
+        f"print('recomputed joint actions tau = M q\\'\\' + c + g - Q:', dict(zip({names!r}, number(tau, at).ravel().tolist())))",
+        _expected(answer, ["mass_matrix", "velocity_terms", "gravity_terms", "actuators"]),
+    ])
+
+
+def _matrix(m) -> str:
+    m = sp.Matrix(m)
+    return "sp.Matrix([" + ", ".join(_vec(list(m.row(i))) for i in range(m.rows)) + "])"
+
+
+def _pose_source(side, q) -> str:
+    """One end of a displacement: a given matrix, or 0M of the frame at a configuration."""
+    if "matrix" in side:
+        return _matrix(side["matrix"])
+    config = "{" + ", ".join(f"NAMES[{k!r}]: {_s(v)}" for k, v in side["config"].items()) + "}"
+    return f'M0("{q.frame}").subs({config})'
+
+
+def _cell_displacement(q, answer, problem):
+    o = q.options
+    if "axis" in o:
+        lines = [
+            "# from a screw: Q = [R, (I - R) P + h u; 0, 1], R = I + [u] sin(alpha) + [u]^2 (1 - cos(alpha))",
+            f"axis = np.array({[float(sp.N(x)) for x in o['axis']]!r})",
+            f"alpha_given = {float(sp.N(o['angle']))!r}",
+            f"through = np.array({[float(sp.N(x)) for x in o.get('through') or [0, 0, 0]]!r})",
+            f"h_given = {float(sp.N(o.get('translation') or 0))!r}",
+            "u0 = axis / np.linalg.norm(axis)",
+            "K = skew(u0)",
+            "R = np.eye(3) + K * np.sin(alpha_given) + K @ K * (1 - np.cos(alpha_given))",
+            "Q = np.eye(4)",
+            "Q[:3, :3], Q[:3, 3] = R, (np.eye(3) - R) @ through + h_given * u0",
+        ]
+    else:
+        if "matrix" in o["from"] and "matrix" in o["to"] and problem.frames and q.options.get("frame"):
+            return None                              # Q written in another frame: not rebuilt here
+        lines = [
+            "# Q = M_to * M_from^-1: every body point P2 = Q P1 (in frame 0)",
+            f"M_from = {_pose_source(o['from'], q)}",
+            f"M_to = {_pose_source(o['to'], q)}",
+            f"at = {_at(q)}",
+            "Q = number(M_to * inverse_pose(M_from), at)",
+        ]
+    lines += [
+        "Q = np.round(Q, 12) + 0.0                  # no -0.0 in the print",
+        "u, alpha, h, P, pitch = helical_axis(Q)",
+        "print('recomputed Q =', Q, sep='\\n')",
+    ]
+    if "axis" in o:                                  # L from the normalised u, P*, pitch
+        lines += [
+            "L = np.zeros((4, 4))",
+            "if P is None:                              # pure translation: Q = exp(h L)",
+            "    L[:3, 3] = np.zeros(3) if u is None else u",
+            "else:",
+            "    L[:3, :3], L[:3, 3] = skew(u), np.cross(P, u) + pitch * u",
+            "print('recomputed L =', np.round(L, 12) + 0.0, sep='\\n')",
+        ]
+    lines += [
+        "print('recomputed u =', u, ' alpha =', alpha, ' h =', h, ' P =', P, ' pitch =', pitch)",
+        _expected(answer, ["Q", "L", "u", "alpha", "h", "P", "pitch"]),
+    ]
+    return "\n".join(lines)
+
+
+def _cell_orientation(q, answer, problem):
+    if q.options.get("matrix") is not None:
+        source = _matrix(q.options["matrix"])
+    else:
+        source = f'M0("{q.frame}")'
+    return "\n".join([
+        f"at = {_at(q)}",
+        f"R = number({source}, at)[:3, :3]",
+        "# ZYZ: R = Rz(phi) Ry(theta) Rz(psi); RPY: R = Rz(yaw) Ry(pitch) Rx(roll)",
+        "theta = np.arctan2(np.hypot(R[0, 2], R[1, 2]), R[2, 2])",
+        "if abs(np.sin(theta)) > 1e-9:",
+        "    phi, psi = np.arctan2(R[1, 2], R[0, 2]), np.arctan2(R[2, 1], -R[2, 0])",
+        "    zyz = [[wrap(phi), theta, wrap(psi)], [wrap(phi + np.pi), -theta, wrap(psi + np.pi)]]",
+        "else:                                    # only phi +- psi is fixed: psi = 0",
+        "    zyz = [[wrap(np.arctan2(R[1, 0], R[0, 0]) if R[2, 2] > 0 else np.arctan2(-R[1, 0], -R[0, 0])), theta, 0.0]]",
+        "pitch = np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0]))",
+        "if abs(np.cos(pitch)) > 1e-9:",
+        "    roll, yaw = np.arctan2(R[2, 1], R[2, 2]), np.arctan2(R[1, 0], R[0, 0])",
+        "    rpy = [[roll, pitch, yaw], [wrap(roll + np.pi), wrap(np.pi - pitch), wrap(yaw + np.pi)]]",
+        "else:                                    # only roll -+ yaw is fixed: yaw = 0",
+        "    rpy = [[np.arctan2(R[0, 1], R[1, 1]) * np.sign(pitch), pitch, 0.0]]",
+        "alpha, u = axis_angle(R)",
+        "quaternion = [np.cos(alpha / 2)] + ([0.0] * 3 if u is None else list(np.sin(alpha / 2) * u))",
+        "print('recomputed zyz =', np.round(zyz, 12).tolist())",
+        "print('recomputed rpy =', np.round(rpy, 12).tolist())",
+        "print('recomputed axis-angle =', u, alpha)",
+        "print('recomputed quaternion =', np.round(quaternion, 12).tolist())",
+        _expected(answer, ["zyz", "rpy", "axis_angle", "quaternion"]),
+    ])
+
+
+def _cell_inverse_kinematics(q, answer, problem):
+    target = q.options.get("target") or []
+    if not target or any(not re.fullmatch(r"\w+\.[xyz]", str(name)) or str(name).split(".")[0]
+                         not in problem.points for name, _, _ in target):
+        return None                                  # orientation targets: not rebuilt here
+    limits = []
+    for j in problem.joints:
+        lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-1, 1))
+        limits.append((float(sp.N(lo)), float(sp.N(hi))))
+    revolute = [j.kind == "revolute" for j in problem.joints]
+    residual = ", ".join(f"{str(name).replace('.', '_')} - {float(sp.N(v))!r}" for name, _, v in target)
+    return "\n".join([
+        f"at = {_at(q)}",
+        "# Newton iterations (least-squares steps) from a grid of starts, kept within the joint limits",
+        f"residual = sp.Matrix([{residual}]).subs(values({{k: v for k, v in at.items() if k not in joints}}))",
+        "f = sp.lambdify([joints], residual, 'numpy')",
+        "jac = sp.lambdify([joints], residual.jacobian(joints), 'numpy')",
+        f"limits = np.array({limits!r})",
+        f"revolute = np.array({revolute!r})",
+        "per_joint = max(2, int(round(200 ** (1 / len(joints)))))",
+        "grid = np.meshgrid(*[np.linspace(lo, hi, per_joint + 2)[1:-1] for lo, hi in limits])",
+        "solutions = []",
+        "for start in np.stack([g.ravel() for g in grid], axis=1):",
+        "    x = start.astype(float)",
+        "    for _ in range(60):",
+        "        r = np.asarray(f(x), dtype=float).ravel()",
+        "        if np.linalg.norm(r) < 1e-12:",
+        "            break",
+        "        x = x - np.linalg.lstsq(np.asarray(jac(x), dtype=float), r, rcond=None)[0]",
+        "    x = np.where(revolute, (x + np.pi) % (2 * np.pi) - np.pi, x)",
+        "    ok = np.linalg.norm(np.asarray(f(x), dtype=float)) < 1e-9",
+        "    inside = np.all((x >= limits[:, 0] - 1e-9) & (x <= limits[:, 1] + 1e-9))",
+        "    if ok and inside and not any(np.allclose(x, s, atol=1e-6) for s in solutions):",
+        "        solutions.append(x)",
+        "solutions.sort(key=lambda s: tuple(np.round(s, 9)))",
+        f"names = {[j.name for j in problem.joints]!r}",
+        "for s in solutions:",
+        "    print('recomputed solution:', dict(zip(names, np.round(s, 12).tolist())))",
+        _expected(answer, ["solutions"]),
+    ])
+
+
+def _cell_forward_dynamics(q, answer, problem):
+    laws = q.options.get("actuators") or {}
+    by_actuator = {str(j.actuator): j for j in problem.joints}
+    if any(str(a) not in by_actuator for a in laws):
+        return None
+    start = q.options.get("start") or {}
+    tau = ", ".join(_s(laws.get(str(j.actuator), 0)) for j in problem.joints)
+    q0 = [_s(start.get(j.name, 0)) for j in problem.joints]
+    v0 = [_s(start.get(f"{j.name}_dot", 0)) for j in problem.joints]
+    duration = float(sp.N(q.options["duration"]))
+    names = [j.name for j in problem.joints]
+    return "\n".join([
+        f"at = {_at(q)}",
+        "# M(q) q'' + c + g = tau + Q, integrated by fixed-step RK4 (step 1 ms)",
+        "mass, c, grav, Q = lagrange(at)",
+        "t = sp.Symbol('t')",
+        "fixed = {s: v for s, v in values(at).items() if s not in joints + rates}",
+        f"tau = sp.Matrix([{tau}]).subs(fixed)",
+        "mass_f = sp.lambdify([t, joints, rates], mass, 'numpy')",
+        "rest_f = sp.lambdify([t, joints, rates], tau + Q - c - grav, 'numpy')",
+        "",
+        "def derivative(time, state):",
+        "    n = len(joints)",
+        "    x, v = state[:n], state[n:]",
+        "    a = np.linalg.solve(np.asarray(mass_f(time, x, v), dtype=float),",
+        "                        np.asarray(rest_f(time, x, v), dtype=float).ravel())",
+        "    return np.concatenate([v, a])",
+        "",
+        f"duration, steps = {duration!r}, {max(1000, int(round(duration * 1000)))}",
+        f"state = np.array([float(number(x, at)) for x in [{', '.join(q0 + v0)}]])",
+        "dt = duration / steps",
+        "track = [state]",
+        "for k in range(steps):",
+        "    time = k * dt",
+        "    k1 = derivative(time, state)",
+        "    k2 = derivative(time + dt / 2, state + dt / 2 * k1)",
+        "    k3 = derivative(time + dt / 2, state + dt / 2 * k2)",
+        "    k4 = derivative(time + dt, state + dt * k3)",
+        "    state = state + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)",
+        "    track.append(state)",
+        "track = np.array(track)",
+        "n = len(joints)",
+        f"names = {names!r}",
+        "print('recomputed final =', dict(zip(names, np.round(track[-1, :n], 8).tolist())))",
+        "print('recomputed final_velocity =', dict(zip(names, np.round(track[-1, n:], 8).tolist())))",
+        "print('recomputed max (samples) =', dict(zip(names, np.round(track[:, :n].max(axis=0), 8).tolist())))",
+        "print('recomputed min (samples) =', dict(zip(names, np.round(track[:, :n].min(axis=0), 8).tolist())))",
+        _expected(answer, ["final", "final_velocity", "max", "min"]),
+    ])
+
+
 RECOMPUTE = {
+    "forward_dynamics": _cell_forward_dynamics,
+    "inverse_kinematics": _cell_inverse_kinematics,
+    "displacement": _cell_displacement,
+    "orientation": _cell_orientation,
+    "equations_of_motion": _cell_equations_of_motion,
     "position": _cell_position,
     "velocity_acceleration": _cell_velocity,
     "jacobian": _cell_jacobian,
@@ -371,6 +699,10 @@ def _add_setup(add, problem, report) -> None:
     add("code", _data_cell(problem))
     points = "\n" + _point_names_cell(problem) if problem.points and problem.frames else ""
     add("code", MODEL + points)
+    if any(q.type in ("displacement", "orientation") for q in problem.questions):
+        add("code", GEOMETRY)
+    if problem.bodies:
+        add("code", DYNAMICS)
 
 
 def build_notebook(report, markdown: str):
