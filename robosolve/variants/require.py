@@ -8,8 +8,7 @@ evaluation per distinct sub-combination, not one per combination.
 
 - inequality: evaluated in floating point; within 1e-9 of equality, decided exactly;
 - `nonsingular`: the smallest singular value of J at the question's `at` is above 1e-6
-  times the largest (J from robosolve.core.simplify import full
-from robosolve.kinematics' analytic / geometric Jacobian);
+  times the largest (J from robosolve.kinematics' analytic / geometric Jacobian);
 - `reachable`: the IK engine's numeric search (robosolve.ik.numeric.solve_all, the same
   multi-start search and the same joint-limit rule as the inverse_kinematics solver)
   finds at least one solution inside the limits.
@@ -27,6 +26,7 @@ import math
 import numpy as np
 import sympy as sp
 
+from robosolve.core.simplify import full
 from robosolve.errors import InputError, InputIssue
 
 SINGULAR_RATIO = 1e-6
