@@ -93,13 +93,8 @@ def numeric_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         ans.steps.append(Step("Numeric values", "At the configuration of the question:", equations=shown))
 
 
-# long: the W / H chain of steps in the course's order, one equation list; to split next (issue 10 item 6)
-def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
-    model = ctx.model
-    frame, point = question.frame, question.point
-    chain = model.chain(frame)
-
-    # L matrices
+def _l_matrices_step(model, chain) -> Step:
+    """The L matrix of each joint of `chain`, in its parent and moved to frame 0."""
     lstep = Step(
         "L matrices of the joints",
         "For joint $i$, moving frame $j$ relative to its parent $p$: "
@@ -117,7 +112,15 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
                 lstep.equations.append((f"{{}}^{{0}}L_{{{q}}} = {m_name('0', parent)}\\,"
                                         f"{{}}^{{{frame_tex(parent)}}}L_{{{q}}}\\,{m_name('0', parent)}^{{-1}}",
                                         model.L0(i, f)))
-    ans.steps.append(lstep)
+    return lstep
+
+
+def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
+    model = ctx.model
+    frame, point = question.frame, question.point
+    chain = model.chain(frame)
+
+    ans.steps.append(_l_matrices_step(model, chain))
 
     # Rivals
     ans.steps.append(_composition_step(
