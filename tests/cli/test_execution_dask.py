@@ -56,7 +56,7 @@ def test_batch_on_dask_writes_the_same_bytes_as_a_local_run(scheduler, tmp_path)
 
 
 def test_variants_on_dask_equal_the_local_pool(scheduler, tmp_path):
-    from tests.test_variants import problem_file
+    from tests.workflows.test_variants import problem_file
 
     p = problem_file(tmp_path)
     local, remote = tmp_path / "local", tmp_path / "dask"
@@ -67,7 +67,7 @@ def test_variants_on_dask_equal_the_local_pool(scheduler, tmp_path):
 
 
 def test_an_unreachable_scheduler_is_a_usage_error(tmp_path):
-    from tests.test_variants import problem_file
+    from tests.workflows.test_variants import problem_file
 
     p = problem_file(tmp_path)
     r = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve",
