@@ -191,35 +191,30 @@ def _solve_and_write(files, names, out, jobs, golden, update, formats, scheduler
 
 def compare_files(new_files: dict, golden_root: Path, name: str) -> list[str]:
     """Differences between one problem's new files (relative path -> bytes) and its golden folder."""
+    return _compare_problem(golden_root, name, lambda g: new_files[g].decode("utf-8"))
+
+
+def compare_tree(new_root: Path, golden_root: Path, names) -> list[str]:
+    out = []
+    for n in names:
+        out += _compare_problem(golden_root, n, lambda g, n=n: (new_root / n / g).read_text(encoding="utf-8"))
+    return out
+
+
+def _compare_problem(golden_root: Path, name: str, new_text) -> list[str]:
+    """Differences between the golden files of problem `name` and `new_text(file name)`."""
     out = []
     for g in GOLDEN_FILES:
         old = golden_root / name / g
         if not old.exists():
             out.append(f"--- {old}: missing in the golden folder")
             continue
-        a, b = old.read_text(encoding="utf-8"), new_files[g].decode("utf-8")
+        a, b = old.read_text(encoding="utf-8"), new_text(g)
         if g.endswith(".json"):
             out += [f"{old}: {d}" for d in compare_json(json.loads(a), json.loads(b))]
         elif a != b:
             out += list(difflib.unified_diff(a.splitlines(), b.splitlines(), str(old), f"{name}/{g} (new)",
                                              lineterm=""))
-    return out
-
-
-def compare_tree(new_root: Path, golden_root: Path, names) -> list[str]:
-    out = []
-    for n in names:
-        for g in GOLDEN_FILES:
-            new, old = new_root / n / g, golden_root / n / g
-            if not old.exists():
-                out.append(f"--- {old}: missing in the golden folder")
-                continue
-            a, b = old.read_text(encoding="utf-8"), new.read_text(encoding="utf-8")
-            if g.endswith(".json"):
-                out += [f"{old}: {d}" for d in compare_json(json.loads(a), json.loads(b))]
-            elif a != b:
-                out += list(difflib.unified_diff(a.splitlines(), b.splitlines(), str(old), f"{n}/{g} (new)",
-                                                 lineterm=""))
     return out
 
 

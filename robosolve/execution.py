@@ -134,11 +134,11 @@ def run_tasks(tasks: list, jobs: int = 0, scheduler: str | None = None):
 
 
 def _run_pool(tasks, order, jobs):
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
-    pool = ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), initializer=warm_worker)
-    clean = False
-    try:
+    from robosolve.interrupts import process_pool
+
+    with process_pool(max_workers=min(jobs, len(tasks)), initializer=warm_worker) as pool:
         futures = {pool.submit(solve_task, tasks[i]): i for i in order}
         for fut in as_completed(futures):
             i = futures[fut]
@@ -146,14 +146,6 @@ def _run_pool(tasks, order, jobs):
                 yield i, fut.result()
             except Exception as exc:  # a crashed worker is a row of the summary, not a traceback
                 yield i, crash_result(tasks[i], exc)
-        clean = True
-    finally:
-        if clean:
-            pool.shutdown(wait=True)
-        else:  # interrupted: a waiting shutdown could hang on a busy worker, so terminate them
-            for proc in list((getattr(pool, "_processes", None) or {}).values()):
-                proc.terminate()
-            pool.shutdown(wait=False, cancel_futures=True)
 
 
 def start_local_cluster(jobs: int = 0):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import signal
 import sys
+from contextlib import contextmanager
 
 EXIT_SIGINT = 130
 EXIT_SIGTERM = 143
@@ -65,3 +66,27 @@ def worker_init() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     if hasattr(signal, "SIGTERM"):
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+@contextmanager
+def process_pool(**options):
+    """A ProcessPoolExecutor(**options) that is shut down when the block ends.
+
+    A block that ends normally waits for the workers; an interrupted one (an exception,
+    KeyboardInterrupt, a closed generator) terminates them, since a waiting shutdown could
+    hang on a busy worker.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    pool = ProcessPoolExecutor(**options)
+    clean = False
+    try:
+        yield pool
+        clean = True
+    finally:
+        if clean:
+            pool.shutdown(wait=True)
+        else:
+            for proc in list((getattr(pool, "_processes", None) or {}).values()):
+                proc.terminate()
+            pool.shutdown(wait=False, cancel_futures=True)

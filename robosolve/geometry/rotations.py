@@ -340,6 +340,20 @@ def quaternion_matrix(q) -> sp.Matrix:
 # ZYZ Euler angles
 
 
+def _locked(gamma, middle, combination: str, zero=0.0) -> EulerAngles:
+    """The singular case of a convention: one set in which only `combination` of the two outer
+    angles is fixed (= gamma, put in the first angle, the last one 0)."""
+    return EulerAngles([[gamma, middle, zero]], True, (combination, gamma))
+
+
+def _two_sets_symbolic(s1, s2, exact: bool, factor, validity: str) -> EulerAngles:
+    """The two regular solution sets of a sympy rotation: wrapped to (-pi, pi] when exact,
+    else kept with the `factor` that must not vanish and where they are valid."""
+    if exact:
+        return EulerAngles([[_wrap_symbolic(x) for x in s1], [_wrap_symbolic(x) for x in s2]], False)
+    return EulerAngles([s1, s2], None, None, factor, [validity])
+
+
 def zyz_matrix(phi, theta, psi) -> sp.Matrix:
     """R = Rz(phi) Ry(theta) Rz(psi)."""
     from robosolve.core.transforms import rot_y, rot_z
@@ -359,9 +373,9 @@ def zyz_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
     if st <= tol:
         if r[2, 2] > 0:  # theta = 0: R = Rz(phi + psi)
             gamma = _atan2(r[1, 0], r[0, 0])
-            return EulerAngles([[gamma, 0.0, 0.0]], True, ("phi + psi", gamma))
+            return _locked(gamma, 0.0, "phi + psi")
         gamma = _atan2(-r[0, 1], -r[0, 0])  # theta = pi: R = Rz(phi - psi) Ry(pi)
-        return EulerAngles([[gamma, math.pi, 0.0]], True, ("phi - psi", gamma))
+        return _locked(gamma, math.pi, "phi - psi")
     theta = _atan2(st, r[2, 2])
     s1 = [_atan2(r[1, 2], r[0, 2]), theta, _atan2(r[2, 1], -r[2, 0])]
     s2 = [_atan2(-r[1, 2], -r[0, 2]), -theta + 0.0, _atan2(-r[2, 1], r[2, 0])]
@@ -376,17 +390,14 @@ def zyz_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
     if is_zero(st):
         if _positive_unit(r[2, 2]):
             gamma = _wrap_symbolic(_sym_angle(r[1, 0], r[0, 0], simplify))
-            return EulerAngles([[gamma, sp.Integer(0), sp.Integer(0)]], True, ("phi + psi", gamma))
+            return _locked(gamma, sp.Integer(0), "phi + psi", sp.Integer(0))
         gamma = _wrap_symbolic(_sym_angle(-r[0, 1], -r[0, 0], simplify))
-        return EulerAngles([[gamma, sp.pi, sp.Integer(0)]], True, ("phi - psi", gamma))
+        return _locked(gamma, sp.pi, "phi - psi", sp.Integer(0))
     theta = _sym_angle(st, r[2, 2], simplify)
     s1 = [_sym_angle(r[1, 2], r[0, 2], simplify), theta, _sym_angle(r[2, 1], -r[2, 0], simplify)]
     s2 = [_sym_angle(-r[1, 2], -r[0, 2], simplify), simplify(-theta),
           _sym_angle(-r[2, 1], r[2, 0], simplify)]
-    if exact:
-        return EulerAngles([[_wrap_symbolic(x) for x in s1], [_wrap_symbolic(x) for x in s2]], False)
-    notes = ["valid where sin(theta) != 0"]
-    return EulerAngles([s1, s2], None, None, st, notes)
+    return _two_sets_symbolic(s1, s2, exact, st, "valid where sin(theta) != 0")
 
 
 # --------------------------------------------------------------------------
@@ -411,9 +422,9 @@ def rpy_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
     if cp <= tol:
         if -r[2, 0] > 0:  # pitch = +pi/2: R = Ry(pi/2) Rx(roll - yaw) ... only roll - yaw fixed
             gamma = _atan2(r[0, 1], r[1, 1])
-            return EulerAngles([[gamma, math.pi / 2, 0.0]], True, ("roll - yaw", gamma))
+            return _locked(gamma, math.pi / 2, "roll - yaw")
         gamma = _atan2(-r[0, 1], r[1, 1])  # pitch = -pi/2: only roll + yaw fixed
-        return EulerAngles([[gamma, -math.pi / 2, 0.0]], True, ("roll + yaw", gamma))
+        return _locked(gamma, -math.pi / 2, "roll + yaw")
     pitch = _atan2(-r[2, 0], cp)
     s1 = [_atan2(r[2, 1], r[2, 2]), pitch, _atan2(r[1, 0], r[0, 0])]
     s2 = [_atan2(-r[2, 1], -r[2, 2]), _atan2(-r[2, 0], -cp), _atan2(-r[1, 0], -r[0, 0])]
@@ -428,13 +439,11 @@ def rpy_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
     if is_zero(cp):
         if _positive_unit(-r[2, 0]):
             gamma = _wrap_symbolic(_sym_angle(r[0, 1], r[1, 1], simplify))
-            return EulerAngles([[gamma, sp.pi / 2, sp.Integer(0)]], True, ("roll - yaw", gamma))
+            return _locked(gamma, sp.pi / 2, "roll - yaw", sp.Integer(0))
         gamma = _wrap_symbolic(_sym_angle(-r[0, 1], r[1, 1], simplify))
-        return EulerAngles([[gamma, -sp.pi / 2, sp.Integer(0)]], True, ("roll + yaw", gamma))
+        return _locked(gamma, -sp.pi / 2, "roll + yaw", sp.Integer(0))
     s1 = [_sym_angle(r[2, 1], r[2, 2], simplify), _sym_angle(-r[2, 0], cp, simplify),
           _sym_angle(r[1, 0], r[0, 0], simplify)]
     s2 = [_sym_angle(-r[2, 1], -r[2, 2], simplify), _sym_angle(-r[2, 0], -cp, simplify),
           _sym_angle(-r[1, 0], -r[0, 0], simplify)]
-    if exact:
-        return EulerAngles([[_wrap_symbolic(x) for x in s1], [_wrap_symbolic(x) for x in s2]], False)
-    return EulerAngles([s1, s2], None, None, cp, ["valid where cos(pitch) != 0"])
+    return _two_sets_symbolic(s1, s2, exact, cp, "valid where cos(pitch) != 0")

@@ -19,7 +19,7 @@ from pathlib import Path
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean
 from robosolve.load.loader import path_str, type_name
-from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml
+from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, read_text_file
 from robosolve.questions.registry import RECORD, question_type
 
 FORMAT_KEY = "robosolve-answers"
@@ -79,14 +79,7 @@ def read_answers(file) -> Submission:
     `answers`); smaller issues are kept in `issues` and raised by `resolve_answers` together
     with those of the questions and keys, so one run reports every mistake.
     """
-    name = str(file)
-    try:
-        text = Path(file).read_bytes().decode("utf-8")
-    except OSError as exc:
-        raise InputError([InputIssue(name, 1, "", f"cannot read the file: {exc.strerror or exc}")])
-    except UnicodeDecodeError:
-        raise InputError([InputIssue(name, 1, "", "the file is not UTF-8 text")])
-    return read_answers_text(text, name)
+    return read_answers_text(read_text_file(file, line=1), str(file))
 
 
 def read_answers_text(text: str, file: str = "<answers>") -> Submission:

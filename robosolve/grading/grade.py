@@ -13,7 +13,6 @@ from __future__ import annotations
 import csv
 import io
 import os
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -23,6 +22,7 @@ from robosolve.grading.grader import Grader, invalid_result
 from robosolve.grading.record import (
     GRADES_COLUMNS, SUMMARY_COLUMNS, feedback_markdown, grade_rows, record_json, summary_row,
 )
+from robosolve.interrupts import process_pool
 
 
 # Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
@@ -210,21 +210,11 @@ def grade_all(jobs, references, n_jobs: int, progress=None) -> list:
             if progress:
                 progress(1)
         return results
-    pool = ProcessPoolExecutor(max_workers=n_jobs, initializer=_init_worker, initargs=(references, True))
-    clean = False
-    try:
+    with process_pool(max_workers=n_jobs, initializer=_init_worker, initargs=(references, True)) as pool:
         for i, r in pool.map(grade_job, jobs, chunksize=max(1, len(jobs) // (4 * n_jobs))):
             results[i] = r
             if progress:
                 progress(1)
-        clean = True
-    finally:
-        if clean:
-            pool.shutdown(wait=True)
-        else:  # interrupted: a waiting shutdown could hang on a busy worker, so stop them
-            for proc in list((getattr(pool, "_processes", None) or {}).values()):
-                proc.terminate()
-            pool.shutdown(wait=False, cancel_futures=True)
     return results
 
 

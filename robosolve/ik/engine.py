@@ -340,17 +340,7 @@ def solve_ik(
                       f"({', '.join(j.name for j in used)}); {', '.join(unused)} "
                       f"{'is' if len(unused) == 1 else 'are'} free. Choose {m_eff} of the {m} equations "
                       f"for {', '.join(j.name for j in used)}, and add an equation for {', '.join(unused)}.")
-        for combo in itertools.combinations(range(m), m_eff):
-            if len(res.subsets) >= 20:
-                break
-            sub = [exprs[k] for k in combo]
-            sys2 = _numeric_system(sub, used, values, [res.angular[k] for k in combo])
-            r2 = solve_all(sys2, _boxes(used, _scale(values)), budget)
-            res.subsets.append({
-                "equations": list(combo),
-                "solutions": [{j.name: v for j, v in zip(used, s.q)} for s in r2.solutions],
-                "family": r2.family,
-            })
+        _solve_subsets(res, exprs, used, values, budget)
         return res
     if m < n:
         res.status = "redundant"
@@ -375,17 +365,7 @@ def solve_ik(
         res.status = "overdetermined"
         res.reason = (f"{m} equations for {n} unknown joints: no configuration satisfies all of "
                       f"them. Choose {n} of the {m} equations (each choice is solved below).")
-        for combo in itertools.combinations(range(m), n):
-            if len(res.subsets) >= 20:
-                break
-            sub = [exprs[k] for k in combo]
-            sys2 = _numeric_system(sub, joints, values, [res.angular[k] for k in combo])
-            r2 = solve_all(sys2, _boxes(joints, _scale(values)), budget)
-            res.subsets.append({
-                "equations": list(combo),
-                "solutions": [{j.name: v for j, v in zip(joints, s.q)} for s in r2.solutions],
-                "family": r2.family,
-            })
+        _solve_subsets(res, exprs, joints, values, budget)
         return res
 
     # square system: closed form first (under a time limit), then numbers
@@ -446,6 +426,21 @@ def solve_ik(
     if res.reason_tex is None:
         res.reason_tex = res.reason
     return res
+
+
+def _solve_subsets(res, exprs, joints, values, budget):
+    """Solve each choice of len(joints) of the equations for `joints` (the first 20 choices)."""
+    for combo in itertools.combinations(range(len(exprs)), len(joints)):
+        if len(res.subsets) >= 20:
+            break
+        sub = [exprs[k] for k in combo]
+        system = _numeric_system(sub, joints, values, [res.angular[k] for k in combo])
+        found = solve_all(system, _boxes(joints, _scale(values)), budget)
+        res.subsets.append({
+            "equations": list(combo),
+            "solutions": [{j.name: v for j, v in zip(joints, s.q)} for s in found.solutions],
+            "family": found.family,
+        })
 
 
 def _cf_solutions(cf, values, joints, system):

@@ -7,7 +7,6 @@ so one run reports every problem of the file (spec §4).
 from __future__ import annotations
 
 import re
-from pathlib import Path
 
 import sympy as sp
 
@@ -19,7 +18,7 @@ from robosolve.load.expressions import (
 from robosolve.load.problem import (
     PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
 )
-from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml
+from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, read_text_file
 
 NAME_RE = re.compile(r"[a-z0-9_-]+")  # used with fullmatch: "$" would accept a final newline
 IDENT_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
@@ -181,16 +180,7 @@ class Checker:
 # ----------------------------------------------------------------------
 def load_problem(file) -> Problem:
     """Read and validate a problem file. Raises InputError with every issue."""
-    name = str(file)
-    try:
-        raw = Path(file).read_bytes()
-    except OSError as exc:
-        raise InputError([InputIssue(name, 0, "", f"cannot read the file: {exc.strerror or exc}")])
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError([InputIssue(name, 0, "", "the file is not UTF-8 text")])
-    return load_problem_text(text, name)
+    return load_problem_text(read_text_file(file), str(file))
 
 
 def load_problem_text(text: str, file: str = "<input>") -> Problem:

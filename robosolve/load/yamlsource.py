@@ -8,9 +8,12 @@ nesting are stopped by a node budget instead of exhausting memory, and
 
 from __future__ import annotations
 
+import pathlib
 from dataclasses import dataclass, field
 
 import yaml
+
+from robosolve.errors import InputError, InputIssue
 
 MAX_FILE_BYTES = 1_000_000
 MAX_NODES = 100_000
@@ -93,6 +96,19 @@ class _Converter:
             return self._scalar_loader.construct_object(node, deep=True)
         except Exception as exc:  # e.g. an integer with too many digits
             raise YamlProblem(node.start_mark.line + 1, f"invalid value {node.value[:40]!r}: {exc}")
+
+
+def read_text_file(file, line: int = 0) -> str:
+    """The UTF-8 text of `file`, or an InputError (at `line`) saying why it cannot be read."""
+    name = str(file)
+    try:
+        raw = pathlib.Path(file).read_bytes()
+    except OSError as exc:
+        raise InputError([InputIssue(name, line, "", f"cannot read the file: {exc.strerror or exc}")])
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError([InputIssue(name, line, "", "the file is not UTF-8 text")])
 
 
 def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int, Path, str]]]:

@@ -40,34 +40,24 @@ def _units(question, model, ts):
     return "N or N·m", "m/s or rad/s", "m or rad"
 
 
-# long: compute and steps still interleaved per ellipsoid; to split into compute / steps next (issue 10 item 6)
 def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
     opts = question.options
-    q = model.q
     ts = task_space(question, ctx, ctx.step_seconds)
     J = ts.J
     m, n = J.shape
     subs = ctx.substitutions(question.at)
     f_unit, v_unit, c_unit = _units(question, model, ts)
-
     budgets = opts.get("budgets", {}) or {}
     kf_s = budgets.get("force", sp.Integer(1))
     kv_s = budgets.get("velocity", sp.Integer(1))
     ka_s = budgets.get("compliance", sp.Integer(1))
     kq_s = list(opts.get("joint_compliance") or [sp.Integer(1)] * n)
 
-    # -- J and A ------------------------------------------------------------------
     A = J * J.T
     ans.symbolic["A"] = A
-    ans.steps.append(Step(
-        "Jacobian and the matrix A",
-        f"Task coordinates $S = {_col(ts.labels)}$ and $J = \\partial S / \\partial Q$ "
-        f"({m}×{n}). The joint budget $\\|F_q\\| \\le K_f$ with $F_q = -J^T F$ gives "
-        "$F^T J J^T F \\le K_f^2$: every ellipsoid below is governed by $A = J J^T$.",
-        equations=[("J", J), ("A = J J^T", A)],
-    ))
+    ans.steps.append(_jacobian_step(ts, J, A))
     try:
         jn = ctx.numeric(J, subs)
     except MissingValues as exc:
@@ -76,22 +66,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     import numpy as np
 
     jn_a = np.array(jn, dtype=float).reshape(m, n)
-
-    def budget(expr, what):
-        try:
-            return float(ctx.numeric(expr, subs))
-        except MissingValues as exc:
-            ans.note(missing_note(what, exc.names, ctx.problem))
-            return None
-
-    kf = budget(kf_s, "force ellipsoid (budget Kf)")
-    kv = budget(kv_s, "velocity ellipsoid (budget Kv)")
-    ka = budget(ka_s, "compliance ellipsoid (budget Ka)")
-    try:
-        kq = [float(x) for x in ctx.numeric(kq_s, subs)]
-    except MissingValues as exc:
-        ans.note(missing_note("compliance ellipsoid (joint compliances)", exc.names, ctx.problem))
-        kq = None
+    kf, kv, ka, kq = _numeric_budgets(ctx, subs, ans, kf_s, kv_s, ka_s, kq_s)
     res = ellipsoids(jn_a, kf=kf or 1.0, kv=kv or 1.0, ka=ka or 1.0,
                      kq=kq if kq is not None else [1.0] * n)
     for note in res.notes:
@@ -108,7 +83,93 @@ def solve(question, ctx: SolveContext) -> Answer:
     if exact is not None:
         ans.symbolic["eigenvalues"] = exact["eigenvalues"]
 
-    # -- eigen-decomposition ------------------------------------------------------
+    ans.steps.append(_eigen_step(res, exact, jn, j_exact))
+    ans.numeric["eigenvalues"] = res.eigenvalues
+    ans.steps.append(_force_step(res, exact, kf_s, f_unit))
+    _put(ans, "force", res.force, kf, exact, "force")
+    ans.steps.append(_velocity_step(res, exact, kv_s, v_unit, m == n))
+    _put(ans, "velocity", res.velocity, kv, exact, "velocity")
+    ans.steps.append(_compliance_step(res, exact, J, kq_s, ka_s, c_unit))
+    if kq is not None:
+        _put(ans, "compliance", res.compliance, ka, exact, "compliance")
+    _condition_number(ans, res, exact)
+    if opts.get("velocity") is not None:
+        _joint_rates(ans, ctx, model, list(opts["velocity"]), subs, jn_a, m == n)
+
+    fig = _figure(question, ctx, ts, res, subs, (kf, kv, ka), (f_unit, v_unit, c_unit))
+    if fig is not None:
+        ans.figures.append(fig)
+    elif m not in (2, 3):
+        ans.note(f"No ellipsoid figure for {m} coordinates (only 2 or 3 can be drawn).")
+    return ans
+
+
+# -- compute ------------------------------------------------------------------------
+def _numeric_budgets(ctx, subs, ans, kf_s, kv_s, ka_s, kq_s):
+    """Kf, Kv, Ka and the joint compliances as floats (None, with a note, where a value is missing)."""
+    def budget(expr, what):
+        try:
+            return float(ctx.numeric(expr, subs))
+        except MissingValues as exc:
+            ans.note(missing_note(what, exc.names, ctx.problem))
+            return None
+
+    kf = budget(kf_s, "force ellipsoid (budget Kf)")
+    kv = budget(kv_s, "velocity ellipsoid (budget Kv)")
+    ka = budget(ka_s, "compliance ellipsoid (budget Ka)")
+    try:
+        kq = [float(x) for x in ctx.numeric(kq_s, subs)]
+    except MissingValues as exc:
+        ans.note(missing_note("compliance ellipsoid (joint compliances)", exc.names, ctx.problem))
+        kq = None
+    return kf, kv, ka, kq
+
+
+def _put(ans, key, ax, budget_value, exact, exact_key):
+    """One ellipsoid's answer (only when its budget is known)."""
+    if budget_value is None:
+        return
+    ans.numeric[key] = {"semi_axes": ax.semi_axes, "lengths": ax.lengths,
+                        "directions": ax.directions}
+    if exact is not None:
+        ans.symbolic[key] = {"lengths": exact[exact_key]}
+
+
+def _joint_rates(ans, ctx, model, velocity, subs, jn_a, square):
+    """q_dot for the desired end-effector velocity, with its step."""
+    try:
+        v = [float(x) for x in ctx.numeric(velocity, subs)]
+    except MissingValues as exc:
+        ans.note(missing_note("q_dot", exc.names, ctx.problem))
+        return
+    qd, _resid, note = joint_rates(jn_a, v)
+    if note:
+        ans.note(note)
+    names = [j.name for j in model.joints]
+    ans.numeric["q_dot"] = {k: x for k, x in zip(names, qd)}
+    how = ("$\\dot Q = J^{-1} V$" if square and note is None
+           else "$\\dot Q = J^{+} V$ (pseudo-inverse: minimum-norm least squares)")
+    ans.steps.append(Step(
+        "Joint velocities for the desired velocity",
+        f"{how}" + (f". {note}" if note else "") + ":",
+        equations=[("V", v)] + [(model.symbol_latex.get(j.dot, sp.latex(j.dot)), x)
+                                for j, x in zip(model.joints, qd)],
+    ))
+
+
+# -- steps --------------------------------------------------------------------------
+def _jacobian_step(ts, J, A) -> Step:
+    m, n = J.shape
+    return Step(
+        "Jacobian and the matrix A",
+        f"Task coordinates $S = {_col(ts.labels)}$ and $J = \\partial S / \\partial Q$ "
+        f"({m}×{n}). The joint budget $\\|F_q\\| \\le K_f$ with $F_q = -J^T F$ gives "
+        "$F^T J J^T F \\le K_f^2$: every ellipsoid below is governed by $A = J J^T$.",
+        equations=[("J", J), ("A = J J^T", A)],
+    )
+
+
+def _eigen_step(res, exact, jn, j_exact) -> Step:
     if exact is not None:
         eqs = [("J", j_exact), ("A", exact["A"])]
     else:
@@ -121,7 +182,7 @@ def solve(question, ctx: SolveContext) -> Answer:
 
     rows = [[str(i + 1), _num(nu) + exact_tex(i),
              _vec_tex(vec)] for i, (nu, vec) in enumerate(zip(res.eigenvalues, res.eigenvectors))]
-    ans.steps.append(Step(
+    return Step(
         "Eigenvalues and unit eigenvectors of A",
         "At the configuration of the question. The eigenvalues $\\nu_i$ are the roots of "
         "$\\det(A - \\nu I) = 0$; each eigenvector $\\hat\\vartheta_i$ solves "
@@ -129,25 +190,18 @@ def solve(question, ctx: SolveContext) -> Answer:
         "of the three ellipsoids.",
         equations=eqs,
         table=(["i", "ν_i", "unit eigenvector ϑ̂_i"], rows),
-    ))
-    ans.numeric["eigenvalues"] = res.eigenvalues
+    )
 
-    # -- force ---------------------------------------------------------------------
-    def axes_table(ax, unit):
-        return (["axis", "length", "direction", "semi-axis"],
-                [[str(i + 1), _num(ln, unit), _vec_tex(d),
-                  _vec_tex(s) if s is not None else "∞ (unbounded)"]
-                 for i, (ln, d, s) in enumerate(zip(ax.lengths, ax.directions, ax.semi_axes))])
 
-    def put(key, ax, budget_value, exact_key):
-        if budget_value is None:
-            return
-        ans.numeric[key] = {"semi_axes": ax.semi_axes, "lengths": ax.lengths,
-                            "directions": ax.directions}
-        if exact is not None:
-            ans.symbolic[key] = {"lengths": exact[exact_key]}
+def _axes_table(ax, unit):
+    return (["axis", "length", "direction", "semi-axis"],
+            [[str(i + 1), _num(ln, unit), _vec_tex(d),
+              _vec_tex(s) if s is not None else "∞ (unbounded)"]
+             for i, (ln, d, s) in enumerate(zip(ax.lengths, ax.directions, ax.semi_axes))])
 
-    ans.steps.append(Step(
+
+def _force_step(res, exact, kf_s, f_unit) -> Step:
+    return Step(
         "Force ellipsoid",
         "The end-effector forces that the joints balance within the budget $K_f$ "
         "($F_q^T F_q = K_f^2$) satisfy $F^T A F = K_f^2$. Along $\\hat\\vartheta_i$, "
@@ -155,17 +209,17 @@ def solve(question, ctx: SolveContext) -> Answer:
         f"(" + note_link("ellipsoid-axes") + f"), sorted by decreasing length; here $K_f = {sp.latex(kf_s)}$ {f_unit}."
         + (" A zero eigenvalue makes the force semi-axis infinite: forces along it are carried "
            "by the structure (reported as null)." if res.singular else ""),
-        table=axes_table(res.force, f_unit),
+        table=_axes_table(res.force, f_unit),
         equations=([("a_i", exact["force"])] if exact is not None else []),
-    ))
-    put("force", res.force, kf, "force")
+    )
 
-    # -- velocity --------------------------------------------------------------------
+
+def _velocity_step(res, exact, kv_s, v_unit, square) -> Step:
     vel_text = ("With $\\dot Q^T \\dot Q = K_v^2$ and $\\dot Q = J^{-1} V$: "
-                "$V^T A^{-1} V = K_v^2$." if m == n else
+                "$V^T A^{-1} V = K_v^2$." if square else
                 "With $\\dot Q^T \\dot Q = K_v^2$ and the minimum-norm $\\dot Q = J^{+} V$ "
                 "(J not square): $V^T A^{-1} V = K_v^2$ (" + note_link("ellipsoid-axes") + ").")
-    ans.steps.append(Step(
+    return Step(
         "Velocity ellipsoid",
         vel_text + " $A^{-1}$ has the same eigenvectors and eigenvalues $1/\\nu_i$, so the "
         "semi-axes are $K_v\\sqrt{\\nu_i}\\,\\hat\\vartheta_i$: the same axes as the force "
@@ -173,15 +227,14 @@ def solve(question, ctx: SolveContext) -> Answer:
         f"shortest velocity axis). Here $K_v = {sp.latex(kv_s)}$ {v_unit}."
         + (" A zero eigenvalue flattens it: no velocity is possible along that axis."
            if res.singular else ""),
-        table=axes_table(res.velocity, v_unit),
+        table=_axes_table(res.velocity, v_unit),
         equations=([("c_i", exact["velocity"])] if exact is not None else []),
-    ))
-    put("velocity", res.velocity, kv, "velocity")
+    )
 
-    # -- compliance --------------------------------------------------------------------
-    kq_m = sp.diag(*kq_s)
-    ks_sym = J * kq_m * J.T
-    ans.steps.append(Step(
+
+def _compliance_step(res, exact, J, kq_s, ka_s, c_unit) -> Step:
+    ks_sym = J * sp.diag(*kq_s) * J.T
+    return Step(
         "Compliance ellipsoid",
         "The joints yield $\\delta Q = K_q\\,\\tau$ under their actions ($K_q$ the joint "
         "compliances, rad/(N·m) or m/N); with $\\tau = -J^T F$ the end effector moves "
@@ -192,63 +245,34 @@ def solve(question, ctx: SolveContext) -> Answer:
         f"$K_a = {sp.latex(ka_s)}$ {c_unit}.",
         equations=[("K_s = J K_q J^T", ks_sym), ("K_s", res.Ks)]
         + ([("\\kappa_i", exact["compliance_eigenvalues"])] if exact is not None else []),
-        table=axes_table(res.compliance, c_unit),
-    ))
-    if kq is not None:
-        put("compliance", res.compliance, ka, "compliance")
+        table=_axes_table(res.compliance, c_unit),
+    )
 
-    # -- condition number ------------------------------------------------------------------
+
+def _condition_number(ans, res, exact) -> None:
+    """The condition number's answer and step (infinite, null, at a singular configuration)."""
     if res.condition_number is None:
         ans.numeric["condition_number"] = None
         ans.steps.append(Step(
             "Condition number",
             "$\\min \\nu = 0$: the configuration is singular and the condition number "
             "$\\max\\nu / \\min\\nu$ is infinite (reported as null)."))
-    else:
-        ans.numeric["condition_number"] = res.condition_number
-        if exact is not None and exact["condition_number"] is not None:
-            ans.symbolic["condition_number"] = exact["condition_number"]
-        ratio = res.condition_number ** 0.5
-        ans.steps.append(Step(
-            "Condition number",
-            Text("The isotropy of the robot at this configuration is measured by the condition "
-                 "number of A, $\\max\\nu / \\min\\nu$ (" + note_link("condition-number") + "). It equals $\\mathrm{cond}(J)^2$, "
-                 "the square of the ratio of the largest to the smallest singular value of J, and the "
-                 "ratio of the ellipse's longest to shortest semi-axis is its square root (",
-                 Num(ratio), "). 1 would be an isotropic configuration."),
-            equations=([("\\frac{\\max \\nu}{\\min \\nu}", exact["condition_number"])]
-                       if exact is not None and exact["condition_number"] is not None else [])
-            + [("\\frac{\\max \\nu}{\\min \\nu}", res.condition_number)],
-        ))
-
-    # -- joint rates for a desired velocity ----------------------------------------------------
-    if opts.get("velocity") is not None:
-        try:
-            v = [float(x) for x in ctx.numeric(list(opts["velocity"]), subs)]
-        except MissingValues as exc:
-            ans.note(missing_note("q_dot", exc.names, ctx.problem))
-        else:
-            qd, _resid, note = joint_rates(jn_a, v)
-            if note:
-                ans.note(note)
-            names = [j.name for j in model.joints]
-            ans.numeric["q_dot"] = {k: x for k, x in zip(names, qd)}
-            how = ("$\\dot Q = J^{-1} V$" if m == n and note is None
-                   else "$\\dot Q = J^{+} V$ (pseudo-inverse: minimum-norm least squares)")
-            ans.steps.append(Step(
-                "Joint velocities for the desired velocity",
-                f"{how}" + (f". {note}" if note else "") + ":",
-                equations=[("V", v)] + [(model.symbol_latex.get(j.dot, sp.latex(j.dot)), x)
-                                        for j, x in zip(model.joints, qd)],
-            ))
-
-    # -- figure -------------------------------------------------------------------------------
-    fig = _figure(question, ctx, ts, res, subs, (kf, kv, ka), (f_unit, v_unit, c_unit))
-    if fig is not None:
-        ans.figures.append(fig)
-    elif m not in (2, 3):
-        ans.note(f"No ellipsoid figure for {m} coordinates (only 2 or 3 can be drawn).")
-    return ans
+        return
+    ans.numeric["condition_number"] = res.condition_number
+    if exact is not None and exact["condition_number"] is not None:
+        ans.symbolic["condition_number"] = exact["condition_number"]
+    ratio = res.condition_number ** 0.5
+    ans.steps.append(Step(
+        "Condition number",
+        Text("The isotropy of the robot at this configuration is measured by the condition "
+             "number of A, $\\max\\nu / \\min\\nu$ (" + note_link("condition-number") + "). It equals $\\mathrm{cond}(J)^2$, "
+             "the square of the ratio of the largest to the smallest singular value of J, and the "
+             "ratio of the ellipse's longest to shortest semi-axis is its square root (",
+             Num(ratio), "). 1 would be an isotropic configuration."),
+        equations=([("\\frac{\\max \\nu}{\\min \\nu}", exact["condition_number"])]
+                   if exact is not None and exact["condition_number"] is not None else [])
+        + [("\\frac{\\max \\nu}{\\min \\nu}", res.condition_number)],
+    ))
 
 
 def _figure(question, ctx, ts, res, subs, budgets, units):

@@ -36,7 +36,6 @@ def _angle_text(v: float, revolute: bool) -> Text:
     return Text(Num(v), " (", Num(math.degrees(v)), "°)")
 
 
-# long: compute and steps still interleaved (closed form, numeric set, selection, velocity); to split next (issue 10 item 6)
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     if model is None or not model.joints:
@@ -52,12 +51,64 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 
     subs = ctx.substitutions({s: v for s, v in question.at.items() if s in ctx.problem.parameters})
     params = {s: v for s, v in subs.items()}
+    equations, target_syms, shown, values, missing = _target_equations(opts["target"], model, ctx, params)
+    ik_joints, limit_notes = _ik_joints(joints, ctx, params)
+    for n_ in limit_notes:
+        ans.note(n_)
+    ans.steps.append(_equations_step(equations, target_syms, shown, values, joints, ik_joints, tex))
 
-    # -- the equations ----------------------------------------------------
+    if missing:
+        _symbolic_only(ans, ctx, equations, ik_joints, names, tex, sorted(missing))
+        return ans
+
+    select = opts.get("select", "limits")
+    select_num = None
+    if isinstance(select, dict):
+        select_num = {k: ctx.numeric(v, params) for k, v in select.items()}
+
+    res = solve_ik(equations, ik_joints, values, select=select_num or "limits",
+                   time_limit_s=ctx.budgets.closed_form_seconds, target_symbols=target_syms,
+                   latex_names=names, tex=tex, labels=[t for t, _, _, _ in shown])
+
+    if res.status == "redundant":
+        return _redundant_answer(ans, res, ik_joints, tex)
+    if res.status == "overdetermined":
+        raise SolverError(_overdetermined_reason(res, shown))
+
+    _closed_form_steps(ans, res, shown, len(equations), len(joints), names, values, tex, ik_joints)
+    ans.steps.append(_solutions_step(res, names, ik_joints))
+    for note in res.notes:
+        ans.note(note)
+
+    ans.numeric["solutions"] = [dict(d) for d in res.solutions]
+    if res.status == "unreachable":
+        ans.extra["unreachable"] = True
+        ans.extra["reason"] = res.reason
+        ans.numeric["solutions"] = []
+        ans.steps.append(Step("Unreachable target", "No solution: " + (res.reason_tex or "") + "."))
+        _figure(ans, ctx, params, res, ik_joints, question)
+        return ans
+
+    how = ("the first of the sorted solutions inside the joint limits" if select_num is None else
+           "the solution nearest the configuration " + Text.join(", ", [
+               Text(f"${names[j.symbol]}$ = ", Num(select_num.get(j.name, 0.0))) for j in ik_joints]))
+    ans.numeric["selected"] = dict(res.selected)
+    ans.steps.append(Step("Selected solution", Text("Selected: ", how, "."),
+                          equations=[(names[j.symbol], res.selected[j.name]) for j in ik_joints]))
+    if opts.get("velocity"):
+        _velocity(ans, ctx, model, opts["velocity"], params, ik_joints, res, values, tex)
+    _figure(ans, ctx, params, res, ik_joints, question)
+    return ans
+
+
+# -- compute ------------------------------------------------------------------------
+def _target_equations(target, model, ctx, params):
+    """The equations of the target, the point-coordinate symbols kept in them, what the
+    report shows, the numeric values of the symbols, and the names whose values are missing."""
     equations, target_syms, shown = [], set(), []
     values: dict = {}
     missing: set = set()
-    for text, lhs, rhs in opts["target"]:
+    for text, lhs, rhs in target:
         lhs_q = model.coordinate(lhs)
         if _is_point_coordinate(lhs):
             # keep the target coordinate as a symbol (E.x) in the closed form
@@ -71,7 +122,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             rhs_sym = rhs
         equations.append((lhs_q, rhs_sym))
         shown.append((text, lhs_q, rhs_sym, rhs))
-    q_syms = {j.symbol for j in joints}
+    q_syms = {j.symbol for j in model.joints}
     for lhs_q, rhs_sym in equations:
         for s in (sp.sympify(lhs_q).free_symbols | sp.sympify(rhs_sym).free_symbols):
             if s in q_syms or s in target_syms:
@@ -83,7 +134,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                     missing |= set(exc.names)
             else:
                 missing.add(s.name)
+    return equations, target_syms, shown, values, missing
 
+
+def _ik_joints(joints, ctx, params):
+    """The IK engine's joints, with their limits where these have values."""
     ik_joints, limit_notes = [], []
     for j in joints:
         lim = None
@@ -94,9 +149,50 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             except MissingValues as exc:
                 limit_notes.append(f"the limits of {j.name} need {', '.join(exc.names)}: not applied")
         ik_joints.append(IKJoint(j.symbol, j.is_revolute, lim))
-    for n_ in limit_notes:
-        ans.note(n_)
+    return ik_joints, limit_notes
 
+
+def _overdetermined_reason(res, shown) -> str:
+    """Why no configuration satisfies every equation, with the solution count of each choice."""
+    parts = []
+    for sub in res.subsets:
+        keys = ", ".join(shown[k][0] for k in sub["equations"])
+        cnt = "infinitely many" if sub["family"] else str(len(sub["solutions"]))
+        parts.append(f"{{{keys}}}: {cnt} solution{'s' if cnt != '1' else ''}")
+    return res.reason + " " + "; ".join(parts) + "."
+
+
+def _velocity(ans, ctx, model, velocity, params, ik_joints, res, values, tex) -> None:
+    """q_dot at the selected solution for the target rates, with its step."""
+    joints = model.joints
+    coords = [model.coordinate(l) for _, l, _ in velocity]
+    rates = [r for _, _, r in velocity]
+    try:
+        rate_vals = [ctx.numeric(r, params) for r in rates]
+        vik = velocity_ik(coords, rate_vals, ik_joints, res.selected, values)
+    except MissingValues as exc:
+        ans.note(missing_note("q_dot", exc.names, ctx.problem))
+    else:
+        ans.numeric["q_dot"] = dict(vik.q_dot)
+        Jsym = sp.Matrix(coords).jacobian([j.symbol for j in ik_joints])
+        qd_names = [j.dot for j in joints]
+        method = {"inverse": "$\\dot q = J^{-1}\\,\\dot s$",
+                  "least_squares": "least squares, $\\dot q = J^{+}\\,\\dot s$",
+                  "min_norm": "minimum norm, $\\dot q = J^{+}\\,\\dot s$"}[vik.method]
+        ans.steps.append(Step(
+            "Velocity inverse kinematics",
+            "Differentiating the coordinates gives $\\dot s = J(q)\\,\\dot q$ with "
+            f"$J = \\partial s / \\partial q$; at the selected solution, {method}.",
+            equations=[("J", Jsym), ("J", vik.J.tolist()),
+                       ("\\dot s", [float(v) for v in rate_vals]),
+                       (tex(sp.Matrix(qd_names)), [[vik.q_dot[j.name]] for j in ik_joints])],
+        ))
+        if vik.note:
+            ans.note(vik.note)
+
+
+# -- steps --------------------------------------------------------------------------
+def _equations_step(equations, target_syms, shown, values, joints, ik_joints, tex) -> Step:
     n, m = len(joints), len(equations)
     eq_step = Step(
         "Equations of the target",
@@ -116,32 +212,10 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         eq_step.table = (("target", "value"), [(f"${tex(s)}$", Num(values[s]))
                                                 for s in sorted(target_syms, key=sp.default_sort_key)
                                                 if s in values])
-    ans.steps.append(eq_step)
+    return eq_step
 
-    if missing:
-        _symbolic_only(ans, ctx, equations, ik_joints, names, tex, sorted(missing))
-        return ans
 
-    select = opts.get("select", "limits")
-    select_num = None
-    if isinstance(select, dict):
-        select_num = {k: ctx.numeric(v, params) for k, v in select.items()}
-
-    res = solve_ik(equations, ik_joints, values, select=select_num or "limits",
-                   time_limit_s=ctx.budgets.closed_form_seconds, target_symbols=target_syms,
-                   latex_names=names, tex=tex, labels=[t for t, _, _, _ in shown])
-
-    if res.status == "redundant":
-        return _redundant_answer(ans, res, ik_joints, tex)
-    if res.status == "overdetermined":
-        parts = []
-        for sub in res.subsets:
-            keys = ", ".join(shown[k][0] for k in sub["equations"])
-            cnt = "infinitely many" if sub["family"] else str(len(sub["solutions"]))
-            parts.append(f"{{{keys}}}: {cnt} solution{'s' if cnt != '1' else ''}")
-        raise SolverError(res.reason + " " + "; ".join(parts) + ".")
-
-    # -- closed form --------------------------------------------------------
+def _closed_form_steps(ans, res, shown, m, n, names, values, tex, ik_joints) -> None:
     if res.closed_form is not None:
         cf = res.closed_form
         if res.closed_form_subset is not None:
@@ -168,7 +242,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         if res.closed_form_note and "within" in res.closed_form_note:
             ans.note(res.closed_form_note + "; solutions found numerically")
 
-    # -- numeric solutions ----------------------------------------------------
+
+def _solutions_step(res, names, ik_joints) -> Step:
     box = Text.join(", ", [
         f"${names[j.symbol]}$ in " + (Text("(−π, π]") if j.revolute else
                                        (Text("[", Num(j.limits[0]), ", ", Num(j.limits[1]), "] and beyond")
@@ -187,54 +262,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if res.closed_form is not None and res.agree is not None:
         text += (" The closed form gives the same set." if res.agree else
                  " The closed form and the numeric search do not give the same set: see the notes.")
-    ans.steps.append(Step("Every solution", text, table=(header, rows) if rows else None))
-    for note in res.notes:
-        ans.note(note)
-
-    ans.numeric["solutions"] = [dict(d) for d in res.solutions]
-    if res.status == "unreachable":
-        ans.extra["unreachable"] = True
-        ans.extra["reason"] = res.reason
-        ans.numeric["solutions"] = []
-        ans.steps.append(Step("Unreachable target", "No solution: " + (res.reason_tex or "") + "."))
-        _figure(ans, ctx, params, res, ik_joints, question)
-        return ans
-
-    how = ("the first of the sorted solutions inside the joint limits" if select_num is None else
-           "the solution nearest the configuration " + Text.join(", ", [
-               Text(f"${names[j.symbol]}$ = ", Num(select_num.get(j.name, 0.0))) for j in ik_joints]))
-    ans.numeric["selected"] = dict(res.selected)
-    ans.steps.append(Step("Selected solution", Text("Selected: ", how, "."),
-                          equations=[(names[j.symbol], res.selected[j.name]) for j in ik_joints]))
-
-    # -- velocity -------------------------------------------------------------
-    if opts.get("velocity"):
-        coords = [model.coordinate(l) for _, l, _ in opts["velocity"]]
-        rates = [r for _, _, r in opts["velocity"]]
-        try:
-            rate_vals = [ctx.numeric(r, params) for r in rates]
-            vik = velocity_ik(coords, rate_vals, ik_joints, res.selected, values)
-        except MissingValues as exc:
-            ans.note(missing_note("q_dot", exc.names, ctx.problem))
-        else:
-            ans.numeric["q_dot"] = dict(vik.q_dot)
-            Jsym = sp.Matrix(coords).jacobian([j.symbol for j in ik_joints])
-            qd_names = [j.dot for j in joints]
-            method = {"inverse": "$\\dot q = J^{-1}\\,\\dot s$",
-                      "least_squares": "least squares, $\\dot q = J^{+}\\,\\dot s$",
-                      "min_norm": "minimum norm, $\\dot q = J^{+}\\,\\dot s$"}[vik.method]
-            ans.steps.append(Step(
-                "Velocity inverse kinematics",
-                "Differentiating the coordinates gives $\\dot s = J(q)\\,\\dot q$ with "
-                f"$J = \\partial s / \\partial q$; at the selected solution, {method}.",
-                equations=[("J", Jsym), ("J", vik.J.tolist()),
-                           ("\\dot s", [float(v) for v in rate_vals]),
-                           (tex(sp.Matrix(qd_names)), [[vik.q_dot[j.name]] for j in ik_joints])],
-            ))
-            if vik.note:
-                ans.note(vik.note)
-    _figure(ans, ctx, params, res, ik_joints, question)
-    return ans
+    return Step("Every solution", text, table=(header, rows) if rows else None)
 
 
 def _symbolic_only(ans, ctx, equations, ik_joints, names, tex, missing):

@@ -20,6 +20,18 @@ from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, mi
 from robosolve.solvers.common import frame_tex, m_name, rel_name, symbolic_within_budget
 
 
+def _composition_step(title, text, model, chain, letter, relative, absolute, composed) -> Step:
+    """The matrices `letter` (W or H) of each frame of `chain` relative to its parent, then
+    composed with the parent's in frame 0 (`composed(parent, frame)` is the right-hand side)."""
+    step = Step(title, text)
+    for f in chain:
+        parent = model.frames[f].parent
+        step.equations.append((rel_name("0", parent, f, letter), relative(f)))
+        if parent != "0":
+            step.equations.append((f"{rel_name('0', '0', f, letter)} = {composed(parent, f)}", absolute(f)))
+    return step
+
+
 def angular_acceleration(h: sp.Matrix) -> sp.Matrix:
     """alpha from H = Wdot + W^2: the rotation block of W^2 is symmetric, that of
     Wdot is [alpha], so alpha = vex of the antisymmetric part of H's rotation block."""
@@ -81,13 +93,8 @@ def numeric_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         ans.steps.append(Step("Numeric values", "At the configuration of the question:", equations=shown))
 
 
-# long: the W / H chain of steps in the course's order, one equation list; to split next (issue 10 item 6)
-def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
-    model = ctx.model
-    frame, point = question.frame, question.point
-    chain = model.chain(frame)
-
-    # L matrices
+def _l_matrices_step(model, chain) -> Step:
+    """The L matrix of each joint of `chain`, in its parent and moved to frame 0."""
     lstep = Step(
         "L matrices of the joints",
         "For joint $i$, moving frame $j$ relative to its parent $p$: "
@@ -105,40 +112,36 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
                 lstep.equations.append((f"{{}}^{{0}}L_{{{q}}} = {m_name('0', parent)}\\,"
                                         f"{{}}^{{{frame_tex(parent)}}}L_{{{q}}}\\,{m_name('0', parent)}^{{-1}}",
                                         model.L0(i, f)))
-    ans.steps.append(lstep)
+    return lstep
+
+
+def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
+    model = ctx.model
+    frame, point = question.frame, question.point
+    chain = model.chain(frame)
+
+    ans.steps.append(_l_matrices_step(model, chain))
 
     # Rivals
-    rstep = Step(
+    ans.steps.append(_composition_step(
         "Velocity matrices (Rivals' theorem)",
         "Every term is expressed in frame 0: "
         "${}^{0}W_{0,j} = {}^{0}W_{0,p} + {}^{0}W_{p,j}$ with ${}^{0}W_{p,j} = \\sum {}^{0}L_i\\, \\dot q_i$ "
         "over the joints that move frame $j$ relative to its parent (" + note_link("w-matrix") + ").",
-    )
-    for f in chain:
-        parent = model.frames[f].parent
-        rstep.equations.append((rel_name("0", parent, f, "W"), model.W_relative0(f)))
-        if parent != "0":
-            rstep.equations.append((f"{rel_name('0', '0', f, 'W')} = {rel_name('0', '0', parent, 'W')} + "
-                                    f"{rel_name('0', parent, f, 'W')}", model.W0(f)))
-    ans.steps.append(rstep)
+        model, chain, "W", model.W_relative0, model.W0,
+        lambda parent, f: f"{rel_name('0', '0', parent, 'W')} + {rel_name('0', parent, f, 'W')}"))
 
     # Coriolis
-    cstep = Step(
+    ans.steps.append(_composition_step(
         "Acceleration matrices (Coriolis' theorem)",
         "${}^{0}H_{0,j} = {}^{0}H_{0,p} + 2\\,{}^{0}W_{0,p}\\,{}^{0}W_{p,j} + {}^{0}H_{p,j}$, every term in "
         "frame 0; the relative term is ${}^{0}H_{p,j} = {}^{0}L\\,\\ddot q + {}^{0}L^2\\,\\dot q^2$ for one "
         "joint (in general $\\ddot M M^{-1}$ moved to frame 0). $H = \\dot W + W^2$ "
         "(not $\\dot W\\, W^2$: " + note_link("h-matrix") + ").",
-    )
-    for f in chain:
-        parent = model.frames[f].parent
-        cstep.equations.append((rel_name("0", parent, f, "H"), model.H_relative0(f)))
-        if parent != "0":
-            cstep.equations.append((
-                f"{rel_name('0', '0', f, 'H')} = {rel_name('0', '0', parent, 'H')} + "
-                f"2\\,{rel_name('0', '0', parent, 'W')}\\,{rel_name('0', parent, f, 'W')} + "
-                f"{rel_name('0', parent, f, 'H')}", model.H0(f)))
-    ans.steps.append(cstep)
+        model, chain, "H", model.H_relative0, model.H0,
+        lambda parent, f: (f"{rel_name('0', '0', parent, 'H')} + "
+                           f"2\\,{rel_name('0', '0', parent, 'W')}\\,{rel_name('0', parent, f, 'W')} + "
+                           f"{rel_name('0', parent, f, 'H')}")))
 
     w0 = model.W0(frame) if frame != "0" else sp.zeros(4, 4)
     h0 = model.H0(frame) if frame != "0" else sp.zeros(4, 4)
