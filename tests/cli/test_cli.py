@@ -9,21 +9,10 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from conftest import PROBLEMS, ROOT
+from conftest import MINI, PROBLEMS, ROOT
 from robosolve.cli import app
 
 runner = CliRunner()
-
-MINI = """\
-robosolve: 1
-name: mini
-parameters: {L: 1}
-joints: [{name: q, type: revolute}]
-frames:
-  "1": {pose: "Rz(q) Tx(L)"}
-questions:
-  - {type: position, at: {q: 0}}
-"""
 
 
 def test_help_is_quick_and_lists_commands():

@@ -15,23 +15,12 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from conftest import PROBLEMS, ROOT
+from conftest import MINI, PROBLEMS, ROOT
 from robosolve import interrupts
 from robosolve.cli import app
 from robosolve.outputs import MARK, OutputFolderError, check_output_folder, write_output_folder
 
 runner = CliRunner()
-
-MINI = """\
-robosolve: 1
-name: mini
-parameters: {L: 1}
-joints: [{name: q, type: revolute}]
-frames:
-  "1": {pose: "Rz(q) Tx(L)"}
-questions:
-  - {type: position, at: {q: 0}}
-"""
 
 
 def snapshot(folder: Path) -> dict:
