@@ -53,6 +53,7 @@ class SimplifyBudgets:
 
     chain_ops: int = 300            # above: trigsimp costs seconds and rarely pays
     chain_seconds: float = 5.0      # safety net only: the op count decides first
+    canonical_ops: int = 24         # above: the Pythagorean-reduced form is the answer (no trigsimp)
     geometry_ops: int = 60          # above: trigsimp on rotation entries takes minutes
     coefficient_ops: int = 60       # above: factor_terms only
     root_ops: int = 40              # above: a root is shown as solve gave it
@@ -148,11 +149,66 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
             collapsed = TR10i(expanded)
             if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > max_ops:
                 return collapsed
+            canonical = _canonical_trig(expanded)
+            if canonical is not None and sp.count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
+                return canonical
             return sp.trigsimp(collapsed)
     except SymbolicTimeout as exc:
         if exc.token is not token:
             raise          # an enclosing step's time is up
         raise _Incomplete(expr) from None
+
+
+def _canonical_trig(expanded):
+    """The entry reduced modulo sin² + cos² = 1 in a polynomial ring over its sines and
+    cosines, then the addition formulas (TR10i); None when it is not a polynomial in
+    sin/cos of plain symbols. Every cancellation through cos² + sin² = 1 happens in the
+    ring at once, so a large entry (the translation column of H of a 3R arm) needs no
+    trigsimp: on those, trigsimp costs seconds and returns this very form."""
+    reduced = pythagorean_reduced(expanded)
+    return None if reduced is None else TR10i(sp.expand(reduced))
+
+
+def pythagorean_reduced(expr):
+    """expr as a polynomial in sin θ, cos θ of its angles reduced modulo sin²θ + cos²θ = 1,
+    each angle's square eliminated in the direction that leaves fewer operations
+    (sin² -> 1 - cos² or cos² -> 1 - sin²); None when an argument of sin/cos is not a
+    plain symbol after the addition formulas are expanded (sin(θ/2), sin(ω t))."""
+    from sympy.polys.rings import sring
+
+    e = sp.expand(sp.expand_trig(expr))
+    args = sorted({a.args[0] for a in e.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    if not args or not all(a.is_Symbol for a in args):
+        return None
+    pairs = [(sp.Dummy(f"s{k}"), sp.Dummy(f"c{k}")) for k in range(len(args))]
+    to_ring = {}
+    for a, (s, c) in zip(args, pairs):
+        to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
+    back = {v: k for k, v in to_ring.items()}
+    try:
+        ring, poly = sring(sp.expand(e.xreplace(to_ring)), *[g for pair in pairs for g in pair])
+    except Exception:       # not a polynomial (a sine in a denominator): leave it to trigsimp
+        return None
+    gens = ring.gens
+    # one angle at a time: eliminate sin² (lex order s > c) or cos² (the ring with c > s)
+    for k in range(len(args)):
+        s, c = gens[2 * k], gens[2 * k + 1]
+        options = [poly.rem([s ** 2 + c ** 2 - 1]), _rem_cos_squared(poly, s, c)]
+        poly = min(options, key=lambda p: (sp.count_ops(p.as_expr()), str(p)))
+    return poly.as_expr().xreplace(back)
+
+
+def _rem_cos_squared(poly, s, c):
+    """poly with cos² -> 1 - sin²: each c^(2k+r) becomes c^r (1 - s²)^k (r = 0, 1), the
+    normal form of degree at most 1 in c."""
+    ring = poly.ring
+    ci = ring.gens.index(c)
+    out = ring.zero
+    for monom, coeff in poly.terms():
+        m = list(monom)
+        k, m[ci] = divmod(m[ci], 2)
+        out += ring({tuple(m): coeff}) * (1 - s ** 2) ** k
+    return out
 
 
 def _has_trig_products(expr) -> bool:
