@@ -144,14 +144,21 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
     try:
         with time_limit(seconds) as token:
             expanded = sp.expand(expr)
+            large = sp.count_ops(expanded) > DEFAULT_BUDGETS.canonical_ops
+            # A large entry: its canonical form first (TR10i on the unreduced sum, which
+            # may be 10x longer, costs more than the ring reduction).
+            canonical = _canonical_trig(expanded) if large else None
+            if canonical is not None and sp.count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
+                return canonical
             # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
             # leaves trigsimp, slow on long chains, little or nothing to do.
             collapsed = TR10i(expanded)
             if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > max_ops:
                 return collapsed
-            canonical = _canonical_trig(expanded)
-            if canonical is not None and sp.count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
-                return canonical
+            if not large:
+                canonical = _canonical_trig(expanded)
+                if canonical is not None and sp.count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
+                    return canonical
             return sp.trigsimp(collapsed)
     except SymbolicTimeout as exc:
         if exc.token is not token:

@@ -22,8 +22,19 @@ class Tex:
     def __init__(self, symbol_names: dict, compact=None):
         self.names = symbol_names
         self.compact = compact          # CompactTrig: c_{1}, s_{23} for cos/sin of joints
+        # LaTeX of each sympy expression once: a big entry is printed again to measure the
+        # width of its matrix and to break its sum into lines (a third of a report's time)
+        self._latex: dict = {}
 
     def __call__(self, v) -> str:
+        if isinstance(v, sp.Basic):
+            out = self._latex.get(v)
+            if out is None:
+                out = self._latex[v] = self._sympy(v)
+            return out
+        return self._sympy(v)
+
+    def _sympy(self, v) -> str:
         if isinstance(v, str):
             return v
         if isinstance(v, (Num, Text)):
