@@ -16,6 +16,11 @@ import sympy as sp
 from robosolve.errors import MissingValues
 
 
+def evaluate(obj, subs) -> np.ndarray:
+    """A small sympy matrix (a local pose, a factor) as floats at `subs`."""
+    return _num(obj, subs)
+
+
 def _num(obj, subs) -> np.ndarray:
     m = sp.Matrix(obj).xreplace(subs).evalf(17)
     missing = sorted(s.name for s in m.free_symbols)

@@ -36,24 +36,38 @@ def joint_values(ctx: SolveContext, subs: dict, rates: bool = False) -> list | N
 def robot_drawing(ctx: SolveContext, subs: dict) -> dict | None:
     """Numbers to draw the robot: link polylines, frame origins and axes, points.
 
-    None when some joint or parameter value is missing.
+    From the numeric chain (numpy products of the local poses evaluated once), not by
+    evaluating the symbolic poses built for the report. None when some joint or parameter
+    value is missing.
     """
+    from robosolve.core.transforms import ELEMENTARY
+    from robosolve.model.numeric import NumericChain, evaluate
+
     model = ctx.model
     frames = model.frame_names()
+    chain = NumericChain(model, subs)
     try:
         origins = {"0": [0.0, 0.0, 0.0]}
         axes = {"0": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]}
         links = []
         for f in frames:
-            m = ctx.numeric(model.M0(f), subs)
-            origins[f] = [m[0][3], m[1][3], m[2][3]]
-            axes[f] = [[m[r][c] for r in range(3)] for c in range(3)]    # columns: x, y, z axes
+            m = chain.M0(f)
+            origins[f] = [_plain(m[r, 3]) for r in range(3)]
+            axes[f] = [[_plain(m[r, c]) for r in range(3)] for c in range(3)]    # columns: x, y, z axes
             path = [origins[model.frames[f].parent]]
-            for p in model.intermediate_origins(f):
-                path.append(ctx.numeric(list(p), subs))
+            frame = model.frames[f]
+            if frame.kind == "pose":
+                # the origins after each translation but the last (the frame's own origin)
+                factors = list(frame.factors)
+                last_t = max((k for k, (op, _) in enumerate(factors) if op[0] == "T"), default=-1)
+                at = chain.M0(frame.parent)
+                for op, arg in factors[:last_t]:
+                    at = at @ evaluate(ELEMENTARY[op](arg), subs)
+                    if op[0] == "T":
+                        path.append([_plain(x) for x in at[:3, 3]])
             path.append(origins[f])
             links.append(path)
-        points = {name: ctx.numeric(list(model.point0(name)), subs) for name in model.points}
+        points = {name: [_plain(x) for x in chain.point0(name)] for name in model.points}
     except MissingValues:
         return None
     return {
@@ -61,6 +75,11 @@ def robot_drawing(ctx: SolveContext, subs: dict) -> dict | None:
         "links": links,
         "points": [{"name": n, "at": p} for n, p in points.items()],
     }
+
+
+def _plain(x) -> float:
+    x = float(x)
+    return 0.0 if x == 0 else x
 
 
 def symbolic_within_budget(ctx: SolveContext, ans: Answer, part, what: str) -> bool:
