@@ -204,6 +204,29 @@ def pythagorean_reduced(expr):
     each angle's square eliminated in the direction that leaves fewer operations
     (sin² -> 1 - cos² or cos² -> 1 - sin²); None when an argument of sin/cos is not a
     plain symbol after the addition formulas are expanded (sin(θ/2), sin(ω t))."""
+    built = _trig_ring_fast(sp.expand(expr))
+    if built is None:
+        built = _trig_ring(expr)
+    if built is None:
+        return None
+    poly, pairs, back = built
+    # one angle at a time: eliminate sin² (lex order s > c) or cos² (the ring with c > s)
+    for s, c in pairs:
+        si, ci = poly.ring.gens.index(s), poly.ring.gens.index(c)
+        if all(m[si] < 2 and m[ci] < 2 for m in poly.keys()):
+            continue            # nothing to eliminate: both normal forms are poly itself
+        options = [poly.rem([s ** 2 + c ** 2 - 1]), _rem_cos_squared(poly, s, c)]
+        poly = min(options, key=lambda p: _ops_then_text(p.as_expr()))
+    return poly.as_expr().xreplace(back)
+
+
+def _ops_then_text(e):
+    return sp.count_ops(e), str(e)
+
+
+def _trig_ring(expr):
+    """(ring element, [(s, c) generators per angle], generator -> sin/cos) through sympy's
+    expand_trig and sring (any coefficient domain), or None."""
     from sympy.polys.rings import sring
 
     e = sp.expand(sp.expand_trig(expr))
@@ -214,18 +237,72 @@ def pythagorean_reduced(expr):
     to_ring = {}
     for a, (s, c) in zip(args, pairs):
         to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
-    back = {v: k for k, v in to_ring.items()}
     try:
         ring, poly = sring(sp.expand(e.xreplace(to_ring)), *[g for pair in pairs for g in pair])
     except Exception:       # not a polynomial (a sine in a denominator): leave it to trigsimp
         return None
-    gens = ring.gens
-    # one angle at a time: eliminate sin² (lex order s > c) or cos² (the ring with c > s)
-    for k in range(len(args)):
-        s, c = gens[2 * k], gens[2 * k + 1]
-        options = [poly.rem([s ** 2 + c ** 2 - 1]), _rem_cos_squared(poly, s, c)]
-        poly = min(options, key=lambda p: (sp.count_ops(p.as_expr()), str(p)))
-    return poly.as_expr().xreplace(back)
+    gmap = dict(zip(ring.symbols, ring.gens))
+    back = {gmap[v]: k for k, v in to_ring.items()}
+    return poly, [(gmap[s], gmap[c]) for s, c in pairs], {g.as_expr(): f for g, f in back.items()}
+
+
+def _trig_ring_fast(e):
+    """The same ring element built term by term over QQ (the usual chain entry: rational
+    coefficients times powers of symbols, sines and cosines), without expanding the
+    addition formulas of the whole sum; None for anything else (floats, radicals, a symbol
+    in a denominator), which `_trig_ring` handles."""
+    from sympy.polys.domains import QQ
+    from sympy.polys.rings import ring as poly_ring
+
+    terms, others, atoms = [], set(), set()
+    for t in sp.Add.make_args(e):
+        coeff, factors = t.as_coeff_mul()
+        if not coeff.is_Rational:
+            return None
+        parts = []
+        for f in factors:
+            b, x = f.as_base_exp()
+            if not (x.is_Integer and x > 0):
+                return None
+            if isinstance(b, (sp.sin, sp.cos)):
+                atoms.add(b)
+            elif b.is_Symbol:
+                others.add(b)
+            else:
+                return None
+            parts.append((b, int(x)))
+        terms.append((coeff, parts))
+    if not atoms:
+        return None
+    expanded = {a: sp.expand(sp.expand_trig(a)) for a in atoms}
+    angles = sorted({x.args[0] for v in expanded.values() for x in v.atoms(sp.sin, sp.cos)},
+                    key=sp.default_sort_key)
+    if not angles or not all(a.is_Symbol for a in angles):
+        return None
+    pairs = [(sp.Dummy(f"s{k}"), sp.Dummy(f"c{k}")) for k in range(len(angles))]
+    to_ring = {}
+    for a, (s, c) in zip(angles, pairs):
+        to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
+    # the other symbols are the coefficient domain (as sring makes it): the key that picks
+    # each angle's elimination counts the operations of that grouped form
+    symbols = [g for pair in pairs for g in pair]
+    domain = QQ.poly_ring(*sorted(others, key=sp.default_sort_key)) if others else QQ
+    ring, *gens = poly_ring(symbols, domain)
+    gmap = dict(zip(symbols, gens))
+    try:
+        value = {a: ring.from_expr(v.xreplace(to_ring)) for a, v in expanded.items()}
+    except Exception:
+        return None
+    value.update({o: ring.ground_new(domain.from_sympy(o)) for o in others})
+    poly = ring.zero
+    for coeff, parts in terms:
+        term = ring(QQ(int(coeff.p), int(coeff.q)))
+        for b, x in parts:
+            term *= value[b] ** x
+        poly += term
+    back = {s: sp.sin(a) for a, (s, _) in zip(angles, pairs)}
+    back.update({c: sp.cos(a) for a, (_, c) in zip(angles, pairs)})
+    return poly, [(gmap[s], gmap[c]) for s, c in pairs], back
 
 
 def _rem_cos_squared(poly, s, c):
