@@ -236,6 +236,18 @@ def _close(a, b, rev, tol=DEDUPE_TOL):
     return bool(np.all(d <= tol * np.maximum(1.0, np.abs(np.asarray(a)))))
 
 
+def _close_to_any(a, found: list, rev, tol=DEDUPE_TOL) -> bool:
+    """any(_close(a, f, rev, tol) for f in found), in one numpy pass over the stacked
+    solutions (the same element-wise arithmetic: thousands of start points are checked
+    against the solutions found so far)."""
+    if not found:
+        return False
+    a = np.asarray(a)
+    d = np.abs(a - np.asarray(found))
+    d = np.where(rev, np.minimum(d, TWO_PI - d), d)
+    return bool(np.any(np.all(d <= tol * np.maximum(1.0, np.abs(a)), axis=1)))
+
+
 def sort_solutions(sols, get=lambda s: s, tol=1e-9):
     """Lexicographic sort in joint order with values within `tol` equal (stable)."""
     import functools
@@ -346,14 +358,14 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
                     if nr < res.best_residual:
                         res.best_residual, res.best_q = nr, [float(x) for x in qq]
                 continue
-            if any(_close(Q[i], f, rev, 1e-4) for f in found):
+            if _close_to_any(Q[i], found, rev, 1e-4):
                 continue
             qq, nr = refine(system, Q[i])
             if nr < res.best_residual:
                 res.best_residual, res.best_q = nr, [float(x) for x in qq]
             if nr > system.tol:
                 continue
-            if any(_close(qq, f, rev) for f in found):
+            if _close_to_any(qq, found, rev):
                 continue
             found.append(qq)
             residuals.append(nr)

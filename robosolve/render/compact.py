@@ -106,8 +106,10 @@ def _width(value, tex) -> int:
 
 
 def _is_zero(x) -> bool:
+    # the assumptions' is_zero only for numbers: on a big symbolic entry it costs a tenth
+    # of a report's time, and a symbolic entry that is zero has already become 0
     try:
-        return bool(x == 0) or (isinstance(x, sp.Basic) and x.is_zero is True)
+        return bool(x == 0) or (isinstance(x, sp.Basic) and not x.free_symbols and x.is_zero is True)
     except TypeError:
         return False
 
