@@ -152,7 +152,7 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
                 return canonical
             # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
             # leaves trigsimp, slow on long chains, little or nothing to do.
-            collapsed = TR10i(expanded)
+            collapsed = _addition_formulas(expanded)
             if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > max_ops:
                 return collapsed
             if not large:
@@ -175,7 +175,23 @@ def _canonical_trig(expanded):
     ring at once, so a large entry (the translation column of H of a 3R arm) needs no
     trigsimp: on those, trigsimp costs seconds and returns this very form."""
     reduced = pythagorean_reduced(expanded)
-    return None if reduced is None else TR10i(sp.expand(reduced))
+    return None if reduced is None else _addition_formulas(sp.expand(reduced))
+
+
+def _addition_formulas(expanded):
+    """TR10i (c1 c2 - s1 s2 -> cos(q1 + q2)) applied to each group of terms with the same
+    factor outside sin/cos (up to sign), and the groups added. Only such terms can combine
+    (TR10i pairs A cos a cos b with ±A sin a sin b, and so on), so the result is TR10i's; its
+    pairwise search is quadratic in the terms it looks at, and a group is a few of them.
+    A sum with √n factors goes to TR10i whole (it pairs coefficients in the ratio √3)."""
+    if not expanded.is_Add or any(p.exp == sp.S.Half and p.base.is_Integer
+                                  for p in expanded.atoms(sp.Pow)):
+        return TR10i(expanded)
+    groups: dict = {}
+    for term in expanded.args:
+        outside, _ = term.as_independent(sp.sin, sp.cos, as_Add=False)
+        groups.setdefault(-outside if outside.could_extract_minus_sign() else outside, []).append(term)
+    return sp.Add(*[TR10i(sp.Add(*g)) if len(g) > 1 else g[0] for g in groups.values()])
 
 
 def _shortest_trig_form(canonical):
@@ -349,7 +365,7 @@ def tidy_products(expr, seconds: float | None = None):
     expr = sp.sympify(expr)
     if expr.is_Atom or not expr.has(sp.sin, sp.cos):
         return tidy(expr, seconds)
-    collapsed = TR10i(sp.expand(expr))
+    collapsed = _addition_formulas(sp.expand(expr))
     return tidy(collapsed, seconds) if _has_trig_squares(collapsed) else collapsed
 
 
