@@ -347,8 +347,18 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
     found: list[np.ndarray] = []
     residuals: list[float] = []
 
+    def near_found(Q, f):
+        """Rows of Q within 1e-4 of the solution f (_close of each row, in one pass)."""
+        d = np.abs(Q - f)
+        d = np.where(rev, np.minimum(d, TWO_PI - d), d)
+        return np.all(d <= 1e-4 * np.maximum(1.0, np.abs(Q)), axis=1)
+
     def harvest(Q, cost):
         order = np.argsort(cost, kind="stable")
+        # covered[i]: start i ended near a solution already found (updated as they are found)
+        covered = np.zeros(len(Q), dtype=bool)
+        for f in found:
+            covered |= near_found(Q, f)
         for i in order:
             if not np.isfinite(cost[i]):
                 continue
@@ -358,7 +368,7 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
                     if nr < res.best_residual:
                         res.best_residual, res.best_q = nr, [float(x) for x in qq]
                 continue
-            if _close_to_any(Q[i], found, rev, 1e-4):
+            if covered[i]:
                 continue
             qq, nr = refine(system, Q[i])
             if nr < res.best_residual:
@@ -368,6 +378,7 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
             if _close_to_any(qq, found, rev):
                 continue
             found.append(qq)
+            covered |= near_found(Q, qq)
             residuals.append(nr)
             if len(found) > 64:
                 return True
