@@ -248,6 +248,13 @@ def _close_to_any(a, found: list, rev, tol=DEDUPE_TOL) -> bool:
     return bool(np.any(np.all(d <= tol * np.maximum(1.0, np.abs(a)), axis=1)))
 
 
+def _rows_near(Q, f, rev, tol=1e-4):
+    """Rows of Q within tol of the solution f: _close(row, f) for every row, in one pass."""
+    d = np.abs(Q - f)
+    d = np.where(rev, np.minimum(d, TWO_PI - d), d)
+    return np.all(d <= tol * np.maximum(1.0, np.abs(Q)), axis=1)
+
+
 def sort_solutions(sols, get=lambda s: s, tol=1e-9):
     """Lexicographic sort in joint order with values within `tol` equal (stable)."""
     import functools
@@ -347,18 +354,11 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
     found: list[np.ndarray] = []
     residuals: list[float] = []
 
-    def near_found(Q, f):
-        """Rows of Q within 1e-4 of the solution f (_close of each row, in one pass)."""
-        d = np.abs(Q - f)
-        d = np.where(rev, np.minimum(d, TWO_PI - d), d)
-        return np.all(d <= 1e-4 * np.maximum(1.0, np.abs(Q)), axis=1)
-
     def harvest(Q, cost):
         order = np.argsort(cost, kind="stable")
-        # covered[i]: start i ended near a solution already found (updated as they are found)
-        covered = np.zeros(len(Q), dtype=bool)
+        covered = np.zeros(len(Q), dtype=bool)     # start i ended near a solution found
         for f in found:
-            covered |= near_found(Q, f)
+            covered |= _rows_near(Q, f, rev)
         for i in order:
             if not np.isfinite(cost[i]):
                 continue
@@ -378,7 +378,7 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
             if _close_to_any(qq, found, rev):
                 continue
             found.append(qq)
-            covered |= near_found(Q, qq)
+            covered |= _rows_near(Q, qq, rev)
             residuals.append(nr)
             if len(found) > 64:
                 return True

@@ -14,7 +14,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.course_notes import note_link
-from robosolve.core.simplify import full
+from robosolve.core.simplify import is_zero
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
 from robosolve.kinematics.task import limited, task_space, tidy_limited
 from robosolve.solvers.base import Answer, SolveContext, Step
@@ -118,7 +118,6 @@ def _weight_part(ctx: SolveContext, ans: Answer) -> sp.Matrix:
     """F_q = -sum J_G^T m g for the bodies' weights, with its steps and an energy cross-check."""
     model = ctx.model
     q = model.q
-    n = len(q)
     g = sp.Matrix(model.gravity)
     jgs, masses, eqs = [], [], []
     for b in model.bodies:
@@ -141,7 +140,7 @@ def _weight_part(ctx: SolveContext, ans: Answer) -> sp.Matrix:
     # cross-check with the potential energy
     u = sum((-(b.mass * g.dot(model.com0(b))) for b in model.bodies), sp.Integer(0))
     check, _err = limited(ctx, ctx.step_seconds,
-                          lambda: full(sp.Matrix([u.diff(s) for s in q]) - part))
-    if check is not None and check != sp.zeros(n, 1):
+                          lambda: all(is_zero(d - p) for d, p in zip([u.diff(s) for s in q], part)))
+    if check is False:
         ans.note("internal check failed: −ΣJ_Gᵀ m g differs from ∂U/∂q")
     return part

@@ -1,0 +1,95 @@
+"""The fast paths of core/simplify.py (issue 15) against sympy's own simplifiers and numbers.
+
+* `pythagorean_reduced`: the normal form modulo sin² + cos² = 1 equals the input at random
+  points and is unique (two different writings of one function give one form);
+* `_addition_formulas` (TR10i group by group) gives exactly TR10i's result on random sums;
+* chain and Jacobian entries through the canonical route equal the input at random points,
+  and on the 3R arm's entries they are what trigsimp gives;
+* `is_zero` by the normal form agrees with evaluation at random points.
+"""
+
+from __future__ import annotations
+
+import random
+
+import sympy as sp
+from sympy.simplify.fu import TR10i
+
+from robosolve.core import simplify as S
+
+q1, q2, q3 = sp.symbols("theta1 theta2 theta3", real=True)
+L1, L2, qd = sp.symbols("L1 L2 qd", real=True)
+SYMS = (q1, q2, q3, L1, L2, qd)
+
+
+def _equal_at_random_points(a, b, n=8, seed=1):
+    rng = random.Random(seed)
+    for _ in range(n):
+        pt = {s: rng.uniform(-2, 2) for s in SYMS}
+        if abs(complex(sp.N((a - b).xreplace(pt)))) > 1e-9:
+            return False
+    return True
+
+
+def _random_trig_sum(rng, terms=8):
+    atoms = [sp.sin(q1), sp.cos(q1), sp.sin(q2), sp.cos(q2), sp.sin(q2 + q3), sp.cos(q2 + q3),
+             sp.cos(q3)]
+    out = 0
+    for _ in range(terms):
+        t = rng.choice([1, -1, 2, sp.Rational(1, 2)]) * rng.choice([L1, L2, L1 * qd, qd ** 2, 1])
+        for _ in range(rng.randint(1, 3)):
+            t *= rng.choice(atoms)
+        out += t
+    return sp.expand(out)
+
+
+def test_normal_form_is_the_same_function_and_unique():
+    e = L1 * sp.sin(q1) ** 2 * sp.cos(q2) + L1 * sp.cos(q1) ** 2 * sp.cos(q2) - L2 * sp.sin(q2 + q3)
+    r = S.pythagorean_reduced(sp.expand(e))
+    assert _equal_at_random_points(e, r)
+    # another writing of the same function: L1 cos q2 (sin² + cos² = 1), sin(q2 + q3) expanded
+    other = L1 * sp.cos(q2) - L2 * (sp.sin(q2) * sp.cos(q3) + sp.cos(q2) * sp.sin(q3))
+    assert sp.expand(S.pythagorean_reduced(sp.expand(other)) - r) == 0
+    assert not r.has(sp.sin(q1)) and not r.has(sp.cos(q1))
+
+
+def test_not_a_polynomial_in_sin_cos_of_symbols():
+    assert S.pythagorean_reduced(sp.sin(q1 / 2) * sp.cos(q1)) is None
+    assert S.pythagorean_reduced(L1 + L2) is None
+
+
+def test_addition_formulas_group_by_group_is_tr10i():
+    rng = random.Random(7)
+    for _ in range(40):
+        e = _random_trig_sum(rng)
+        assert S._addition_formulas(e) == TR10i(e)
+
+
+def test_chain_entries_keep_their_value():
+    rng = random.Random(3)
+    for _ in range(12):
+        e = _random_trig_sum(rng, terms=rng.randint(3, 12))
+        S._MEMO.clear()
+        assert _equal_at_random_points(S.chain_product(e), e)
+        assert _equal_at_random_points(S.jacobian_entry(e), e)
+
+
+def test_large_entry_is_what_trigsimp_gives():
+    # the x entry of the 3R arm's acceleration column, before tidying: trigsimp (the
+    # reference) takes seconds on it and returns the canonical form
+    e = sp.expand(sp.diff(sp.cos(q1) * (L1 * sp.cos(q2) + L2 * sp.cos(q2 + q3)), q1, 2)
+                  + sp.sin(q1) ** 2 * sp.cos(q1) * L1 + sp.cos(q1) ** 3 * L1)
+    S._MEMO.clear()
+    fast = S.chain_product(e)
+    assert fast == sp.trigsimp(TR10i(e))
+
+
+def test_is_zero_by_the_normal_form():
+    rng = random.Random(11)
+    for _ in range(20):
+        e = _random_trig_sum(rng, terms=4)
+        ident = sp.expand(sp.expand_trig(e))        # the same function, another writing
+        assert S.is_zero(e - ident)
+        assert S.is_zero(e + 1 - ident) is False
+    assert S.is_zero(L1 * (sp.sin(q1) ** 2 + sp.cos(q1) ** 2) - L1)
+    assert not S.is_zero(sp.sin(q1) * sp.cos(q2) - sp.sin(q2) * sp.cos(q1))
