@@ -93,6 +93,19 @@ class Checker:
                 self.error(path, f"missing required key '{key}'")
         return True
 
+    def entries(self, section: str, value, what: str, allowed, required=()):
+        """(i, path, item) for each entry of the list `section` that is a mapping of allowed
+        keys: none for a missing section, one error for a section that is not a list."""
+        if value is None:
+            return
+        if not isinstance(value, list):
+            self.error((section,), f"expected a list of {what}, got {type_name(value)}")
+            return
+        for i, item in enumerate(value):
+            path = (section, i)
+            if self.mapping(path, item, allowed, required=required):
+                yield i, path, item
+
     @staticmethod
     def misspelt(value: dict, key: str, allowed) -> bool:
         """True when an unknown key of `value` is a misspelling of `key`: its did-you-mean
@@ -362,17 +375,10 @@ class _ProblemBuilder:
     # -- joints ---------------------------------------------------------
     def _joints(self, value) -> list:
         chk = self.chk
-        if value is None:
-            return []
-        if not isinstance(value, list):
-            chk.error(("joints",), f"expected a list of joints, got {type_name(value)}")
-            return []
         taken = {s.name for s in self.parameters} | RESERVED
         joints, seen = [], set()
-        for i, item in enumerate(value):
-            path = ("joints", i)
-            if not chk.mapping(path, item, ("name", "type", "limits", "actuator"), required=("name", "type")):
-                continue
+        for i, path, item in chk.entries("joints", value, "joints", ("name", "type", "limits", "actuator"),
+                                         required=("name", "type")):
             name = chk.string(path + ("name",), item.get("name"), IDENT_RE, " (expected a name like theta1)") \
                 if "name" in item else None
             kind = item.get("type")
@@ -690,18 +696,10 @@ class _ProblemBuilder:
 
     def _bodies(self, value) -> list:
         chk = self.chk
-        if value is None:
-            return []
-        if not isinstance(value, list):
-            chk.error(("bodies",), f"expected a list of bodies, got {type_name(value)}")
-            return []
         out, seen = [], set()
         kinds = ("point", "rod", "com", "pseudo_inertia")
-        for i, item in enumerate(value):
-            path = ("bodies", i)
-            if not chk.mapping(path, item, ("name", "frame", "mass") + kinds + ("inertia",),
-                               required=("name", "frame")):
-                continue
+        for i, path, item in chk.entries("bodies", value, "bodies", ("name", "frame", "mass") + kinds + ("inertia",),
+                                         required=("name", "frame")):
             name = chk.string(path + ("name",), item.get("name")) if "name" in item else None
             if name is not None and name in seen:
                 chk.error(path + ("name",), f"body name '{name}' is already used")
@@ -766,17 +764,9 @@ class _ProblemBuilder:
 
     def _forces(self, value) -> list:
         chk = self.chk
-        if value is None:
-            return []
-        if not isinstance(value, list):
-            chk.error(("forces",), f"expected a list of forces, got {type_name(value)}")
-            return []
         out, seen = [], set()
-        for i, item in enumerate(value):
-            path = ("forces", i)
-            if not chk.mapping(path, item, ("name", "frame", "at", "force", "torque", "in"),
-                               required=("frame",)):
-                continue
+        for i, path, item in chk.entries("forces", value, "forces", ("name", "frame", "at", "force", "torque", "in"),
+                                         required=("frame",)):
             name = item.get("name", f"force{i + 1}")
             name = chk.string(path + ("name",), name) if "name" in item else name
             if name is not None and name in seen:
