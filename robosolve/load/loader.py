@@ -10,6 +10,7 @@ import re
 
 import sympy as sp
 
+from robosolve.core.transforms import homogeneous_last_row
 from robosolve.errors import InputError, InputIssue
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
@@ -62,6 +63,13 @@ def type_name(value) -> str:
     if isinstance(value, dict):
         return "a mapping"
     return type(value).__name__
+
+
+def _exact_if_whole(e):
+    """A Float with a whole value as the Integer it is (sympy does not take 1.0 for 1)."""
+    if isinstance(e, sp.Float) and float(e).is_integer():
+        return sp.Integer(int(e))
+    return e
 
 
 class Checker:
@@ -187,7 +195,8 @@ class Checker:
         rows = [[self.expr(path + (i, j), v, ns) for j, v in enumerate(r)] for i, r in enumerate(value)]
         if any(v is None for r in rows for v in r):
             return None
-        return sp.Matrix(rows)
+        # 1.0 and 0.0 in a matrix mean 1 and 0: exact, so that the products stay exact
+        return sp.Matrix([[_exact_if_whole(v) for v in r] for r in rows])
 
 
 # ----------------------------------------------------------------------
@@ -550,7 +559,7 @@ class _ProblemBuilder:
         elif kind == "matrix":
             m = chk.matrix(path + ("matrix",), item["matrix"], self.ns)
             if m is not None:
-                if list(m[3, :]) != [0, 0, 0, 1]:
+                if not homogeneous_last_row(m):
                     chk.error(path + ("matrix",), "the last row of a pose matrix must be [0, 0, 0, 1]")
                     return
                 if not self._is_rigid(m):
