@@ -26,6 +26,27 @@ app = typer.Typer(
 )
 
 
+
+# Options several commands share, defined once so that their names, bounds and help agree.
+def _format_option():
+    return typer.Option(None, "--format", "-f", help=FORMAT_HELP)
+
+
+def _jobs_option():
+    return typer.Option(0, "--jobs", "-j", min=0, help="Parallel processes (default: number of cores).")
+
+
+def _scheduler_option():
+    return typer.Option(None, "--scheduler", help=SCHEDULER_HELP)
+
+
+def _problem_option(help_text: str):
+    return typer.Option(None, "--problem", "-p", help=help_text)
+
+
+def _tolerance_option(flag: str, kind: str, default: str):
+    return typer.Option(None, flag, help=f"{kind} tolerance (default {default}, or the problem's grading:).")
+
 def _err(text: str) -> None:
     sys.stderr.write(text + "\n")
 
@@ -57,7 +78,7 @@ def solve(
         help="Output folder. With one file: the folder itself (DIR/report.md). "
              "With several: DIR/<problem name>/. Default: out/<problem name>/. "
              "robosolve only replaces folders that are new, empty or its own (marked .robosolve)."),
-    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
+    format: Optional[str] = _format_option(),
 ) -> None:
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
@@ -147,12 +168,12 @@ def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).
 def batch(
     source: str = typer.Argument(..., help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
     out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
-    jobs: int = typer.Option(0, "--jobs", "-j", min=0, help="Parallel processes (default: number of cores)."),
+    jobs: int = _jobs_option(),
     check: Optional[Path] = typer.Option(
         None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
-    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP),
+    format: Optional[str] = _format_option(),
+    scheduler: Optional[str] = _scheduler_option(),
 ) -> None:
     """Solve many problem files in parallel; optionally compare with golden outputs."""
     from robosolve import batch as batch_mod
@@ -183,9 +204,9 @@ def variants(
     out: Path = typer.Option(..., "--out", "-o", help="Output folder (replaced as a whole)."),
     seed: int = typer.Option(0, "--seed", help="Seed of the draws (same seed, same variants)."),
     no_solve: bool = typer.Option(False, "--no-solve", help="Write the problem files only."),
-    format: Optional[str] = typer.Option(None, "--format", "-f", help=FORMAT_HELP),
-    jobs: int = typer.Option(0, "--jobs", "-j", min=0, help="Parallel processes (default: number of cores)."),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help=SCHEDULER_HELP),
+    format: Optional[str] = _format_option(),
+    jobs: int = _jobs_option(),
+    scheduler: Optional[str] = _scheduler_option(),
 ) -> None:
     """Individualized variants of a problem: variants.csv and one solved folder per variant."""
     from robosolve.variants import workflow
@@ -212,10 +233,10 @@ def _scheduler(scheduler: Optional[str]) -> None:
 @app.command()
 def check(
     answers: Path = typer.Argument(..., help="An answers file (YAML, grading.md)."),
-    problem: Optional[Path] = typer.Option(None, "--problem", "-p", help="Problem file (default: the answers file's `problem:`)."),
+    problem: Optional[Path] = _problem_option("Problem file (default: the answers file's `problem:`)."),
     json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
-    rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default 0.005, or the problem's grading:)."),
-    atol: Optional[float] = typer.Option(None, "--atol", help="Absolute tolerance (default 1e-6, or the problem's grading:)."),
+    rtol: Optional[float] = _tolerance_option("--rtol", "Relative", "0.005"),
+    atol: Optional[float] = _tolerance_option("--atol", "Absolute", "1e-6"),
 ) -> None:
     """Check a student's answers against robosolve's solution: a verdict per key, and what is wrong."""
     from robosolve.grading.commands import run_check
@@ -227,11 +248,11 @@ def check(
 def grade(
     submissions: List[Path] = typer.Argument(..., help="Answers files, or folders of them (*.yaml, *.yml)."),
     out: Path = typer.Option(..., "--out", "-o", help="Output folder: grades.csv, summary.csv, <student>.json, feedback/."),
-    problem: Optional[Path] = typer.Option(None, "--problem", "-p", help="Grade every submission against this problem."),
+    problem: Optional[Path] = _problem_option("Grade every submission against this problem."),
     variants: Optional[Path] = typer.Option(None, "--variants", help="A `robosolve variants` folder: each student's own variant."),
-    jobs: int = typer.Option(0, "--jobs", "-j", help="Parallel processes (default: number of cores)."),
-    rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default 0.005, or the problem's grading:)."),
-    atol: Optional[float] = typer.Option(None, "--atol", help="Absolute tolerance (default 1e-6, or the problem's grading:)."),
+    jobs: int = _jobs_option(),
+    rtol: Optional[float] = _tolerance_option("--rtol", "Relative", "0.005"),
+    atol: Optional[float] = _tolerance_option("--atol", "Absolute", "1e-6"),
 ) -> None:
     """Grade a class: every submission against its problem (solved once), with marks and feedback."""
     from robosolve.grading.commands import run_grade_command

@@ -309,22 +309,24 @@ class DynamicsEngine:
 
     def _rext(self):
         """Generalized forces of the loads: Σ Φ_b ⊗ ᵇLᵢⱼ (frame invariant, course-notes#note-pseudo-scalar-product)."""
+        def terms(i):
+            return ((self._rload_phi(k), self._rLb(i, ld.frame))
+                    for k, ld in enumerate(self.loads) if i in self.moving(ld.frame))
+        return self._cached("rext", lambda: self._pseudo_scalar_sums(terms))
+
+    def _pseudo_scalar_sums(self, terms) -> list:
+        """For each joint i, Σ Φ ⊗ L over the pairs (Φ, L) of `terms(i)`, in the algebra."""
         from robosolve.core.matrices import _PSP_ENTRIES
 
-        def build():
-            alg = self.alg
-            out = []
-            for i in range(self.n):
-                acc = alg.zero
-                for k, ld in enumerate(self.loads):
-                    if i not in self.moving(ld.frame):
-                        continue
-                    phi, lb = self._rload_phi(k), self._rLb(i, ld.frame)
-                    for r, col in _PSP_ENTRIES:
-                        acc += phi[r][col] * lb[r][col]
-                out.append(alg.reduce(acc))
-            return out
-        return self._cached("rext", build)
+        alg = self.alg
+        out = []
+        for i in range(self.n):
+            acc = alg.zero
+            for phi, l_matrix in terms(i):
+                for r, c in _PSP_ENTRIES:
+                    acc += phi[r][c] * l_matrix[r][c]
+            out.append(alg.reduce(acc))
+        return out
 
     # ------------------------------------------------------------------ sympy views
     def pretty(self, p, light: bool = False, force: bool = False):
@@ -549,21 +551,10 @@ class DynamicsEngine:
         return self._cached(("rL0", i, name), build)
 
     def _rcourse_f(self):
-        from robosolve.core.matrices import _PSP_ENTRIES
-
-        def build():
-            alg = self.alg
-            out = []
-            for i in range(self.n):
-                acc = alg.zero
-                for link, phi in self._rlink_actions0().items():
-                    if i in self.moving(link):
-                        l0 = self._rL0(i, link)
-                        for r, c in _PSP_ENTRIES:
-                            acc += phi[r][c] * l0[r][c]
-                out.append(alg.reduce(acc))
-            return out
-        return self._cached("rcourse_f", build)
+        def terms(i):
+            return ((phi, self._rL0(i, link))
+                    for link, phi in self._rlink_actions0().items() if i in self.moving(link))
+        return self._cached("rcourse_f", lambda: self._pseudo_scalar_sums(terms))
 
     def course_generalized_forces(self) -> sp.Matrix:
         """fᵢ = (Σ_{links j moved by joint i} ⁰Φⱼ) ⊗ ⁰Lᵢⱼ, literally (for the report)."""

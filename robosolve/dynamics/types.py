@@ -17,7 +17,11 @@ __all__ = ["FrameSpec", "JointSpec", "BodySpec", "LoadSpec", "Dynamics"]
 
 @dataclass(frozen=True)
 class FrameSpec:
-    """A frame: its parent and its local pose ``M_parent,name`` (4x4 sympy)."""
+    """A frame of the chain.
+
+    ``local`` is its pose in its parent, the 4x4 sympy matrix ``ᵖM_name`` of the course,
+    a function of the joints that move it (the base frame has no FrameSpec).
+    """
 
     name: str
     parent: str
@@ -26,7 +30,8 @@ class FrameSpec:
 
 @dataclass(frozen=True)
 class JointSpec:
-    """A generalized coordinate with its derivatives and its actuator symbol."""
+    """A generalized coordinate q with the symbols of q̇ and q̈ and of its actuator's action
+    (a torque for a revolute joint, a force for a prismatic one)."""
 
     name: str
     q: sp.Symbol
@@ -38,7 +43,11 @@ class JointSpec:
 
 @dataclass(frozen=True)
 class BodySpec:
-    """A rigid body fixed in ``frame`` with pseudo-inertia ``J`` (4x4) in that frame."""
+    """A rigid body fixed in ``frame``.
+
+    ``J`` is its pseudo-inertia in that frame, the symmetric 4x4 ∫ P Pᵀ dm whose [4, 4]
+    entry is the mass.
+    """
 
     name: str
     frame: str
@@ -61,6 +70,18 @@ class LoadSpec:
     in_frame: str | None = None
 
 
+class _PerJoint:
+    """A read-only attribute of `Dynamics`: one symbol of each joint, in joint order."""
+
+    def __init__(self, attribute: str):
+        self.attribute = attribute
+
+    def __get__(self, dynamics, owner=None) -> list[sp.Symbol]:
+        if dynamics is None:
+            return self
+        return [getattr(j, self.attribute) for j in dynamics.joints]
+
+
 @dataclass
 class Dynamics:
     """The equations of motion M(q) q'' + c(q, q') + g(q) = actuators + external."""
@@ -74,21 +95,11 @@ class Dynamics:
     potential_energy: dict[str, Any]
     engine: Any = field(repr=False, default=None)  # the DynamicsEngine (intermediate matrices)
 
-    @property
-    def q(self) -> list[sp.Symbol]:
-        return [j.q for j in self.joints]
-
-    @property
-    def qd(self) -> list[sp.Symbol]:
-        return [j.qd for j in self.joints]
-
-    @property
-    def qdd(self) -> list[sp.Symbol]:
-        return [j.qdd for j in self.joints]
-
-    @property
-    def actuators(self) -> list[sp.Symbol]:
-        return [j.actuator for j in self.joints]
+    # the joints' symbols, in joint order
+    q = _PerJoint("q")
+    qd = _PerJoint("qd")
+    qdd = _PerJoint("qdd")
+    actuators = _PerJoint("actuator")
 
     @property
     def generalized_forces(self) -> sp.Matrix:

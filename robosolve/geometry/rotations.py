@@ -346,6 +346,19 @@ def _locked(gamma, middle, combination: str, zero=0.0) -> EulerAngles:
     return EulerAngles([[gamma, middle, zero]], True, (combination, gamma))
 
 
+def _gimbal_lock_numeric(pivot: float, plus, minus) -> EulerAngles:
+    """The singular case of a numeric rotation: `pivot` is the entry that is +1 or -1 there;
+    `plus` / `minus` = (y, x, middle angle, combination) for each sign, gamma = atan2(y, x)."""
+    y, x, middle, combination = plus if pivot > 0 else minus
+    return _locked(_atan2(y, x), middle, combination)
+
+
+def _gimbal_lock_symbolic(pivot, plus, minus, simplify) -> EulerAngles:
+    """`_gimbal_lock_numeric` for a sympy rotation: gamma exact and wrapped to (-pi, pi]."""
+    y, x, middle, combination = plus if _positive_unit(pivot) else minus
+    return _locked(_wrap_symbolic(_sym_angle(y, x, simplify)), middle, combination, sp.Integer(0))
+
+
 def _two_sets_symbolic(s1, s2, exact: bool, factor, validity: str) -> EulerAngles:
     """The two regular solution sets of a sympy rotation: wrapped to (-pi, pi] when exact,
     else kept with the `factor` that must not vanish and where they are valid."""
@@ -370,12 +383,9 @@ def zyz_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
     """
     r = _rot3_numeric(m)
     st = math.hypot(r[0, 2], r[1, 2])
-    if st <= tol:
-        if r[2, 2] > 0:  # theta = 0: R = Rz(phi + psi)
-            gamma = _atan2(r[1, 0], r[0, 0])
-            return _locked(gamma, 0.0, "phi + psi")
-        gamma = _atan2(-r[0, 1], -r[0, 0])  # theta = pi: R = Rz(phi - psi) Ry(pi)
-        return _locked(gamma, math.pi, "phi - psi")
+    if st <= tol:   # theta = 0: R = Rz(phi + psi); theta = pi: R = Rz(phi - psi) Ry(pi)
+        return _gimbal_lock_numeric(r[2, 2], (r[1, 0], r[0, 0], 0.0, "phi + psi"),
+                                    (-r[0, 1], -r[0, 0], math.pi, "phi - psi"))
     theta = _atan2(st, r[2, 2])
     s1 = [_atan2(r[1, 2], r[0, 2]), theta, _atan2(r[2, 1], -r[2, 0])]
     s2 = [_atan2(-r[1, 2], -r[0, 2]), -theta + 0.0, _atan2(-r[2, 1], r[2, 0])]
@@ -384,20 +394,30 @@ def zyz_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
 
 def zyz_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
     """ZYZ angles of a sympy rotation; exact singular cases when there are no symbols."""
+    def regular_sets(r, st, angle):
+        theta = angle(st, r[2, 2])
+        return ([angle(r[1, 2], r[0, 2]), theta, angle(r[2, 1], -r[2, 0])],
+                [angle(-r[1, 2], -r[0, 2]), simplify(-theta), angle(-r[2, 1], r[2, 0])])
+
+    def lock_cases(r):      # theta = 0 / theta = pi
+        return (r[1, 0], r[0, 0], sp.Integer(0), "phi + psi"), (-r[0, 1], -r[0, 0], sp.pi, "phi - psi")
+
+    # st = sin(theta) = sqrt(r13^2 + r23^2) = sqrt(1 - r33^2) (unit column)
+    return _euler_symbolic(m, (2, 2), 1, lock_cases, regular_sets, "valid where sin(theta) != 0", simplify)
+
+
+def _euler_symbolic(m, pivot_at, pivot_sign, lock_cases, regular_sets, validity, simplify) -> EulerAngles:
+    """The angles of a sympy rotation in one convention. The pivot, `pivot_sign` times the
+    entry at `pivot_at`, is the middle angle's cosine or sine; the other one, `magnitude` =
+    sqrt(1 - pivot^2), vanishes at the gimbal lock (`lock_cases(r)`: plus and minus cases of
+    `_gimbal_lock_symbolic`); elsewhere `regular_sets(r, magnitude, angle)` gives the two sets."""
     r = _rot3_symbolic(m)
-    st = sp.sqrt(simplify(1 - r[2, 2] ** 2))  # = sqrt(r13^2 + r23^2) (unit column)
-    exact = not r.free_symbols
-    if is_zero(st):
-        if _positive_unit(r[2, 2]):
-            gamma = _wrap_symbolic(_sym_angle(r[1, 0], r[0, 0], simplify))
-            return _locked(gamma, sp.Integer(0), "phi + psi", sp.Integer(0))
-        gamma = _wrap_symbolic(_sym_angle(-r[0, 1], -r[0, 0], simplify))
-        return _locked(gamma, sp.pi, "phi - psi", sp.Integer(0))
-    theta = _sym_angle(st, r[2, 2], simplify)
-    s1 = [_sym_angle(r[1, 2], r[0, 2], simplify), theta, _sym_angle(r[2, 1], -r[2, 0], simplify)]
-    s2 = [_sym_angle(-r[1, 2], -r[0, 2], simplify), simplify(-theta),
-          _sym_angle(-r[2, 1], r[2, 0], simplify)]
-    return _two_sets_symbolic(s1, s2, exact, st, "valid where sin(theta) != 0")
+    entry = r[pivot_at]
+    magnitude = sp.sqrt(simplify(1 - entry ** 2))
+    if is_zero(magnitude):
+        return _gimbal_lock_symbolic(pivot_sign * entry, *lock_cases(r), simplify)
+    s1, s2 = regular_sets(r, magnitude, lambda y, x: _sym_angle(y, x, simplify))
+    return _two_sets_symbolic(s1, s2, not r.free_symbols, magnitude, validity)
 
 
 # --------------------------------------------------------------------------
@@ -419,12 +439,9 @@ def rpy_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
     """
     r = _rot3_numeric(m)
     cp = math.hypot(r[0, 0], r[1, 0])
-    if cp <= tol:
-        if -r[2, 0] > 0:  # pitch = +pi/2: R = Ry(pi/2) Rx(roll - yaw) ... only roll - yaw fixed
-            gamma = _atan2(r[0, 1], r[1, 1])
-            return _locked(gamma, math.pi / 2, "roll - yaw")
-        gamma = _atan2(-r[0, 1], r[1, 1])  # pitch = -pi/2: only roll + yaw fixed
-        return _locked(gamma, -math.pi / 2, "roll + yaw")
+    if cp <= tol:   # pitch = +pi/2: only roll - yaw is fixed; pitch = -pi/2: only roll + yaw
+        return _gimbal_lock_numeric(-r[2, 0], (r[0, 1], r[1, 1], math.pi / 2, "roll - yaw"),
+                                    (-r[0, 1], r[1, 1], -math.pi / 2, "roll + yaw"))
     pitch = _atan2(-r[2, 0], cp)
     s1 = [_atan2(r[2, 1], r[2, 2]), pitch, _atan2(r[1, 0], r[0, 0])]
     s2 = [_atan2(-r[2, 1], -r[2, 2]), _atan2(-r[2, 0], -cp), _atan2(-r[1, 0], -r[0, 0])]
@@ -433,17 +450,13 @@ def rpy_numeric(m, tol: float = SINGULAR_TOL) -> EulerAngles:
 
 def rpy_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
     """Roll-pitch-yaw of a sympy rotation; exact singular cases when there are no symbols."""
-    r = _rot3_symbolic(m)
-    cp = sp.sqrt(simplify(1 - r[2, 0] ** 2))  # = sqrt(r11^2 + r21^2) (unit column)
-    exact = not r.free_symbols
-    if is_zero(cp):
-        if _positive_unit(-r[2, 0]):
-            gamma = _wrap_symbolic(_sym_angle(r[0, 1], r[1, 1], simplify))
-            return _locked(gamma, sp.pi / 2, "roll - yaw", sp.Integer(0))
-        gamma = _wrap_symbolic(_sym_angle(-r[0, 1], r[1, 1], simplify))
-        return _locked(gamma, -sp.pi / 2, "roll + yaw", sp.Integer(0))
-    s1 = [_sym_angle(r[2, 1], r[2, 2], simplify), _sym_angle(-r[2, 0], cp, simplify),
-          _sym_angle(r[1, 0], r[0, 0], simplify)]
-    s2 = [_sym_angle(-r[2, 1], -r[2, 2], simplify), _sym_angle(-r[2, 0], -cp, simplify),
-          _sym_angle(-r[1, 0], -r[0, 0], simplify)]
-    return _two_sets_symbolic(s1, s2, exact, cp, "valid where cos(pitch) != 0")
+    def regular_sets(r, cp, angle):
+        return ([angle(r[2, 1], r[2, 2]), angle(-r[2, 0], cp), angle(r[1, 0], r[0, 0])],
+                [angle(-r[2, 1], -r[2, 2]), angle(-r[2, 0], -cp), angle(-r[1, 0], -r[0, 0])])
+
+    def lock_cases(r):      # pitch = +pi/2 / pitch = -pi/2
+        return ((r[0, 1], r[1, 1], sp.pi / 2, "roll - yaw"),
+                (-r[0, 1], r[1, 1], -sp.pi / 2, "roll + yaw"))
+
+    # cp = cos(pitch) = sqrt(r11^2 + r21^2) = sqrt(1 - r31^2) (unit column); -r31 = sin(pitch)
+    return _euler_symbolic(m, (2, 0), -1, lock_cases, regular_sets, "valid where cos(pitch) != 0", simplify)

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import sympy as sp
 
-from robosolve.grading.values import Equation
+from robosolve.grading.values import map_leaves
 
 FIXED_POINTS = 8                   # parameters at their values
 MOVED_POINTS = 8                   # every parameter moved
@@ -90,31 +90,9 @@ def single_point() -> Sampling:
 
 
 # -- evaluation -------------------------------------------------------------
-def _leaves(tree, out: list) -> None:
-    if isinstance(tree, dict):
-        for v in tree.values():
-            _leaves(v, out)
-    elif isinstance(tree, (list, tuple)):
-        for v in tree:
-            _leaves(v, out)
-    elif isinstance(tree, Equation):
-        out.append(tree.residual)
-    elif isinstance(tree, (sp.Basic, float, int)) and not isinstance(tree, bool):
-        out.append(tree)
-
-
-def _rebuild(tree, values):
-    if isinstance(tree, dict):
-        return {k: _rebuild(v, values) for k, v in tree.items()}
-    if isinstance(tree, list):
-        return [_rebuild(v, values) for v in tree]
-    if isinstance(tree, tuple):
-        return tuple(_rebuild(v, values) for v in tree)
-    if isinstance(tree, Equation):
-        return Equation(next(values), tree.text)
-    if isinstance(tree, (sp.Basic, float, int)) and not isinstance(tree, bool):
-        return next(values)
-    return tree
+def _is_number(x) -> bool:
+    """A leaf the comparison evaluates: an expression or a number (not a flag)."""
+    return isinstance(x, (sp.Basic, float, int)) and not isinstance(x, bool)
 
 
 def _as_real(x, n: int) -> np.ndarray:
@@ -141,7 +119,7 @@ def _constant(e) -> float:
 def evaluate(tree, sampling: Sampling):
     """The tree with every expression replaced by its values at the points (np arrays)."""
     exprs: list = []
-    _leaves(tree, exprs)
+    map_leaves(tree, exprs.append, _is_number)
     n = sampling.size
     out = [None] * len(exprs)
     symbolic = [i for i, e in enumerate(exprs) if isinstance(e, sp.Basic) and e.free_symbols]
@@ -171,7 +149,8 @@ def evaluate(tree, sampling: Sampling):
         except Exception:  # noqa: BLE001 - a function numpy lacks: evaluate point by point
             for i in symbolic:
                 out[i] = _pointwise(exprs[i], sampling)
-    return _rebuild(tree, iter(out))
+    values = iter(out)
+    return map_leaves(tree, lambda _: next(values), _is_number)
 
 
 class _Unsupported(Exception):

@@ -172,28 +172,27 @@ def _split_equations(text: str) -> list[str]:
     return [p.strip() for p in parts if p.strip()]
 
 
-def free_symbols(tree) -> set:
+def map_leaves(tree, fn, is_leaf=lambda x: isinstance(x, sp.Basic)):
+    """The tree (dicts, lists, tuples, equations) with every leaf `x` for which `is_leaf(x)`
+    holds replaced by `fn(x)`, depth first in order (an equation's leaf is its residual);
+    other leaves are kept as they are."""
     if isinstance(tree, dict):
-        return set().union(*[free_symbols(v) for v in tree.values()]) if tree else set()
-    if isinstance(tree, (list, tuple)):
-        return set().union(*[free_symbols(v) for v in tree]) if tree else set()
+        return {k: map_leaves(v, fn, is_leaf) for k, v in tree.items()}
+    if isinstance(tree, list):
+        return [map_leaves(v, fn, is_leaf) for v in tree]
+    if isinstance(tree, tuple):
+        return tuple(map_leaves(v, fn, is_leaf) for v in tree)
     if isinstance(tree, Equation):
-        return free_symbols(tree.residual)
-    if isinstance(tree, sp.Basic):
-        return set(tree.free_symbols)
-    return set()
+        return Equation(map_leaves(tree.residual, fn, is_leaf), tree.text)
+    return fn(tree) if is_leaf(tree) else tree
+
+
+def free_symbols(tree) -> set:
+    found: set = set()
+    map_leaves(tree, lambda e: found.update(e.free_symbols))
+    return found
 
 
 def substitute(tree, subs: dict):
     """The tree with `subs` put in (exact), e.g. the parameters' values."""
-    if isinstance(tree, dict):
-        return {k: substitute(v, subs) for k, v in tree.items()}
-    if isinstance(tree, list):
-        return [substitute(v, subs) for v in tree]
-    if isinstance(tree, tuple):
-        return tuple(substitute(v, subs) for v in tree)
-    if isinstance(tree, Equation):
-        return Equation(substitute(tree.residual, subs), tree.text)
-    if isinstance(tree, sp.Basic):
-        return tree.xreplace(subs)
-    return tree
+    return map_leaves(tree, lambda e: e.xreplace(subs))

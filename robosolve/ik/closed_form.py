@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import sympy as sp
 
@@ -265,244 +266,344 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None, tex=No
         _TEX[0] = sp.latex
 
 
-# long: one elimination loop whose branches share the stage list and the substitutions; to split into compute / steps next (issue 10 item 6)
 def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
-    unknowns = list(unknowns)
-    rev = dict(zip(unknowns, revolute))
-    names = latex_names or {q: sp.latex(q) for q in unknowns}
-    eqs = [sp.expand(sp.sympify(e)) for e in equations]
-    U = list(unknowns)           # still unknown and present in the equations
-    pending = []                 # (q, kind, data): recovered once its dependencies are known
-    stages: list[Stage] = []
-    steps: list[Step] = []
-    conditions: list[sp.Expr] = []
+    return _Elimination(equations, unknowns, revolute, latex_names).run()
 
-    def unknown_now():
-        return U + [p[0] for p in pending]
 
-    def flush_pending():
-        changed = True
-        while changed:
-            changed = False
-            for item in list(pending):
-                q, kind, data = item
-                others = [u for u in unknown_now() if u != q]
-                if kind == "atan2":
-                    S, C, D, rot = data
-                    if _unknowns_in(S, others) or _unknowns_in(C, others) or _unknowns_in(D, others):
-                        continue
-                    if rot is not None:
-                        u_, w_, X, Y = [ik_fraction(v) for v in rot]
-                        alt = sp.atan2(Y, X) - sp.atan2(w_, u_)
-                        stages.append(Stage(q, [alt], "atan2", None, names[q], alt,
-                                            {"S": S, "C": C, "D": D, "rot": (u_, w_, X, Y)}))
-                        steps.append(Step(
-                            f"${names[q]}$ from the two equations it was eliminated from",
-                            f"These two equations say that the vector $({_tex(X)},\\ {_tex(Y)})$ is the "
-                            f"vector $({_tex(u_)},\\ {_tex(w_)})$ rotated by ${names[q]}$: "
-                            f"${names[q]}$ is the difference of their directions (one value per branch).",
-                            [(names[q], alt)]))
-                    else:
-                        alt = sp.atan2(ik_fraction(S / D), ik_fraction(C / D))
-                        stages.append(Stage(q, [alt], "atan2", None, names[q], alt,
-                                            {"S": S, "C": C, "D": D}))
-                        steps.append(Step(
-                            f"${names[q]}$ from the two equations it was eliminated from",
-                            f"With the joints found so far, $\\cos {names[q]}$ and $\\sin {names[q]}$ follow "
-                            f"from the linear system (Cramer), and the angle from atan2 (one value per branch).",
-                            [(rf"\cos {names[q]}", ik_fraction(C / D)), (rf"\sin {names[q]}", ik_fraction(S / D)),
-                             (names[q], alt)]))
-                else:  # isolate
-                    expr = data
-                    if _unknowns_in(expr, others):
-                        continue
-                    stages.append(Stage(q, [expr], "isolate", None, names[q], expr))
-                pending.remove(item)
-                changed = True
+def _is_rotation(Ai, Bi, Aj, Bj) -> bool:
+    """(A_i, B_i, A_j, B_j) = (u, -w, w, u): the pair rotates the vector (u, w) by q."""
+    return _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
 
-    aux_count = [0]
-    taken = set().union(*[e.free_symbols for e in eqs]) if eqs else set()
 
-    def introduce_aux():
-        """Name the known part of an equation when it involves solved joints (r = x c1 + y s1)."""
-        nonlocal eqs
-        solved = {st.joint for st in stages if st.rule != "aux"}
-        out = []
-        for e in eqs:
-            e = sp.expand(e)
-            unk = set(unknown_now())
-            known = sp.Add(*[t for t in sp.Add.make_args(e) if not (t.free_symbols & unk)])
-            if (known.free_symbols & solved) and sp.count_ops(known) > 2 and known != e \
-                    and len(_unknowns_in(e, list(unk))) > 1:
-                sign = -1 if known.could_extract_minus_sign() else 1
-                aux_count[0] += 1
-                while sp.Symbol(f"rho_{aux_count[0]}") in taken:
-                    aux_count[0] += 1
-                r = sp.Symbol(f"rho_{aux_count[0]}")
-                definition = ik_fraction(sign * known)
-                stages.append(Stage(r, [definition], "aux", None, _tex(r), definition))
-                steps.append(Step(f"Auxiliary quantity ${_tex(r)}$",
-                                  "A known combination, named to keep the next steps short.",
-                                  [(_tex(r), definition)]))
-                e = sp.expand(e - known + sign * r)
-            out.append(e)
-        eqs = out
+def _trig_pairs(eqs, q):
+    """Every pair (i, j, (A_i, B_i, E_i), (A_j, B_j, E_j)) of equations linear in (cos q, sin q).
 
-    guard = 0
-    while U:
-        guard += 1
-        if guard > 50:
-            raise NoClosedForm("too many elimination steps")
-        # equations with no unknown left: compatibility conditions on the target
+    A reflection has its first equation's signs changed: it is then a rotation."""
+    lin = []
+    for i, e in enumerate(eqs):
+        if q in e.free_symbols:
+            abc = trig_linear(e, q)
+            if abc is not None and not (_is_zero(abc[0]) and _is_zero(abc[1])):
+                lin.append((i, abc))
+    out = []
+    for (i, (Ai, Bi, Ei)), (j, (Aj, Bj, Ej)) in [(x, y) for k, x in enumerate(lin) for y in lin[k + 1:]]:
+        if not _is_rotation(Ai, Bi, Aj, Bj) and _is_zero(Ai + Bj) and _is_zero(Aj - Bi):
+            Ai, Bi, Ei = -Ai, -Bi, -Ei
+        out.append((i, j, (Ai, Bi, Ei), (Aj, Bj, Ej)))
+    return out
+
+
+def _rotation_split(q, ci, cj):
+    """A rotation pair (e_i, e_j) = Rot(q)(u, w) - (X, Y) = 0 rotated back by -q:
+    F1 = X cos q + Y sin q - u and F2 = -X sin q + Y cos q - w, both = 0."""
+    (Ai, _, Ei), (Aj, _, Ej) = ci, cj
+    u_, w_ = Ai, Aj
+    F1 = sp.expand(-sp.cos(q) * Ei - sp.sin(q) * Ej - u_)
+    F2 = sp.expand(sp.sin(q) * Ei - sp.cos(q) * Ej - w_)
+    return F1, F2
+
+
+def _eliminated_equation(ci, cj):
+    """The pair linear in (cos q, sin q) solved by Cramer, cos q = Nc/D, sin q = Ns/D, and
+    q removed with cos^2 + sin^2 = 1: (new equation, Nc, Ns, D, rotation data or None);
+    None when D or the new equation is identically zero."""
+    (Ai, Bi, Ei), (Aj, Bj, Ej) = ci, cj
+    D = sp.expand(Ai * Bj - Aj * Bi)
+    if _is_zero(D):
+        return None
+    Nc = sp.expand(Bi * Ej - Bj * Ei)
+    Ns = sp.expand(Aj * Ei - Ai * Ej)
+    rotation = _is_rotation(Ai, Bi, Aj, Bj)
+    if rotation:
+        # (X, Y) = Rot(q)(u, w): Nc^2 + Ns^2 = D (X^2 + Y^2) and D = u^2 + w^2
+        raw = sp.expand(sp.expand_trig(Ei**2 + Ej**2 - D))
+    else:
+        raw = sp.expand(sp.expand_trig(Nc**2 + Ns**2 - D**2))
+    trig_args = sorted({a.args[0] for a in (raw.atoms(sp.sin, sp.cos) | D.atoms(sp.sin, sp.cos))
+                        if a.args[0].is_Symbol}, key=sp.default_sort_key)
+    g, back, rel = _to_poly_symbols(raw, trig_args)
+    g = _reduce_pythagoras(g, rel)
+    if rotation:
+        new = g
+    else:
+        Dp, _, _ = _to_poly_symbols(D, trig_args)
+        Dp = _reduce_pythagoras(Dp, rel)
+        h = sp.cancel(g / Dp)
+        num, den = sp.fraction(h)
+        dummies = {s for pair in rel for s in pair}
+        new = num if not (den.free_symbols & dummies) else g
+    new = sp.expand(common_factors(new).subs(back))
+    if _is_zero(new):
+        return None
+    rot = (Ai, Aj, -Ei, -Ej) if rotation else None
+    return new, Nc, Ns, D, rot
+
+
+class _Candidate(NamedTuple):
+    """A way to remove a joint from a pair of equations; the smallest (rank, unknowns_left,
+    joint_index) is taken: rotations before eliminations, then the fewest unknowns left."""
+
+    rank: int
+    unknowns_left: int
+    joint_index: int
+    kind: str                 # rotation | eliminate
+    joint: sp.Symbol
+    i: int
+    j: int
+    data: tuple
+
+
+class _Elimination:
+    """One derivation: the rules of the module docstring applied in order until every joint
+    is solved.  State: the equations left, the joints still unknown (`remaining`), the joints
+    eliminated but not yet recovered (`pending`), and what was found so far."""
+
+    MAX_ROUNDS = 50
+
+    def __init__(self, equations, unknowns, revolute, latex_names=None):
+        self.unknowns = list(unknowns)
+        self.revolute = dict(zip(self.unknowns, revolute))
+        self.names = latex_names or {q: sp.latex(q) for q in self.unknowns}
+        self.eqs = [sp.expand(sp.sympify(e)) for e in equations]
+        self.remaining = list(self.unknowns)   # still unknown and present in the equations
+        self.pending = []                      # (q, kind, data): recovered once its dependencies are known
+        self.stages: list[Stage] = []
+        self.steps: list[Step] = []
+        self.conditions: list[sp.Expr] = []
+        self.aux_count = 0
+        # auxiliary names must not clash with a symbol of the equations
+        self.taken = set().union(*[e.free_symbols for e in self.eqs]) if self.eqs else set()
+
+    def run(self) -> ClosedForm:
+        rounds = 0
+        while self.remaining:
+            rounds += 1
+            if rounds > self.MAX_ROUNDS:
+                raise NoClosedForm("too many elimination steps")
+            self._set_aside_conditions()
+            if not self.eqs:
+                raise NoClosedForm("fewer independent equations than unknowns")
+            if self._solve_single_unknown():
+                self._flush_pending()
+                self._introduce_aux()
+            elif self._isolate_linear_unknown():
+                self._flush_pending()
+            else:
+                self._eliminate_from_pair()
+                self._flush_pending()
+                self._introduce_aux()
+        self._flush_pending()
+        if self.pending:
+            raise NoClosedForm("an eliminated joint could not be recovered")
+        # equations left over with every unknown solved are further conditions
+        self._set_aside_conditions()
+        return ClosedForm(self.unknowns, self.stages, self.steps, self.conditions)
+
+    def _unknown_now(self):
+        return self.remaining + [p[0] for p in self.pending]
+
+    def _by_fewest_unknowns(self):
+        return sorted(enumerate(self.eqs), key=lambda t: (len(_unknowns_in(t[1], self.remaining)), t[0]))
+
+    def _set_aside_conditions(self):
+        """Equations with no unknown left are compatibility conditions on the target."""
         keep = []
-        for e in eqs:
-            if not _unknowns_in(e, U):
+        for e in self.eqs:
+            if not _unknowns_in(e, self.remaining):
                 if not _is_zero(e):
-                    conditions.append(e)
+                    self.conditions.append(e)
             else:
                 keep.append(e)
-        eqs = keep
-        if not eqs:
-            raise NoClosedForm("fewer independent equations than unknowns")
+        self.eqs = keep
 
-        # 1. an equation with a single unknown
-        done = False
-        for idx, e in sorted(enumerate(eqs), key=lambda t: (len(_unknowns_in(t[1], U)), t[0])):
-            us = _unknowns_in(e, U)
+    def _solve_single_unknown(self) -> bool:
+        """Rule 1: an equation with a single unknown."""
+        for idx, e in self._by_fewest_unknowns():
+            us = _unknowns_in(e, self.remaining)
             if len(us) != 1:
                 continue
             q = us[0]
-            st = _solve_single(e, q, rev[q], names[q])
+            st = _solve_single(e, q, self.revolute[q], self.names[q])
             if st is None:
                 continue
-            stages.append(st)
-            steps.append(_single_step(st, names[q]))
-            U.remove(q)
-            eqs.pop(idx)
-            done = True
-            break
-        if done:
-            flush_pending()
-            introduce_aux()
-            continue
+            self.stages.append(st)
+            self.steps.append(_single_step(st, self.names[q]))
+            self.remaining.remove(q)
+            self.eqs.pop(idx)
+            return True
+        return False
 
-        # 2. linear isolation
-        for idx, e in sorted(enumerate(eqs), key=lambda t: (len(_unknowns_in(t[1], U)), t[0])):
-            iso = _isolate_linear(e, U, rev)
+    def _isolate_linear_unknown(self) -> bool:
+        """Rule 2: an unknown that appears linearly is isolated and substituted."""
+        for idx, e in self._by_fewest_unknowns():
+            iso = _isolate_linear(e, self.remaining, self.revolute)
             if iso is None:
                 continue
             q, expr = iso
-            steps.append(Step(
-                f"${names[q]}$ appears linearly",
-                f"The equation ${_tex(e)} = 0$ gives ${names[q]}$ directly; it is substituted "
-                f"into the other equations.",
-                [(names[q], expr)]))
-            eqs.pop(idx)
-            eqs = [sp.expand(x.subs(q, expr)) for x in eqs]
-            U.remove(q)
-            pending.append((q, "isolate", expr))
-            done = True
-            break
-        if done:
-            flush_pending()
-            continue
+            self.steps.append(_isolation_step(self.names[q], e, expr))
+            self.eqs.pop(idx)
+            self.eqs = [sp.expand(x.subs(q, expr)) for x in self.eqs]
+            self.remaining.remove(q)
+            self.pending.append((q, "isolate", expr))
+            return True
+        return False
 
-        # 3./4. pairs linear in (cos q, sin q): rotations first (cheap), then eliminations
-        cands = []
-        pairs = []
-        for q in [u for u in U if rev[u]]:
-            lin = []
-            for i, e in enumerate(eqs):
-                if q in e.free_symbols:
-                    abc = trig_linear(e, q)
-                    if abc is not None and not (_is_zero(abc[0]) and _is_zero(abc[1])):
-                        lin.append((i, abc))
-            for (i, (Ai, Bi, Ei)), (j, (Aj, Bj, Ej)) in [(x, y) for k, x in enumerate(lin) for y in lin[k + 1:]]:
-                if not (_is_zero(Ai - Bj) and _is_zero(Aj + Bi)) and _is_zero(Ai + Bj) and _is_zero(Aj - Bi):
-                    # a reflection: the first equation with its sign changed is a rotation
-                    Ai, Bi, Ei = -Ai, -Bi, -Ei
-                # 3. rotation structure: (A_i, B_i, A_j, B_j) = (u, -w, w, u)
-                if _is_zero(Ai - Bj) and _is_zero(Aj + Bi):
-                    u_, w_ = Ai, Aj
-                    F1 = sp.expand(-sp.cos(q) * Ei - sp.sin(q) * Ej - u_)
-                    F2 = sp.expand(sp.sin(q) * Ei - sp.cos(q) * Ej - w_)
-                    for Fa, Fb in ((F2, F1), (F1, F2)):
-                        if _unknowns_in(Fa, U) == [q] and _solve_single(Fa, q, True, names[q]) is not None:
-                            cands.append((0, len(_unknowns_in(Fb, U)), unknowns.index(q), "rotation",
-                                          q, i, j, (Fa, Fb)))
-                            break
-                pairs.append((q, i, j, Ai, Bi, Ei, Aj, Bj, Ej))
-        for q, i, j, Ai, Bi, Ei, Aj, Bj, Ej in ([] if cands else pairs):
-                D = sp.expand(Ai * Bj - Aj * Bi)
-                if _is_zero(D):
-                    continue
-                Nc = sp.expand(Bi * Ej - Bj * Ei)
-                Ns = sp.expand(Aj * Ei - Ai * Ej)
-                rotation = _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
-                if rotation:
-                    # (X, Y) = Rot(q)(u, w): Nc^2 + Ns^2 = D (X^2 + Y^2) and D = u^2 + w^2
-                    raw = sp.expand(sp.expand_trig(Ei**2 + Ej**2 - D))
-                else:
-                    raw = sp.expand(sp.expand_trig(Nc**2 + Ns**2 - D**2))
-                trig_args = sorted({a.args[0] for a in (raw.atoms(sp.sin, sp.cos) | D.atoms(sp.sin, sp.cos))
-                                    if a.args[0].is_Symbol}, key=sp.default_sort_key)
-                g, back, rel = _to_poly_symbols(raw, trig_args)
-                g = _reduce_pythagoras(g, rel)
-                Dp, _, _ = _to_poly_symbols(D, trig_args)
-                Dp = _reduce_pythagoras(Dp, rel)
-                if rotation:
-                    new = g
-                else:
-                    h = sp.cancel(g / Dp)
-                    num, den = sp.fraction(h)
-                    dummies = {s for pair in rel for s in pair}
-                    new = num if not (den.free_symbols & dummies) else g
-                new = sp.expand(common_factors(new).subs(back))
-                if _is_zero(new):
-                    continue
-                nonneg = _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
-                rot = (Ai, Aj, -Ei, -Ej) if nonneg else None
-                cands.append((1, len(_unknowns_in(new, U)), unknowns.index(q), "eliminate", q, i, j,
-                              (new, Nc, Ns, D, rot)))
-                if cands[-1][1] <= 1:
-                    break     # an equation in one unknown: the best elimination possible
+    def _eliminate_from_pair(self):
+        """Rules 3 and 4: the best way to remove a joint from a pair of equations."""
+        cand = self._best_pair_candidate()
+        q, name = cand.joint, self.names[cand.joint]
+        ei, ej = self.eqs[cand.i], self.eqs[cand.j]
+        rest = [e for k, e in enumerate(self.eqs) if k not in (cand.i, cand.j)]
+        if cand.kind == "rotation":
+            Fa, Fb = cand.data
+            self.steps.append(_rotation_step(name, ei, ej, Fa, Fb))
+            self.eqs = [Fa, Fb] + rest
+        else:
+            new, Nc, Ns, D, rot = cand.data
+            self.steps.append(_elimination_step(name, ei, ej, new))
+            self.remaining.remove(q)
+            self.pending.append((q, "atan2", (Ns, Nc, D, rot)))
+            self.eqs = [new] + rest
+
+    def _best_pair_candidate(self) -> _Candidate:
+        """Rotations first (cheap); eliminations only when no rotation applies."""
+        rotations, pairs = [], []
+        for q in [u for u in self.remaining if self.revolute[u]]:
+            for i, j, ci, cj in _trig_pairs(self.eqs, q):
+                if _is_rotation(ci[0], ci[1], cj[0], cj[1]):
+                    cand = self._rotation_candidate(q, i, j, ci, cj)
+                    if cand is not None:
+                        rotations.append(cand)
+                pairs.append((q, i, j, ci, cj))
+        cands = rotations or self._elimination_candidates(pairs)
         if not cands:
             raise NoClosedForm("no elimination pattern applies")
-        cands.sort(key=lambda c: c[:3])
-        _, _, _, kind, q, i, j, data = cands[0]
-        ei, ej = eqs[i], eqs[j]
-        rest = [e for k, e in enumerate(eqs) if k not in (i, j)]
-        if kind == "rotation":
-            Fa, Fb = data
-            steps.append(Step(
-                f"${names[q]}$ by a rotation of two equations",
-                f"The two equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ rotate a vector by "
-                f"${names[q]}$; combining them with $\\cos {names[q]}$ and $\\sin {names[q]}$ leaves an "
-                f"equation in ${names[q]}$ alone and one without it.",
-                [("0", ik_fraction(Fa)), ("0", ik_fraction(Fb))]))
-            eqs = [Fa, Fb] + rest
-        else:
-            new, Nc, Ns, D, rot = data
-            steps.append(Step(
-                f"Eliminate ${names[q]}$ with $\\cos^2 + \\sin^2 = 1$",
-                f"The equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ are linear in "
-                f"$\\cos {names[q]}$ and $\\sin {names[q]}$. Solving for them (Cramer) and imposing "
-                f"$\\cos^2 {names[q]} + \\sin^2 {names[q]} = 1$ removes ${names[q]}$:",
-                [("0", ik_fraction(new))]))
-            U.remove(q)
-            pending.append((q, "atan2", (Ns, Nc, D, rot)))
-            eqs = [new] + rest
-        flush_pending()
-        introduce_aux()
+        return min(cands, key=lambda c: c[:3])
 
-    flush_pending()
-    if pending:
-        raise NoClosedForm("an eliminated joint could not be recovered")
-    # equations left over with every unknown solved are further conditions
-    for e in eqs:
-        if not _is_zero(e):
-            conditions.append(e)
-    return ClosedForm(unknowns, stages, steps, conditions)
+    def _rotation_candidate(self, q, i, j, ci, cj) -> _Candidate | None:
+        """Rule 3: the combination of a rotation pair that has q as its only unknown."""
+        F1, F2 = _rotation_split(q, ci, cj)
+        for Fa, Fb in ((F2, F1), (F1, F2)):
+            if _unknowns_in(Fa, self.remaining) == [q] and _solve_single(Fa, q, True, self.names[q]) is not None:
+                return _Candidate(0, len(_unknowns_in(Fb, self.remaining)), self.unknowns.index(q), "rotation",
+                                  q, i, j, (Fa, Fb))
+        return None
+
+    def _elimination_candidates(self, pairs) -> list[_Candidate]:
+        """Rule 4 for each pair, until one leaves an equation in one unknown (the best possible)."""
+        cands = []
+        for q, i, j, ci, cj in pairs:
+            found = _eliminated_equation(ci, cj)
+            if found is None:
+                continue
+            cands.append(_Candidate(1, len(_unknowns_in(found[0], self.remaining)), self.unknowns.index(q),
+                                    "eliminate", q, i, j, found))
+            if cands[-1].unknowns_left <= 1:
+                break
+        return cands
+
+    def _flush_pending(self):
+        """Recover every eliminated joint whose expression no longer involves an unknown."""
+        changed = True
+        while changed:
+            changed = False
+            for item in list(self.pending):
+                if self._recover(*item):
+                    self.pending.remove(item)
+                    changed = True
+
+    def _recover(self, q, kind, data) -> bool:
+        others = [u for u in self._unknown_now() if u != q]
+        name = self.names[q]
+        if kind == "isolate":
+            if _unknowns_in(data, others):
+                return False
+            self.stages.append(Stage(q, [data], "isolate", None, name, data))
+            return True
+        S, C, D, rot = data
+        if _unknowns_in(S, others) or _unknowns_in(C, others) or _unknowns_in(D, others):
+            return False
+        if rot is not None:
+            u_, w_, X, Y = [ik_fraction(v) for v in rot]
+            alt = sp.atan2(Y, X) - sp.atan2(w_, u_)
+            self.stages.append(Stage(q, [alt], "atan2", None, name, alt,
+                                     {"S": S, "C": C, "D": D, "rot": (u_, w_, X, Y)}))
+            self.steps.append(_recovery_by_rotation_step(name, u_, w_, X, Y, alt))
+        else:
+            alt = sp.atan2(ik_fraction(S / D), ik_fraction(C / D))
+            self.stages.append(Stage(q, [alt], "atan2", None, name, alt, {"S": S, "C": C, "D": D}))
+            self.steps.append(_recovery_by_cramer_step(name, ik_fraction(C / D), ik_fraction(S / D), alt))
+        return True
+
+    def _introduce_aux(self):
+        """Name the known part of an equation when it involves solved joints (r = x c1 + y s1)."""
+        solved = {st.joint for st in self.stages if st.rule != "aux"}
+        self.eqs = [self._with_aux(e, solved) for e in self.eqs]
+
+    def _with_aux(self, e, solved):
+        e = sp.expand(e)
+        unk = set(self._unknown_now())
+        known = sp.Add(*[t for t in sp.Add.make_args(e) if not (t.free_symbols & unk)])
+        if not ((known.free_symbols & solved) and sp.count_ops(known) > 2 and known != e
+                and len(_unknowns_in(e, list(unk))) > 1):
+            return e
+        sign = -1 if known.could_extract_minus_sign() else 1
+        self.aux_count += 1
+        while sp.Symbol(f"rho_{self.aux_count}") in self.taken:
+            self.aux_count += 1
+        r = sp.Symbol(f"rho_{self.aux_count}")
+        definition = ik_fraction(sign * known)
+        self.stages.append(Stage(r, [definition], "aux", None, _tex(r), definition))
+        self.steps.append(Step(f"Auxiliary quantity ${_tex(r)}$",
+                               "A known combination, named to keep the next steps short.",
+                               [(_tex(r), definition)]))
+        return sp.expand(e - known + sign * r)
+
+
+# ---------------------------------------------------------------------------
+# steps (derivation text as data)
+
+def _isolation_step(name, e, expr) -> Step:
+    return Step(
+        f"${name}$ appears linearly",
+        f"The equation ${_tex(e)} = 0$ gives ${name}$ directly; it is substituted "
+        f"into the other equations.",
+        [(name, expr)])
+
+
+def _rotation_step(name, ei, ej, Fa, Fb) -> Step:
+    return Step(
+        f"${name}$ by a rotation of two equations",
+        f"The two equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ rotate a vector by "
+        f"${name}$; combining them with $\\cos {name}$ and $\\sin {name}$ leaves an "
+        f"equation in ${name}$ alone and one without it.",
+        [("0", ik_fraction(Fa)), ("0", ik_fraction(Fb))])
+
+
+def _elimination_step(name, ei, ej, new) -> Step:
+    return Step(
+        f"Eliminate ${name}$ with $\\cos^2 + \\sin^2 = 1$",
+        f"The equations ${_tex(ei)} = 0$ and ${_tex(ej)} = 0$ are linear in "
+        f"$\\cos {name}$ and $\\sin {name}$. Solving for them (Cramer) and imposing "
+        f"$\\cos^2 {name} + \\sin^2 {name} = 1$ removes ${name}$:",
+        [("0", ik_fraction(new))])
+
+
+def _recovery_by_rotation_step(name, u_, w_, X, Y, alt) -> Step:
+    return Step(
+        f"${name}$ from the two equations it was eliminated from",
+        f"These two equations say that the vector $({_tex(X)},\\ {_tex(Y)})$ is the "
+        f"vector $({_tex(u_)},\\ {_tex(w_)})$ rotated by ${name}$: "
+        f"${name}$ is the difference of their directions (one value per branch).",
+        [(name, alt)])
+
+
+def _recovery_by_cramer_step(name, cos_q, sin_q, alt) -> Step:
+    return Step(
+        f"${name}$ from the two equations it was eliminated from",
+        f"With the joints found so far, $\\cos {name}$ and $\\sin {name}$ follow "
+        f"from the linear system (Cramer), and the angle from atan2 (one value per branch).",
+        [(rf"\cos {name}", cos_q), (rf"\sin {name}", sin_q), (name, alt)])
 
 
 def _frac_tex(e):

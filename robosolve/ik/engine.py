@@ -283,7 +283,6 @@ def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt,
 
 # main entry
 
-# long: the IK decision sequence (count, closed form, numeric, merge) reads top to bottom; to split next (issue 10 item 6)
 def solve_ik(
     equations: list[tuple],
     joints: list[IKJoint],
@@ -297,36 +296,20 @@ def solve_ik(
     tex=None,
     labels: list[str] | None = None,
 ) -> IKResult:
-    """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring."""
+    """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring.
+
+    The counts decide: equations involving fewer joints than there are, fewer equations than
+    joints (redundant), more (over-determined), or a square system (closed form, then numbers).
+    """
     res = IKResult()
     names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
     exprs = [_chop(sp.sympify(l) - sp.sympify(r)) for l, r in equations]
-    # an equation with no joint in it: the robot cannot change that coordinate
-    qset = {j.symbol for j in joints}
-    constant = [k for k, e in enumerate(exprs) if not (e.free_symbols & qset)]
-    if constant and len(constant) < len(exprs):
-        for k in constant:
-            lhs, rhs = equations[k]
-            try:
-                lv = float(sp.sympify(lhs).evalf(subs=values))
-                rv = float(sp.sympify(rhs).evalf(subs=values))
-            except (TypeError, ValueError):
-                continue
-            if abs(lv - rv) > 1e-9 * max(1.0, abs(rv)):
-                res.status = "unreachable"
-                lab = labels[k] if labels else str(sp.sympify(lhs))
-                res.reason = Text(f"{lab} is ", _fmt(lv), " whatever the joints, but the target asks ", _fmt(rv))
-                res.reason_tex = Text(f"`{lab}` is ", _fmt(lv), " whatever the joints, but the target asks ",
-                                      _fmt(rv))
-                return res
-        which = ", ".join(labels[k] if labels else f"equation {k + 1}" for k in constant)
-        res.notes.append(f"{which} {'hold' if len(constant) > 1 else 'holds'} whatever the joints "
-                         f"(no joint in {'them' if len(constant) > 1 else 'it'}): left out")
-        equations = [eq for k, eq in enumerate(equations) if k not in constant]
-        exprs = [e for k, e in enumerate(exprs) if k not in constant]
+    kept = _leave_out_constant_equations(res, equations, exprs, joints, values, labels)
+    if kept is None:
+        return res
+    equations, exprs = kept
     res.angular = [is_angular(e, joints) for e in exprs]
     n, m = len(joints), len(exprs)
-    target_syms = set(target_symbols)
 
     used = [j for j in joints if any(j.symbol in e.free_symbols for e in exprs)]
     unused = [j.name for j in joints if j not in used]
@@ -334,98 +317,156 @@ def solve_ik(
         res.notes.append(f"{', '.join(unused)} appear{'s' if len(unused) == 1 else ''} in no equation: "
                          f"{'it is' if len(unused) == 1 else 'they are'} not determined by this target")
     if m > len(used) and unused:
-        m_eff = len(used)
-        res.status = "overdetermined"
-        res.reason = (f"{m} equations involve only {m_eff} joint{'s' if m_eff != 1 else ''} "
-                      f"({', '.join(j.name for j in used)}); {', '.join(unused)} "
-                      f"{'is' if len(unused) == 1 else 'are'} free. Choose {m_eff} of the {m} equations "
-                      f"for {', '.join(j.name for j in used)}, and add an equation for {', '.join(unused)}.")
-        _solve_subsets(res, exprs, used, values, budget)
-        return res
-    if m < n:
+        _overdetermined_with_free_joints(res, exprs, used, unused, values, budget)
+    elif m < n:
         res.status = "redundant"
         _redundant(res, exprs, joints, values, names, time_limit_s, tex)
-        return res
-    if m > n:
-        system = _numeric_system(exprs, joints, values, res.angular)
-        num = solve_all(system, _boxes(joints, _scale(values)), budget)
-        if num.solutions:
-            res.notes.append(f"{m} equations for {n} unknowns: they are consistent here, "
-                             f"so the solutions satisfy all of them.")
-            cf_sols = None
-            if closed_form and n <= 4:
-                cf, subset = _closed_form_subset(exprs, joints, names, tex, time_limit_s)
-                if cf is not None:
-                    res.closed_form, res.closed_form_subset = cf, subset
-                    res.closed_form_branches = cf.branches()
-                    cf_sols, _, _ = _cf_solutions(cf, values, joints, system)
-                    res.closed_form_values = cf_sols
-            _finish(res, num, cf_sols, joints, values, select, system)
-            return res
-        res.status = "overdetermined"
-        res.reason = (f"{m} equations for {n} unknown joints: no configuration satisfies all of "
-                      f"them. Choose {n} of the {m} equations (each choice is solved below).")
-        _solve_subsets(res, exprs, joints, values, budget)
-        return res
+    elif m > n:
+        _overdetermined(res, exprs, joints, values, names, select, closed_form, time_limit_s, budget, tex)
+    else:
+        _square(res, equations, exprs, joints, values, names, select, closed_form, time_limit_s,
+                set(target_symbols), budget, tex)
+    return res
 
-    # square system: closed form first (under a time limit), then numbers
-    cf = None
-    if closed_form:
+
+def _leave_out_constant_equations(res, equations, exprs, joints, values, labels):
+    """Leave out, with a note, the equations with no joint in them (the robot cannot change that
+    coordinate): (equations, exprs) kept, or None when one contradicts the target (res says why)."""
+    qset = {j.symbol for j in joints}
+    constant = [k for k, e in enumerate(exprs) if not (e.free_symbols & qset)]
+    if not constant or len(constant) >= len(exprs):
+        return equations, exprs
+    for k in constant:
+        lhs, rhs = equations[k]
         try:
-            with time_limit(time_limit_s):
-                cf = cfm.derive(exprs, [j.symbol for j in joints], [j.revolute for j in joints], names,
-                                res.angular, tex=tex)
-                res.closed_form_branches = cf.branches()
-        except cfm.NoClosedForm as ex:
-            res.closed_form_note = f"no closed form: {ex}"
-        except Timeout:
-            res.closed_form_note = f"no closed form within {time_limit_s:g} s"
-        except (RecursionError, sp.PolynomialError, ValueError, TypeError, ZeroDivisionError,
-                NotImplementedError) as ex:  # pragma: no cover - defensive
-            res.closed_form_note = f"no closed form ({type(ex).__name__})"
-        if cf is None:
-            res.closed_form_branches = []
-        res.closed_form = cf
+            lv = float(sp.sympify(lhs).evalf(subs=values))
+            rv = float(sp.sympify(rhs).evalf(subs=values))
+        except (TypeError, ValueError):
+            continue
+        if abs(lv - rv) > 1e-9 * max(1.0, abs(rv)):
+            res.status = "unreachable"
+            lab = labels[k] if labels else str(sp.sympify(lhs))
+            res.reason = Text(f"{lab} is ", _fmt(lv), " whatever the joints, but the target asks ", _fmt(rv))
+            res.reason_tex = Text(f"`{lab}` is ", _fmt(lv), " whatever the joints, but the target asks ",
+                                  _fmt(rv))
+            return None
+    which = ", ".join(labels[k] if labels else f"equation {k + 1}" for k in constant)
+    res.notes.append(f"{which} {'hold' if len(constant) > 1 else 'holds'} whatever the joints "
+                     f"(no joint in {'them' if len(constant) > 1 else 'it'}): left out")
+    return ([eq for k, eq in enumerate(equations) if k not in constant],
+            [e for k, e in enumerate(exprs) if k not in constant])
 
+
+def _overdetermined_with_free_joints(res, exprs, used, unused, values, budget):
+    """More equations than the joints they involve, while other joints are in none."""
+    m, m_eff = len(exprs), len(used)
+    res.status = "overdetermined"
+    res.reason = (f"{m} equations involve only {m_eff} joint{'s' if m_eff != 1 else ''} "
+                  f"({', '.join(j.name for j in used)}); {', '.join(unused)} "
+                  f"{'is' if len(unused) == 1 else 'are'} free. Choose {m_eff} of the {m} equations "
+                  f"for {', '.join(j.name for j in used)}, and add an equation for {', '.join(unused)}.")
+    _solve_subsets(res, exprs, used, values, budget)
+
+
+def _overdetermined(res, exprs, joints, values, names, select, closed_form, time_limit_s, budget, tex):
+    """More equations than joints: solved together when they are consistent here, else each
+    choice of n of them is solved."""
+    n, m = len(joints), len(exprs)
     system = _numeric_system(exprs, joints, values, res.angular)
     num = solve_all(system, _boxes(joints, _scale(values)), budget)
+    if num.solutions:
+        res.notes.append(f"{m} equations for {n} unknowns: they are consistent here, "
+                         f"so the solutions satisfy all of them.")
+        cf_sols = None
+        if closed_form and n <= 4:
+            cf, subset = _closed_form_subset(exprs, joints, names, tex, time_limit_s)
+            if cf is not None:
+                res.closed_form, res.closed_form_subset = cf, subset
+                res.closed_form_branches = cf.branches()
+                cf_sols, _, _ = _cf_solutions(cf, values, joints, system)
+                res.closed_form_values = cf_sols
+        _finish(res, num, cf_sols, joints, values, select, system)
+        return
+    res.status = "overdetermined"
+    res.reason = (f"{m} equations for {n} unknown joints: no configuration satisfies all of "
+                  f"them. Choose {n} of the {m} equations (each choice is solved below).")
+    _solve_subsets(res, exprs, joints, values, budget)
 
-    cf_fail = None
-    cf_partial = {}
+
+def _square(res, equations, exprs, joints, values, names, select, closed_form, time_limit_s,
+            target_syms, budget, tex):
+    """As many equations as joints: closed form first (under a time limit), then numbers; the
+    two sets are merged, and an unreachable target gets its reason."""
+    cf = _square_closed_form(res, exprs, joints, names, time_limit_s, tex) if closed_form else None
+    system = _numeric_system(exprs, joints, values, res.angular)
+    num = solve_all(system, _boxes(joints, _scale(values)), budget)
+    cf_fail, cf_partial = None, {}
     if cf is not None:
-        cf_sols, cf_fail, cf_partial = _cf_solutions(cf, values, joints, system)
-        if cf.conditions:
-            bad = []
-            for c in cf.conditions:
-                try:
-                    v = float(c.evalf(subs=values))
-                except (TypeError, ValueError):
-                    continue
-                if abs(v) > 1e-9 * _scale(values):
-                    bad.append(c)
-            if bad:
-                cf_sols = []
-                res.reason = ("the target is incompatible with the robot: it requires "
-                              + ", ".join(f"{c} = 0" for c in bad))
-                res.reason_tex = ("the target is incompatible with the robot: it requires "
-                                  + ", ".join(f"${(tex or sp.latex)(c)} = 0$" for c in bad))
-        res.closed_form_values = sort_solutions(cf_sols, get=lambda d: [d[j.name] for j in joints])
+        cf_fail, cf_partial = _evaluate_closed_form(res, cf, values, joints, system, tex)
     _finish(res, num, res.closed_form_values if cf is not None else None, joints, values, select, system)
-
     if res.status == "unreachable" and res.reason is None:
-        if cf is not None and cf_fail is not None and not res.all_solutions:
-            aux = {st.joint: st.alternatives[0] for st in cf.stages if st.rule == "aux"}
-            vals = dict(values)
-            vals.update(cf_partial)
-            tsyms = set(target_syms) | set(aux)
-            res.reason = _stage_reason(cf_fail, cf, tsyms, vals, names, _Fmt(plain=True), aux)
-            res.reason_tex = _stage_reason(cf_fail, cf, tsyms, vals, names, _Fmt(tex), aux)
-        if res.reason is None and not res.all_solutions:
-            res.reason = _nearest_reason(res, equations, joints, values, _Fmt(plain=True))
-            res.reason_tex = _nearest_reason(res, equations, joints, values, _Fmt(tex))
+        _unreachable_reason(res, cf, cf_fail, cf_partial, equations, joints, values, names, target_syms, tex)
     if res.reason_tex is None:
         res.reason_tex = res.reason
-    return res
+
+
+def _square_closed_form(res, exprs, joints, names, time_limit_s, tex):
+    """The closed form (also in res.closed_form), or None with res.closed_form_note saying why."""
+    cf = None
+    try:
+        with time_limit(time_limit_s):
+            cf = cfm.derive(exprs, [j.symbol for j in joints], [j.revolute for j in joints], names,
+                            res.angular, tex=tex)
+            res.closed_form_branches = cf.branches()
+    except cfm.NoClosedForm as ex:
+        res.closed_form_note = f"no closed form: {ex}"
+    except Timeout:
+        res.closed_form_note = f"no closed form within {time_limit_s:g} s"
+    except (RecursionError, sp.PolynomialError, ValueError, TypeError, ZeroDivisionError,
+            NotImplementedError) as ex:  # pragma: no cover - defensive
+        res.closed_form_note = f"no closed form ({type(ex).__name__})"
+    if cf is None:
+        res.closed_form_branches = []
+    res.closed_form = cf
+    return cf
+
+
+def _evaluate_closed_form(res, cf, values, joints, system, tex):
+    """res.closed_form_values: the verified branches, none when the target breaks one of the
+    closed form's compatibility conditions (res.reason names them).  Returns the first failing
+    branch's (failure, values found before it)."""
+    cf_sols, cf_fail, cf_partial = _cf_solutions(cf, values, joints, system)
+    bad = []
+    for c in cf.conditions:
+        try:
+            v = float(c.evalf(subs=values))
+        except (TypeError, ValueError):
+            continue
+        if abs(v) > 1e-9 * _scale(values):
+            bad.append(c)
+    if bad:
+        cf_sols = []
+        res.reason = ("the target is incompatible with the robot: it requires "
+                      + ", ".join(f"{c} = 0" for c in bad))
+        res.reason_tex = ("the target is incompatible with the robot: it requires "
+                          + ", ".join(f"${(tex or sp.latex)(c)} = 0$" for c in bad))
+    res.closed_form_values = sort_solutions(cf_sols, get=lambda d: [d[j.name] for j in joints])
+    return cf_fail, cf_partial
+
+
+def _unreachable_reason(res, cf, cf_fail, cf_partial, equations, joints, values, names, target_syms, tex):
+    """Why no configuration reaches the target: the closed-form stage that fails (beyond reach,
+    a cosine outside [-1, 1]...), else what the closest configuration found gives."""
+    if cf is not None and cf_fail is not None and not res.all_solutions:
+        aux = {st.joint: st.alternatives[0] for st in cf.stages if st.rule == "aux"}
+        vals = dict(values)
+        vals.update(cf_partial)
+        tsyms = set(target_syms) | set(aux)
+        res.reason = _stage_reason(cf_fail, cf, tsyms, vals, names, _Fmt(plain=True), aux)
+        res.reason_tex = _stage_reason(cf_fail, cf, tsyms, vals, names, _Fmt(tex), aux)
+    if res.reason is None and not res.all_solutions:
+        res.reason = _nearest_reason(res, equations, joints, values, _Fmt(plain=True))
+        res.reason_tex = _nearest_reason(res, equations, joints, values, _Fmt(tex))
 
 
 def _solve_subsets(res, exprs, joints, values, budget):

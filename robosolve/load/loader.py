@@ -10,6 +10,7 @@ import re
 
 import sympy as sp
 
+from robosolve.core.transforms import homogeneous_last_row
 from robosolve.errors import InputError, InputIssue
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
@@ -64,6 +65,13 @@ def type_name(value) -> str:
     return type(value).__name__
 
 
+def _exact_if_whole(e):
+    """A Float with a whole value as the Integer it is (sympy does not take 1.0 for 1)."""
+    if isinstance(e, sp.Float) and float(e).is_integer():
+        return sp.Integer(int(e))
+    return e
+
+
 class Checker:
     """Collects issues against a parsed source; helpers return None on failure."""
 
@@ -92,6 +100,19 @@ class Checker:
             if key not in value and not self.misspelt(value, key, allowed):
                 self.error(path, f"missing required key '{key}'")
         return True
+
+    def entries(self, section: str, value, what: str, allowed, required=()):
+        """(i, path, item) for each entry of the list `section` that is a mapping of allowed
+        keys: none for a missing section, one error for a section that is not a list."""
+        if value is None:
+            return
+        if not isinstance(value, list):
+            self.error((section,), f"expected a list of {what}, got {type_name(value)}")
+            return
+        for i, item in enumerate(value):
+            path = (section, i)
+            if self.mapping(path, item, allowed, required=required):
+                yield i, path, item
 
     @staticmethod
     def misspelt(value: dict, key: str, allowed) -> bool:
@@ -174,7 +195,8 @@ class Checker:
         rows = [[self.expr(path + (i, j), v, ns) for j, v in enumerate(r)] for i, r in enumerate(value)]
         if any(v is None for r in rows for v in r):
             return None
-        return sp.Matrix(rows)
+        # 1.0 and 0.0 in a matrix mean 1 and 0: exact, so that the products stay exact
+        return sp.Matrix([[_exact_if_whole(v) for v in r] for r in rows])
 
 
 # ----------------------------------------------------------------------
@@ -362,17 +384,10 @@ class _ProblemBuilder:
     # -- joints ---------------------------------------------------------
     def _joints(self, value) -> list:
         chk = self.chk
-        if value is None:
-            return []
-        if not isinstance(value, list):
-            chk.error(("joints",), f"expected a list of joints, got {type_name(value)}")
-            return []
         taken = {s.name for s in self.parameters} | RESERVED
         joints, seen = [], set()
-        for i, item in enumerate(value):
-            path = ("joints", i)
-            if not chk.mapping(path, item, ("name", "type", "limits", "actuator"), required=("name", "type")):
-                continue
+        for i, path, item in chk.entries("joints", value, "joints", ("name", "type", "limits", "actuator"),
+                                         required=("name", "type")):
             name = chk.string(path + ("name",), item.get("name"), IDENT_RE, " (expected a name like theta1)") \
                 if "name" in item else None
             kind = item.get("type")
@@ -544,7 +559,7 @@ class _ProblemBuilder:
         elif kind == "matrix":
             m = chk.matrix(path + ("matrix",), item["matrix"], self.ns)
             if m is not None:
-                if list(m[3, :]) != [0, 0, 0, 1]:
+                if not homogeneous_last_row(m):
                     chk.error(path + ("matrix",), "the last row of a pose matrix must be [0, 0, 0, 1]")
                     return
                 if not self._is_rigid(m):
@@ -690,18 +705,10 @@ class _ProblemBuilder:
 
     def _bodies(self, value) -> list:
         chk = self.chk
-        if value is None:
-            return []
-        if not isinstance(value, list):
-            chk.error(("bodies",), f"expected a list of bodies, got {type_name(value)}")
-            return []
         out, seen = [], set()
         kinds = ("point", "rod", "com", "pseudo_inertia")
-        for i, item in enumerate(value):
-            path = ("bodies", i)
-            if not chk.mapping(path, item, ("name", "frame", "mass") + kinds + ("inertia",),
-                               required=("name", "frame")):
-                continue
+        for i, path, item in chk.entries("bodies", value, "bodies", ("name", "frame", "mass") + kinds + ("inertia",),
+                                         required=("name", "frame")):
             name = chk.string(path + ("name",), item.get("name")) if "name" in item else None
             if name is not None and name in seen:
                 chk.error(path + ("name",), f"body name '{name}' is already used")
@@ -766,17 +773,9 @@ class _ProblemBuilder:
 
     def _forces(self, value) -> list:
         chk = self.chk
-        if value is None:
-            return []
-        if not isinstance(value, list):
-            chk.error(("forces",), f"expected a list of forces, got {type_name(value)}")
-            return []
         out, seen = [], set()
-        for i, item in enumerate(value):
-            path = ("forces", i)
-            if not chk.mapping(path, item, ("name", "frame", "at", "force", "torque", "in"),
-                               required=("frame",)):
-                continue
+        for i, path, item in chk.entries("forces", value, "forces", ("name", "frame", "at", "force", "torque", "in"),
+                                         required=("frame",)):
             name = item.get("name", f"force{i + 1}")
             name = chk.string(path + ("name",), name) if "name" in item else name
             if name is not None and name in seen:

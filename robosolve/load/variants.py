@@ -121,7 +121,11 @@ def load_variants(builder, value) -> VariantSpec | None:
     spec = VariantSpec([], [], line=chk.src.line(path))
     spec.parameters = _parameters(builder, value.get("parameters"))
     if "require" in value:
-        spec.require = _require(builder, value["require"], {p.name for p in spec.parameters})
+        # the names written under `parameters`, loaded or not: an entry with a mistake of its
+        # own has had its message, a condition on it is no second one (None: no such mapping)
+        written = value.get("parameters")
+        varied = {str(k) for k in written} if isinstance(written, dict) and written else None
+        spec.require = _require(builder, value["require"], varied)
     return spec
 
 
@@ -217,7 +221,7 @@ def _range(chk, path, rng, step_value, ns):
     return lo, step, count
 
 
-def _require(builder, value, varied: set) -> list:
+def _require(builder, value, varied: set | None) -> list:
     chk = builder.chk
     path = ("variants", "require")
     if not isinstance(value, list) or not value:
@@ -290,7 +294,7 @@ def _inequality(chk, path, text, ns, varied):
         chk.error(path, str(exc))
         return None
     used = {s.name for s in (lhs - rhs).free_symbols}
-    if not used & varied:
+    if varied is not None and not used & varied:
         chk.error(path, f"{text!r} involves no varied parameter: it would hold for every variant or for none")
         return None
     return lhs, ops[0], rhs

@@ -217,11 +217,16 @@ class RobotModel:
         """Velocity of `frame` relative to its parent, expressed in the parent."""
         key = ("W_local", frame)
         if key not in self._cache:
-            w = sp.zeros(4, 4)
-            for i in self.joints_in(frame):
-                w += self.L_local(i, frame) * self.joints[i].dot
-            self._cache[key] = w
+            self._cache[key] = self._rates_sum(frame, lambda i: self.L_local(i, frame))
         return self._cache[key]
+
+    def _rates_sum(self, frame: str, l_of) -> sp.Matrix:
+        """W = sum of L_i q_dot_i over the joints that move `frame` relative to its parent,
+        L_i = l_of(i)."""
+        w = sp.zeros(4, 4)
+        for i in self.joints_in(frame):
+            w += l_of(i) * self.joints[i].dot
+        return w
 
     def H_local(self, frame: str) -> sp.Matrix:
         """Acceleration of `frame` relative to its parent, in the parent: Mddot M^-1."""
@@ -236,11 +241,9 @@ class RobotModel:
         """0W_{p,frame} = sum of 0L_i q_dot_i: the relative velocity matrix in frame 0."""
         key = ("W_rel0", frame)
         if key not in self._cache:
-            w = sp.zeros(4, 4)
             parent_m = self.M0(self.frames[frame].parent)
-            for i in self.joints_in(frame):
-                w += _moved_velocity_matrix(parent_m, self.L_local(i, frame)) * self.joints[i].dot
-            self._cache[key] = w
+            self._cache[key] = self._rates_sum(
+                frame, lambda i: _moved_velocity_matrix(parent_m, self.L_local(i, frame)))
         return self._cache[key]
 
     def H_relative0(self, frame: str) -> sp.Matrix:

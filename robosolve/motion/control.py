@@ -112,7 +112,6 @@ def _law_torque(law, kp, kd, e, ed, qdd_d, m, c, g):
     return m @ (qdd_d + kd * ed + kp * e) + c + g
 
 
-# long: one integration loop with its restart and refine state in locals; to split next (issue 10 item 6)
 def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, start=None,
              duration: float | None = None, samples: int = 801,
              rtol: float = RTOL, atol=None, method: str = "LSODA",
@@ -123,9 +122,6 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     ``duration`` defaults to the profile's T.  Returns samples for plots and the
     max / final errors, refined on the solver's dense output.
     """
-    from scipy.integrate import solve_ivp
-    from scipy.optimize import minimize_scalar
-
     if law not in LAWS:
         raise ValueError(f"unknown control law {law!r} (expected one of {', '.join(LAWS)})")
     n = dyn.n
@@ -135,7 +131,6 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     if not duration > 0:
         raise ValueError("the simulation needs a positive duration (the profile does not move?)")
     q_start = plan.start if start is None else np.asarray(start, dtype=float).reshape(n)
-    deg = plan.DEG
     intervals = _intervals(plan, duration)
 
     qd0, qdd0_, _ = plan.evaluate([0.0], k=0)
@@ -148,24 +143,47 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     deadline = None if not time_limit else time.monotonic() + time_limit
     budget = _Budget(MAX_EVALUATIONS if max_evaluations is None else max_evaluations, deadline,
                      lambda why: _too_long(dyn, law, kp, kd, q_start, duration, why), time_limit)
+    sols, nfev = _integrate(dyn, plan.DEG, law, kp, kd, intervals, y, budget, method, rtol, atol)
+    grid, q_des, err, effort, external = _samples(dyn, plan.DEG, law, kp, kd, sols, intervals,
+                                                  duration, samples)
+    max_err, t_max = _max_errors(sols, n, duration)
+    final = sols[-1][3].y[:n, -1].copy()
+    q = q_des - err
+    return ControlResult(law, duration, grid, q, q_des, err, effort, max_err, t_max, final,
+                         breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method,
+                         external=external)
+
+
+def _error_rhs(dyn: NumericDynamics, fast, law, kp, kd, a, coeffs, deg):
+    """d/dt (e, edot) on the interval that starts at ``a`` (the dynamics' compiled closed loop
+    when it has one)."""
+    n = dyn.n
+    if fast is not None:
+        return _fast_rhs(fast, a, coeffs.tolist(), n, timed=dyn.timed)
+
+    def rhs(t, yy):
+        p, dp, ddp = _powers(t - a, deg)
+        qdes, vdes, ades = coeffs @ p, coeffs @ dp, coeffs @ ddp
+        e, ed = yy[:n], yy[n:]
+        q, qd = qdes - e, vdes - ed
+        m, c, g, f = dyn.terms(q, qd, t)
+        tau = _law_torque(law, kp, kd, e, ed, ades, m, c, g)
+        qdd = np.linalg.solve(m, tau + f - c - g)
+        return np.concatenate([ed, ades - qdd])
+
+    return rhs
+
+
+def _integrate(dyn: NumericDynamics, deg, law, kp, kd, intervals, y, budget, method, rtol, atol):
+    """The error ODE from state ``y``, restarted at every switching instant:
+    ([(t_a, t_b, coeffs, solution)], evaluations)."""
+    from scipy.integrate import solve_ivp
+
     fast = dyn.closed_loop(law, kp, kd)
     sols = []
     nfev = 0
     for a, b, coeffs in intervals:
-        if fast is not None:
-            rhs = _fast_rhs(fast, a, coeffs.tolist(), n, timed=dyn.timed)
-        else:
-            def rhs(t, yy, a=a, coeffs=coeffs):
-                p, dp, ddp = _powers(t - a, deg)
-                qdes, vdes, ades = coeffs @ p, coeffs @ dp, coeffs @ ddp
-                e, ed = yy[:n], yy[n:]
-                q, qd = qdes - e, vdes - ed
-                m, c, g, f = dyn.terms(q, qd, t)
-                tau = _law_torque(law, kp, kd, e, ed, ades, m, c, g)
-                qdd = np.linalg.solve(m, tau + f - c - g)
-                return np.concatenate([ed, ades - qdd])
-
-        rhs = budget.guard(rhs)
+        rhs = budget.guard(_error_rhs(dyn, fast, law, kp, kd, a, coeffs, deg))
         sol = solve_ivp(rhs, (a, b), y, method=method, rtol=rtol, atol=atol, dense_output=True)
         if not sol.success:
             sol = solve_ivp(rhs, (a, b), y, method="Radau", rtol=rtol, atol=atol, dense_output=True)
@@ -174,8 +192,13 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
         nfev += sol.nfev
         sols.append((a, b, coeffs, sol))
         y = sol.y[:, -1]
+    return sols, nfev
 
-    # samples for the figures: a uniform grid plus every switching instant
+
+def _samples(dyn: NumericDynamics, deg, law, kp, kd, sols, intervals, duration, samples):
+    """The figures' samples, on a uniform grid plus every switching instant:
+    (grid, q_desired, error, effort, external), each (n, N) but the grid."""
+    n = dyn.n
     grid = np.union1d(np.linspace(0.0, duration, samples), [iv[0] for iv in intervals] + [duration])
     q_des = np.empty((n, grid.size))
     err = np.empty((n, grid.size))
@@ -198,37 +221,42 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
             effort[:, lo:hi] = _effort_many(dyn, law, kp, kd, qdes - e, vdes - ed, e, ed, ades, ts)
             external[:, lo:hi] = _external_many(dyn, qdes - e, vdes - ed, ts)
         lo = hi
+    return grid, q_des, err, effort, external
 
-    # max |e|: the solver's own steps sample every oscillation finely; the best few
-    # local maxima are then polished on the dense output.
+
+def _max_errors(sols, n, duration):
+    """(max |e|, instant) per joint, arrays of n."""
     max_err = np.zeros(n)
     t_max = np.zeros(n)
     for i in range(n):
-        cands = []
-        for a, b, _c, sol in sols:
-            vals = np.abs(sol.y[i])
-            ts = sol.t
-            m = len(vals)
-            for j in _top_local_maxima(vals):
-                lo_t, hi_t = ts[max(j - 1, 0)], ts[min(j + 1, m - 1)]
-                tc, vc = float(ts[j]), float(vals[j])
-                if hi_t > lo_t:
-                    res = minimize_scalar(lambda s, sol=sol: -abs(sol.sol(s)[i]), bounds=(lo_t, hi_t),
-                                          method="bounded", options={"xatol": 1e-12 * max(1.0, duration)})
-                    if -res.fun > vc:
-                        tc, vc = float(res.x), float(-res.fun)
-                cands.append((vc, tc))
-        best, tbest = max(cands, key=lambda c: (c[0], -c[1]))
-        # ties (within round-off) go to the earliest instant
-        tol = 1e-12 * max(best, 1e-300)
-        tbest = min(tc for vc, tc in cands if vc >= best - tol)
-        max_err[i], t_max[i] = best, tbest
+        max_err[i], t_max[i] = _max_abs_error(sols, i, duration)
+    return max_err, t_max
 
-    final = sols[-1][3].y[:n, -1].copy()
-    q = q_des - err
-    return ControlResult(law, duration, grid, q, q_des, err, effort, max_err, t_max, final,
-                         breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method,
-                         external=external)
+
+def _max_abs_error(sols, i, duration):
+    """max |e_i| and where: the solver's own steps sample every oscillation finely; the best
+    few local maxima are then polished on the dense output."""
+    from scipy.optimize import minimize_scalar
+
+    cands = []
+    for a, b, _c, sol in sols:
+        vals = np.abs(sol.y[i])
+        ts = sol.t
+        m = len(vals)
+        for j in _top_local_maxima(vals):
+            lo_t, hi_t = ts[max(j - 1, 0)], ts[min(j + 1, m - 1)]
+            tc, vc = float(ts[j]), float(vals[j])
+            if hi_t > lo_t:
+                res = minimize_scalar(lambda s, sol=sol: -abs(sol.sol(s)[i]), bounds=(lo_t, hi_t),
+                                      method="bounded", options={"xatol": 1e-12 * max(1.0, duration)})
+                if -res.fun > vc:
+                    tc, vc = float(res.x), float(-res.fun)
+            cands.append((vc, tc))
+    best, tbest = max(cands, key=lambda c: (c[0], -c[1]))
+    # ties (within round-off) go to the earliest instant
+    tol = 1e-12 * max(best, 1e-300)
+    tbest = min(tc for vc, tc in cands if vc >= best - tol)
+    return best, tbest
 
 
 class _Budget:

@@ -258,7 +258,6 @@ def _nice(e):
     return e
 
 
-# long: one case per profile shape sharing the synchronized time; to split next (issue 10 item 6)
 def synchronize(
     names: Sequence[str],
     start: Sequence,
@@ -296,69 +295,85 @@ def synchronize(
     delta = [b - a for a, b in zip(q0, q1)]
     dist = [sp.Abs(d) for d in delta]
     sign = [sp.sign(d) for d in delta]
-
-    # own times
-    own = []
-    for i in range(n):
-        d, a, v = dist[i], acc[i], vel[i]
-        if d == 0:
-            own.append(sp.S(0))
-        elif shape == "bang-bang":
-            own.append(sp.sqrt(4 * d / a))
-        elif shape == "quintic":
-            own.append(sp.sqrt(_QUINTIC_PEAK * d / a))
-        else:
-            if _num(d) >= _num(v ** 2 / a):
-                own.append(d / v + v / a)
-            else:
-                own.append(sp.sqrt(4 * d / a))
+    own = [_own_time(shape, d, a, v) for d, a, v in zip(dist, acc, vel)]
     own = [_nice(x) for x in own]
     T = _pick_max(own)
-    if all(_is_number(x) for x in own):
-        slowest = tuple(nm for nm, x in zip(names, own) if x != 0 and abs(_num(x) - _num(T)) <= 1e-12 * max(1.0, _num(T)))
-    else:
-        slowest = ()
-
-    joints = []
-    for i in range(n):
-        d, s, a = dist[i], sign[i], acc[i]
-        if d == 0:
-            joints.append(JointMotion(names[i], q0[i], q1[i], delta[i], sp.S(0), a, vel[i], sp.S(0),
-                                      sp.S(0), sp.S(0), ()))
-            continue
-        if shape == "bang-bang":
-            ar = _nice(4 * d / T ** 2)
-            h = T / 2
-            segs = (
-                Segment(sp.S(0), h, q0[i] + s * ar * t ** 2 / 2, "acceleration"),
-                Segment(h, T, q0[i] + s * (ar * T ** 2 / 4 - ar * (T - t) ** 2 / 2), "deceleration"),
-            )
-            joints.append(JointMotion(names[i], q0[i], q1[i], delta[i], s, a, vel[i], own[i],
-                                      ar, _nice(ar * T / 2), segs))
-        elif shape == "quintic":
-            ar = _nice(_QUINTIC_PEAK * d / T ** 2)
-            u = t / T
-            segs = (Segment(sp.S(0), T, q0[i] + delta[i] * (10 * u ** 3 - 15 * u ** 4 + 6 * u ** 5), "quintic"),)
-            joints.append(JointMotion(names[i], q0[i], q1[i], delta[i], s, a, vel[i], own[i],
-                                      ar, _nice(15 * d / (8 * T)), segs))
-        else:
-            if names[i] in slowest:
-                vc = vel[i] if _num(d) >= _num(vel[i] ** 2 / a) else sp.sqrt(a * d)
-            else:
-                vc = _nice((a * T - sp.sqrt(a ** 2 * T ** 2 - 4 * a * d)) / 2)
-            ta = _nice(vc / a)
-            if abs(_num(2 * ta) - _num(T)) <= 1e-12 * _num(T):      # triangular: no cruise
-                ta = T / 2
-                segs = (
-                    Segment(sp.S(0), ta, q0[i] + s * a * t ** 2 / 2, "acceleration"),
-                    Segment(ta, T, q1[i] - s * a * (T - t) ** 2 / 2, "deceleration"),
-                )
-            else:
-                segs = (
-                    Segment(sp.S(0), ta, q0[i] + s * a * t ** 2 / 2, "acceleration"),
-                    Segment(ta, T - ta, q0[i] + s * (vc * t - vc ** 2 / (2 * a)), "cruise"),
-                    Segment(T - ta, T, q1[i] - s * a * (T - t) ** 2 / 2, "deceleration"),
-                )
-            joints.append(JointMotion(names[i], q0[i], q1[i], delta[i], s, a, vel[i], own[i],
-                                      a, vc, segs))
+    slowest = _slowest(names, own, T)
+    joints = [_joint_motion(shape, names[i], q0[i], q1[i], delta[i], dist[i], sign[i], acc[i], vel[i],
+                            own[i], T, names[i] in slowest, t) for i in range(n)]
     return SyncProfile(shape, t, T, slowest, tuple(joints))
+
+
+def _own_time(shape: str, d, a, v):
+    """The time of a joint moving |D| = d alone at its limits (0 when it does not move)."""
+    if d == 0:
+        return sp.S(0)
+    if shape == "bang-bang":
+        return sp.sqrt(4 * d / a)
+    if shape == "quintic":
+        return sp.sqrt(_QUINTIC_PEAK * d / a)
+    if _num(d) >= _num(v ** 2 / a):
+        return d / v + v / a
+    return sp.sqrt(4 * d / a)      # trapezoidal too short to reach v: the bang-bang time
+
+
+def _slowest(names, own, T) -> tuple[str, ...]:
+    """The moving joints whose own time is T (none when the times are symbolic)."""
+    if not all(_is_number(x) for x in own):
+        return ()
+    return tuple(nm for nm, x in zip(names, own) if x != 0 and abs(_num(x) - _num(T)) <= 1e-12 * max(1.0, _num(T)))
+
+
+def _joint_motion(shape, name, q0, q1, delta, d, s, a, v, own, T, slowest: bool, t) -> JointMotion:
+    """One joint's motion from q0 to q1 (D = delta, |D| = d, sign s) ending at the synchronized T."""
+    if d == 0:
+        return JointMotion(name, q0, q1, delta, sp.S(0), a, v, sp.S(0), sp.S(0), sp.S(0), ())
+    if shape == "bang-bang":
+        acceleration, velocity, segs = _bang_bang_pieces(q0, d, s, T, t)
+    elif shape == "quintic":
+        acceleration, velocity, segs = _quintic_pieces(q0, delta, d, T, t)
+    else:
+        acceleration, velocity, segs = _trapezoidal_pieces(q0, q1, d, s, a, v, T, t, slowest)
+    return JointMotion(name, q0, q1, delta, s, a, v, own, acceleration, velocity, segs)
+
+
+def _bang_bang_pieces(q0, d, s, T, t):
+    """(rescaled acceleration, peak velocity, segments): +a up to T/2, -a after."""
+    ar = _nice(4 * d / T ** 2)
+    h = T / 2
+    segs = (
+        Segment(sp.S(0), h, q0 + s * ar * t ** 2 / 2, "acceleration"),
+        Segment(h, T, q0 + s * (ar * T ** 2 / 4 - ar * (T - t) ** 2 / 2), "deceleration"),
+    )
+    return ar, _nice(ar * T / 2), segs
+
+
+def _quintic_pieces(q0, delta, d, T, t):
+    """(peak acceleration, peak velocity, the one quintic segment) at the synchronized T."""
+    ar = _nice(_QUINTIC_PEAK * d / T ** 2)
+    u = t / T
+    segs = (Segment(sp.S(0), T, q0 + delta * (10 * u ** 3 - 15 * u ** 4 + 6 * u ** 5), "quintic"),)
+    return ar, _nice(15 * d / (8 * T)), segs
+
+
+def _trapezoidal_pieces(q0, q1, d, s, a, v, T, t, slowest: bool):
+    """(acceleration, cruise velocity, segments): the slowest joint keeps its limits, every other
+    keeps its acceleration and lowers its cruise velocity so that it also ends at T."""
+    if slowest:
+        vc = v if _num(d) >= _num(v ** 2 / a) else sp.sqrt(a * d)
+    else:
+        vc = _nice((a * T - sp.sqrt(a ** 2 * T ** 2 - 4 * a * d)) / 2)
+    ta = _nice(vc / a)
+    if abs(_num(2 * ta) - _num(T)) <= 1e-12 * _num(T):      # triangular: no cruise
+        ta = T / 2
+        segs = (
+            Segment(sp.S(0), ta, q0 + s * a * t ** 2 / 2, "acceleration"),
+            Segment(ta, T, q1 - s * a * (T - t) ** 2 / 2, "deceleration"),
+        )
+    else:
+        segs = (
+            Segment(sp.S(0), ta, q0 + s * a * t ** 2 / 2, "acceleration"),
+            Segment(ta, T - ta, q0 + s * (vc * t - vc ** 2 / (2 * a)), "cruise"),
+            Segment(T - ta, T, q1 - s * a * (T - t) ** 2 / 2, "deceleration"),
+        )
+    return a, vc, segs

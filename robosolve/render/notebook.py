@@ -305,6 +305,15 @@ def _point_names_cell(problem) -> str:
     return "\n".join(lines)
 
 
+# The fixed parts of the code cells are written out as code (raw blocks: a backslash in them
+# is the notebook's own), the parts that depend on the problem are f-strings in the _cell_*
+# functions that join them.
+def _code(text: str) -> str:
+    """Code lines written as a raw triple-quoted block, without the newline after the opening
+    quotes and the one before the closing quotes."""
+    return text[1:-1]
+
+
 def _at(question) -> str:
     return "{" + ", ".join(f"{s.name}: {_s(v)}" for s, v in question.at.items()) + "}"
 
@@ -325,36 +334,46 @@ def _expected(answer, keys) -> str:
     return "\n".join(lines)
 
 
+_POSITION_CODE = _code(r'''
+M = sp.simplify(M0(frame))
+P = point0(point)
+display(M, P)
+print('M =', number(M, at), sep='\n')
+print('position =', number(P, at).ravel())
+''')
+
+
 def _cell_position(q, answer, problem):
     return "\n".join([
         f'frame, point, at = "{q.frame}", "{q.point}", {_at(q)}',
-        "M = sp.simplify(M0(frame))",
-        "P = point0(point)",
-        "display(M, P)",
-        "print('M =', number(M, at), sep='\\n')",
-        "print('position =', number(P, at).ravel())",
+        _POSITION_CODE,
         _expected(answer, ["M", "position"]),
     ])
+
+
+_VELOCITY_CODE = _code(r'''
+t = sp.Symbol('t')
+of_t = {q: sp.Function(q.name)(t) for q in joints}
+back = {}
+for q, qd, qdd in zip(joints, rates, accelerations):
+    back[of_t[q].diff(t, 2)] = qdd
+    back[of_t[q].diff(t)] = qd
+M = M0(frame).subs(values({k: v for k, v in at.items() if k not in joints + rates + accelerations}))
+Mt = M.subs(of_t)
+inv = inverse_pose(Mt)
+W = (Mt.diff(t) * inv).subs(back).subs({v: k for k, v in of_t.items()})
+H = (Mt.diff(t, 2) * inv).subs(back).subs({v: k for k, v in of_t.items()})
+P = sp.Matrix([*point0(point), 1])
+print('W =', number(W, at), 'H =', number(H, at), sep='\n')
+print('velocity =', number(W * P, at).ravel()[:3])
+print('acceleration =', number(H * P, at).ravel()[:3])
+''')
 
 
 def _cell_velocity(q, answer, problem):
     return "\n".join([
         f'frame, point, at = "{q.frame}", "{q.point}", {_at(q)}',
-        "t = sp.Symbol('t')",
-        "of_t = {q: sp.Function(q.name)(t) for q in joints}",
-        "back = {}",
-        "for q, qd, qdd in zip(joints, rates, accelerations):",
-        "    back[of_t[q].diff(t, 2)] = qdd",
-        "    back[of_t[q].diff(t)] = qd",
-        "M = M0(frame).subs(values({k: v for k, v in at.items() if k not in joints + rates + accelerations}))",
-        "Mt = M.subs(of_t)",
-        "inv = inverse_pose(Mt)",
-        "W = (Mt.diff(t) * inv).subs(back).subs({v: k for k, v in of_t.items()})",
-        "H = (Mt.diff(t, 2) * inv).subs(back).subs({v: k for k, v in of_t.items()})",
-        "P = sp.Matrix([*point0(point), 1])",
-        "print('W =', number(W, at), 'H =', number(H, at), sep='\\n')",
-        "print('velocity =', number(W * P, at).ravel()[:3])",
-        "print('acceleration =', number(H * P, at).ravel()[:3])",
+        _VELOCITY_CODE,
         _expected(answer, ["W", "H", "velocity", "acceleration"]),
     ])
 
@@ -366,18 +385,34 @@ def _jacobian_lines(q):
             "Jn = number(J, at)"]
 
 
+_JACOBIAN_CODE = _code(r'''
+display(sp.simplify(J))
+print('J =', Jn, sep='\n')
+if J.rows == J.cols:
+    print('det J =', np.linalg.det(Jn))
+else:
+    print('manipulability =', np.prod(np.linalg.svd(Jn, compute_uv=False)))
+''')
+
+
 def _cell_jacobian(q, answer, problem):
     if q.options.get("geometric"):
         return None
     return "\n".join(_jacobian_lines(q) + [
-        "display(sp.simplify(J))",
-        "print('J =', Jn, sep='\\n')",
-        "if J.rows == J.cols:",
-        "    print('det J =', np.linalg.det(Jn))",
-        "else:",
-        "    print('manipulability =', np.prod(np.linalg.svd(Jn, compute_uv=False)))",
+        _JACOBIAN_CODE,
         _expected(answer, ["J", "det", "manipulability"]),
     ])
+
+
+_WEIGHT_CODE = _code(r'''
+# the bodies' own weight: Fq = -sum_i J_Gi^T m_i g (J_Gi the Jacobian of the centre of mass)
+Fq = sp.zeros(len(joints), 1)
+for name, (frame, mass, com) in bodies.items():
+    G0 = (M0(frame) * sp.Matrix([*com, 1]))[:3, :]
+    Fq -= G0.jacobian(joints).T * mass * gravity
+display(sp.simplify(Fq))
+print('Fq =', number(Fq, at).ravel())
+''')
 
 
 def _cell_weight(q, answer, problem):
@@ -385,13 +420,7 @@ def _cell_weight(q, answer, problem):
         return None
     return "\n".join([
         f"at = {_at(q)}",
-        "# the bodies' own weight: Fq = -sum_i J_Gi^T m_i g (J_Gi the Jacobian of the centre of mass)",
-        "Fq = sp.zeros(len(joints), 1)",
-        "for name, (frame, mass, com) in bodies.items():",
-        "    G0 = (M0(frame) * sp.Matrix([*com, 1]))[:3, :]",
-        "    Fq -= G0.jacobian(joints).T * mass * gravity",
-        "display(sp.simplify(Fq))",
-        "print('Fq =', number(Fq, at).ravel())",
+        _WEIGHT_CODE,
         _expected(answer, ["Fq"]),
     ])
 
@@ -410,6 +439,17 @@ def _cell_statics(q, answer, problem):
     ])
 
 
+_ELLIPSOIDS_CODE = _code(r'''
+with np.errstate(divide='ignore'):
+    force_lengths = Kf / np.sqrt(nu)       # infinite where nu = 0 (singular)
+velocity_lengths = Kv * np.sqrt(nu)
+print('A =', A, 'eigenvalues =', nu, sep='\n')
+print('force semi-axes:', np.sort(force_lengths)[::-1])
+print('velocity semi-axes:', np.sort(velocity_lengths)[::-1])
+print('condition number:', nu.max() / nu.min() if nu.min() > 0 else float('inf'))
+''')
+
+
 def _cell_ellipsoids(q, answer, problem):
     budgets = q.options.get("budgets") or {}
     kf, kv, ka = (float(sp.N(budgets.get(k, 1))) for k in ("force", "velocity", "compliance"))
@@ -418,13 +458,7 @@ def _cell_ellipsoids(q, answer, problem):
         "A = Jn @ Jn.T",
         "nu, vectors = np.linalg.eigh(A)          # unit eigenvectors in the columns",
         f"Kf, Kv, Ka = {kf!r}, {kv!r}, {ka!r}",
-        "with np.errstate(divide='ignore'):",
-        "    force_lengths = Kf / np.sqrt(nu)       # infinite where nu = 0 (singular)",
-        "velocity_lengths = Kv * np.sqrt(nu)",
-        "print('A =', A, 'eigenvalues =', nu, sep='\\n')",
-        "print('force semi-axes:', np.sort(force_lengths)[::-1])",
-        "print('velocity semi-axes:', np.sort(velocity_lengths)[::-1])",
-        "print('condition number:', nu.max() / nu.min() if nu.min() > 0 else float('inf'))",
+        _ELLIPSOIDS_CODE,
     ]
     if kq:
         lines += [f"Kq = np.diag({[float(sp.N(x)) for x in kq]!r})",
@@ -432,6 +466,16 @@ def _cell_ellipsoids(q, answer, problem):
                   "print('compliance semi-axes:', np.sort(Ka * kappa)[::-1])"]
     lines.append(_expected(answer, ["condition_number"]))
     return "\n".join(lines)
+
+
+_MOTION_PROFILE_CODE = _code(r'''
+durations = {n: float(sp.sqrt(4 * abs(end[n] - start[n]) / max_acceleration[n])) for n in max_acceleration}
+T = max(durations.values())
+rescaled_accelerations = {n: float(4 * abs(end[n] - start[n]) / T**2) for n in end}
+print('durations:', durations)
+print('T =', T)
+print('rescaled accelerations:', rescaled_accelerations)
+''')
 
 
 def _cell_motion_profile(q, answer, problem):
@@ -444,12 +488,7 @@ def _cell_motion_profile(q, answer, problem):
         f"start = {{{', '.join(f'{n!r}: {_s(start.get(n, 0))}' for n in names)}}}",
         f"end = {{{', '.join(f'{n!r}: {_s(end[n])}' for n in names)}}}",
         f"max_acceleration = {{{', '.join(f'{n!r}: {_s(acc[n])}' for n in names if n in acc)}}}",
-        "durations = {n: float(sp.sqrt(4 * abs(end[n] - start[n]) / max_acceleration[n])) for n in max_acceleration}",
-        "T = max(durations.values())",
-        "rescaled_accelerations = {n: float(4 * abs(end[n] - start[n]) / T**2) for n in end}",
-        "print('durations:', durations)",
-        "print('T =', T)",
-        "print('rescaled accelerations:', rescaled_accelerations)",
+        _MOTION_PROFILE_CODE,
         _expected(answer, ["durations", "T", "accelerations"]),
     ])
 
@@ -463,18 +502,23 @@ def _cell_dof(q, answer, problem):
     return f"dof = {formula}   # {'Grübler (planar)' if planar else 'Kutzbach (spatial)'}\nprint('dof =', dof)"
 
 
+_EQUATIONS_OF_MOTION_CODE = _code(r'''
+mass, c, grav, Q = lagrange(at)
+if len(joints) <= 3:
+    display(sp.simplify(mass), sp.simplify(grav))
+tau = mass * sp.Matrix(accelerations) + c + grav - Q   # what the joints exert
+print('recomputed M =', number(mass, at), sep='\n')
+print('recomputed c =', number(c, at).ravel())
+print('recomputed g =', number(grav, at).ravel())
+print('recomputed Q (external forces) =', number(Q, at).ravel())
+''')
+
+
 def _cell_equations_of_motion(q, answer, problem):
     names = [j.name for j in problem.joints]
     return "\n".join([
         f"at = {_at(q)}",
-        "mass, c, grav, Q = lagrange(at)",
-        "if len(joints) <= 3:",
-        "    display(sp.simplify(mass), sp.simplify(grav))",
-        "tau = mass * sp.Matrix(accelerations) + c + grav - Q   # what the joints exert",
-        "print('recomputed M =', number(mass, at), sep='\\n')",
-        "print('recomputed c =', number(c, at).ravel())",
-        "print('recomputed g =', number(grav, at).ravel())",
-        "print('recomputed Q (external forces) =', number(Q, at).ravel())",
+        _EQUATIONS_OF_MOTION_CODE,
         f"print('recomputed joint actions tau = M q\\'\\' + c + g - Q:', dict(zip({names!r}, number(tau, at).ravel().tolist())))",
         _expected(answer, ["mass_matrix", "velocity_terms", "gravity_terms", "actuators"]),
     ])
@@ -493,6 +537,25 @@ def _pose_source(side, q) -> str:
     return f'M0("{q.frame}").subs({config})'
 
 
+_SCREW_Q_CODE = _code(r'''
+u0 = axis / np.linalg.norm(axis)
+K = skew(u0)
+R = np.eye(3) + K * np.sin(alpha_given) + K @ K * (1 - np.cos(alpha_given))
+Q = np.eye(4)
+Q[:3, :3], Q[:3, 3] = R, (np.eye(3) - R) @ through + h_given * u0
+''')
+
+
+_SCREW_L_CODE = _code(r'''
+L = np.zeros((4, 4))
+if P is None:                              # pure translation: Q = exp(h L)
+    L[:3, 3] = np.zeros(3) if u is None else u
+else:
+    L[:3, :3], L[:3, 3] = skew(u), np.cross(P, u) + pitch * u
+print('recomputed L =', np.round(L, 12) + 0.0, sep='\n')
+''')
+
+
 def _cell_displacement(q, answer, problem):
     o = q.options
     if "axis" in o:
@@ -502,11 +565,7 @@ def _cell_displacement(q, answer, problem):
             f"alpha_given = {float(sp.N(o['angle']))!r}",
             f"through = np.array({[float(sp.N(x)) for x in o.get('through') or [0, 0, 0]]!r})",
             f"h_given = {float(sp.N(o.get('translation') or 0))!r}",
-            "u0 = axis / np.linalg.norm(axis)",
-            "K = skew(u0)",
-            "R = np.eye(3) + K * np.sin(alpha_given) + K @ K * (1 - np.cos(alpha_given))",
-            "Q = np.eye(4)",
-            "Q[:3, :3], Q[:3, 3] = R, (np.eye(3) - R) @ through + h_given * u0",
+            _SCREW_Q_CODE,
         ]
     else:
         if "matrix" in o["from"] and "matrix" in o["to"] and problem.frames and q.options.get("frame"):
@@ -525,18 +584,36 @@ def _cell_displacement(q, answer, problem):
     ]
     if "axis" in o:                                  # L from the normalised u, P*, pitch
         lines += [
-            "L = np.zeros((4, 4))",
-            "if P is None:                              # pure translation: Q = exp(h L)",
-            "    L[:3, 3] = np.zeros(3) if u is None else u",
-            "else:",
-            "    L[:3, :3], L[:3, 3] = skew(u), np.cross(P, u) + pitch * u",
-            "print('recomputed L =', np.round(L, 12) + 0.0, sep='\\n')",
+            _SCREW_L_CODE,
         ]
     lines += [
         "print('recomputed u =', u, ' alpha =', alpha, ' h =', h, ' P =', P, ' pitch =', pitch)",
         _expected(answer, ["Q", "L", "u", "alpha", "h", "P", "pitch"]),
     ]
     return "\n".join(lines)
+
+
+_ORIENTATION_CODE = _code(r'''
+# ZYZ: R = Rz(phi) Ry(theta) Rz(psi); RPY: R = Rz(yaw) Ry(pitch) Rx(roll)
+theta = np.arctan2(np.hypot(R[0, 2], R[1, 2]), R[2, 2])
+if abs(np.sin(theta)) > 1e-9:
+    phi, psi = np.arctan2(R[1, 2], R[0, 2]), np.arctan2(R[2, 1], -R[2, 0])
+    zyz = [[wrap(phi), theta, wrap(psi)], [wrap(phi + np.pi), -theta, wrap(psi + np.pi)]]
+else:                                    # only phi +- psi is fixed: psi = 0
+    zyz = [[wrap(np.arctan2(R[1, 0], R[0, 0]) if R[2, 2] > 0 else np.arctan2(-R[1, 0], -R[0, 0])), theta, 0.0]]
+pitch = np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0]))
+if abs(np.cos(pitch)) > 1e-9:
+    roll, yaw = np.arctan2(R[2, 1], R[2, 2]), np.arctan2(R[1, 0], R[0, 0])
+    rpy = [[roll, pitch, yaw], [wrap(roll + np.pi), wrap(np.pi - pitch), wrap(yaw + np.pi)]]
+else:                                    # only roll -+ yaw is fixed: yaw = 0
+    rpy = [[np.arctan2(R[0, 1], R[1, 1]) * np.sign(pitch), pitch, 0.0]]
+alpha, u = axis_angle(R)
+quaternion = [np.cos(alpha / 2)] + ([0.0] * 3 if u is None else list(np.sin(alpha / 2) * u))
+print('recomputed zyz =', np.round(zyz, 12).tolist())
+print('recomputed rpy =', np.round(rpy, 12).tolist())
+print('recomputed axis-angle =', u, alpha)
+print('recomputed quaternion =', np.round(quaternion, 12).tolist())
+''')
 
 
 def _cell_orientation(q, answer, problem):
@@ -547,27 +624,29 @@ def _cell_orientation(q, answer, problem):
     return "\n".join([
         f"at = {_at(q)}",
         f"R = number({source}, at)[:3, :3]",
-        "# ZYZ: R = Rz(phi) Ry(theta) Rz(psi); RPY: R = Rz(yaw) Ry(pitch) Rx(roll)",
-        "theta = np.arctan2(np.hypot(R[0, 2], R[1, 2]), R[2, 2])",
-        "if abs(np.sin(theta)) > 1e-9:",
-        "    phi, psi = np.arctan2(R[1, 2], R[0, 2]), np.arctan2(R[2, 1], -R[2, 0])",
-        "    zyz = [[wrap(phi), theta, wrap(psi)], [wrap(phi + np.pi), -theta, wrap(psi + np.pi)]]",
-        "else:                                    # only phi +- psi is fixed: psi = 0",
-        "    zyz = [[wrap(np.arctan2(R[1, 0], R[0, 0]) if R[2, 2] > 0 else np.arctan2(-R[1, 0], -R[0, 0])), theta, 0.0]]",
-        "pitch = np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0]))",
-        "if abs(np.cos(pitch)) > 1e-9:",
-        "    roll, yaw = np.arctan2(R[2, 1], R[2, 2]), np.arctan2(R[1, 0], R[0, 0])",
-        "    rpy = [[roll, pitch, yaw], [wrap(roll + np.pi), wrap(np.pi - pitch), wrap(yaw + np.pi)]]",
-        "else:                                    # only roll -+ yaw is fixed: yaw = 0",
-        "    rpy = [[np.arctan2(R[0, 1], R[1, 1]) * np.sign(pitch), pitch, 0.0]]",
-        "alpha, u = axis_angle(R)",
-        "quaternion = [np.cos(alpha / 2)] + ([0.0] * 3 if u is None else list(np.sin(alpha / 2) * u))",
-        "print('recomputed zyz =', np.round(zyz, 12).tolist())",
-        "print('recomputed rpy =', np.round(rpy, 12).tolist())",
-        "print('recomputed axis-angle =', u, alpha)",
-        "print('recomputed quaternion =', np.round(quaternion, 12).tolist())",
+        _ORIENTATION_CODE,
         _expected(answer, ["zyz", "rpy", "axis_angle", "quaternion"]),
     ])
+
+
+_INVERSE_KINEMATICS_CODE = _code(r'''
+per_joint = max(2, int(round(200 ** (1 / len(joints)))))
+grid = np.meshgrid(*[np.linspace(lo, hi, per_joint + 2)[1:-1] for lo, hi in limits])
+solutions = []
+for start in np.stack([g.ravel() for g in grid], axis=1):
+    x = start.astype(float)
+    for _ in range(60):
+        r = np.asarray(f(x), dtype=float).ravel()
+        if np.linalg.norm(r) < 1e-12:
+            break
+        x = x - np.linalg.lstsq(np.asarray(jac(x), dtype=float), r, rcond=None)[0]
+    x = np.where(revolute, (x + np.pi) % (2 * np.pi) - np.pi, x)
+    ok = np.linalg.norm(np.asarray(f(x), dtype=float)) < 1e-9
+    inside = np.all((x >= limits[:, 0] - 1e-9) & (x <= limits[:, 1] + 1e-9))
+    if ok and inside and not any(np.allclose(x, s, atol=1e-6) for s in solutions):
+        solutions.append(x)
+solutions.sort(key=lambda s: tuple(np.round(s, 9)))
+''')
 
 
 def _cell_inverse_kinematics(q, answer, problem):
@@ -589,27 +668,58 @@ def _cell_inverse_kinematics(q, answer, problem):
         "jac = sp.lambdify([joints], residual.jacobian(joints), 'numpy')",
         f"limits = np.array({limits!r})",
         f"revolute = np.array({revolute!r})",
-        "per_joint = max(2, int(round(200 ** (1 / len(joints)))))",
-        "grid = np.meshgrid(*[np.linspace(lo, hi, per_joint + 2)[1:-1] for lo, hi in limits])",
-        "solutions = []",
-        "for start in np.stack([g.ravel() for g in grid], axis=1):",
-        "    x = start.astype(float)",
-        "    for _ in range(60):",
-        "        r = np.asarray(f(x), dtype=float).ravel()",
-        "        if np.linalg.norm(r) < 1e-12:",
-        "            break",
-        "        x = x - np.linalg.lstsq(np.asarray(jac(x), dtype=float), r, rcond=None)[0]",
-        "    x = np.where(revolute, (x + np.pi) % (2 * np.pi) - np.pi, x)",
-        "    ok = np.linalg.norm(np.asarray(f(x), dtype=float)) < 1e-9",
-        "    inside = np.all((x >= limits[:, 0] - 1e-9) & (x <= limits[:, 1] + 1e-9))",
-        "    if ok and inside and not any(np.allclose(x, s, atol=1e-6) for s in solutions):",
-        "        solutions.append(x)",
-        "solutions.sort(key=lambda s: tuple(np.round(s, 9)))",
+        _INVERSE_KINEMATICS_CODE,
         f"names = {[j.name for j in problem.joints]!r}",
         "for s in solutions:",
         "    print('recomputed solution:', dict(zip(names, np.round(s, 12).tolist())))",
         _expected(answer, ["solutions"]),
     ])
+
+
+_FORWARD_DYNAMICS_EQUATIONS_CODE = _code(r'''
+# M(q) q'' + c + g = tau + Q, integrated by fixed-step RK4 (step 1 ms)
+mass, c, grav, Q = lagrange(at)
+t = sp.Symbol('t')
+fixed = {s: v for s, v in values(at).items() if s not in joints + rates}
+''')
+
+
+_FORWARD_DYNAMICS_DERIVATIVE_CODE = _code(r'''
+mass_f = sp.lambdify([t, joints, rates], mass, 'numpy')
+rest_f = sp.lambdify([t, joints, rates], tau + Q - c - grav, 'numpy')
+
+def derivative(time, state):
+    n = len(joints)
+    x, v = state[:n], state[n:]
+    a = np.linalg.solve(np.asarray(mass_f(time, x, v), dtype=float),
+                        np.asarray(rest_f(time, x, v), dtype=float).ravel())
+    return np.concatenate([v, a])
+
+''')
+
+
+_FORWARD_DYNAMICS_RK4_CODE = _code(r'''
+dt = duration / steps
+track = [state]
+for k in range(steps):
+    time = k * dt
+    k1 = derivative(time, state)
+    k2 = derivative(time + dt / 2, state + dt / 2 * k1)
+    k3 = derivative(time + dt / 2, state + dt / 2 * k2)
+    k4 = derivative(time + dt, state + dt * k3)
+    state = state + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    track.append(state)
+track = np.array(track)
+n = len(joints)
+''')
+
+
+_FORWARD_DYNAMICS_PRINT_CODE = _code(r'''
+print('recomputed final =', dict(zip(names, np.round(track[-1, :n], 8).tolist())))
+print('recomputed final_velocity =', dict(zip(names, np.round(track[-1, n:], 8).tolist())))
+print('recomputed max (samples) =', dict(zip(names, np.round(track[:, :n].max(axis=0), 8).tolist())))
+print('recomputed min (samples) =', dict(zip(names, np.round(track[:, :n].min(axis=0), 8).tolist())))
+''')
 
 
 def _cell_forward_dynamics(q, answer, problem):
@@ -625,40 +735,14 @@ def _cell_forward_dynamics(q, answer, problem):
     names = [j.name for j in problem.joints]
     return "\n".join([
         f"at = {_at(q)}",
-        "# M(q) q'' + c + g = tau + Q, integrated by fixed-step RK4 (step 1 ms)",
-        "mass, c, grav, Q = lagrange(at)",
-        "t = sp.Symbol('t')",
-        "fixed = {s: v for s, v in values(at).items() if s not in joints + rates}",
+        _FORWARD_DYNAMICS_EQUATIONS_CODE,
         f"tau = sp.Matrix([{tau}]).subs(fixed)",
-        "mass_f = sp.lambdify([t, joints, rates], mass, 'numpy')",
-        "rest_f = sp.lambdify([t, joints, rates], tau + Q - c - grav, 'numpy')",
-        "",
-        "def derivative(time, state):",
-        "    n = len(joints)",
-        "    x, v = state[:n], state[n:]",
-        "    a = np.linalg.solve(np.asarray(mass_f(time, x, v), dtype=float),",
-        "                        np.asarray(rest_f(time, x, v), dtype=float).ravel())",
-        "    return np.concatenate([v, a])",
-        "",
+        _FORWARD_DYNAMICS_DERIVATIVE_CODE,
         f"duration, steps = {duration!r}, {max(1000, int(round(duration * 1000)))}",
         f"state = np.array([float(number(x, at)) for x in [{', '.join(q0 + v0)}]])",
-        "dt = duration / steps",
-        "track = [state]",
-        "for k in range(steps):",
-        "    time = k * dt",
-        "    k1 = derivative(time, state)",
-        "    k2 = derivative(time + dt / 2, state + dt / 2 * k1)",
-        "    k3 = derivative(time + dt / 2, state + dt / 2 * k2)",
-        "    k4 = derivative(time + dt, state + dt * k3)",
-        "    state = state + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)",
-        "    track.append(state)",
-        "track = np.array(track)",
-        "n = len(joints)",
+        _FORWARD_DYNAMICS_RK4_CODE,
         f"names = {names!r}",
-        "print('recomputed final =', dict(zip(names, np.round(track[-1, :n], 8).tolist())))",
-        "print('recomputed final_velocity =', dict(zip(names, np.round(track[-1, n:], 8).tolist())))",
-        "print('recomputed max (samples) =', dict(zip(names, np.round(track[:, :n].max(axis=0), 8).tolist())))",
-        "print('recomputed min (samples) =', dict(zip(names, np.round(track[:, :n].min(axis=0), 8).tolist())))",
+        _FORWARD_DYNAMICS_PRINT_CODE,
         _expected(answer, ["final", "final_velocity", "max", "min"]),
     ])
 

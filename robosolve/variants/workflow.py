@@ -175,12 +175,32 @@ def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=No
             files[f"{v.folder}/{rel}"] = data
         if step:
             step()
-    bad = [r for r in results if r["status"] == EXIT_INPUT]
+    bad = [(v, r) for v, r in zip(plan.variants, results) if r["status"] == EXIT_INPUT]
     if bad:
-        raise VariantInvalid([m for r in bad for m in r["messages"]])
+        raise VariantInvalid([_invalid_variant_message(plan, bad)])
     write_output_folder(out, dict(sorted(files.items())), inputs=inputs, own=OWN_FILES)
     status = max([r["status"] for r in results] + [EXIT_OK])
     return status, results
+
+
+def _invalid_variant_message(plan: Plan, bad: list) -> str:
+    """One message for the draws that break a rule of the problem, told against the source's
+    `variants` section: the variant's own problem.yaml is never written, so its FILE:LINE
+    would point nowhere."""
+    import re
+
+    import sympy as sp
+
+    variant, result = bad[0]
+    drawn = ", ".join(f"{p.name} = {sp.sstr(variant.values[p.name])}" for p in plan.spec.parameters)
+    first = result["messages"][0] if result["messages"] else "it does not load"
+    where = re.match(r"^.*?problem\.yaml:(\d+): ", first)
+    what = first[where.end():] if where else first
+    at = f" (line {where.group(1)} of its problem.yaml)" if where else ""
+    more = f"; {len(bad) - 1} more variant{'s' if len(bad) > 2 else ''} too" if len(bad) > 1 else ""
+    return (f"{plan.problem.file}:{plan.spec.line}: variants: variant {variant.id} draws {drawn}, "
+            f"which is not a valid problem: {what}{at}{more}. Narrow the ranges or add a `require` "
+            "condition; nothing was written")
 
 
 class VariantInvalid(Exception):
@@ -252,8 +272,6 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         return EXIT_INPUT
     except VariantInvalid as exc:
         say("\n".join(exc.messages))
-        say(f"some variants are not valid problems: nothing written to {out} "
-            "(narrow the ranges or add a `require` condition)")
         return EXIT_INPUT
     summary(console, plan, results, solve)
     say(f"{len(plan.variants)} variants of {plan.problem.name} (seed {seed}) -> {out}")

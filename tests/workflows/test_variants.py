@@ -120,6 +120,12 @@ def test_solve_ignores_a_valid_section():
     ("variants:\n  parameters:\n    theta1: {choices: [1, 2]}\n",
      "p.yaml:15: variants.parameters.theta1: 'theta1' is a joint, not a parameter: vary a joint value through "
      "a parameter used in `at`, a target or a profile"),
+    # one mistake, one message: a condition on a parameter whose entry is wrong says nothing more
+    ("variants:\n  parameterss:\n    L1: {choices: [1, 2]}\n  require:\n    - \"L1 > L2\"\n",
+     "p.yaml:14: variants.parameterss: unknown key 'parameterss' (did you mean 'parameters'?) "
+     "(expected one of: parameters, require)"),
+    ("variants:\n  parameters:\n    L1: {range: [0.3, 0.6]}\n  require:\n    - \"L1 > L2\"\n",
+     "p.yaml:15: variants.parameters.L1: a range needs a step (values range[0] + k*step within the range)"),
     ("variants:\n  parameters: {m1: {choices: [1, 2]}}\n  requires: []\n",
      "p.yaml:15: variants.requires: unknown key 'requires' (did you mean 'require'?) "
      "(expected one of: parameters, require)"),
@@ -414,3 +420,24 @@ def test_roster_to_grades_each_student_against_their_own_variant(tmp_path):
     lines = list(csv.DictReader(io.StringIO((grades / "grades.csv").read_text())))
     det_rows = {row["student"]: row["verdict"] for row in lines if row["question"] == "jac" and row["key"] == "manipulability"}
     assert det_rows == {"Jo Smith": "correct", "Ann": "incorrect"}
+
+
+def test_a_draw_that_breaks_the_problem_is_one_message_about_the_source(tmp_path):
+    """m1 drawn negative makes the body's mass invalid: the message names the source file's
+    `variants` line and the drawn values (the variant's own problem.yaml is never written)."""
+    base = BASE.replace("questions:", 'bodies:\n  - {name: tip, frame: "2", mass: m1, point: [0, 0, 0]}\nquestions:')
+    section = """\
+    variants:
+      parameters:
+        m1: {range: [-2, -1], step: 1}
+    """
+    p = problem_file(tmp_path, section=section, base=base)
+    out = tmp_path / "o"
+    r = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(out), "--no-solve"])
+    assert r.exit_code == 2
+    lines = [x for x in r.output.splitlines() if x.strip()]
+    variants_line = base.count("\n") + 1
+    assert len(lines) == 1, r.output
+    assert lines[0].startswith(f"{p}:{variants_line}: variants: variant "), lines[0]
+    assert "m1 = -" in lines[0] and "mass" in lines[0] and "1 more variant" in lines[0]
+    assert not out.exists()

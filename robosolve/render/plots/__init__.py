@@ -47,6 +47,26 @@ def fixed_layout(fig, nrows=1, ncols=1, *, left=0.85, right=0.2, top=0.45, botto
                         wspace=wgap / axes_w, hspace=hgap / axes_h)
 
 
+def one_3d_box(width, height):
+    """A figure holding one 3-D axes: (fig, ax). Axes3D draws its labels inside its box, so
+    the margins are thin but for the title."""
+    plt = setup()
+    fig = plt.figure(figsize=(width, height))
+    ax = fig.add_subplot(projection="3d")
+    fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)
+    return fig, ax
+
+
+def time_panels(rows, cols=1, *, width, row_height, top, hgap=0.2, wgap=0.3):
+    """A figure of rows x cols panels against one time axis (shared x), laid out by
+    `fixed_layout`: (fig, axes as a rows x cols array)."""
+    plt = setup()
+    fig, axes = plt.subplots(rows, cols, figsize=(width, row_height * rows + 0.8), sharex=True,
+                             squeeze=False)
+    fixed_layout(fig, rows, cols, top=top, hgap=hgap, wgap=wgap)
+    return fig, axes
+
+
 def save(fig, path):
     fig.savefig(path, metadata={"Software": None}, pil_kwargs=dict(PNG_OPTIONS))
     import matplotlib.pyplot as plt

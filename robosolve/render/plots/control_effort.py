@@ -6,17 +6,15 @@ Data: t, T, duration, switches, actuators [{name, label, unit, values, external}
 
 from __future__ import annotations
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import save, time_panels
 from robosolve.render.plots.control_tracking import _marks
 from robosolve.render.plots.motion_profile import COLOURS
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
     acts = d["actuators"]
-    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.3 * len(acts) + 0.8), sharex=True, squeeze=False)
-    fixed_layout(fig, len(acts), 1, top=0.5, hgap=0.2)
+    fig, axes = time_panels(len(acts), width=7.5, row_height=2.3, top=0.5)
     for k, (ax, a) in enumerate(zip(axes[:, 0], acts)):
         ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.2,
                 label=f"actuator ${a['label']}$")

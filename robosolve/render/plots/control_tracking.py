@@ -6,7 +6,7 @@ Data: t, T, duration, switches, joints [{name, label, unit, q, q_desired, error}
 
 from __future__ import annotations
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import save, time_panels
 from robosolve.render.plots.motion_profile import COLOURS
 
 
@@ -18,11 +18,10 @@ def _marks(ax, d):
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
     js = d["joints"]
-    fig, axes = plt.subplots(len(js), 2, figsize=(10, 2.6 * len(js) + 0.8), sharex=True, squeeze=False)
-    fixed_layout(fig, len(js), 2, top=0.75, hgap=0.2, wgap=0.9)   # suptitle above the panel titles
+    # suptitle above the panel titles
+    fig, axes = time_panels(len(js), 2, width=10, row_height=2.6, top=0.75, wgap=0.9)
     for k, j in enumerate(js):
         c = COLOURS[k % len(COLOURS)]
         ax = axes[k, 0]

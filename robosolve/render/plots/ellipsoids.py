@@ -46,16 +46,20 @@ def _robot_extent(robot, end):
     return span if span > 1e-9 else None
 
 
-def _draw_2d(ax, spec_data, panel, color):
+def _placement(spec_data, panel):
+    """The ellipse's centre, the robot's links as arrays (none without a robot) and the
+    scale that fits the panel's ellipse next to the robot."""
     end = np.array(spec_data["end"], dtype=float)
     robot = spec_data.get("robot")
-    size = _robot_extent(robot, end) if robot else None
-    s = _scale(panel, size)
-    if robot:
-        for link in robot:
-            a = np.array(link, dtype=float)
-            ax.plot(a[:, 0], a[:, 1], "-", color="0.35", lw=3, solid_capstyle="round", zorder=2)
-            ax.plot(a[:, 0], a[:, 1], "o", color="0.15", ms=4, zorder=3)
+    links = [np.array(link, dtype=float) for link in robot or []]
+    return end, links, _scale(panel, _robot_extent(robot, end) if links else None)
+
+
+def _draw_2d(ax, spec_data, panel, color):
+    end, links, s = _placement(spec_data, panel)
+    for a in links:
+        ax.plot(a[:, 0], a[:, 1], "-", color="0.35", lw=3, solid_capstyle="round", zorder=2)
+        ax.plot(a[:, 0], a[:, 1], "o", color="0.15", ms=4, zorder=3)
     ax.plot(*end, "o", color="k", ms=5, zorder=4)
     lengths, dirs = panel["lengths"], [np.array(d, dtype=float) for d in panel["directions"]]
     finite = [x for x in lengths if x is not None]
@@ -85,28 +89,23 @@ def _draw_2d(ax, spec_data, panel, color):
         ax.annotate(label, xy=tip, xytext=(4, 4), textcoords="offset points", color=color,
                     fontsize=9, zorder=6)
     labels = spec_data["axis_labels"]
-    unit_axis = "m" if robot else panel["unit"]
+    unit_axis = "m" if links else panel["unit"]
     ax.set_xlabel(f"{labels[0]} [{unit_axis}]")
     ax.set_ylabel(f"{labels[1]} [{unit_axis}]")
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.axhline(0, color="0.6", lw=0.6)
     ax.axvline(0, color="0.6", lw=0.6)
-    if robot and finite and max(finite) > 0:
+    if links and finite and max(finite) > 0:
         ax.text(0.02, 0.02, f"ellipse scale: 1 {panel['unit']} = {_fmt(s)} m",
                 transform=ax.transAxes, fontsize=8, color="0.3")
     ax.set_title(f"{panel['title']} [{panel['unit']}]", fontsize=10)
 
 
 def _draw_3d(ax, spec_data, panel, color):
-    end = np.array(spec_data["end"], dtype=float)
-    robot = spec_data.get("robot")
-    size = _robot_extent(robot, end) if robot else None
-    s = _scale(panel, size)
-    if robot:
-        for link in robot:
-            a = np.array(link, dtype=float)
-            ax.plot(a[:, 0], a[:, 1], a[:, 2], "-o", color="0.35", lw=2.5, ms=3)
+    end, links, s = _placement(spec_data, panel)
+    for a in links:
+        ax.plot(a[:, 0], a[:, 1], a[:, 2], "-o", color="0.35", lw=2.5, ms=3)
     lengths = panel["lengths"]
     dirs = [np.array(d, dtype=float) for d in panel["directions"]]
     finite = [x for x in lengths if x is not None]
@@ -124,11 +123,11 @@ def _draw_3d(ax, spec_data, panel, color):
                 color=color, lw=1.5)
         ax.text(*b, f"{'abc'[k]} = " + (_fmt(ln) if ln is not None else "∞") + f" {panel['unit']}",
                 color=color, fontsize=8)
-    if robot and finite and max(finite) > 0:
+    if links and finite and max(finite) > 0:
         ax.text2D(0.02, 0.02, f"ellipsoid scale: 1 {panel['unit']} = {_fmt(s)} m",
                   transform=ax.transAxes, fontsize=8, color="0.3")
     labels = spec_data["axis_labels"]
-    unit_axis = "m" if robot else panel["unit"]
+    unit_axis = "m" if links else panel["unit"]
     ax.set_xlabel(f"{labels[0]} [{unit_axis}]")
     ax.set_ylabel(f"{labels[1]} [{unit_axis}]")
     ax.set_zlabel(f"{labels[2]} [{unit_axis}]")
@@ -136,7 +135,7 @@ def _draw_3d(ax, spec_data, panel, color):
         ax.set_box_aspect((1, 1, 1))
     except AttributeError:
         pass
-    pts = np.concatenate([np.array([p for link in (robot or []) for p in link] or [end]),
+    pts = np.concatenate([np.array([p for a in links for p in a] or [end]),
                           (end[:, None] + xyz.reshape(3, -1)).T])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     mid, half = (lo + hi) / 2, max(float(np.max(hi - lo)) / 2, 1e-3)

@@ -9,18 +9,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import one_3d_box, save
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 FRAME_STYLE = {"initial": ("-", 1.0), "final": ("--", 1.0)}
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
-    fig = plt.figure(figsize=(7, 6.5))
-    ax = fig.add_subplot(projection="3d")
-    fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)   # 3-D labels sit inside the box
+    fig, ax = one_3d_box(7, 6.5)
     origins = np.array([f["origin"] for f in d["frames"]], dtype=float)
     span = float(np.max(np.ptp(origins, axis=0))) if len(origins) > 1 else 1.0
     scale = max(span, 1e-3) * 0.25 if span > 0 else 0.5

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import fixed_layout, one_3d_box, save, setup
 from robosolve.render.plots.robot import equal_3d
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
@@ -32,9 +32,7 @@ def draw(spec, path):
         fig, ax = plt.subplots(figsize=(6.5, 6))
         fixed_layout(fig, top=0.4)
     else:
-        fig = plt.figure(figsize=(7, 6.5))
-        ax = fig.add_subplot(projection="3d")
-        fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)   # 3-D labels sit inside the box
+        fig, ax = one_3d_box(7, 6.5)
     for k, (drw, lab, rej) in enumerate(zip(drawings, labels, rejected)):
         colour = COLOURS[k % len(COLOURS)]
         style = "--" if rej else "-"

@@ -6,16 +6,14 @@ unit, values, peak, t_peak}].
 
 from __future__ import annotations
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import save, time_panels
 from robosolve.render.plots.motion_profile import COLOURS, mark_switches
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
     acts = d["actuators"]
-    fig, axes = plt.subplots(len(acts), 1, figsize=(7.5, 2.4 * len(acts) + 0.8), sharex=True, squeeze=False)
-    fixed_layout(fig, len(acts), 1, top=0.4, hgap=0.2)
+    fig, axes = time_panels(len(acts), width=7.5, row_height=2.4, top=0.4)
     for k, (ax, a) in enumerate(zip(axes[:, 0], acts)):
         ax.plot(d["t"], a["values"], color=COLOURS[k % len(COLOURS)], lw=1.6)
         mark_switches(ax, d["switches"], d["T"])

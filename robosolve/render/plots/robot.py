@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import one_3d_box, save
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 
@@ -65,11 +65,8 @@ def equal_3d(ax, drawings):
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
-    fig = plt.figure(figsize=(6.5, 6))
-    ax = fig.add_subplot(projection="3d")
-    fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)   # 3-D labels sit inside the box
+    fig, ax = one_3d_box(6.5, 6)
     draw_robot_3d(ax, d, label="links")
     equal_3d(ax, [d])
     ax.view_init(elev=25, azim=-60)
