@@ -8,6 +8,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 import sympy as sp
 
+from robosolve.core.numpy_code import numpy_modules
 from robosolve.dynamics.types import Dynamics
 
 __all__ = ["NumericDynamics", "lambdify_dynamics", "numeric_from_engine", "free_symbols_left"]
@@ -99,7 +100,7 @@ class NumericDynamics:
             return (np.array(out[:nn], dtype=float).reshape(n, n), np.array(out[nn:nn + n], dtype=float),
                     np.array(out[nn + n:nn + 2 * n], dtype=float), np.array(out[nn + 2 * n:], dtype=float))
 
-        vec = sp.lambdify(args, flat, modules="numpy", cse=True)
+        vec = sp.lambdify(args, flat, modules=numpy_modules(), cse=True)
 
         def terms_many(Q, QD, T=None):
             size = Q.shape[1]

@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from robosolve.core.numpy_code import numpy_modules
+
 TWO_PI = 2.0 * math.pi
 RESIDUAL_TOL = 1e-9     # a solution must reproduce the target to this (FK check)
 DEDUPE_TOL = 1e-6       # two solutions closer than this (max norm) are the same
@@ -74,8 +76,8 @@ def lambdify_system(exprs, q_syms, revolute, angular=None, scale=1.0) -> Numeric
     exprs = [sp.sympify(e) for e in exprs]
     m, n = len(exprs), len(q_syms)
     jac = sp.Matrix(exprs).jacobian(list(q_syms))
-    f_raw = sp.lambdify(list(q_syms), exprs, modules="numpy", cse=True)
-    j_raw = sp.lambdify(list(q_syms), list(jac), modules="numpy", cse=True)
+    f_raw = sp.lambdify(list(q_syms), exprs, modules=numpy_modules(), cse=True)
+    j_raw = sp.lambdify(list(q_syms), list(jac), modules=numpy_modules(), cse=True)
 
     def f(Q):
         Q = np.atleast_2d(np.asarray(Q, dtype=float))

@@ -22,6 +22,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import sympy as sp
 
+from robosolve.core.numpy_code import numpy_modules
 from robosolve.kinematics.singularities import Condition, _sample_params
 
 __all__ = ["name_conditions"]
@@ -47,11 +48,11 @@ class _Geometry:
         sub = {k: v for k, v in self.params.items()}
         mats = [sp.Matrix(m).subs(sub) for m in mats_in]
         pt = sp.Matrix(list(point)).subs(sub)
-        self._p = sp.lambdify([self.joints], pt, "numpy")
+        self._p = sp.lambdify([self.joints], pt, numpy_modules())
         if l_matrices is not None:
-            self._l = sp.lambdify([self.joints], mats, "numpy")
+            self._l = sp.lambdify([self.joints], mats, numpy_modules())
         else:
-            m0 = sp.lambdify([self.joints], mats, "numpy")
+            m0 = sp.lambdify([self.joints], mats, numpy_modules())
             self._l = lambda q: self._fd_l(m0, q)
 
     def _fd_l(self, m0, q, eps=1e-6):
@@ -118,7 +119,7 @@ def _config(cond: Condition, geo: _Geometry):
         grid = np.linspace(-math.pi, math.pi, 721)
         for var in reversed(present):
             g = sp.lambdify(var, f.subs({**geo.params,
-                                         **{s: q[s] for s in geo.joints if s != var}}), "numpy")
+                                         **{s: q[s] for s in geo.joints if s != var}}), numpy_modules())
             vals = np.array([float(g(x)) for x in grid])
             idx = np.where(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)[0]
             if len(idx):

@@ -14,6 +14,7 @@ import math
 
 import sympy as sp
 
+from robosolve.core.numpy_code import numpy_modules
 from robosolve.core.prose import Num, Text
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
@@ -279,7 +280,7 @@ def _check_geometric(ans, ctx, question, jn, subs):
     try:
         qv = [float(sp.N(subs[s])) for s in model.q]
         p = sp.lambdify([model.q], model.point0(question.point).xreplace(
-            {k: v for k, v in subs.items() if k not in model.q}), "numpy")
+            {k: v for k, v in subs.items() if k not in model.q}), numpy_modules())
     except (KeyError, TypeError, ValueError):
         return
     eps = 1e-6
