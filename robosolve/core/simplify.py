@@ -201,6 +201,10 @@ def _shortest_trig_form(canonical):
     (sin θ cos θ -> sin(2θ)/2), the polynomial factored (-(θ̇₂ + θ̇₃)²); a bare sign
     before a sum is not taken out. On every chain entry of the problems and benchmarks
     it is trigsimp's result, at a third of the cost."""
+    if canonical.is_Mul and _distinct_trig_factors(canonical):
+        # one product of sines and cosines of different angles: a product of sums is not
+        # shorter, nor a sum of products (TR8 doubles the terms), nor a factored form
+        return canonical
     candidates = [canonical]
     if canonical.has(sp.sin, sp.cos):
         candidates.append(TR10i(sp.expand(TR8(canonical))))
@@ -213,6 +217,19 @@ def _shortest_trig_form(canonical):
         return sp.count_ops(c), sum(1 for a in sp.preorder_traversal(c) if isinstance(a, (sp.sin, sp.cos)))
 
     return min([c for c in candidates if not negated_sum(c)] or [canonical], key=size)
+
+
+def _distinct_trig_factors(term) -> bool:
+    """A product whose sines and cosines all have exponent 1 and different arguments."""
+    args = []
+    for f in term.args:
+        if isinstance(f, (sp.sin, sp.cos)):
+            args.append(f.args[0])
+        elif f.is_Pow and isinstance(f.base, (sp.sin, sp.cos)):
+            return False
+        elif f.has(sp.sin, sp.cos):
+            return False
+    return len(set(args)) == len(args)
 
 
 def pythagorean_reduced(expr):
