@@ -174,7 +174,7 @@ def _canonical_trig(expanded):
     sin/cos of plain symbols. Every cancellation through cos² + sin² = 1 happens in the
     ring at once, so a large entry (the translation column of H of a 3R arm) needs no
     trigsimp: on those, trigsimp costs seconds and returns this very form."""
-    reduced = pythagorean_reduced(expanded)
+    reduced = pythagorean_reduced(expanded, expanded=True)
     return None if reduced is None else _addition_formulas(sp.expand(reduced))
 
 
@@ -232,12 +232,12 @@ def _distinct_trig_factors(term) -> bool:
     return len(set(args)) == len(args)
 
 
-def pythagorean_reduced(expr):
+def pythagorean_reduced(expr, expanded: bool = False):
     """expr as a polynomial in sin θ, cos θ of its angles reduced modulo sin²θ + cos²θ = 1,
     each angle's square eliminated in the direction that leaves fewer operations
     (sin² -> 1 - cos² or cos² -> 1 - sin²); None when an argument of sin/cos is not a
     plain symbol after the addition formulas are expanded (sin(θ/2), sin(ω t))."""
-    built = _trig_ring_fast(sp.expand(expr))
+    built = _trig_ring_fast(expr if expanded else sp.expand(expr))
     if built is None:
         built = _trig_ring(expr)
     if built is None:
@@ -249,12 +249,12 @@ def pythagorean_reduced(expr):
         if all(m[si] < 2 and m[ci] < 2 for m in poly.keys()):
             continue            # nothing to eliminate: both normal forms are poly itself
         options = [poly.rem([s ** 2 + c ** 2 - 1]), _rem_cos_squared(poly, s, c)]
-        poly = min(options, key=lambda p: _ops_then_text(p.as_expr()))
+        exprs = [p.as_expr() for p in options]
+        ops = [sp.count_ops(e) for e in exprs]
+        # fewer operations, then the text (only compared on a tie)
+        pick = 0 if ops[0] < ops[1] or (ops[0] == ops[1] and str(exprs[0]) <= str(exprs[1])) else 1
+        poly = options[pick]
     return poly.as_expr().xreplace(back)
-
-
-def _ops_then_text(e):
-    return sp.count_ops(e), str(e)
 
 
 def _trig_ring(expr):
@@ -496,7 +496,7 @@ def is_zero(e) -> bool:
         expanded = sp.expand(e)
         if expanded == 0:
             return True
-        reduced = pythagorean_reduced(expanded) if expanded.has(sp.sin, sp.cos) else None
+        reduced = pythagorean_reduced(expanded, expanded=True) if expanded.has(sp.sin, sp.cos) else None
         if reduced is not None:
             return sp.expand(reduced) == 0
     return full(e) == 0
