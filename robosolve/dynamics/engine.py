@@ -489,12 +489,19 @@ class DynamicsEngine:
             a = self.joints[i].actuator
             if any(x != 0 for x in w):
                 out = sp.zeros(4, 4)
-                out[:3, :3] = skew(a * w / sp.expand((w.T * w)[0, 0]))
+                out[:3, :3] = skew(a * w / self._axis_norm2(w))
                 return out.applyfunc(sp.expand)
             v = s[:3, 3]
-            return action_matrix(list(a * v / sp.expand((v.T * v)[0, 0])), [0, 0, 0]) \
-                .applyfunc(sp.expand)
+            return action_matrix(list(a * v / self._axis_norm2(v)), [0, 0, 0]).applyfunc(sp.expand)
         return self._cached(("Phi_act", i), build)
+
+    def _axis_norm2(self, v) -> sp.Expr:
+        """|v|² of a joint's axis in the frame it moves: a constant. Poses written with floats
+        (alpha: 0.7) leave rounding noise in it (5.6e-17·c₂s₂ from cos²0.7 + sin²0.7 ≠ 1 in
+        floating point), which is dropped so that Φ stays a polynomial in the joints."""
+        norm2 = sp.expand((v.T * v)[0, 0])
+        return sp.Add(*[t for t in sp.Add.make_args(norm2)
+                        if not (t.has(*self.q) and abs(t.as_coeff_Mul()[0]) < 1e-12)])
 
     def link_of(self, name: str) -> str | None:
         """The frame of the link that frame `name` belongs to: the nearest frame (itself
