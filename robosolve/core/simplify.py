@@ -237,6 +237,8 @@ def pythagorean_reduced(expr, expanded: bool = False):
     each angle's square eliminated in the direction that leaves fewer operations
     (sin² -> 1 - cos² or cos² -> 1 - sin²); None when an argument of sin/cos is not a
     plain symbol after the addition formulas are expanded (sin(θ/2), sin(ω t))."""
+    if expr.atoms(sp.Float):
+        return None     # inexact coefficients: reducing them would add round-off terms
     built = _trig_ring_fast(expr if expanded else sp.expand(expr))
     if built is None:
         built = _trig_ring(expr)
