@@ -1,6 +1,8 @@
 """Figures. `draw(spec, path)` dispatches to the module named by `spec.kind`.
 
-matplotlib is imported here only (Agg backend), and only when a figure is drawn.
+matplotlib is imported here only, and only when a figure is drawn; pyplot never is: a
+`matplotlib.figure.Figure` is drawn by the Agg canvas directly (`new_figure`), which skips
+pyplot's import, its figure manager and the bookkeeping of open figures.
 
 Drawing is kept cheap (issue 15): every figure gets a fixed layout, margins in inches set by
 `fixed_layout` for what its kind draws (titles, tick labels, axis labels), instead of
@@ -24,14 +26,30 @@ PNG_OPTIONS = {"compress_level": 1}
 
 
 def setup():
+    """matplotlib with the figures' rc settings (applied once per process): the module."""
     import matplotlib
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    if matplotlib.rcParams["savefig.dpi"] != _RC["savefig.dpi"] or \
+            matplotlib.rcParams["svg.hashsalt"] != "robosolve":
+        matplotlib.rcParams.update(_RC)
+    return matplotlib
 
-    if plt.rcParams["savefig.dpi"] != _RC["savefig.dpi"] or plt.rcParams["svg.hashsalt"] != "robosolve":
-        plt.rcParams.update(_RC)
-    return plt
+
+def new_figure(figsize):
+    """An empty Figure on an Agg canvas (no pyplot)."""
+    setup()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=figsize)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def subplots(nrows=1, ncols=1, *, figsize, **kwargs):
+    """`pyplot.subplots` without pyplot: (fig, axes)."""
+    fig = new_figure(figsize)
+    return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
 def fixed_layout(fig, nrows=1, ncols=1, *, left=0.85, right=0.2, top=0.45, bottom=0.55,
@@ -50,8 +68,7 @@ def fixed_layout(fig, nrows=1, ncols=1, *, left=0.85, right=0.2, top=0.45, botto
 def one_3d_box(width, height):
     """A figure holding one 3-D axes: (fig, ax). Axes3D draws its labels inside its box, so
     the margins are thin but for the title."""
-    plt = setup()
-    fig = plt.figure(figsize=(width, height))
+    fig = new_figure((width, height))
     ax = fig.add_subplot(projection="3d")
     fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)
     return fig, ax
@@ -60,8 +77,7 @@ def one_3d_box(width, height):
 def time_panels(rows, cols=1, *, width, row_height, top, hgap=0.2, wgap=0.3):
     """A figure of rows x cols panels against one time axis (shared x), laid out by
     `fixed_layout`: (fig, axes as a rows x cols array)."""
-    plt = setup()
-    fig, axes = plt.subplots(rows, cols, figsize=(width, row_height * rows + 0.8), sharex=True,
+    fig, axes = subplots(rows, cols, figsize=(width, row_height * rows + 0.8), sharex=True,
                              squeeze=False)
     fixed_layout(fig, rows, cols, top=top, hgap=hgap, wgap=wgap)
     return fig, axes
@@ -69,9 +85,6 @@ def time_panels(rows, cols=1, *, width, row_height, top, hgap=0.2, wgap=0.3):
 
 def save(fig, path):
     fig.savefig(path, metadata={"Software": None}, pil_kwargs=dict(PNG_OPTIONS))
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
 
 
 def draw(spec, path) -> None:

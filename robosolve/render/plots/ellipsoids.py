@@ -146,13 +146,12 @@ def _draw_3d(ax, spec_data, panel, color):
 
 
 def draw(spec, path):
-    from robosolve.render.plots import fixed_layout, save, setup
+    from robosolve.render.plots import fixed_layout, new_figure, save
 
-    plt = setup()
     data = spec.data
     panels = data["panels"]
     dims = data["dims"]
-    fig = plt.figure(figsize=(5.2 * len(panels), 5.0))
+    fig = new_figure((5.2 * len(panels), 5.0))
     for i, panel in enumerate(panels):
         color = COLORS.get(panel.get("key", ""), "C%d" % i)
         if dims == 3:

@@ -5,14 +5,13 @@ Data: t, q, qd, label, rate_label, unit, rate_unit, max, t_max, min, t_min.
 
 from __future__ import annotations
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import fixed_layout, save, subplots
 from robosolve.render.plots.motion_profile import COLOURS
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
-    fig, (ax, axr) = plt.subplots(2, 1, figsize=(8, 5.6), sharex=True)
+    fig, (ax, axr) = subplots(2, 1, figsize=(8, 5.6), sharex=True)
     fixed_layout(fig, 2, 1, top=0.5, hgap=0.2)
     ax.plot(d["t"], d["q"], color=COLOURS[0], lw=1.5, label=f"${d['label']}(t)$")
     ax.plot([d["t_max"]], [d["max"]], "v", color="0.25", ms=6, label=f"max {d['max']:.6g} {d['unit']}")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import fixed_layout, one_3d_box, save, setup
+from robosolve.render.plots import fixed_layout, one_3d_box, save, subplots
 from robosolve.render.plots.robot import equal_3d
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
@@ -23,13 +23,12 @@ def _planar(drawings) -> bool:
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
     drawings, labels, rejected = d["drawings"], d["labels"], d["rejected"]
     target = d.get("target")
     planar = _planar(drawings)
     if planar:
-        fig, ax = plt.subplots(figsize=(6.5, 6))
+        fig, ax = subplots(figsize=(6.5, 6))
         fixed_layout(fig, top=0.4)
     else:
         fig, ax = one_3d_box(7, 6.5)

@@ -6,7 +6,7 @@ q, qd, qdd}].
 
 from __future__ import annotations
 
-from robosolve.render.plots import fixed_layout, save, setup
+from robosolve.render.plots import fixed_layout, save, subplots
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown")
 
@@ -25,10 +25,9 @@ def mark_switches(ax, switches, T):
 
 
 def draw(spec, path):
-    plt = setup()
     d = spec.data
     t = d["t"]
-    fig, axes = plt.subplots(3, 1, figsize=(7.5, 7.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(7.5, 7.5), sharex=True)
     fixed_layout(fig, 3, 1, top=0.7, hgap=0.2)      # the title above the switching-instant ticks
     titles = (("q", "position"), ("qd", "velocity"), ("qdd", "acceleration"))
     for order, (ax, (key, what)) in enumerate(zip(axes, titles)):
