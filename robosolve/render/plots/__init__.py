@@ -25,9 +25,38 @@ _RC = {
 PNG_OPTIONS = {"compress_level": 1}
 
 
+def _import_matplotlib():
+    """Import the parts of matplotlib the figures use, without building the property tables
+    of its docstrings.
+
+    While matplotlib's modules are imported, every Artist subclass formats the table of its
+    settable properties into the docstring of its `set` method (`matplotlib.artist.kwdoc`, also
+    used for the `%(Line2D:kwdoc)s` substitutions in the Axes methods' docstrings): a quarter
+    of matplotlib's import time, for text only `help()` shows. It is skipped while importing
+    (the docstrings lose the table; nothing that draws reads them) and restored afterwards; if
+    matplotlib was imported already, or changes how it builds those docstrings, this is just
+    the ordinary import."""
+    import sys
+
+    if "matplotlib.figure" not in sys.modules:
+        import matplotlib.artist as artist
+
+        kwdoc = getattr(artist, "kwdoc", None)
+        if callable(kwdoc):
+            artist.kwdoc = lambda _artist: ""
+            try:
+                import matplotlib.figure  # noqa: F401
+                from matplotlib.backends import backend_agg  # noqa: F401
+            finally:
+                artist.kwdoc = kwdoc
+    import matplotlib
+
+    return matplotlib
+
+
 def setup():
     """matplotlib with the figures' rc settings (applied once per process): the module."""
-    import matplotlib
+    matplotlib = _import_matplotlib()
 
     if matplotlib.rcParams["savefig.dpi"] != _RC["savefig.dpi"] or \
             matplotlib.rcParams["svg.hashsalt"] != "robosolve":
