@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from robosolve.render.plots import fixed_layout, one_3d_box, save, subplots
-from robosolve.render.plots.robot import equal_3d
+from robosolve.render.plots.robot import equal_3d, polylines
 
 COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
            "tab:pink", "tab:olive", "tab:cyan", "tab:gray", "navy", "maroon")
@@ -35,8 +35,7 @@ def draw(spec, path):
     for k, (drw, lab, rej) in enumerate(zip(drawings, labels, rejected)):
         colour = COLOURS[k % len(COLOURS)]
         style = "--" if rej else "-"
-        for i, link in enumerate(drw["links"]):
-            a = np.array(link, dtype=float)
+        for i, a in enumerate(polylines(drw["links"])):
             kw = dict(color=colour, lw=2.5, ms=4, alpha=0.55 if rej else 0.9, label=lab if i == 0 else None)
             if planar:
                 ax.plot(a[:, 0], a[:, 1], style + "o", **kw)

@@ -29,8 +29,24 @@ def extent(drawings) -> float:
     return span if span > 1e-9 else 1.0
 
 
+def polylines(links) -> list[np.ndarray]:
+    """The links as few polylines as draw the same: a link that starts where the previous one
+    ends continues its line (a serial chain is one line, one artist instead of one per link;
+    matplotlib's cost is per artist, and a joint's marker is drawn once instead of twice).
+    For drawings without frames (ik_solutions): see `draw_robot_3d`."""
+    lines: list[list] = []
+    for link in links:
+        if lines and len(link) and list(lines[-1][-1]) == list(link[0]):
+            lines[-1].extend(link[1:])
+        else:
+            lines.append(list(link))
+    return [np.array(line, dtype=float) for line in lines]
+
+
 def draw_robot_3d(ax, d, colour="0.25", label=None, frames=True, scale=None, alpha=1.0):
     scale = scale or 0.12 * extent([d])
+    # one artist per link, not `polylines`: Axes3D orders artists by depth, and one line for the
+    # whole arm would be drawn over (hide) the frames' axes that lie along it
     for k, link in enumerate(d["links"]):
         a = np.array(link, dtype=float)
         ax.plot(a[:, 0], a[:, 1], a[:, 2], "-o", color=colour, lw=3, ms=4, alpha=alpha,
