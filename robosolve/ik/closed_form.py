@@ -109,8 +109,31 @@ class ClosedForm:
 # ---------------------------------------------------------------------------
 # helpers
 
+# The derivation asks the same questions of the same expressions again (a pair's rotation
+# test in `_trig_pairs`, in `_best_pair_candidate`, in `_eliminated_equation`; the linear
+# form of an equation left unchanged by an elimination): both answers are pure functions
+# of the expression, kept here (bounded).
+_MEMO_SIZE = 4096
+_ZERO_MEMO: dict = {}
+_LINEAR_MEMO: dict = {}
+
+
+def _remember(memo: dict, key, value):
+    if len(memo) < _MEMO_SIZE:
+        memo[key] = value
+    return value
+
+
 def _is_zero(e) -> bool:
     """Exact zero test: trig of every symbol to (c, s) with c^2 + s^2 = 1, then expand."""
+    e = sp.sympify(e)
+    hit = _ZERO_MEMO.get(e)
+    if hit is None:
+        hit = _remember(_ZERO_MEMO, e, _is_zero_uncached(e))
+    return hit
+
+
+def _is_zero_uncached(e) -> bool:
     e = sp.expand(e)
     if e == 0:
         return True
@@ -137,6 +160,13 @@ def _cs(q):
 
 def trig_linear(expr, q):
     """(a, b, c) with expr = a cos q + b sin q + c, free of q; None otherwise."""
+    key = (sp.sympify(expr), q)
+    if key in _LINEAR_MEMO:
+        return _LINEAR_MEMO[key]
+    return _remember(_LINEAR_MEMO, key, _trig_linear_uncached(*key))
+
+
+def _trig_linear_uncached(expr, q):
     e = sp.expand(sp.expand_trig(expr))
     C, S = _cs(q)
     e = e.subs({sp.cos(q): C, sp.sin(q): S})
