@@ -116,6 +116,7 @@ class ClosedForm:
 _MEMO_SIZE = 4096
 _ZERO_MEMO: dict = {}
 _LINEAR_MEMO: dict = {}
+_EXPANDED_MEMO: dict = {}
 
 
 def _remember(memo: dict, key, value):
@@ -147,7 +148,7 @@ def _is_zero_uncached(e) -> bool:
                 return False
         except (TypeError, ValueError):
             break
-    g = sp.expand(sp.expand_trig(e))
+    g = _expanded_trig(e)
     args = sorted({a.args[0] for a in g.atoms(sp.sin, sp.cos) if a.args[0].is_Symbol}, key=sp.default_sort_key)
     g, _, rel = _to_poly_symbols(g, args)
     return _reduce_pythagoras(g, rel) == 0
@@ -166,8 +167,16 @@ def trig_linear(expr, q):
     return _remember(_LINEAR_MEMO, key, _trig_linear_uncached(*key))
 
 
+def _expanded_trig(expr):
+    """expand(expand_trig(expr)), once per expression (asked for each joint in turn)."""
+    hit = _EXPANDED_MEMO.get(expr)
+    if hit is None:
+        hit = _remember(_EXPANDED_MEMO, expr, sp.expand(sp.expand_trig(expr)))
+    return hit
+
+
 def _trig_linear_uncached(expr, q):
-    e = sp.expand(sp.expand_trig(expr))
+    e = _expanded_trig(expr)
     C, S = _cs(q)
     e = e.subs({sp.cos(q): C, sp.sin(q): S})
     if e.has(q):
@@ -191,7 +200,7 @@ def _unknowns_in(e, unknowns):
 
 def _to_poly_symbols(e, qs):
     """Replace cos/sin of each joint by dummy symbols (after expanding)."""
-    e = sp.expand(sp.expand_trig(e))
+    e = _expanded_trig(sp.sympify(e))
     rep, back, rel = {}, {}, []
     for q in qs:
         C, S = _cs(q)
