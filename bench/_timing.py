@@ -20,6 +20,17 @@ IMPORT_FLOOR = [PY, "-c", "import matplotlib; matplotlib.use('Agg'); "
 CPU: dict = {}      # label -> [user + sys seconds of the child], beside the wall times
 
 
+def byte_compile() -> None:
+    """Byte-compile robosolve as `pip install .` does. The references (Robotics Toolbox,
+    sympy, numpy...) were compiled into site-packages when installed; a checkout run with
+    PYTHONDONTWRITEBYTECODE=1 (as on the project's machine) would otherwise compile
+    robosolve's sources again in every timed process (0.2-0.3 s each)."""
+    subprocess.run([PY, "-m", "compileall", "-q", str(ROOT / "robosolve")], check=True)
+
+
+byte_compile()
+
+
 def _children_cpu() -> float:
     r = resource.getrusage(resource.RUSAGE_CHILDREN)
     return r.ru_utime + r.ru_stime
