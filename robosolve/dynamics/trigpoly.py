@@ -246,7 +246,18 @@ def _fmul(a: dict, b: dict) -> dict:
 
 
 def fourier_dict(alg: TrigAlgebra, p) -> dict:
-    """p as {(kind, k, prismatic exponents): domain coefficient}, kind cos|sin of k·q."""
+    """p as {(kind, k, prismatic exponents): domain coefficient}, kind cos|sin of k·q.
+
+    Once per element (the report's readable form asks for both the Fourier and the
+    product form of each entry); callers only read the dictionary."""
+    memo = alg.__dict__.setdefault("_fourier_dict_memo", {})
+    out = memo.get(p)
+    if out is None:
+        out = memo[p] = _fourier_dict(alg, p)
+    return out
+
+
+def _fourier_dict(alg: TrigAlgebra, p) -> dict:
     from fractions import Fraction
 
     ring = alg.ring

@@ -109,8 +109,32 @@ class ClosedForm:
 # ---------------------------------------------------------------------------
 # helpers
 
+# The derivation asks the same questions of the same expressions again (a pair's rotation
+# test in `_trig_pairs`, in `_best_pair_candidate`, in `_eliminated_equation`; the linear
+# form of an equation left unchanged by an elimination): both answers are pure functions
+# of the expression, kept here (bounded).
+_MEMO_SIZE = 4096
+_ZERO_MEMO: dict = {}
+_LINEAR_MEMO: dict = {}
+_EXPANDED_MEMO: dict = {}
+
+
+def _remember(memo: dict, key, value):
+    if len(memo) < _MEMO_SIZE:
+        memo[key] = value
+    return value
+
+
 def _is_zero(e) -> bool:
     """Exact zero test: trig of every symbol to (c, s) with c^2 + s^2 = 1, then expand."""
+    e = sp.sympify(e)
+    hit = _ZERO_MEMO.get(e)
+    if hit is None:
+        hit = _remember(_ZERO_MEMO, e, _is_zero_uncached(e))
+    return hit
+
+
+def _is_zero_uncached(e) -> bool:
     e = sp.expand(e)
     if e == 0:
         return True
@@ -124,7 +148,7 @@ def _is_zero(e) -> bool:
                 return False
         except (TypeError, ValueError):
             break
-    g = sp.expand(sp.expand_trig(e))
+    g = _expanded_trig(e)
     args = sorted({a.args[0] for a in g.atoms(sp.sin, sp.cos) if a.args[0].is_Symbol}, key=sp.default_sort_key)
     g, _, rel = _to_poly_symbols(g, args)
     return _reduce_pythagoras(g, rel) == 0
@@ -137,7 +161,22 @@ def _cs(q):
 
 def trig_linear(expr, q):
     """(a, b, c) with expr = a cos q + b sin q + c, free of q; None otherwise."""
-    e = sp.expand(sp.expand_trig(expr))
+    key = (sp.sympify(expr), q)
+    if key in _LINEAR_MEMO:
+        return _LINEAR_MEMO[key]
+    return _remember(_LINEAR_MEMO, key, _trig_linear_uncached(*key))
+
+
+def _expanded_trig(expr):
+    """expand(expand_trig(expr)), once per expression (asked for each joint in turn)."""
+    hit = _EXPANDED_MEMO.get(expr)
+    if hit is None:
+        hit = _remember(_EXPANDED_MEMO, expr, sp.expand(sp.expand_trig(expr)))
+    return hit
+
+
+def _trig_linear_uncached(expr, q):
+    e = _expanded_trig(expr)
     C, S = _cs(q)
     e = e.subs({sp.cos(q): C, sp.sin(q): S})
     if e.has(q):
@@ -161,7 +200,7 @@ def _unknowns_in(e, unknowns):
 
 def _to_poly_symbols(e, qs):
     """Replace cos/sin of each joint by dummy symbols (after expanding)."""
-    e = sp.expand(sp.expand_trig(e))
+    e = _expanded_trig(sp.sympify(e))
     rep, back, rel = {}, {}, []
     for q in qs:
         C, S = _cs(q)

@@ -171,6 +171,16 @@ class RobotModel:
                 out += sp.diff(expr, qd) * qdd
         return out
 
+    def local_derivative(self, frame: str, order: int) -> sp.Matrix:
+        """Mdot (order 1) or Mddot (2) of the frame's local pose, raw (chain rule, no
+        simplification); once per model: H_local and every NumericChain use them."""
+        if order == 0:
+            return self.M_local(frame)
+        key = ("M_local_dot", frame, order)
+        if key not in self._cache:
+            self._cache[key] = self.time_derivative(self.local_derivative(frame, order - 1))
+        return self._cache[key]
+
     # -- L, W, H ------------------------------------------------------
     def joints_in(self, frame: str) -> list[int]:
         """Indices of the joints whose variable appears in the frame's local pose."""
@@ -233,8 +243,7 @@ class RobotModel:
         key = ("H_local", frame)
         if key not in self._cache:
             m = self.M_local(frame)
-            mdd = self.time_derivative(self.time_derivative(m))
-            self._cache[key] = tidy_matrix(mdd * rigid_inverse(m))
+            self._cache[key] = tidy_matrix(self.local_derivative(frame, 2) * rigid_inverse(m))
         return self._cache[key]
 
     def W_relative0(self, frame: str) -> sp.Matrix:

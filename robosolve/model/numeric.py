@@ -56,10 +56,7 @@ class NumericChain:
         """M (order 0), Mdot (1) or Mddot (2) of the frame in its parent, as numbers."""
         key = ("local", frame, order)
         if key not in self._m:
-            expr = self.model.M_local(frame)
-            for _ in range(order):
-                expr = self.model.time_derivative(expr)
-            self._m[key] = _num(expr, self.subs)
+            self._m[key] = _num(self.model.local_derivative(frame, order), self.subs)
         return self._m[key]
 
     def _relative(self, frame: str, order: int) -> np.ndarray:
