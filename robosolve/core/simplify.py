@@ -259,6 +259,15 @@ def pythagorean_reduced(expr, expanded: bool = False):
     return poly.as_expr().xreplace(back)
 
 
+def _angle_generators(angles):
+    """One (s, c) pair of Dummy generators per angle, and the map sin(a) -> s, cos(a) -> c."""
+    pairs = [(sp.Dummy(f"s{k}"), sp.Dummy(f"c{k}")) for k in range(len(angles))]
+    to_ring = {}
+    for a, (s, c) in zip(angles, pairs):
+        to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
+    return pairs, to_ring
+
+
 def _trig_ring(expr):
     """(ring element, [(s, c) generators per angle], generator -> sin/cos) through sympy's
     expand_trig and sring (any coefficient domain), or None."""
@@ -268,10 +277,7 @@ def _trig_ring(expr):
     args = sorted({a.args[0] for a in e.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
     if not args or not all(a.is_Symbol for a in args):
         return None
-    pairs = [(sp.Dummy(f"s{k}"), sp.Dummy(f"c{k}")) for k in range(len(args))]
-    to_ring = {}
-    for a, (s, c) in zip(args, pairs):
-        to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
+    pairs, to_ring = _angle_generators(args)
     try:
         ring, poly = sring(sp.expand(e.xreplace(to_ring)), *[g for pair in pairs for g in pair])
     except Exception:       # not a polynomial (a sine in a denominator): leave it to trigsimp
@@ -314,10 +320,7 @@ def _trig_ring_fast(e):
                     key=sp.default_sort_key)
     if not angles or not all(a.is_Symbol for a in angles):
         return None
-    pairs = [(sp.Dummy(f"s{k}"), sp.Dummy(f"c{k}")) for k in range(len(angles))]
-    to_ring = {}
-    for a, (s, c) in zip(angles, pairs):
-        to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
+    pairs, to_ring = _angle_generators(angles)
     # the other symbols are the coefficient domain (as sring makes it): the key that picks
     # each angle's elimination counts the operations of that grouped form
     symbols = [g for pair in pairs for g in pair]

@@ -129,9 +129,3 @@ def is_rototranslation(m, tol: float = 1e-9) -> bool:
         and abs(np.linalg.det(r) - 1.0) < tol * 1e3
         and np.allclose(a[3], [0, 0, 0, 1], atol=tol)
     )
-
-
-def homogeneous_last_row(m) -> bool:
-    """True when the last row of `m` is [0, 0, 0, 1] in value: a file may write 0.0 and 1.0
-    (sympy Floats, which do not compare equal to the integers)."""
-    return all(sp.sympify(m[3, j] - target).is_zero is True for j, target in enumerate((0, 0, 0, 1)))

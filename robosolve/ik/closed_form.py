@@ -33,7 +33,7 @@ from typing import NamedTuple
 
 import sympy as sp
 
-from robosolve.core.simplify import common_factors, ik_fraction
+from robosolve.core.simplify import common_factors, ik_fraction, memoised
 
 
 class NoClosedForm(Exception):
@@ -111,30 +111,11 @@ class ClosedForm:
 
 # The derivation asks the same questions of the same expressions again (a pair's rotation
 # test in `_trig_pairs`, in `_best_pair_candidate`, in `_eliminated_equation`; the linear
-# form of an equation left unchanged by an elimination): both answers are pure functions
-# of the expression, kept here (bounded).
-_MEMO_SIZE = 4096
-_ZERO_MEMO: dict = {}
-_LINEAR_MEMO: dict = {}
-_EXPANDED_MEMO: dict = {}
-
-
-def _remember(memo: dict, key, value):
-    if len(memo) < _MEMO_SIZE:
-        memo[key] = value
-    return value
-
-
+# form of an equation left unchanged by an elimination): the answers are pure functions of
+# the expression, kept in the project's one memo (core/simplify.memoised).
+@memoised
 def _is_zero(e) -> bool:
     """Exact zero test: trig of every symbol to (c, s) with c^2 + s^2 = 1, then expand."""
-    e = sp.sympify(e)
-    hit = _ZERO_MEMO.get(e)
-    if hit is None:
-        hit = _remember(_ZERO_MEMO, e, _is_zero_uncached(e))
-    return hit
-
-
-def _is_zero_uncached(e) -> bool:
     e = sp.expand(e)
     if e == 0:
         return True
@@ -159,23 +140,15 @@ def _cs(q):
     return sp.Symbol("_c__" + q.name), sp.Symbol("_s__" + q.name)
 
 
-def trig_linear(expr, q):
-    """(a, b, c) with expr = a cos q + b sin q + c, free of q; None otherwise."""
-    key = (sp.sympify(expr), q)
-    if key in _LINEAR_MEMO:
-        return _LINEAR_MEMO[key]
-    return _remember(_LINEAR_MEMO, key, _trig_linear_uncached(*key))
-
-
+@memoised
 def _expanded_trig(expr):
     """expand(expand_trig(expr)), once per expression (asked for each joint in turn)."""
-    hit = _EXPANDED_MEMO.get(expr)
-    if hit is None:
-        hit = _remember(_EXPANDED_MEMO, expr, sp.expand(sp.expand_trig(expr)))
-    return hit
+    return sp.expand(sp.expand_trig(expr))
 
 
-def _trig_linear_uncached(expr, q):
+@memoised
+def trig_linear(expr, q):
+    """(a, b, c) with expr = a cos q + b sin q + c, free of q; None otherwise."""
     e = _expanded_trig(expr)
     C, S = _cs(q)
     e = e.subs({sp.cos(q): C, sp.sin(q): S})

@@ -10,7 +10,6 @@ import re
 
 import sympy as sp
 
-from robosolve.core.transforms import homogeneous_last_row
 from robosolve.errors import InputError, InputIssue
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
@@ -559,7 +558,7 @@ class _ProblemBuilder:
         elif kind == "matrix":
             m = chk.matrix(path + ("matrix",), item["matrix"], self.ns)
             if m is not None:
-                if not homogeneous_last_row(m):
+                if list(m[3, :]) != [0, 0, 0, 1]:
                     chk.error(path + ("matrix",), "the last row of a pose matrix must be [0, 0, 0, 1]")
                     return
                 if not self._is_rigid(m):

@@ -11,7 +11,6 @@ import re
 
 import sympy as sp
 
-from robosolve.core.transforms import homogeneous_last_row
 from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean, value_issue
 from robosolve.load.problem import Question
 from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES
@@ -408,7 +407,7 @@ class _QuestionLoader:
         if isinstance(value, dict):
             return {"config": self.v_joint_values(path, value, q)}
         m = self.chk.matrix(path, value, self.params_ns, shapes=((4, 4),))
-        if m is not None and (not homogeneous_last_row(m) or not self.b._is_rigid(m)):
+        if m is not None and (list(m[3, :]) != [0, 0, 0, 1] or not self.b._is_rigid(m)):
             self.chk.error(path, "not a rototranslation: the last row must be [0, 0, 0, 1] and the 3x3 "
                            "rotation block orthonormal with determinant 1")
             return None
@@ -517,7 +516,7 @@ class _QuestionLoader:
         if m is None:
             return None
         full = m if m.shape == (4, 4) else sp.diag(m, 1)
-        if m.shape == (4, 4) and not homogeneous_last_row(m):
+        if m.shape == (4, 4) and list(m[3, :]) != [0, 0, 0, 1]:
             self.chk.error(path, "the last row of a pose matrix must be [0, 0, 0, 1]")
             return None
         if not self.b._is_rigid(full):

@@ -108,7 +108,7 @@ def time_panels(rows, cols=1, *, width, row_height, top, hgap=0.2, wgap=0.3):
     """A figure of rows x cols panels against one time axis (shared x), laid out by
     `fixed_layout`: (fig, axes as a rows x cols array)."""
     fig, axes = subplots(rows, cols, figsize=(width, row_height * rows + 0.8), sharex=True,
-                             squeeze=False)
+                         squeeze=False)
     fixed_layout(fig, rows, cols, top=top, hgap=hgap, wgap=wgap)
     return fig, axes
 
