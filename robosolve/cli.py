@@ -82,8 +82,7 @@ def solve(
 ) -> None:
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
-    from robosolve.outputs import OutputFolderError
-    from robosolve.pipeline import render_outputs, solve_problem
+    from robosolve.render.drawing import figure_drawer
 
     formats = _formats(format)
 
@@ -98,20 +97,29 @@ def solve(
     if status == EXIT_INPUT:
         raise typer.Exit(EXIT_INPUT)
     targets = _solve_targets(problems, out)
-    for problem, target in zip(problems, targets):
-        report = solve_problem(problem)
-        try:
-            render_outputs(report, target, formats, inputs=files)
-        except (OutputFolderError, OSError) as exc:
-            _err(_write_error(target, exc))
-            raise typer.Exit(EXIT_INPUT)
-        failed = [a for a in report.answers if a.error is not None]
-        msg = f"{problem.file}: {len(report.answers) - len(failed)}/{len(report.answers)} questions answered -> {target}"
-        typer.echo(msg)
-        for a in failed:
-            _err(f"{problem.file}: {a.id}: {a.error}")
-        status = max(status, report.exit_status)
+    with figure_drawer(background=True) as figures:    # drawn while the next question solves
+        for problem, target in zip(problems, targets):
+            status = max(status, _solve_one(problem, target, formats, files, figures))
     raise typer.Exit(status)
+
+
+def _solve_one(problem, target, formats, files, figures) -> int:
+    """Solve one problem, write its folder, print its summary line: its exit status."""
+    from robosolve.outputs import OutputFolderError
+    from robosolve.pipeline import render_outputs, solve_problem
+
+    report = solve_problem(problem, figures=figures)
+    try:
+        render_outputs(report, target, formats, inputs=files, figures=figures)
+    except (OutputFolderError, OSError) as exc:
+        _err(_write_error(target, exc))
+        raise typer.Exit(EXIT_INPUT)
+    failed = [a for a in report.answers if a.error is not None]
+    msg = f"{problem.file}: {len(report.answers) - len(failed)}/{len(report.answers)} questions answered -> {target}"
+    typer.echo(msg)
+    for a in failed:
+        _err(f"{problem.file}: {a.id}: {a.error}")
+    return report.exit_status
 
 
 def _write_error(target, exc) -> str:

@@ -27,9 +27,10 @@ class Report:
         return EXIT_ANSWER_ERROR if any(a.error is not None for a in self.answers) else EXIT_OK
 
 
-def solve_problem(problem: Problem, budgets=None) -> Report:
+def solve_problem(problem: Problem, budgets=None, figures=None) -> Report:
     """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work, each
-    question (`question_seconds`) and the whole file (`file_seconds`)."""
+    question (`question_seconds`) and the whole file (`file_seconds`). Each answer's figures
+    are handed to `figures` (robosolve.render.drawing) as soon as it is known."""
     import time
 
     from robosolve.model import RobotModel
@@ -49,6 +50,8 @@ def solve_problem(problem: Problem, budgets=None) -> Report:
             answer = _solve_question(q, ctx, min(budgets.question_seconds, left))
         ctx.answers[q.id] = answer
         report.answers.append(answer)
+        if figures is not None:
+            figures.submit(answer.figures)
     return report
 
 
@@ -83,29 +86,26 @@ def solve_file(path) -> Report:
     return solve_problem(load_problem(path))
 
 
-def render_files(report: Report, formats=("md",)) -> dict[str, bytes]:
+def render_files(report: Report, formats=("md",), figures=None) -> dict[str, bytes]:
     """results.json, figures/*.png and the reports of `formats` (robosolve.render.formats:
-    md -> report.md, html -> report.html, ipynb -> report.ipynb) as relative path -> bytes."""
-    import io
-
+    md -> report.md, html -> report.html, ipynb -> report.ipynb) as relative path -> bytes.
+    The PNGs come from `figures` (robosolve.render.drawing; drawn here when None)."""
+    from robosolve.render.drawing import FigureFailed, InlineFigures
     from robosolve.render.formats import FORMATS
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
+    figures = figures or InlineFigures()
     files: dict[str, bytes] = {}
     figure_paths: dict[str, list[str]] = {}
     for answer in report.answers:
         for spec in answer.figures:
             rel = f"figures/{answer.id}-{spec.name}.png"
             try:
-                from robosolve.render.plots import draw
-
-                buffer = io.BytesIO()
-                draw(spec, buffer)
-            except Exception as exc:  # a figure that fails must not lose the answers
-                answer.note(f"figure {spec.name} could not be drawn ({type(exc).__name__}: {exc})")
+                files[rel] = figures.png(spec)
+            except FigureFailed as exc:  # a figure that fails must not lose the answers
+                answer.note(f"figure {spec.name} could not be drawn ({exc})")
                 continue
-            files[rel] = buffer.getvalue()
             figure_paths.setdefault(answer.id, []).append(rel)
     files["results.json"] = render_results_json(report, figure_paths).encode("utf-8")
     markdown = render_report(report, figure_paths)
@@ -115,7 +115,7 @@ def render_files(report: Report, formats=("md",)) -> dict[str, bytes]:
     return files
 
 
-def write_outputs(report: Report, out_dir, inputs=(), formats=("md",)) -> Path:
+def write_outputs(report: Report, out_dir, inputs=(), formats=("md",), figures=None) -> Path:
     """Write the report as the output folder `out_dir` (robosolve.outputs: ownership, atomic swap).
 
     Raises robosolve.outputs.OutputFolderError, with nothing touched, when the folder is not
@@ -123,10 +123,10 @@ def write_outputs(report: Report, out_dir, inputs=(), formats=("md",)) -> Path:
     """
     from robosolve.outputs import write_output_folder
 
-    return write_output_folder(out_dir, render_files(report, formats), inputs=inputs)
+    return write_output_folder(out_dir, render_files(report, formats, figures), inputs=inputs)
 
 
-def render_outputs(report: Report, folder, formats=("md",), inputs=()) -> Path:
+def render_outputs(report: Report, folder, formats=("md",), inputs=(), figures=None) -> Path:
     """The output folder of one report in the `formats` asked for (`--format`): what the
     `solve`, `batch` and `variants` commands call; same rules as write_outputs."""
-    return write_outputs(report, folder, inputs=inputs, formats=formats)
+    return write_outputs(report, folder, inputs=inputs, formats=formats, figures=figures)

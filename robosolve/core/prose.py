@@ -36,6 +36,10 @@ class Text(tuple):
     def __new__(cls, *pieces):
         return super().__new__(cls, pieces)
 
+    def __getnewargs__(self):
+        # pickle (a figure sent to the drawing process) rebuilds Text(*pieces), not Text(pieces)
+        return tuple(self)
+
     def __add__(self, other):
         return Text(*self, *(other if isinstance(other, Text) else (other,)))
 

@@ -1,0 +1,183 @@
+"""Where the figures' PNGs are drawn: in this process, or beside the solve in a helper process.
+
+A figure is known as soon as its question is answered (`Answer.figures`), but it is needed only
+when the output folder is written. `solve_problem` hands each answer's figures to a drawer
+(`submit`) and `render_files` asks it for the bytes (`png`):
+
+* `InlineFigures` draws when asked, in this process: what `batch`, `variants` and `grade` use,
+  whose worker processes already keep every core busy;
+* `BackgroundFigures` (the `solve` command, on a machine with two cores or more) forks one
+  helper process when the first figure is known. The helper imports matplotlib and draws each
+  figure while the next question is being solved, so a report's wall time loses the figures'
+  second or so. The helper is forked from this process, so it draws with the same code,
+  settings and data, and its PNGs are byte-identical to the inline ones (tested). If it cannot
+  be started, or dies, the figures it owes are drawn inline; it never writes a file.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+
+
+class FigureFailed(Exception):
+    """A figure could not be drawn; the message is `<exception type>: <message>`."""
+
+
+def _draw_png(spec) -> bytes:
+    buffer = io.BytesIO()
+    try:
+        from robosolve.render.plots import draw
+
+        draw(spec, buffer)
+    except Exception as exc:  # a figure that fails must not lose the answers
+        raise FigureFailed(f"{type(exc).__name__}: {exc}") from exc
+    return buffer.getvalue()
+
+
+class InlineFigures:
+    """Draws each figure when its PNG is asked for."""
+
+    def submit(self, specs) -> None:
+        pass
+
+    def png(self, spec) -> bytes:
+        return _draw_png(spec)
+
+    def close(self) -> None:
+        pass
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+
+def _serve(requests, results, parent_ends) -> None:
+    """The helper's loop: draw each (ticket, spec) received, send back (ticket, ok, bytes or reason).
+
+    It holds only its own ends of the two pipes, so that it ends when the parent's end of
+    `requests` is closed (the parent ended, however it ended) and a send to a parent gone fails
+    instead of blocking. A thread sends the PNGs, so the next figure is drawn meanwhile."""
+    import gc
+    import queue
+    import threading
+
+    from robosolve.interrupts import worker_init
+
+    for end in parent_ends:
+        end.close()
+    worker_init()
+    gc.disable()        # a short-lived process: no collections of the heap it shares with the parent
+    outbox: queue.SimpleQueue = queue.SimpleQueue()
+
+    def send():
+        try:
+            while True:
+                results.send(outbox.get())
+        except OSError:     # the parent is gone
+            return
+
+    threading.Thread(target=send, daemon=True).start()
+    import robosolve.render.plots as plots
+
+    plots.setup()       # matplotlib's import, paid while the parent solves the next question
+    while True:
+        try:
+            ticket, spec = requests.recv()
+        except (EOFError, OSError):
+            return
+        try:
+            outbox.put((ticket, True, _draw_png(spec)))
+        except FigureFailed as exc:
+            outbox.put((ticket, False, str(exc)))
+
+
+class BackgroundFigures(InlineFigures):
+    """Draws the figures in a helper process, forked when the first figure is submitted (see the
+    module's docstring): a problem without figures costs nothing."""
+
+    def __init__(self):
+        self._process = None
+        self._tickets: dict[int, int] = {}         # id(spec) -> ticket
+        self._done: dict[int, tuple] = {}          # ticket -> (ok, bytes or reason)
+        self._lost = False                         # no helper: everything is drawn inline
+
+    def _start(self) -> None:
+        import multiprocessing
+        import threading
+
+        if threading.active_count() > 1:    # a fork would copy locks other threads may hold
+            self._lost = True
+            return
+        try:
+            context = multiprocessing.get_context("fork")
+            requests, self._requests = context.Pipe(duplex=False)
+            self._results, results = context.Pipe(duplex=False)
+            self._process = context.Process(target=_serve, daemon=True,
+                                            args=(requests, results, (self._requests, self._results)))
+            self._process.start()
+        except (OSError, ValueError, AssertionError):   # no fork, no processes (a daemon's child)
+            self._process, self._lost = None, True
+            return
+        requests.close()
+        results.close()
+
+    def submit(self, specs) -> None:
+        for spec in specs:
+            if self._process is None and not self._lost:
+                self._start()
+            if self._lost or id(spec) in self._tickets:
+                continue
+            ticket = len(self._tickets)
+            try:
+                self._requests.send((ticket, spec))
+            except Exception:   # a spec that cannot be sent (or a helper gone) is drawn inline
+                continue
+            self._tickets[id(spec)] = ticket
+
+    def png(self, spec) -> bytes:
+        ticket = self._tickets.get(id(spec))
+        if ticket is None or not self._wait_for(ticket):
+            return _draw_png(spec)
+        ok, payload = self._done.pop(ticket)
+        if not ok:
+            raise FigureFailed(payload)
+        return payload
+
+    def _wait_for(self, ticket: int) -> bool:
+        while ticket not in self._done and not self._lost:
+            try:
+                got, ok, payload = self._results.recv()
+            except (EOFError, OSError):     # the helper died: what it owes is drawn inline
+                self._lost = True
+                break
+            self._done[got] = (ok, payload)
+        return ticket in self._done
+
+    def close(self) -> None:
+        if self._process is None:
+            return
+        # Whatever the helper still does was not asked for (or the run is interrupted): it is
+        # stopped at once, and waited for, so that no process outlives the command.
+        self._requests.close()
+        if self._process.is_alive():
+            self._process.terminate()
+        self._process.join()
+        self._results.close()
+        self._process = None
+
+
+def figure_drawer(background: bool = False):
+    """A drawer for one command run, to use as a context manager: in a helper process when
+    `background` is asked for and useful (two cores or more), inline otherwise."""
+    return BackgroundFigures() if background and _cores() >= 2 else InlineFigures()
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
