@@ -1,0 +1,42 @@
+"""The report's LaTeX printer, which prints each subexpression once per report
+(render/markdown.py:_SharedLatexPrinter), against sympy's own `latex` of every expression."""
+
+from __future__ import annotations
+
+import random
+
+import sympy as sp
+
+from robosolve.render.markdown import Tex
+
+q1, q2, q3, L, m = sp.symbols("q1 q2 q3 L m")
+NAMES = {q1: "\\theta_{1}", q2: "\\theta_{2}", q3: "\\vartheta_{3}", L: "L_{1}"}
+
+
+def _random_expr(rng: random.Random, depth: int = 3):
+    leaves = [q1, q2, q3, L, m, sp.Rational(3, 7), sp.Float(0.25), sp.pi, -1, 2]
+    if depth == 0:
+        return rng.choice(leaves)
+    kind = rng.randrange(7)
+    a, b = _random_expr(rng, depth - 1), _random_expr(rng, depth - 1)
+    return [a + b, a * b, a - b, sp.cos(a), sp.sin(a + b) ** 2, a ** rng.choice([2, -1, sp.Rational(1, 2)]),
+            sp.sqrt(a * a + b)][kind]
+
+
+def test_every_expression_prints_as_sympy_prints_it():
+    rng = random.Random(15)
+    exprs = [_random_expr(rng) for _ in range(300)]
+    # the same subexpressions inside bigger ones, in matrices, after they were printed alone
+    exprs += [sp.Matrix([[e, exprs[k + 1]], [exprs[k + 2] * e, -e]]) for k, e in enumerate(exprs[:50])]
+    exprs += [sum(exprs[k:k + 5]) for k in range(0, 100, 5)]
+    tex = Tex(NAMES)
+    for e in exprs:
+        assert tex(e) == sp.latex(e, symbol_names=NAMES), e
+
+
+def test_a_derivative_and_a_power_of_a_function_print_as_sympy_prints_them():
+    t = sp.Symbol("t")
+    f = sp.Function("f")(t)
+    exprs = [sp.cos(q1) ** 2, sp.sin(q1 + q2) ** 3 * sp.cos(q1) ** 2, f.diff(t) ** 2 + f, sp.exp(-q1) ** 2]
+    tex = Tex(NAMES)
+    assert [tex(e) for e in exprs + exprs] == [sp.latex(e, symbol_names=NAMES) for e in exprs + exprs]
