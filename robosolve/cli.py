@@ -108,7 +108,7 @@ def _solve_one(problem, target, formats, files, figures) -> int:
     from robosolve.outputs import OutputFolderError
     from robosolve.pipeline import render_outputs, solve_problem
 
-    report = solve_problem(problem, figures=figures)
+    report = solve_problem(problem, figures=figures, split=True)
     try:
         render_outputs(report, target, formats, inputs=files, figures=figures)
     except (OutputFolderError, OSError) as exc:
@@ -294,6 +294,30 @@ def main() -> None:
     # run into death by SIGINT (-2) during the interpreter's exit. One that came between the
     # check above and this line raises here, and robosolve.__main__ exits 130 for it.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _exit(status)
+
+
+def _exit(status: int) -> None:
+    """Exit without the interpreter's tear-down when nothing needs it.
+
+    After a solve the heap holds the whole run's sympy expressions, and the interpreter's exit
+    (a last garbage collection over them, then every module's objects freed one by one) took
+    half a second of a 3R report's five (measured, bench/RESULTS-perf.md). When no other thread
+    and no child process is left (robosolve's helpers are stopped and waited for by then; a Dask
+    client or cluster keeps threads), there is nothing to wait for: the streams are flushed and
+    the process ends. Otherwise, the ordinary exit."""
+    import threading
+
+    children = sys.modules.get("multiprocessing")
+    if threading.active_count() == 1 and not (children and children.active_children()):
+        if "logging" in sys.modules:
+            sys.modules["logging"].shutdown()
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):   # a closed pipe or stream: nothing more to say
+                pass
+        os._exit(status)
     sys.exit(status)
 
 

@@ -27,32 +27,103 @@ class Report:
         return EXIT_ANSWER_ERROR if any(a.error is not None for a in self.answers) else EXIT_OK
 
 
-def solve_problem(problem: Problem, budgets=None, figures=None) -> Report:
+def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = False) -> Report:
     """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work, each
     question (`question_seconds`) and the whole file (`file_seconds`). Each answer's figures
-    are handed to `figures` (robosolve.render.drawing) as soon as it is known."""
-    import time
-
+    are handed to `figures` (robosolve.render.drawing) as soon as it is known. With `split`
+    (the `solve` command, two cores or more), a forked helper solves some of the questions
+    meanwhile (robosolve.split_solve): the same answers."""
     from robosolve.model import RobotModel
     from robosolve.solvers.base import Answer, Budgets, SolveContext
 
     budgets = budgets or Budgets()
-    started = time.process_time()
+    clock = _FileClock()
     model = RobotModel(problem) if problem.has_robot else None
     ctx = SolveContext(problem, model, budgets)
-    report = Report(problem, model)
-    for q in problem.questions:
-        left = budgets.file_seconds - (time.process_time() - started)
+    questions = problem.questions
+
+    def answer_for(i: int):
+        q = questions[i]
+        left = budgets.file_seconds - clock.spent()
         if left <= 0:
             answer = Answer(q.type, q.id, error=f"not attempted: the file's budget of {budgets.file_seconds:g} s "
                                                "of CPU time is spent (a safety net)")
         else:
             answer = _solve_question(q, ctx, min(budgets.question_seconds, left))
         ctx.answers[q.id] = answer
-        report.answers.append(answer)
+        return answer
+
+    if figures is not None and _may_draw(questions):
+        figures.expect()
+    helper = _question_helper(problem, model, answer_for, clock) if split else None
+    answers: dict = {}
+
+    def add(i: int, answer) -> None:
+        answers[i] = ctx.answers[questions[i].id] = answer
         if figures is not None:
             figures.submit(answer.figures)
+
+    try:
+        for i in range(len(questions)):
+            if helper is None or i not in helper.indices:
+                add(i, answer_for(i))
+            for j, answer in (helper.arrived() if helper is not None else {}).items():
+                add(j, answer)
+        for j, answer in (helper.arrived(wait=True) if helper is not None else {}).items():
+            add(j, answer)
+    finally:
+        if helper is not None:
+            helper.close()
+    for i in range(len(questions)):
+        if i not in answers:         # the helper did not send it back: solved here
+            add(i, answer_for(i))
+    report = Report(problem, model)
+    report.answers = [answers[i] for i in range(len(questions))]
     return report
+
+
+def _may_draw(questions) -> bool:
+    from robosolve.questions.registry import QUESTION_TYPES
+
+    return any(QUESTION_TYPES[q.type].figures for q in questions if q.type in QUESTION_TYPES)
+
+
+class _FileClock:
+    """CPU time spent on the file: this process's since the start, or, in a question helper
+    (whose own clock starts at 0 when it is forked), the parent's until the fork plus its own."""
+
+    def __init__(self):
+        import os
+        import time
+
+        self._pid, self._start, self._before_fork = os.getpid(), time.process_time(), 0.0
+
+    def spent(self) -> float:
+        import os
+        import time
+
+        if os.getpid() == self._pid:
+            return time.process_time() - self._start
+        return self._before_fork + time.process_time()
+
+    def mark_fork(self) -> None:
+        self._before_fork = self.spent()
+
+
+def _question_helper(problem, model, answer_for, clock):
+    """A QuestionHelper for the questions `split_solve.plan` gives it, or None (no split)."""
+    from robosolve.core.processes import usable_cores
+    from robosolve.split_solve import QuestionHelper, plan
+
+    indices = plan(problem.questions, len(problem.joints)) if usable_cores() >= 2 else None
+    if not indices:
+        return None
+    if model is not None:
+        for frame in model.frames:      # computed once, before the fork: both processes use them
+            model.M0(frame)
+    clock.mark_fork()
+    helper = QuestionHelper(indices, answer_for)
+    return helper if helper.indices else None
 
 
 def _solve_question(q, ctx, seconds: float):

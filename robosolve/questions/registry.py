@@ -112,6 +112,14 @@ class QuestionType:
     # table for a type with two forms, e.g. displacement from/to or from a screw); None: the
     # AnswerKeys' `principal` flags (which then describe the default form)
     principal_for: Callable[[dict], tuple] | None = None
+    # What splitting a problem's questions between two processes needs (split_solve.py):
+    # `cost`, a rough CPU time of one question on a 3-joint robot (relative: only the balance
+    # counts), times (joints / 3) ** `cost_growth`; `unit`, a name shared by the types whose
+    # questions must be solved in one process (they share a derivation or results: the
+    # dynamics, a motion profile and the torques along it).
+    cost: float = 0.2
+    cost_growth: float = 1.0
+    unit: str | None = None
 
     @property
     def doc_page(self) -> str:
@@ -196,6 +204,7 @@ _TYPES = [
             _k("chain", MATRIX_LIST, "ⁱ⁻¹Mᵢ of each frame in its parent, from frame 1 on"),
         ),
         figures=(("robot", "robot"),),
+        cost=0.1,
     ),
     QuestionType(
         "velocity_acceleration", "Velocity and acceleration", "§8 question 2",
@@ -210,6 +219,7 @@ _TYPES = [
             _k("W_aux", MATRIX, "W in the auxiliary frame (origin at the point)", shape=(4, 4)),
             _k("H_aux", MATRIX, "H in the auxiliary frame", shape=(4, 4)),
         ),
+        cost=0.8, cost_growth=2,
     ),
     QuestionType(
         "jacobian", "Jacobian and singular configurations", "§8 question 3",
@@ -225,6 +235,7 @@ _TYPES = [
                principal=True, angle=True, unordered=True, by_value=True),
             _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N)),
         ),
+        cost=0.5, cost_growth=2,
     ),
     QuestionType(
         "statics", "Statics", "§8 question 4",
@@ -235,6 +246,7 @@ _TYPES = [
                hints=(("negated", "Fq = −Jᵀ·Fs is what the joints exert to balance the load; "
                                   "+Jᵀ·Fs is the load's own action on the joints"),)),
         ),
+        cost=0.2,
     ),
     QuestionType(
         "ellipsoids", "Force, velocity and compliance ellipsoids", "§8 question 5",
@@ -252,6 +264,7 @@ _TYPES = [
             _k("q_dot", JOINT_MAP, "joint rates giving the desired velocity", symbolic=False),
         ),
         figures=(("ellipsoids", "ellipsoids"),),
+        cost=0.3,
     ),
     QuestionType(
         "inverse_kinematics", "Inverse kinematics", "§8 question 6",
@@ -269,6 +282,7 @@ _TYPES = [
             _k("reason", TEXT, "why there is no solution", top=True),
         ),
         figures=(("solutions", "ik_solutions"),),
+        cost=0.8,
     ),
     QuestionType(
         "motion_profile", "Motion profile", "§8 question 7",
@@ -283,6 +297,7 @@ _TYPES = [
             _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", numeric=False),
         ),
         figures=(("profile", "motion_profile"),),
+        cost=0.1, unit="dynamics",
     ),
     QuestionType(
         "equations_of_motion", "Equations of motion", "§8 question 8",
@@ -299,6 +314,7 @@ _TYPES = [
             _k("potential_energy", BODY_MAP, "U per body and total"),
             _k("actuators", ACTUATOR_MAP, "actuator values needed at `at`", symbolic=False),
         ),
+        cost=0.7, cost_growth=2.5, unit="dynamics",
     ),
     QuestionType(
         "joint_torques", "Actuator torques along the profile", "§8 question 9",
@@ -312,6 +328,7 @@ _TYPES = [
             _k("profiles", ACTUATOR_MAP, "actuator -> piecewise expression in t", numeric=False),
         ),
         figures=(("torques", "joint_torques"),),
+        cost=0.4, cost_growth=2.5, unit="dynamics",
     ),
     QuestionType(
         "p_control", "Closed-loop control", "§8 question 10",
@@ -329,6 +346,7 @@ _TYPES = [
             _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False, digits=6),
         ),
         figures=(("tracking", "control_tracking"), ("effort", "control_effort")),
+        cost=1.3, unit="dynamics",
     ),
     QuestionType(
         "forward_dynamics", "Forward dynamics (the motion under given actuators)", "§6.5",
@@ -351,6 +369,7 @@ _TYPES = [
                numeric=False),
         ),
         figures=(("joint_<name>", "forward_dynamics"),),
+        cost=0.2, cost_growth=2.5, unit="dynamics",
     ),
     QuestionType(
         "displacement", "Rigid displacement (helical axis)", "§3.1",
@@ -371,6 +390,7 @@ _TYPES = [
         ),
         principal_for=_displacement_principal,
         figures=(("helical_axis", "helical_axis"),),
+        cost=0.05,
     ),
     QuestionType(
         "orientation", "Orientation representations", "§5.6",
@@ -390,6 +410,7 @@ _TYPES = [
                 _k("angle", SCALAR, "angle in [0, π]", angle=True))),
             _k("quaternion", VECTOR, "[η, εx, εy, εz], η ≥ 0", principal=True, shape=(4,)),
         ),
+        cost=0.1,
     ),
     QuestionType(
         "dof", "Degrees of freedom", "§1.1",
@@ -401,6 +422,7 @@ _TYPES = [
         answers=(
             _k("dof", SCALAR, "Grübler (planar) / Kutzbach (spatial)", principal=True),
         ),
+        cost=0.01,
     ),
 ]
 

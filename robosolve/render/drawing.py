@@ -17,7 +17,6 @@ when the output folder is written. `solve_problem` hands each answer's figures t
 from __future__ import annotations
 
 import io
-import os
 
 
 class FigureFailed(Exception):
@@ -38,6 +37,9 @@ def _draw_png(spec) -> bytes:
 class InlineFigures:
     """Draws each figure when its PNG is asked for."""
 
+    def expect(self) -> None:
+        """Figures will come: a background drawer gets ready (forks, imports matplotlib)."""
+
     def submit(self, specs) -> None:
         pass
 
@@ -56,20 +58,16 @@ class InlineFigures:
 
 
 def _serve(requests, results, parent_ends) -> None:
-    """The helper's loop: draw each (ticket, spec) received, send back (ticket, ok, bytes or reason).
-
-    It holds only its own ends of the two pipes, so that it ends when the parent's end of
-    `requests` is closed (the parent ended, however it ended) and a send to a parent gone fails
-    instead of blocking. A thread sends the PNGs, so the next figure is drawn meanwhile."""
+    """The helper's loop: draw each (ticket, spec) received, send back (ticket, ok, bytes or reason),
+    until the parent's end of `requests` is closed (robosolve.core.processes: the helpers' rules).
+    A thread sends the PNGs, so the next figure is drawn meanwhile."""
     import gc
     import queue
     import threading
 
-    from robosolve.interrupts import worker_init
+    from robosolve.core.processes import child_setup
 
-    for end in parent_ends:
-        end.close()
-    worker_init()
+    child_setup(parent_ends)
     gc.disable()        # a short-lived process: no collections of the heap it shares with the parent
     outbox: queue.SimpleQueue = queue.SimpleQueue()
 
@@ -106,29 +104,25 @@ class BackgroundFigures(InlineFigures):
         self._lost = False                         # no helper: everything is drawn inline
 
     def _start(self) -> None:
-        import multiprocessing
-        import threading
+        from robosolve.core.processes import fork_helper, pipe
 
-        if threading.active_count() > 1:    # a fork would copy locks other threads may hold
-            self._lost = True
-            return
-        try:
-            context = multiprocessing.get_context("fork")
-            requests, self._requests = context.Pipe(duplex=False)
-            self._results, results = context.Pipe(duplex=False)
-            self._process = context.Process(target=_serve, daemon=True,
-                                            args=(requests, results, (self._requests, self._results)))
-            self._process.start()
-        except (OSError, ValueError, AssertionError):   # no fork, no processes (a daemon's child)
-            self._process, self._lost = None, True
-            return
+        requests, self._requests = pipe()
+        self._results, results = pipe()
+        self._process = fork_helper(_serve, (requests, results, (self._requests, self._results)))
         requests.close()
         results.close()
+        if self._process is None:
+            self._lost = True
+            self._requests.close()
+            self._results.close()
+
+    def expect(self) -> None:
+        if self._process is None and not self._lost:
+            self._start()
 
     def submit(self, specs) -> None:
         for spec in specs:
-            if self._process is None and not self._lost:
-                self._start()
+            self.expect()
             if self._lost or id(spec) in self._tickets:
                 continue
             ticket = len(self._tickets)
@@ -160,12 +154,10 @@ class BackgroundFigures(InlineFigures):
     def close(self) -> None:
         if self._process is None:
             return
-        # Whatever the helper still does was not asked for (or the run is interrupted): it is
-        # stopped at once, and waited for, so that no process outlives the command.
+        from robosolve.core.processes import stop
+
         self._requests.close()
-        if self._process.is_alive():
-            self._process.terminate()
-        self._process.join()
+        stop(self._process)
         self._results.close()
         self._process = None
 
@@ -173,11 +165,6 @@ class BackgroundFigures(InlineFigures):
 def figure_drawer(background: bool = False):
     """A drawer for one command run, to use as a context manager: in a helper process when
     `background` is asked for and useful (two cores or more), inline otherwise."""
-    return BackgroundFigures() if background and _cores() >= 2 else InlineFigures()
+    from robosolve.core.processes import usable_cores
 
-
-def _cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        return os.cpu_count() or 1
+    return BackgroundFigures() if background and usable_cores() >= 2 else InlineFigures()

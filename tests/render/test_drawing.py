@@ -22,6 +22,15 @@ from robosolve.solvers.base import FigureSpec
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
 
 
+@pytest.fixture(autouse=True)
+def _no_other_threads(monkeypatch):
+    """Earlier tests of the session may leave a thread behind (a Dask client's event loop),
+    and a helper is then not forked at all (robosolve.core.processes): these tests fork anyway."""
+    import threading
+
+    monkeypatch.setattr(threading, "active_count", lambda: 1)
+
+
 @pytest.fixture(scope="module")
 def reports():
     # a robot drawing (one-link-arm) and IK solutions labelled with Text/Num (ik-planar-3r)
@@ -84,7 +93,7 @@ def test_no_helper_without_figures_or_cores(monkeypatch):
     with BackgroundFigures() as figures:
         figures.submit([])
         assert figures._process is None
-    monkeypatch.setattr("robosolve.render.drawing._cores", lambda: 1)
+    monkeypatch.setattr("robosolve.core.processes.usable_cores", lambda: 1)
     assert isinstance(figure_drawer(background=True), InlineFigures)
     assert not isinstance(figure_drawer(background=True), BackgroundFigures)
     assert not multiprocessing.active_children()

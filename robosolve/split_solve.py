@@ -1,0 +1,130 @@
+"""One problem's questions on two cores: a forked helper process solves some of them.
+
+`robosolve solve` on a machine with two cores or more (pipeline.solve_problem(split=True)):
+
+* `plan` splits the questions in two sets of about the same cost (the registry's `cost` and
+  `cost_growth`, the largest first); the questions of one `unit` (those that share the
+  dynamics' derivation, or a motion profile and the torques along it) stay together. A problem
+  whose smaller set costs too little to pay for a process is not split.
+* The helper is forked after the model's frames are computed, so both processes start from
+  them; it solves its questions in their order, with the same code, budgets and caches as the
+  parent, and sends each answer back pickled.
+* The parent solves the others meanwhile, then unpickles the helper's answers with sympy's
+  evaluation off (`sympy.evaluate(False)`): each expression is rebuilt from its arguments as it
+  was built, not simplified again, so the report is byte-identical to a solve in one process
+  (tested on every bundled problem). An answer that cannot be pickled, or a helper that dies,
+  only means that the parent solves that question itself afterwards.
+
+The helper follows robosolve.core.processes' rules (never outlives the command, no files).
+"""
+
+from __future__ import annotations
+
+import pickle
+
+# The smaller set must cost at least this (the registry's cost unit, about a second of CPU on
+# this project's machine): a helper costs a fork and the pickling of its answers.
+MIN_SPLIT_COST = 0.25
+
+
+def question_cost(question, joints: int) -> float:
+    from robosolve.questions.registry import QUESTION_TYPES
+
+    qt = QUESTION_TYPES.get(question.type)
+    if qt is None:
+        return 0.0
+    return qt.cost * (max(joints, 1) / 3) ** qt.cost_growth
+
+
+def plan(questions, joints: int) -> list[int] | None:
+    """The indices of the questions for the helper (in question order), or None: no split."""
+    from robosolve.questions.registry import QUESTION_TYPES
+
+    units: dict = {}
+    for i, q in enumerate(questions):
+        qt = QUESTION_TYPES.get(q.type)
+        units.setdefault(qt.unit if qt is not None and qt.unit else ("question", i), []).append(i)
+    cost = {key: sum(question_cost(questions[i], joints) for i in members) for key, members in units.items()}
+    sets: tuple[list, list] = ([], [])
+    loads = [0.0, 0.0]
+    for key in sorted(units, key=lambda k: (-cost[k], units[k][0])):    # largest first, then in order
+        side = 0 if loads[0] <= loads[1] else 1
+        sets[side].extend(units[key])
+        loads[side] += cost[key]
+    light = 0 if loads[0] < loads[1] else 1      # the helper's: its answers cost a pickling
+    if loads[light] < MIN_SPLIT_COST:
+        return None
+    return sorted(sets[light])
+
+
+def _serve(results, parent_ends, indices, solve_one) -> None:
+    """The helper: solve each question of `indices`, send (index, pickled answer or None)."""
+    from robosolve.core.processes import child_setup
+
+    child_setup(parent_ends)
+    for i in indices:
+        answer = solve_one(i)
+        try:
+            data = pickle.dumps(answer, protocol=pickle.HIGHEST_PROTOCOL)
+        except Exception:       # not picklable: the parent solves it again
+            data = None
+        try:
+            results.send((i, data))
+        except OSError:         # the parent is gone
+            return
+
+
+def _unpickled(data):
+    """The answer sent, rebuilt as it was built (no evaluation), or None."""
+    from sympy.core.parameters import evaluate
+
+    if data is None:
+        return None
+    try:
+        with evaluate(False):
+            return pickle.loads(data)
+    except Exception:   # solved again by the parent
+        return None
+
+
+class QuestionHelper:
+    """A forked helper solving the questions of `indices` with `solve_one(index) -> Answer`."""
+
+    def __init__(self, indices, solve_one):
+        from robosolve.core.processes import fork_helper, pipe
+
+        self.indices = list(indices)
+        self._results, results = pipe()
+        self._process = fork_helper(_serve, (results, (self._results,), self.indices, solve_one))
+        results.close()
+        self._pending = len(self.indices)
+        if self._process is None:
+            self._results.close()
+            self.indices = []
+
+    def arrived(self, wait: bool = False) -> dict:
+        """index -> Answer of the answers sent since the last call: those already there, or,
+        with `wait`, all the others (the helper is then stopped)."""
+        got: dict = {}
+        while self._process is not None and (wait or self._results.poll()):
+            try:
+                i, data = self._results.recv()
+            except (EOFError, OSError):
+                self.close()
+                break
+            self._pending -= 1
+            answer = _unpickled(data)
+            if answer is not None:
+                got[i] = answer
+            if not self._pending:
+                self.close()
+        return got
+
+    def close(self) -> None:
+        if self._process is None:
+            return
+        from robosolve.core.processes import stop
+
+        stop(self._process)
+        self._results.close()
+        self._process = None

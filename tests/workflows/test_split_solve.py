@@ -1,0 +1,121 @@
+"""A problem's questions on two cores (robosolve/split_solve.py): the plan, the helper's
+failures, the file budget's clock, and the same report as one process.
+
+The references: the plan is checked against its rules (units together, every question once,
+no split of a cheap problem); the reports against robosolve's own one-process solve (what
+`batch` and the golden files give), which the solver tests check against independent tools —
+these tests check that splitting changes no byte."""
+
+from __future__ import annotations
+
+import os
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from robosolve.load.loader import load_problem
+from robosolve.pipeline import _FileClock, render_files, solve_problem
+from robosolve.questions.registry import QUESTION_TYPES
+from robosolve.solvers.base import Answer
+from robosolve.split_solve import MIN_SPLIT_COST, QuestionHelper, plan, question_cost
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(autouse=True)
+def _no_other_threads(monkeypatch):
+    """Earlier tests of the session may leave a thread behind (a Dask client's event loop),
+    and a helper is then not forked at all (robosolve.core.processes): these tests fork anyway."""
+    import threading
+
+    monkeypatch.setattr(threading, "active_count", lambda: 1)
+
+
+def _questions(*types):
+    return [SimpleNamespace(type=t) for t in types]
+
+
+def test_the_plan_keeps_each_unit_together_and_every_question_once():
+    qs = _questions("position", "velocity_acceleration", "motion_profile", "jacobian", "equations_of_motion",
+                    "joint_torques", "inverse_kinematics", "statics")
+    helper = plan(qs, 3)
+    assert helper is not None and helper == sorted(helper)
+    parent = [i for i in range(len(qs)) if i not in helper]
+    units = {i for i, q in enumerate(qs) if QUESTION_TYPES[q.type].unit == "dynamics"}
+    assert units <= set(helper) or units <= set(parent)
+    cost = [question_cost(q, 3) for q in qs]
+    assert sum(cost[i] for i in helper) <= sum(cost[i] for i in parent) + 1e-9
+    assert sum(cost[i] for i in helper) >= MIN_SPLIT_COST
+
+
+def test_no_split_when_it_does_not_pay():
+    assert plan(_questions("position"), 3) is None
+    assert plan(_questions("dof", "dof", "displacement"), 0) is None
+    # one unit only: the dynamics' questions share one derivation
+    assert plan(_questions("equations_of_motion", "joint_torques", "motion_profile"), 6) is None
+
+
+def test_costs_grow_with_the_joints():
+    q = _questions("equations_of_motion")[0]
+    assert question_cost(q, 6) > 4 * question_cost(q, 3) > 0
+    assert question_cost(_questions("no_such_type")[0], 3) == 0.0
+
+
+def _answer(i):
+    return Answer("position", f"q{i}", numeric={"value": i})
+
+
+def test_the_helper_sends_what_it_can_and_nothing_else():
+    def solve_one(i):
+        if i == 2:
+            os._exit(3)             # the helper dies on its third question
+        answer = _answer(i)
+        if i == 1:
+            answer.extra["x"] = lambda: None        # not picklable
+        return answer
+
+    helper = QuestionHelper([0, 1, 2, 3], solve_one)
+    got = helper.arrived(wait=True)
+    assert sorted(got) == [0] and got[0].numeric == {"value": 0}
+    assert helper._process is None      # stopped and waited for
+
+
+def test_the_helpers_clock_counts_the_parents_time_before_the_fork():
+    clock = _FileClock()
+    end = time.process_time() + 0.2
+    while time.process_time() < end:
+        pass
+    clock.mark_fork()
+    helper = QuestionHelper([0], lambda i: Answer("position", "q", numeric={"spent": clock.spent()}))
+    spent = helper.arrived(wait=True)[0].numeric["spent"]
+    assert spent >= 0.2
+
+
+@pytest.mark.parametrize("name", ["planar-2r-rods.yaml", "rigid-displacements.yaml"])
+def test_a_split_solve_writes_the_same_files(name):
+    problem = load_problem(ROOT / "problems" / name)
+    assert plan(problem.questions, len(problem.joints)) is not None
+    split = render_files(solve_problem(problem, split=True), ("md", "html"))
+    whole = render_files(solve_problem(load_problem(ROOT / "problems" / name)), ("md", "html"))
+    assert split == whole
+
+
+def test_a_question_the_helper_does_not_send_is_solved_by_the_parent(monkeypatch):
+    import robosolve.split_solve as split_solve
+
+    monkeypatch.setattr(split_solve, "_unpickled", lambda data: None)     # every answer lost
+    problem = load_problem(ROOT / "problems" / "planar-2r-rods.yaml")
+    split = solve_problem(problem, split=True)
+    whole = solve_problem(load_problem(ROOT / "problems" / "planar-2r-rods.yaml"))
+    assert [a.id for a in split.answers] == [q.id for q in problem.questions]
+    assert render_files(split) == render_files(whole)
+
+
+def test_no_helper_beside_another_thread(monkeypatch):
+    import threading
+
+    monkeypatch.setattr(threading, "active_count", lambda: 2)
+    helper = QuestionHelper([0, 1], _answer)
+    assert helper.indices == [] and helper.arrived(wait=True) == {}
