@@ -5,25 +5,49 @@ from __future__ import annotations
 import json
 
 import sympy as sp
+from sympy.printing.str import StrPrinter
 
 from robosolve.core.prose import Num, Text
 from robosolve.questions.registry import QUESTION_TYPES
 from robosolve.render.numbers import json_number, text
 
 
-def symbolic_value(v):
+class SharedStrPrinter(StrPrinter):
+    """`str()` of sympy expressions, each subexpression printed once per results.json.
+
+    The entries of an answer's matrices share their subexpressions, which `str()` prints again
+    wherever they occur. The printer's text of an expression depends on the expression, the
+    settings, and (for a Float only) on whether it is printed at the top or inside another
+    expression: that is the key. The strings are `str()`'s (tested)."""
+
+    def __init__(self):
+        super().__init__({"order": None})       # what Basic.__str__ asks for
+        self._printed: dict = {}
+
+    def _print(self, expr, **kwargs) -> str:
+        if kwargs or not isinstance(expr, sp.Basic):
+            return super()._print(expr, **kwargs)
+        key = (expr, self._print_level == 0)
+        out = self._printed.get(key)
+        if out is None:
+            out = self._printed[key] = super()._print(expr)
+        return out
+
+
+def symbolic_value(v, printer: SharedStrPrinter | None = None):
     """sympy objects -> str() strings (lists of rows for matrices), recursively."""
+    printer = printer or SharedStrPrinter()
     if isinstance(v, sp.MatrixBase):
-        return [[str(e) for e in v.row(i)] for i in range(v.rows)]
+        return [[printer.doprint(e) for e in v.row(i)] for i in range(v.rows)]
     if isinstance(v, dict):
-        return {str(k): symbolic_value(x) for k, x in v.items()}
+        return {str(k): symbolic_value(x, printer) for k, x in v.items()}
     if isinstance(v, (list, tuple)):
-        return [symbolic_value(x) for x in v]
+        return [symbolic_value(x, printer) for x in v]
     if v is None or isinstance(v, bool):
         return v
     if isinstance(v, str):
         return v
-    return str(sp.sympify(v))
+    return printer.doprint(sp.sympify(v))
 
 
 def numeric_value(v, key=None):
@@ -52,13 +76,14 @@ def _numeric_answers(answer) -> dict:
             for k, v in answer.numeric.items()}
 
 
-def answer_record(answer, figure_paths: list[str]) -> dict:
+def answer_record(answer, figure_paths: list[str], printer: SharedStrPrinter | None = None) -> dict:
+    printer = printer or SharedStrPrinter()
     rec: dict = {"type": answer.type}
     for k, v in answer.extra.items():
-        rec[k] = numeric_value(v) if not isinstance(v, (sp.Basic, sp.MatrixBase)) else symbolic_value(v)
+        rec[k] = numeric_value(v) if not isinstance(v, (sp.Basic, sp.MatrixBase)) else symbolic_value(v, printer)
     if answer.error is not None:
         rec["error"] = answer.error
-    rec["symbolic"] = symbolic_value(answer.symbolic)
+    rec["symbolic"] = symbolic_value(answer.symbolic, printer)
     rec["numeric"] = _numeric_answers(answer)
     rec["figures"] = list(figure_paths)
     rec["notes"] = [text(n) for n in answer.notes]
@@ -66,10 +91,11 @@ def answer_record(answer, figure_paths: list[str]) -> dict:
 
 
 def results_document(report, figure_paths: dict) -> dict:
+    printer = SharedStrPrinter()
     return {
         "format": 1,
         "problem": report.problem.name,
-        "answers": {a.id: answer_record(a, figure_paths.get(a.id, [])) for a in report.answers},
+        "answers": {a.id: answer_record(a, figure_paths.get(a.id, []), printer) for a in report.answers},
     }
 
 

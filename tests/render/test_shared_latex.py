@@ -19,8 +19,11 @@ def _random_expr(rng: random.Random, depth: int = 3):
         return rng.choice(leaves)
     kind = rng.randrange(7)
     a, b = _random_expr(rng, depth - 1), _random_expr(rng, depth - 1)
-    return [a + b, a * b, a - b, sp.cos(a), sp.sin(a + b) ** 2, a ** rng.choice([2, -1, sp.Rational(1, 2)]),
-            sp.sqrt(a * a + b)][kind]
+    power = rng.choice([2, -1, sp.Rational(1, 2)])
+    try:
+        return [a + b, a * b, a - b, sp.cos(a), sp.sin(a + b) ** 2, a ** power, sp.sqrt(a * a + b)][kind]
+    except ZeroDivisionError:      # 0.0 ** -1
+        return a
 
 
 def test_every_expression_prints_as_sympy_prints_it():
@@ -40,3 +43,19 @@ def test_a_derivative_and_a_power_of_a_function_print_as_sympy_prints_them():
     exprs = [sp.cos(q1) ** 2, sp.sin(q1 + q2) ** 3 * sp.cos(q1) ** 2, f.diff(t) ** 2 + f, sp.exp(-q1) ** 2]
     tex = Tex(NAMES)
     assert [tex(e) for e in exprs + exprs] == [sp.latex(e, symbol_names=NAMES) for e in exprs + exprs]
+
+
+def test_results_json_strings_are_str_of_every_expression():
+    """render/results_json.py:SharedStrPrinter against sympy's own `str` (Floats at the top and
+    inside, as a matrix entry and within a sum, are printed differently by `str`)."""
+    from robosolve.render.results_json import SharedStrPrinter, symbolic_value
+
+    rng = random.Random(16)
+    exprs = [_random_expr(rng) for _ in range(300)] + [sp.Float(2.0), sp.Float(0.5) * q1, q1 + sp.Float(1.25)]
+    exprs += [sum(exprs[k:k + 5]) for k in range(0, 100, 5)]
+    printer = SharedStrPrinter()
+    for e in exprs + exprs[::-1]:
+        assert printer.doprint(e) == str(e), e
+    m = sp.Matrix([[sp.Float(1.0), q1 * sp.Float(2.0)], [exprs[3], exprs[4]]])
+    assert symbolic_value({"M": m, "v": [exprs[5], sp.Float(3.0)]}, printer) == {
+        "M": [[str(x) for x in m.row(i)] for i in range(2)], "v": [str(exprs[5]), str(sp.Float(3.0))]}
