@@ -159,6 +159,10 @@ def start_local_cluster(jobs: int = 0):
                         silence_logs=logging.ERROR)
 
 
+# How long `--scheduler tcp://…` waits for the scheduler before it is a usage error.
+CONNECT_TIMEOUT = "10s"
+
+
 def _connect(scheduler, jobs):
     from dask.distributed import Client
 
@@ -166,7 +170,7 @@ def _connect(scheduler, jobs):
         cluster = start_local_cluster(jobs)
         return Client(cluster), cluster
     try:
-        return Client(scheduler, timeout="10s"), None
+        return Client(scheduler, timeout=CONNECT_TIMEOUT), None
     except (OSError, TimeoutError) as exc:
         raise SchedulerError(f"cannot reach the Dask scheduler at {scheduler}: {exc}") from None
 

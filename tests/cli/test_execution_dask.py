@@ -66,9 +66,10 @@ def test_variants_on_dask_equal_the_local_pool(scheduler, tmp_path):
     assert tree(local) == tree(remote)
 
 
-def test_an_unreachable_scheduler_is_a_usage_error(tmp_path):
+def test_an_unreachable_scheduler_is_a_usage_error(tmp_path, monkeypatch):
     from tests.workflows.test_variants import problem_file
 
+    monkeypatch.setattr("robosolve.execution.CONNECT_TIMEOUT", "1s")    # nothing listens there
     p = problem_file(tmp_path)
     r = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve",
                             "--scheduler", "tcp://127.0.0.1:9"])
