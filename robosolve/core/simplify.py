@@ -141,6 +141,11 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
         return sp.expand(expr) if expr.is_Add or expr.is_Mul else expr
     if sp.count_ops(expr) > max_ops:
         return expr
+    floats, back = _float_placeholders(expr)
+    if floats:
+        # inexact coefficients (a DH twist of 0.3 rad): the same route with each float as a
+        # symbol, put back at the end (trigsimp on float entries took seconds each)
+        return chain_product(expr.xreplace(floats), max_ops, seconds=seconds).xreplace(back)
     try:
         with time_limit(seconds) as token:
             expanded = sp.expand(expr)
@@ -166,6 +171,19 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
         if exc.token is not token:
             raise          # an enclosing step's time is up
         raise _Incomplete(expr) from None
+
+
+def _float_placeholders(expr) -> tuple[dict, dict]:
+    """(Float -> ±Dummy, Dummy -> Float): one positive symbol per float magnitude of expr (so
+    that 0.3 and -0.3 cancel as symbols do); ({}, {}) when there is no float, or when a float is
+    inside an angle (sin(θ + 0.3): kept as it is, on trigsimp's route)."""
+    floats = expr.atoms(sp.Float)
+    if not floats or any(t.args[0].atoms(sp.Float) for t in expr.atoms(sp.sin, sp.cos)):
+        return {}, {}
+    sizes = sorted({abs(f) for f in floats if f != 0})
+    symbol = {m: sp.Dummy(f"f{k}", positive=True) for k, m in enumerate(sizes)}
+    to = {f: symbol[f] if f > 0 else -symbol[-f] for f in floats if f != 0}
+    return to, {d: m for m, d in symbol.items()}
 
 
 def _canonical_trig(expanded):

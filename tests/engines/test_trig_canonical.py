@@ -93,3 +93,20 @@ def test_is_zero_by_the_normal_form():
         assert S.is_zero(e + 1 - ident) is False
     assert S.is_zero(L1 * (sp.sin(q1) ** 2 + sp.cos(q1) ** 2) - L1)
     assert not S.is_zero(sp.sin(q1) * sp.cos(q2) - sp.sin(q2) * sp.cos(q1))
+
+
+def test_entries_with_float_coefficients_keep_their_value_and_lose_their_products():
+    """A float DH twist (alpha: 0.3) gives entries with float coefficients: they take the ring
+    route with each float as a symbol (not trigsimp), keep their value, and come out without
+    products of sines and cosines of one angle that the addition formulas can collapse."""
+    rng = random.Random(7)
+    c, s = sp.Float(0.955336489125606), sp.Float(0.29552020666134)
+    for _ in range(6):
+        entry = sp.expand(c * _random_trig_sum(rng) + s * _random_trig_sum(rng))
+        tidied = S.chain_product(entry)
+        assert _equal_at_random_points(entry, tidied) and not tidied.has(sp.Dummy)
+    entry = sp.expand(s * L1 * (sp.cos(q1) * sp.cos(q2) - sp.sin(q1) * sp.sin(q2)) + c * L2 * sp.cos(q3))
+    assert S.chain_product(entry) == s * L1 * sp.cos(q1 + q2) + c * L2 * sp.cos(q3)
+    # a float inside an angle stays there (trigsimp's route, as before)
+    offset = sp.expand(sp.sin(q1 + sp.Float(0.3)) * L1 + sp.Float(0.5) * sp.cos(q2))
+    assert _equal_at_random_points(offset, S.chain_product(offset))
