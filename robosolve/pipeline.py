@@ -74,8 +74,10 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
     finally:
         if helper is not None:
             helper.close()
-    for i in range(len(questions)):
-        if i not in answers:         # the helper did not send it back: solved here
+    if len(answers) < len(questions):    # the helper did not send some back: solved here
+        from robosolve.split_solve import to_solve_again
+
+        for i in to_solve_again(questions, answers):
             add(i, answer_for(i))
     report = Report(problem, model)
     report.answers = [answers[i] for i in range(len(questions))]

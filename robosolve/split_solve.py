@@ -36,20 +36,36 @@ def question_cost(question, joints: int) -> float:
     return qt.cost * (max(joints, 1) / 3) ** qt.cost_growth
 
 
-def plan(questions, joints: int) -> list[int] | None:
-    """The indices of the questions for the helper (in question order), or None: no split."""
+def units(questions) -> dict:
+    """unit -> the indices of its questions: a registry `unit`, or a question on its own."""
     from robosolve.questions.registry import QUESTION_TYPES
 
-    units: dict = {}
+    out: dict = {}
     for i, q in enumerate(questions):
         qt = QUESTION_TYPES.get(q.type)
-        units.setdefault(qt.unit if qt is not None and qt.unit else ("question", i), []).append(i)
-    cost = {key: sum(question_cost(questions[i], joints) for i in members) for key, members in units.items()}
+        out.setdefault(qt.unit if qt is not None and qt.unit else ("question", i), []).append(i)
+    return out
+
+
+def to_solve_again(questions, received) -> list[int]:
+    """The questions the parent solves after the helper: each one not received, with the rest of
+    its unit (a joint_torques question needs its motion profile solved in the same process)."""
+    again: set = set()
+    for members in units(questions).values():
+        if any(i not in received for i in members):
+            again.update(members)
+    return sorted(again)
+
+
+def plan(questions, joints: int) -> list[int] | None:
+    """The indices of the questions for the helper (in question order), or None: no split."""
+    grouped = units(questions)
+    cost = {key: sum(question_cost(questions[i], joints) for i in members) for key, members in grouped.items()}
     sets: tuple[list, list] = ([], [])
     loads = [0.0, 0.0]
-    for key in sorted(units, key=lambda k: (-cost[k], units[k][0])):    # largest first, then in order
+    for key in sorted(grouped, key=lambda k: (-cost[k], grouped[k][0])):    # largest first, then in order
         side = 0 if loads[0] <= loads[1] else 1
-        sets[side].extend(units[key])
+        sets[side].extend(grouped[key])
         loads[side] += cost[key]
     light = 0 if loads[0] < loads[1] else 1      # the helper's: its answers cost a pickling
     if loads[light] < MIN_SPLIT_COST:

@@ -124,3 +124,13 @@ def test_no_helper_beside_another_thread(monkeypatch):
     monkeypatch.setattr(threading, "active_count", lambda: 2)
     helper = QuestionHelper([0, 1], _answer)
     assert helper.indices == [] and helper.arrived(wait=True) == {}
+
+
+def test_a_unit_is_solved_again_whole():
+    """A joint_torques answer lost on the way needs its motion profile solved in the parent too."""
+    from robosolve.split_solve import to_solve_again
+
+    qs = _questions("position", "motion_profile", "joint_torques", "jacobian", "inverse_kinematics")
+    assert to_solve_again(qs, {0, 1, 3, 4}) == [1, 2]
+    assert to_solve_again(qs, {0, 1, 2, 4}) == [3]
+    assert to_solve_again(qs, {0, 1, 2, 3, 4}) == []
