@@ -55,7 +55,7 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
 
     if figures is not None and _may_draw(questions):
         figures.expect()
-    helper = _question_helper(problem, model, answer_for, clock) if split else None
+    helper = _question_helper(problem, model, answer_for, clock, split)
     answers: dict = {}
 
     def add(i: int, answer) -> None:
@@ -65,15 +65,14 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
 
     try:
         for i in range(len(questions)):
-            if helper is None or i not in helper.indices:
+            if i not in helper.indices:
                 add(i, answer_for(i))
-            for j, answer in (helper.arrived() if helper is not None else {}).items():
+            for j, answer in helper.arrived().items():
                 add(j, answer)
-        for j, answer in (helper.arrived(wait=True) if helper is not None else {}).items():
+        for j, answer in helper.arrived(wait=True).items():
             add(j, answer)
     finally:
-        if helper is not None:
-            helper.close()
+        helper.close()
     if len(answers) < len(questions):    # the helper did not send some back: solved here
         from robosolve.split_solve import to_solve_again
 
@@ -112,20 +111,20 @@ class _FileClock:
         self._before_fork = self.spent()
 
 
-def _question_helper(problem, model, answer_for, clock):
-    """A QuestionHelper for the questions `split_solve.plan` gives it, or None (no split)."""
+def _question_helper(problem, model, answer_for, clock, split: bool):
+    """A QuestionHelper for the questions `split_solve.plan` gives it (with `split`, on two cores
+    or more), else one that owns no question."""
     from robosolve.core.processes import usable_cores
     from robosolve.split_solve import QuestionHelper, plan
 
-    indices = plan(problem.questions, len(problem.joints)) if usable_cores() >= 2 else None
+    indices = plan(problem.questions, len(problem.joints)) if split and usable_cores() >= 2 else None
     if not indices:
-        return None
+        return QuestionHelper()
     if model is not None:
         for frame in model.frames:      # computed once, before the fork: both processes use them
             model.M0(frame)
     clock.mark_fork()
-    helper = QuestionHelper(indices, answer_for)
-    return helper if helper.indices else None
+    return QuestionHelper(indices, answer_for)
 
 
 def _solve_question(q, ctx, seconds: float):

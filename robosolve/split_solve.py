@@ -31,9 +31,7 @@ def question_cost(question, joints: int) -> float:
     from robosolve.questions.registry import QUESTION_TYPES
 
     qt = QUESTION_TYPES.get(question.type)
-    if qt is None:
-        return 0.0
-    return qt.cost * (max(joints, 1) / 3) ** qt.cost_growth
+    return 0.0 if qt is None else qt.split_cost(joints)
 
 
 def units(questions) -> dict:
@@ -104,16 +102,21 @@ def _unpickled(data):
 
 
 class QuestionHelper:
-    """A forked helper solving the questions of `indices` with `solve_one(index) -> Answer`."""
+    """A forked helper solving the questions of `indices` with `solve_one(index) -> Answer`.
+    Without indices, or when no fork is possible, it is no helper: it owns no question and
+    sends nothing."""
 
-    def __init__(self, indices, solve_one):
+    def __init__(self, indices=(), solve_one=None):
         from robosolve.core.processes import fork_helper, pipe
 
         self.indices = list(indices)
+        self._process = None
+        self._pending = len(self.indices)
+        if not self.indices:
+            return
         self._results, results = pipe()
         self._process = fork_helper(_serve, (results, (self._results,), self.indices, solve_one))
         results.close()
-        self._pending = len(self.indices)
         if self._process is None:
             self._results.close()
             self.indices = []

@@ -121,6 +121,10 @@ class QuestionType:
     cost_growth: float = 1.0
     unit: str | None = None
 
+    def split_cost(self, joints: int) -> float:
+        """The `cost` of one question of this type on a robot with `joints` joints."""
+        return self.cost * (max(joints, 1) / 3) ** self.cost_growth
+
     @property
     def doc_page(self) -> str:
         return self.doc or f"docs/questions/{self.name}.md"

@@ -94,12 +94,13 @@ def _serve(requests, results, parent_ends) -> None:
 
 
 class BackgroundFigures(InlineFigures):
-    """Draws the figures in a helper process, forked when the first figure is submitted (see the
-    module's docstring): a problem without figures costs nothing."""
+    """Draws the figures in a helper process, forked when figures are expected (see the module's
+    docstring): a problem without figures costs nothing. A figure's ticket is id(spec): its
+    spec stays alive in its answer until the PNG is asked for."""
 
     def __init__(self):
         self._process = None
-        self._tickets: dict[int, int] = {}         # id(spec) -> ticket
+        self._sent: set[int] = set()               # tickets sent to the helper
         self._done: dict[int, tuple] = {}          # ticket -> (ok, bytes or reason)
         self._lost = False                         # no helper: everything is drawn inline
 
@@ -123,18 +124,17 @@ class BackgroundFigures(InlineFigures):
     def submit(self, specs) -> None:
         for spec in specs:
             self.expect()
-            if self._lost or id(spec) in self._tickets:
+            if self._lost or id(spec) in self._sent:
                 continue
-            ticket = len(self._tickets)
             try:
-                self._requests.send((ticket, spec))
+                self._requests.send((id(spec), spec))
             except Exception:   # a spec that cannot be sent (or a helper gone) is drawn inline
                 continue
-            self._tickets[id(spec)] = ticket
+            self._sent.add(id(spec))
 
     def png(self, spec) -> bytes:
-        ticket = self._tickets.get(id(spec))
-        if ticket is None or not self._wait_for(ticket):
+        ticket = id(spec)
+        if ticket not in self._sent or not self._wait_for(ticket):
             return _draw_png(spec)
         ok, payload = self._done.pop(ticket)
         if not ok:

@@ -7,37 +7,14 @@ LaTeX uses only what GitHub's math renderer supports: `$...$` inline and
 from __future__ import annotations
 
 import sympy as sp
-from sympy.printing.latex import LatexPrinter
 
 from robosolve.questions.registry import title as question_title
 from robosolve.core.prose import Num, Text
 from robosolve.render.compact import CompactTrig, display_lines
 from robosolve.render.configuration import configuration_text, overrides_by_parameter
 from robosolve.render.numbers import report_number, text
+from robosolve.render.printers import SharedLatexPrinter
 
-
-
-class _SharedLatexPrinter(LatexPrinter):
-    """sympy's LaTeX printer that prints each subexpression once per report.
-
-    The entries of a report's matrices share their subexpressions (the same sums of products
-    of c_{1}, s_{23}, …, in M, W, H and their numbers), and sympy's printer sorts and prints
-    each sum again wherever it occurs. Its printing methods depend only on the expression and
-    the printer's settings, so the text of a subexpression printed without keyword arguments
-    (`exp=` of a power of a function changes the text) is kept and reused: the same LaTeX, in
-    about half of a report's printing time."""
-
-    def __init__(self, symbol_names: dict):
-        super().__init__({"symbol_names": symbol_names})
-        self._printed: dict = {}
-
-    def _print(self, expr, **kwargs) -> str:
-        if kwargs or not isinstance(expr, sp.Basic):
-            return super()._print(expr, **kwargs)
-        out = self._printed.get(expr)
-        if out is None:
-            out = self._printed[expr] = super()._print(expr)
-        return out
 
 
 class Tex:
@@ -52,7 +29,7 @@ class Tex:
         # the printer's names: the problem's, and the compact symbols' as they appear (the
         # printer reads this dict when it prints a symbol)
         self._printer_names = dict(symbol_names)
-        self._printer = _SharedLatexPrinter(self._printer_names)
+        self._printer = SharedLatexPrinter(self._printer_names)
 
     def __call__(self, v) -> str:
         if isinstance(v, sp.Basic):

@@ -5,33 +5,11 @@ from __future__ import annotations
 import json
 
 import sympy as sp
-from sympy.printing.str import StrPrinter
 
 from robosolve.core.prose import Num, Text
 from robosolve.questions.registry import QUESTION_TYPES
 from robosolve.render.numbers import json_number, text
-
-
-class SharedStrPrinter(StrPrinter):
-    """`str()` of sympy expressions, each subexpression printed once per results.json.
-
-    The entries of an answer's matrices share their subexpressions, which `str()` prints again
-    wherever they occur. The printer's text of an expression depends on the expression, the
-    settings, and (for a Float only) on whether it is printed at the top or inside another
-    expression: that is the key. The strings are `str()`'s (tested)."""
-
-    def __init__(self):
-        super().__init__({"order": None})       # what Basic.__str__ asks for
-        self._printed: dict = {}
-
-    def _print(self, expr, **kwargs) -> str:
-        if kwargs or not isinstance(expr, sp.Basic):
-            return super()._print(expr, **kwargs)
-        key = (expr, self._print_level == 0)
-        out = self._printed.get(key)
-        if out is None:
-            out = self._printed[key] = super()._print(expr)
-        return out
+from robosolve.render.printers import SharedStrPrinter
 
 
 def symbolic_value(v, printer: SharedStrPrinter | None = None):
