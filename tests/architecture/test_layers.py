@@ -5,7 +5,8 @@ Every `import` of every module is read from the AST (function-level imports incl
 * each module belongs to a declared layer (a new package must be declared here and in
   docs/architecture.md);
 * a module imports only its own layer or lower ones: load -> model -> engines -> solvers
-  -> render -> pipeline/batch -> cli, with errors/core/questions below everything;
+  -> render -> pipeline/batch -> cli, with errors/core below everything and the
+  question types (questions/) beside the loader;
 * the engines (kinematics, ik, dynamics, motion, geometry) are pure math: besides each
   other they import only core and errors (no question, no context, no model);
 * no import circle between modules.
@@ -22,8 +23,10 @@ PACKAGE = Path(__file__).resolve().parents[2] / "robosolve"
 
 # layer rank of each top-level part of the package
 LAYERS = {
-    "robosolve": 0, "errors": 0, "interrupts": 0, "core": 0, "questions": 0,
-    "load": 1,
+    "robosolve": 0, "errors": 0, "interrupts": 0, "core": 0,
+    # the question types sit with the loader: a type module names its option validators
+    # (load/validators.py) and the loader reads the registry
+    "load": 1, "questions": 1,
     "model": 2,
     "kinematics": 3, "ik": 3, "dynamics": 3, "motion": 3, "geometry": 3,
     "solvers": 4,
