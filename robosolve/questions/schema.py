@@ -121,7 +121,7 @@ class QuestionType:
     has_jacobian: bool = False     # its answer has a Jacobian J at the question's `at`
     reaches: bool = False          # it searches configurations reaching a target (`reachable`)
     # (rank, phrase): where time-varying forces are followed, in the loader's message that
-    # refuses `t` elsewhere ("a forward_dynamics run"); time_laws: its option whose values
+    # refuses `t` elsewhere ("a simulation run"); time_laws: its option whose values
     # may use t
     time_use: tuple = ()
     time_laws: str = ""
