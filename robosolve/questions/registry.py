@@ -34,7 +34,8 @@ def _collect() -> dict[str, QuestionType]:
     types = {}
     for module in MODULES:
         qt = importlib.import_module(f"robosolve.questions.{module}").TYPE
-        assert qt.name == module, f"robosolve/questions/{module}.py defines the type {qt.name!r}"
+        if qt.name != module:
+            raise TypeError(f"robosolve/questions/{module}.py defines the type {qt.name!r}")
         types[qt.name] = qt
     return types
 
