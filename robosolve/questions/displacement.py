@@ -1,4 +1,6 @@
-"""The `displacement` question type: Rigid displacement (helical axis); its options, checks and answer schema."""
+"""The `displacement` question type:
+Rigid displacement (helical axis); its options, checks and answer schema.
+"""
 
 from __future__ import annotations
 

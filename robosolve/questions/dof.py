@@ -1,4 +1,4 @@
-"""The `dof` question type: Degrees of freedom; its options, checks and answer schema."""
+"""The `dof` question type (Degrees of freedom): options, checks, answer schema."""
 
 from __future__ import annotations
 

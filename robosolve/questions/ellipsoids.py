@@ -1,4 +1,6 @@
-"""The `ellipsoids` question type: Force, velocity and compliance ellipsoids; its options, checks and answer schema."""
+"""The `ellipsoids` question type:
+Force, velocity and compliance ellipsoids; its options, checks and answer schema.
+"""
 
 from __future__ import annotations
 

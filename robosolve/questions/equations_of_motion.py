@@ -1,8 +1,8 @@
-"""The `equations_of_motion` question type: Equations of motion; its options, checks and answer schema."""
+"""The `equations_of_motion` question type (Equations of motion): options, checks, answer schema."""
 
 from __future__ import annotations
 
-from robosolve.questions.schema import ACTUATOR_MAP, BODY_MAP, EQUATIONS, JOINT_MAP, M, MATRIX, N, VECTOR, QuestionType, _k
+from robosolve.questions.schema import ACTUATOR_MAP, BODY_MAP, EQUATIONS, JOINT_MAP, MATRIX, N, VECTOR, QuestionType, _k
 
 
 def _has_time(force) -> bool:
@@ -15,10 +15,10 @@ def _check(ql, path, item, q):
         return
     timed = [f.name for f in ql.b.problem.forces if _has_time(f)]
     if timed:
+        follow = ql.type_name("time_laws")
         ql.chk.error(path + ("at",), f"the force{'s' if len(timed) > 1 else ''} {', '.join(timed)} "
                      "vary with time t, so the numbers at a configuration would need a time: drop `at` "
-                     f"(the symbolic equations keep t), or follow the motion with a {ql.type_name('time_laws')} "
-                     "question")
+                     f"(the symbolic equations keep t), or follow the motion with a {follow} question")
 
 
 TYPE = QuestionType(

@@ -1,4 +1,6 @@
-"""The `forward_dynamics` question type: Forward dynamics (the motion under given actuators); its options, checks and answer schema."""
+"""The `forward_dynamics` question type:
+Forward dynamics (the motion under given actuators); its options, checks and answer schema.
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The `inverse_kinematics` question type: Inverse kinematics; its options, checks and answer schema."""
+"""The `inverse_kinematics` question type (Inverse kinematics): options, checks, answer schema."""
 
 from __future__ import annotations
 

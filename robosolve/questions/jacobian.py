@@ -1,4 +1,6 @@
-"""The `jacobian` question type: Jacobian and singular configurations; its options, checks and answer schema."""
+"""The `jacobian` question type:
+Jacobian and singular configurations; its options, checks and answer schema.
+"""
 
 from __future__ import annotations
 

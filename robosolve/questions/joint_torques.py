@@ -1,4 +1,6 @@
-"""The `joint_torques` question type: Actuator torques along the profile; its options, checks and answer schema."""
+"""The `joint_torques` question type:
+Actuator torques along the profile; its options, checks and answer schema.
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The `motion_profile` question type: Motion profile; its options, checks and answer schema."""
+"""The `motion_profile` question type (Motion profile): options, checks, answer schema."""
 
 from __future__ import annotations
 

@@ -1,9 +1,9 @@
-"""The `orientation` question type: Orientation representations; its options, checks and answer schema."""
+"""The `orientation` question type (Orientation representations): options, checks, answer schema."""
 
 from __future__ import annotations
 
 from robosolve.load import validators as V
-from robosolve.questions.schema import BOOL, R, RECORD, SCALAR, VECTOR, VECTOR_SET, QuestionType, _k
+from robosolve.questions.schema import BOOL, RECORD, SCALAR, VECTOR, VECTOR_SET, QuestionType, _k
 
 
 def _needs_robot(item: dict) -> bool:

@@ -1,4 +1,4 @@
-"""The `p_control` question type: Closed-loop control; its options, checks and answer schema."""
+"""The `p_control` question type (Closed-loop control): options, checks, answer schema."""
 
 from __future__ import annotations
 

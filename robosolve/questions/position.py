@@ -1,8 +1,8 @@
-"""The `position` question type: Position (direct kinematics); its options, checks and answer schema."""
+"""The `position` question type (Position (direct kinematics)): options, checks, answer schema."""
 
 from __future__ import annotations
 
-from robosolve.questions.schema import M, MATRIX, MATRIX_LIST, R, VECTOR, QuestionType, _k
+from robosolve.questions.schema import MATRIX, MATRIX_LIST, VECTOR, QuestionType, _k
 
 
 TYPE = QuestionType(

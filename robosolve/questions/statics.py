@@ -1,4 +1,4 @@
-"""The `statics` question type: Statics; its options, checks and answer schema."""
+"""The `statics` question type (Statics): options, checks, answer schema."""
 
 from __future__ import annotations
 

@@ -1,8 +1,10 @@
-"""The `velocity_acceleration` question type: Velocity and acceleration; its options, checks and answer schema."""
+"""The `velocity_acceleration` question type:
+Velocity and acceleration; its options, checks and answer schema.
+"""
 
 from __future__ import annotations
 
-from robosolve.questions.schema import M, MATRIX, VECTOR, QuestionType, _k
+from robosolve.questions.schema import MATRIX, VECTOR, QuestionType, _k
 
 
 TYPE = QuestionType(
