@@ -4,8 +4,9 @@
 Everything else asks the registry (flags such as `needs_dynamics`, `makes_profile`,
 `has_jacobian`, ...). Checked on the tokens of every source file of the package: a type
 name with an underscore (`motion_profile`) may not appear as a word in any string or
-comment; a plain word (`position`, `statics`) may not be compared with (`==`, `in`): the
-same words are ordinary prose, labels and function names elsewhere.
+comment; a plain word (`position`, `statics`) may not be compared with (`==`, `in`) nor
+listed with another type name: the same words are ordinary prose, labels and function
+names elsewhere.
 """
 
 from __future__ import annotations
@@ -54,6 +55,10 @@ def type_name_uses(source: str, names) -> list[tuple[int, str]]:
             continue
         out += [(tok.start[0], m.group(1)) for m in word_re.finditer(tok.string)]
     for node in ast.walk(ast.parse(source)):
+        if isinstance(node, (ast.Tuple, ast.List, ast.Set)):
+            named = [(c.lineno, c.value) for c in node.elts if isinstance(c, ast.Constant) and c.value in plain]
+            if len(named) > 1:      # a list of types
+                out += named
         if isinstance(node, ast.Compare):
             for side in [node.left, *node.comparators]:
                 items = side.elts if isinstance(side, (ast.Tuple, ast.List, ast.Set)) else [side]
@@ -83,6 +88,6 @@ def test_every_type_has_its_module_and_solver():
 
 def test_the_name_check_can_fail():
     src = ('x = t == "position"\n# a motion_profile here\ny = f"{a} statics"\nz = "position"\n'
-           'w = t in ("dof", "x")\n')
+           'w = t in ("dof", "x")\nv = ["dof", "statics"]\n')
     assert type_name_uses(src, ("position", "motion_profile", "statics", "dof")) == [
-        (1, "position"), (2, "motion_profile"), (5, "dof")]
+        (1, "position"), (2, "motion_profile"), (5, "dof"), (6, "dof"), (6, "statics")]
