@@ -3,8 +3,10 @@
 A question type (``robosolve/questions/<type>.py``) maps each of its option keys to one of
 these functions. Each is called as ``validator(ql, path, value, question)`` by the question
 loader ``ql`` (``load/questions.py``: its checker ``ql.chk``, the problem builder ``ql.b``, the
-parameters' namespace ``ql.params_ns`` and the joint names ``ql.joint_names``); it reports a
-mistake with ``ql.chk.error(path, ...)`` and returns the parsed value, or None.
+parameters' namespace ``ql.params_ns``, the joint names ``ql.joint_names`` and the name of the
+profile type ``ql.profile_type``); it reports a mistake with ``ql.chk.error(path, ...)`` and
+returns the parsed value, or None. A type's cross-field ``check(ql, path, item, question)``
+gets the same loader, with ``ql.require_gravity(path)`` and ``ql.type_name(flag)``.
 """
 
 from __future__ import annotations
