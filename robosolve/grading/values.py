@@ -196,3 +196,41 @@ def free_symbols(tree) -> set:
 def substitute(tree, subs: dict):
     """The tree with `subs` put in (exact), e.g. the parameters' values."""
     return map_leaves(tree, lambda e: e.xreplace(subs))
+
+
+def blanks(value, expected=(), where: str = "") -> list[str]:
+    """The entries of a given value still holding `~` (null), named as the grader names them:
+    a key with one left is `missing` (papers.md), never `invalid`. An entry whose `expected`
+    value (the same layout; `()` when unknown) is itself null (an infinite length) is no blank."""
+    if value is None:
+        return [] if expected is None else [where or "the value"]
+    out: list[str] = []
+
+    def sub(k):
+        try:
+            return expected[k]
+        except (KeyError, IndexError, TypeError):
+            return ()
+
+    if isinstance(value, dict):
+        for k, v in value.items():
+            out += blanks(v, sub(k), f"{where}.{k}" if where else str(k))
+    elif isinstance(value, list):
+        matrix = value and all(isinstance(r, list) for r in value) and all(
+            not isinstance(x, (list, dict)) for r in value for x in r)
+        lead = where + " " if where else ""
+        for i, v in enumerate(value):
+            if matrix:
+                row = sub(i)
+                out += [f"{lead}entry ({i + 1}, {j + 1})" for j, x in enumerate(v)
+                        if x is None and _entry(row, j) is not None]
+            else:
+                out += blanks(v, sub(i), f"{lead}entry {i + 1}")
+    return out
+
+
+def _entry(row, j):
+    try:
+        return row[j]
+    except (KeyError, IndexError, TypeError):
+        return ()

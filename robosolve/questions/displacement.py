@@ -58,9 +58,9 @@ TYPE = QuestionType(
     needs_robot=_needs_robot,
     answers=(
         _k("u", VECTOR, "unit vector of the helical axis", principal=True, shape=(3,)),
-        _k("alpha", SCALAR, "rotation angle in [0, π]", principal=True, angle=True),
-        _k("h", SCALAR, "translation along the axis", principal=True),
-        _k("P", VECTOR, "the axis point nearest the origin", principal=True, shape=(3,)),
+        _k("alpha", SCALAR, "rotation angle in [0, π]", principal=True, unit="rad", angle=True),
+        _k("h", SCALAR, "translation along the axis", principal=True, unit="m"),
+        _k("P", VECTOR, "the axis point nearest the origin", principal=True, unit="m", shape=(3,)),
         _k("Q", MATRIX, "the displacement matrix", shape=(4, 4), pose=True,
            hints=(("inverse", "this is the displacement back, from `to` to `from`"),)),
         _k("pitch", SCALAR, "h / α"),

@@ -27,10 +27,10 @@ TYPE = QuestionType(
     needs_dynamics=True,
     answers=(
         _k("mass_matrix", MATRIX, "M(q)", principal=True, shape=(N, N), notation="M(q)"),
-        _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, shape=(N,)),
-        _k("gravity_terms", VECTOR, "g(q)", principal=True, shape=(N,)),
+        _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, unit="effort", shape=(N,)),
+        _k("gravity_terms", VECTOR, "g(q)", principal=True, unit="effort", shape=(N,)),
         _k("generalized_forces", JOINT_MAP, "actuator plus external forces, per joint",
-           principal=True),
+           principal=True, unit="effort"),
         _k("equations", EQUATIONS, "one equation per joint", numeric=False),
         _k("kinetic_energy", BODY_MAP, "T per body and total"),
         _k("potential_energy", BODY_MAP, "U per body and total"),

@@ -30,11 +30,11 @@ TYPE = QuestionType(
     needs_dynamics=True,
     answers=(
         # the run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio): 10 digits
-        _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, symbolic=False,
+        _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, unit="joint", symbolic=False,
            digits=10),
-        _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True,
+        _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True, unit="joint",
            symbolic=False, digits=10),
-        _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True,
+        _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True, unit="joint",
            symbolic=False, digits=10),
         _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False, digits=10),
         _k("energy", RECORD, "total energy T + U", symbolic=False, fields=(

@@ -13,8 +13,8 @@ TYPE = QuestionType(
     defaults={"select": "limits"},
     answers=(
         _k("solutions", JOINT_MAP_SET, "every solution within the limits, sorted",
-           principal=True, angle=True, unordered=True, symbolic=False),
-        _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True,
+           principal=True, unit="joint", angle=True, unordered=True, symbolic=False),
+        _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True, unit="joint/s",
            symbolic=False),
         _k("selected", JOINT_MAP, "the selected solution", angle=True, symbolic=False),
         _k("closed_form", JOINT_MAP_LIST, "closed-form solution branches", numeric=False),
@@ -22,6 +22,7 @@ TYPE = QuestionType(
         _k("reason", TEXT, "why there is no solution", top=True),
     ),
     figures=(("solutions", "ik_solutions"),),
+    paper_keys=lambda options, joints: ("solutions",) + (("q_dot",) if "velocity" in options else ()),
     cost=0.8,
     reaches=True,
 )

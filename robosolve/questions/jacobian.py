@@ -13,6 +13,12 @@ def _check(ql, path, item, q):
         ql.chk.error(path + ("geometric",), "geometric: true cannot be combined with coordinates")
 
 
+def _paper_keys(options: dict, joints: int) -> tuple:
+    """J and its singularities, with det J when J is square, else the manipulability."""
+    rows = 6 if options.get("geometric") else len(options.get("coordinates") or ()) or 3
+    return ("J", "det" if rows == joints else "manipulability", "singularities")
+
+
 TYPE = QuestionType(
     "jacobian", "Jacobian and singular configurations", "§8 question 3",
     options={"coordinates": V.v_coordinates, "geometric": V.v_bool, "bodies": V.v_bool},
@@ -24,9 +30,10 @@ TYPE = QuestionType(
         _k("det", SCALAR, "det J (square J)", principal=True),
         _k("manipulability", SCALAR, "product of the singular values (J not square)", principal=True),
         _k("singularities", JOINT_MAP_SET, "conditions joint -> value making J lose rank",
-           principal=True, angle=True, unordered=True, by_value=True),
+           principal=True, unit="joint", angle=True, unordered=True, by_value=True),
         _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N)),
     ),
+    paper_keys=_paper_keys,
     cost=0.5, cost_growth=2,
     check=_check, has_jacobian=True,
 )

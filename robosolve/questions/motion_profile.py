@@ -28,9 +28,9 @@ TYPE = QuestionType(
     required=("from", "to", "max_acceleration"),
     defaults={"shape": "bang-bang"},
     answers=(
-        _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True),
-        _k("T", SCALAR, "the synchronized duration", principal=True),
-        _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True),
+        _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True, unit="s"),
+        _k("T", SCALAR, "the synchronized duration", principal=True, unit="s"),
+        _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True, unit="joint/s²"),
         _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", numeric=False),
     ),
     figures=(("profile", "motion_profile"),),

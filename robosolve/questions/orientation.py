@@ -20,11 +20,11 @@ TYPE = QuestionType(
     options={"matrix": V.v_rotation_matrix},
     needs_robot=_needs_robot,
     answers=(
-        _k("zyz", RECORD, "R = Rz(φ)·Ry(θ)·Rz(ψ)", principal=True, fields=(
+        _k("zyz", RECORD, "R = Rz(φ)·Ry(θ)·Rz(ψ)", principal=True, unit="rad", fields=(
             _k("solutions", VECTOR_SET, "[φ, θ, ψ] solution sets", shape=(3,), angle=True,
                unordered=True),
             _k("singular", BOOL, "at a singularity"))),
-        _k("rpy", RECORD, "R = Rz(yaw)·Ry(pitch)·Rx(roll)", principal=True, fields=(
+        _k("rpy", RECORD, "R = Rz(yaw)·Ry(pitch)·Rx(roll)", principal=True, unit="rad", fields=(
             _k("solutions", VECTOR_SET, "[roll, pitch, yaw] solution sets", shape=(3,), angle=True,
                unordered=True),
             _k("singular", BOOL, "at a singularity"))),

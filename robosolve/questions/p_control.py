@@ -23,9 +23,9 @@ TYPE = QuestionType(
     needs_dynamics=True,
     answers=(
         # the simulation is accurate to ~1e-6 relative: 6 digits, the same on every machine
-        _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, symbolic=False,
+        _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, unit="joint", symbolic=False,
            digits=6),
-        _k("final_error", JOINT_MAP, "signed e at the end", principal=True, symbolic=False,
+        _k("final_error", JOINT_MAP, "signed e at the end", principal=True, unit="joint", symbolic=False,
            digits=6),
         _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False, digits=6),
     ),

@@ -27,7 +27,7 @@ TYPE = QuestionType(
     options={"force": V.v_exprs, "torque": V.v_vector3, "weight": V.v_bool, "coordinates": V.v_coordinates},
     defaults={"weight": False},
     answers=(
-        _k("Fq", JOINT_MAP, "joint forces balancing the load, Fq = −Jᵀ·Fs", principal=True,
+        _k("Fq", JOINT_MAP, "joint forces balancing the load, Fq = −Jᵀ·Fs", principal=True, unit="effort",
            hints=(("negated", "Fq = −Jᵀ·Fs is what the joints exert to balance the load; "
                               "+Jᵀ·Fs is the load's own action on the joints"),)),
     ),
