@@ -20,9 +20,18 @@ def _check(ql, path, item, q):
                      "vary with time t, so the numbers at a configuration would need a time: drop `at` "
                      f"(the symbolic equations keep t), or follow the motion with a {follow} question")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the bodies, forces and `at` of the data."""
+    at = say.at(q)
+    return ("With the bodies, forces and gravity of the data, derive the equations of motion "
+            "$M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = Q$: the mass matrix $M(q)$, the velocity terms "
+            "$c(q, \\dot q)$, the gravity terms $g(q)$ and the generalized forces $Q$ (actuators plus "
+            "external forces)" + (f"; give the numbers {at}" if at else "") + ".")
+
 
 TYPE = QuestionType(
     "equations_of_motion", "Equations of motion", "§8 question 8",
+    statement=_statement,
     options={},
     needs_dynamics=True,
     answers=(

@@ -22,9 +22,21 @@ def _check(ql, path, item, q):
                          f"parameters only: give the starting value of '{key}' in `start` "
                          "(joint values and <joint>_dot rates)")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the start state, actuator laws and duration."""
+    o = q.options
+    start = o.get("start")
+    text = ("Starting " + (f"from {say.joint_values(start)}" if start else "at rest at zero")
+            + (f", with the actuators {say.joint_values(o['actuators'])}" if o.get("actuators")
+               else ", with no actuator action")
+            + f", the robot moves for {say.value(o['duration'])} s under the bodies, forces and "
+            "gravity of the data.")
+    return text + " Give each joint's value at the end, and its largest and smallest values over the run."
+
 
 TYPE = QuestionType(
     "forward_dynamics", "Forward dynamics (the motion under given actuators)", "§6.5",
+    statement=_statement,
     options={"start": V.v_start_state, "actuators": V.v_actuator_laws, "duration": V.v_duration},
     required=("duration",),
     needs_dynamics=True,

@@ -5,9 +5,24 @@ from __future__ import annotations
 from robosolve.load import validators as V
 from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MAP_SET, TEXT, QuestionType, _k
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the target, the velocity and the selection."""
+    o = q.options
+    target = ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in o["target"])
+    text = (f"Find every configuration ({say.joints()}) within the joint limits that puts {target}"
+            " (none, if the target cannot be reached)")
+    if "velocity" in o:
+        wanted = ", ".join(f"$\\dot{{{say.tex(lhs)}}} = {say.tex(rhs)}$" for _, lhs, rhs in o["velocity"])
+        select = o.get("select")
+        which = (f"the solution nearest to {say.joint_values(select)}" if isinstance(select, dict)
+                 else "the selected solution")
+        text += f"; at {which}, the joint rates giving {wanted}"
+    return text + "."
+
 
 TYPE = QuestionType(
     "inverse_kinematics", "Inverse kinematics", "§8 question 6",
+    statement=_statement,
     options={"target": V.v_equations, "velocity": V.v_equations, "select": V.v_select},
     required=("target",),
     defaults={"select": "limits"},

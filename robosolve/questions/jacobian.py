@@ -18,9 +18,26 @@ def _paper_keys(options: dict, joints: int) -> tuple:
     rows = 6 if options.get("geometric") else len(options.get("coordinates") or ()) or 3
     return ("J", "det" if rows == joints else "manipulability", "singularities")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the coordinates, `geometric`, `bodies` and `at`."""
+    o, at = q.options, say.at(q)
+    if o.get("geometric"):
+        what = (f"the geometric Jacobian of {say.point(q)} and {say.frame(q)} (linear velocity of the "
+                "point above the angular velocity of the frame, both in frame 0)")
+    elif o.get("coordinates"):
+        what = f"the Jacobian of the coordinates {say.coordinates(o['coordinates'])}"
+    else:
+        what = f"the Jacobian of the coordinates of {say.point(q)} in frame 0 (x, y, z)"
+    text = (f"Compute {what} with respect to the joint variables ({say.joints()}); give its "
+            "determinant (square J) or its manipulability, and the singular configurations")
+    if o.get("bodies"):
+        text += "; also the Jacobians of the bodies' centres of mass"
+    return text + (f"; give the numbers {at}" if at else "") + "."
+
 
 TYPE = QuestionType(
     "jacobian", "Jacobian and singular configurations", "§8 question 3",
+    statement=_statement,
     options={"coordinates": V.v_coordinates, "geometric": V.v_bool, "bodies": V.v_bool},
     defaults={"geometric": False, "bodies": False},
     answers=(

@@ -7,9 +7,16 @@ from __future__ import annotations
 from robosolve.load import validators as V
 from robosolve.questions.schema import ACTUATOR_MAP, ACTUATOR_RECORDS, SCALAR, QuestionType, _k
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the profile it follows."""
+    return (f"Along the motion of {say.question_number(q.options['profile'])}, with the bodies, "
+            "forces and gravity of the data, compute the actuator actions; give each actuator's "
+            "signed peak (the value of largest magnitude) and the time of that peak.")
+
 
 TYPE = QuestionType(
     "joint_torques", "Actuator torques along the profile", "§8 question 9",
+    statement=_statement,
     options={"profile": V.v_profile_ref},
     needs_dynamics=True,
     answers=(

@@ -20,9 +20,22 @@ def _check(ql, path, item, q):
                 chk.error(path + (key, name), f"must be positive, got {item[key][name]!r}"
                           + (f" (= {value:g})" if not v.is_number else ""))
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the start, goal, limits and shape."""
+    o = q.options
+    shape = o.get("shape", "bang-bang")
+    text = (f"The joints move from {say.joint_values(o['from'])} to {say.joint_values(o['to'])}, "
+            f"synchronized, each with a {shape} profile and the maximum accelerations "
+            f"{say.joint_values(o['max_acceleration'])}")
+    if "max_velocity" in o:
+        text += f" and maximum velocities {say.joint_values(o['max_velocity'])}"
+    return (text + ". Compute the duration of each joint alone at its limits, the synchronized "
+            "duration $T$, and the accelerations the joints use to finish together.")
+
 
 TYPE = QuestionType(
     "motion_profile", "Motion profile", "§8 question 7",
+    statement=_statement,
     options={"from": V.v_joint_values, "to": V.v_joint_values, "max_acceleration": V.v_joint_values,
              "shape": V.v_shape, "max_velocity": V.v_joint_values},
     required=("from", "to", "max_acceleration"),

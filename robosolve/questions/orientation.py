@@ -14,9 +14,20 @@ def _check(ql, path, item, q):
     if "matrix" in item and "frame" in item:
         ql.chk.error(path, "give either matrix or frame (with at), not both")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the matrix or the frame at `at`."""
+    if "matrix" in q.options:
+        what = f"the rotation matrix $R = $ {say.math(q.options['matrix'])}"
+    else:
+        at = say.at(q)
+        what = f"the orientation of {say.frame(q)} in frame 0" + (f" {at}" if at else "")
+    return (f"For {what}, give the ZYZ Euler angles, the roll-pitch-yaw angles (every solution, and "
+            "whether it is singular), the axis and angle, and the unit quaternion.")
+
 
 TYPE = QuestionType(
     "orientation", "Orientation representations", "§5.6",
+    statement=_statement,
     options={"matrix": V.v_rotation_matrix},
     needs_robot=_needs_robot,
     answers=(

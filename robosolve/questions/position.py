@@ -4,9 +4,17 @@ from __future__ import annotations
 
 from robosolve.questions.schema import MATRIX, MATRIX_LIST, VECTOR, QuestionType, _k
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the question's point, frame and `at`."""
+    at = say.at(q)
+    return (f"Compute the pose ${{}}^{{0}}M_{{{q.frame}}}$ of {say.frame(q)} in frame 0 as a function of the "
+            f"joint variables ({say.joints()}), and the coordinates of {say.point(q)} in frame 0"
+            + (f"; give the numbers {at}" if at else "") + ".")
+
 
 TYPE = QuestionType(
     "position", "Position (direct kinematics)", "§8 question 1",
+    statement=_statement,
     options={},
     answers=(
         _k("M", MATRIX, "pose ⁰Mₖ of the frame in frame 0", principal=True, unit="m", shape=(4, 4),

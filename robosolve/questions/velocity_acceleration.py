@@ -6,9 +6,17 @@ from __future__ import annotations
 
 from robosolve.questions.schema import MATRIX, VECTOR, QuestionType, _k
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the question's point, frame and `at`."""
+    at = say.at(q)
+    return (f"Compute the velocity and the acceleration of {say.point(q)} in frame 0 and the angular "
+            f"velocity of {say.frame(q)} in frame 0" + (f", {at}" if at else "")
+            + " (symbolic in the joint variables and their rates, or the numbers of this configuration).")
+
 
 TYPE = QuestionType(
     "velocity_acceleration", "Velocity and acceleration", "§8 question 2",
+    statement=_statement,
     options={},
     answers=(
         _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, unit="m/s", shape=(3,)),
