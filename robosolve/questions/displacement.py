@@ -51,6 +51,8 @@ def _check(ql, path, item, q):
 def _pose(v, say) -> str:
     if isinstance(v, dict) and "config" in v:
         return "the configuration " + say.joint_values(v["config"])
+    if isinstance(v, dict) and "matrix" in v:
+        return "the pose " + say.math(v["matrix"])
     if isinstance(v, dict) and "frame" in v:
         return f"frame {v['frame']}"
     return say.math(v)
