@@ -114,13 +114,19 @@ def statement(question, say: Say) -> str:
     return f"{qt.title}{' ' + say.at(question) if say.at(question) else ''}."
 
 
-def what_to_give(question, problem) -> list[str]:
+def box_marker(question_index: int, key_index: int) -> str:
+    """Where paper.html puts the answer box of a key (papers/html.py replaces it)."""
+    return f"RSBOX{question_index}N{key_index}X"
+
+
+def what_to_give(question, problem, boxes: bool = False) -> list[str]:
     out = []
-    for gk in graded_keys(question, problem):
+    for k, gk in enumerate(graded_keys(question, problem)):
         ak = gk.answer_key
         unit = unit_text(ak.unit, problem)
         out.append(f"- `{gk.key}`: {ak.doc}; {layout_text(ak, question, problem)}; {form_text(ak)}"
-                   + (f"; {unit}" if unit else "") + ".")
+                   + (f"; {unit}" if unit else "") + "."
+                   + (" " + box_marker(question.index, k) if boxes else ""))
     return out
 
 
@@ -152,8 +158,9 @@ def conventions(problem) -> str:
 
 
 def render_paper(problem, model, student: str | None = None, variant: str | None = None,
-                 figure: bool = True) -> str:
-    """paper.md of `problem` (`model`: its RobotModel, for the frames table, or None)."""
+                 figure: bool = True, boxes: bool = False) -> str:
+    """paper.md of `problem` (`model`: its RobotModel, for the frames table, or None);
+    `boxes`: with the markers of paper.html's answer boxes."""
     names = model.symbol_latex if model is not None else {}
     tex = Tex(names)
     say = Say(problem, tex)
@@ -168,7 +175,7 @@ def render_paper(problem, model, student: str | None = None, variant: str | None
     for i, q in enumerate(problem.questions, 1):
         out.append(f"### {i}. {question_title(q.type)} ({marks_text(q.marks)})")
         out.append(statement(q, say))
-        give = what_to_give(q, problem)
+        give = what_to_give(q, problem, boxes)
         if give:
             out.append("**What to give** (answers file, question `" + q.id + "`):\n\n" + "\n".join(give))
     return "\n\n".join(out) + "\n"
