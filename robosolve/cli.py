@@ -239,6 +239,25 @@ def _scheduler(scheduler: Optional[str]) -> None:
 
 
 @app.command()
+def paper(
+    problem: Path = typer.Argument(..., help="A problem file (YAML)."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder (default: out/<name>-paper/)."),
+    format: Optional[str] = typer.Option(None, "--format", "-f",
+                                         help="md (paper.md, always written) and html (paper.html), comma-separated."),
+    student: Optional[str] = typer.Option(None, "--student", help="The student's id, printed on the paper."),
+) -> None:
+    """An exam paper: paper.md (the questions, no answers), answers.yaml (the template), figures/robot.png."""
+    from robosolve.papers.workflow import parse_paper_formats, run_paper
+
+    try:
+        formats = parse_paper_formats(format)
+    except ValueError as exc:
+        _err(str(exc))
+        raise typer.Exit(EXIT_INPUT)
+    raise typer.Exit(run_paper(problem, out, formats, student, _err))
+
+
+@app.command()
 def check(
     answers: Path = typer.Argument(..., help="An answers file (YAML, grading.md)."),
     problem: Optional[Path] = _problem_option("Problem file (default: the answers file's `problem:`)."),

@@ -33,8 +33,20 @@ class SchedulerError(Exception):
 # ---------------------------------------------------------------------------
 # the task (runs in a worker)
 
-def make_task(text: str, file: str, formats=("md",), solve: bool = True) -> dict:
-    return {"text": text, "file": file, "formats": tuple(formats), "solve": solve}
+def make_task(text: str, file: str, formats=("md",), solve: bool = True, paper: dict | None = None) -> dict:
+    """`paper`: {"student", "variant"} to add the student's paper and answers template
+    (papers.md) to the files, solved or not."""
+    return {"text": text, "file": file, "formats": tuple(formats), "solve": solve, "paper": paper}
+
+
+def _paper(task: dict, problem) -> dict:
+    if not task.get("paper"):
+        return {}
+    from robosolve.papers.workflow import paper_files
+
+    formats = tuple(f for f in task.get("formats", ("md",)) if f == "html")
+    return paper_files(problem, "problem.yaml", task["paper"].get("student", ""),
+                       task["paper"].get("variant"), ("md",) + formats)
 
 
 def solve_task(task: dict) -> dict:
@@ -53,13 +65,14 @@ def solve_task(task: dict) -> dict:
     base["name"] = problem.name
     base["total"] = len(problem.questions)
     if not task.get("solve", True):
-        return {**base, "status": EXIT_OK}
+        return {**base, "status": EXIT_OK, "files": _paper(task, problem)}
     from robosolve.pipeline import render_files, solve_problem
 
     report = solve_problem(problem)
     failed = [f"{file}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
+    files = render_files(report, tuple(task.get("formats", ("md",))))
     return {**base, "status": report.exit_status, "answered": len(report.answers) - len(failed),
-            "messages": failed, "files": render_files(report, tuple(task.get("formats", ("md",))))}
+            "messages": failed, "files": {**files, **_paper(task, problem)}}
 
 
 def read_error(path, exc: BaseException) -> dict:

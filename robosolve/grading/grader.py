@@ -167,7 +167,8 @@ class Grader:
         holes = blanks(given.value, num if num is not None else sym)
         if holes:                 # a template's `~` left: not given yet (papers.md)
             shown = ", ".join(holes[:6]) + (f" (and {len(holes) - 6} more)" if len(holes) > 6 else "")
-            return KeyResult(MISSING, feedback=self._reveal(f"not filled in: {shown} still ~", expected))
+            what = "not filled in (still ~)" if _all_blank(given.value) else f"not filled in: {shown} still ~"
+            return KeyResult(MISSING, feedback=self._reveal(what, expected))
         try:
             g = self.reader.read(ak, given.value)
         except ValueProblem as exc:
@@ -336,6 +337,15 @@ def _gather(qt, key, given: dict):
             from robosolve.grading.answers import Given
             return Given(key, {k: v.value for k, v in parts.items()}, first.path[:-1], first.line)
     return None
+
+
+def _all_blank(value) -> bool:
+    """Every entry of a given value is still `~` (an untouched template key)."""
+    if isinstance(value, dict):
+        return all(_all_blank(v) for v in value.values())
+    if isinstance(value, list):
+        return all(_all_blank(v) for v in value)
+    return value is None
 
 
 def _schema_order(qt, given: dict) -> list:
