@@ -28,11 +28,22 @@ PAPER_CSS = """
 .rs-field { margin: .2em 0; }
 .rs-field > span { color: #555; font-size: .85em; }
 .rs-paper-sep { break-before: page; page-break-before: always; }
+figure.rs-drawing { float: right; width: 50%; margin: 0 0 .6em 1.2em; }
+.rs-data { clear: both; columns: 2 22em; column-gap: 2.2em; }
+.rs-data h3 { margin-top: .2em; }
+.rs-data .rs-table, .rs-data p { break-inside: avoid; }
+.rs-data > h2:first-child { column-span: all; }
 @media print {
   @page { margin: 15mm 14mm 16mm; }
-  html { font-size: 10pt; }
+  html { font-size: 9pt; }
+  p { margin: .45em 0; }
+  .rs-table { margin: .4em 0; }
+  h1 { font-size: 1.5em; margin-top: 0; }
+  h2 { margin: 1em 0 .4em; }
+  h3 { margin: .9em 0 .3em; }
   .rs-table, figure, .rs-box, li { break-inside: avoid; page-break-inside: avoid; }
-  img { max-height: 95mm; }
+  figure { margin: .4em 0; }
+  img { max-height: 66mm; }
 }
 """
 
@@ -86,7 +97,15 @@ def paper_body(markdown: str, problem, model, files) -> str:
     from robosolve.render.html import markdown_to_html_body
 
     body = markdown_to_html_body(markdown, files)
-    # a box cannot sit inside a paragraph: close the item's text before it
+    # the data tables side by side (two columns when the page is wide enough)
+    body = re.sub(r"(<h2>Data</h2>.*?)(?=<h2>Questions</h2>)", r'<div class="rs-data">\1</div>\n', body,
+                  count=1, flags=re.S)
+    # the drawing beside the header and the conventions
+    fig = re.search(r"<figure>.*?</figure>\n?", body, re.S)
+    if fig:
+        body = body.replace(fig.group(0), "", 1)
+        drawing = fig.group(0).replace("<figure>", '<figure class="rs-drawing">', 1)
+        body = re.sub(r"(</h1>\n)", lambda m: m.group(1) + drawing, body, count=1)
     return _boxes(body, problem, model)
 
 

@@ -151,3 +151,18 @@ def test_paper_at_is_the_drawing_configuration(write_problem):
     assert reference_configuration(p) == {theta1: 0, theta2: sp.pi / 4}
     p = load_problem(write_problem(ARM, "q.yaml"))
     assert reference_configuration(p) == {theta1: sp.pi / 6, theta2: sp.pi / 2}
+
+
+def test_paper_html_boxes_shaped_like_the_answers(write_problem, tmp_path):
+    path = write_problem(ARM)
+    out = tmp_path / "paper"
+    r = runner.invoke(app, ["paper", str(path), "--out", str(out), "--format", "md,html", "--student", "s1"])
+    assert r.exit_code == 0, r.output
+    page = (out / "paper.html").read_text()
+    assert "<script" not in page and "http://" not in page.replace("http://www.w3.org", "")
+    assert 'src="data:image/png;base64,' in page and "<math" in page
+    assert "break-inside: avoid" in page and "@page" in page and "RSBOX" not in page
+    grids = re.findall(r'<table class="rs-grid">(.*?)</table>', page, re.S)
+    cells = [g.count("<td></td>") for g in grids]
+    assert cells == [16, 3, 4]            # M 4×4, position [x, y, z], J 2×2
+    assert page.count('<div class="rs-line"></div>') == 1 + 4     # det: a line; singularities: a set
