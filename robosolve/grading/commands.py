@@ -5,9 +5,7 @@ Returns exit statuses; prints only through rich consoles given by the caller.
 
 from __future__ import annotations
 
-import os
 import sys
-import tempfile
 from pathlib import Path
 
 from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
@@ -40,27 +38,6 @@ def _escape(text: str) -> str:
     return escape(text)
 
 
-def write_text_atomic(path: Path, text: str) -> None:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        mode = 0o666 & ~_umask()
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
-
-
 def run_check(answers: Path, problem: Path | None, json_out: str | None,
               rtol: float | None, atol: float | None) -> int:
     from rich.console import Console
@@ -68,10 +45,19 @@ def run_check(answers: Path, problem: Path | None, json_out: str | None,
     from robosolve.grading.check import check_file
     from robosolve.grading.record import number_text, percent_text, record_json
 
+    from robosolve.outputs import OutputFolderError, check_output_file, write_file
+
     err = Console(stderr=True)
+    read: list = []          # the answers file and its problem: --json must not overwrite them
+
+    def guard(inputs):
+        read.extend(inputs)
+        if json_out not in (None, "-"):
+            check_output_file(json_out, inputs)
+
     try:
-        result, _ = check_file(answers, problem, rtol=rtol, atol=atol)
-    except InputError as exc:
+        result, _ = check_file(answers, problem, rtol=rtol, atol=atol, before_solving=guard)
+    except (InputError, OutputFolderError) as exc:
         sys.stderr.write(str(exc) + "\n")
         return EXIT_INPUT
     to_stdout = json_out == "-"
@@ -83,7 +69,11 @@ def run_check(answers: Path, problem: Path | None, json_out: str | None,
     if to_stdout:
         sys.stdout.write(text)
     elif json_out:
-        write_text_atomic(Path(json_out), text)
+        try:
+            write_file(Path(json_out), text.encode("utf-8"), read)
+        except OutputFolderError as exc:
+            sys.stderr.write(str(exc) + "\n")
+            return EXIT_INPUT
     return EXIT_OK if result.all_correct else EXIT_ANSWER_ERROR
 
 

@@ -111,8 +111,13 @@ def _problem_for(sub, problem, variants):
 
 def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
     """Read every submission, solve every problem once. Returns (jobs, references)."""
-    from robosolve.grading.check import solve_reference
+    jobs, problems = read_jobs(files, problem, variants_dir)
+    return jobs, solve_jobs(jobs, problems, rtol, atol)
 
+
+def read_jobs(files, problem=None, variants_dir=None):
+    """Read every submission and find its problem (nothing solved yet): (jobs, problems), where
+    `problems` maps each resolved problem file to (its path, the submissions graded against it)."""
     variants = read_variants(Path(variants_dir)) if variants_dir is not None else None
     jobs, problems = [], {}
     common = None                 # with --problem, even an unreadable submission has its problem
@@ -138,6 +143,18 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
         key = str(Path(path).resolve())
         problems.setdefault(key, (path, []))[1].append((i, sub))
         jobs.append(Job(i, str(f), sub.student, key, None))
+    return jobs, problems
+
+
+def input_paths(files, problems) -> list[Path]:
+    """The files `grade` reads: the answers files and their problems."""
+    return [*map(Path, files), *(Path(path) for path, _ in problems.values())]
+
+
+def solve_jobs(jobs, problems, rtol=None, atol=None) -> dict:
+    """Solve each problem once and resolve its submissions' answers: the references."""
+    from robosolve.grading.check import solve_reference
+
     references = {}
     for key, (path, subs) in sorted(problems.items()):
         try:
@@ -151,7 +168,7 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
             except InputError as exc:
                 jobs[i].error = str(exc)
     _mark_duplicates(jobs)
-    return jobs, references
+    return references
 
 
 def _fallback_student(f) -> str:
@@ -261,11 +278,16 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
     from robosolve.outputs import check_output_folder, write_output_folder
 
     files = collect(sources)
-    inputs = list(files) + ([Path(problem)] if problem is not None else [])
+    inputs = [*files, *([Path(problem)] if problem is not None else []),
+              *([Path(variants_dir)] if variants_dir is not None else []),
+              *(Path(s) for s in sources if Path(s).is_dir())]
     check_output_folder(Path(out), inputs)
     if not files:
         raise UsageError("no answers files found (*.yaml, *.yml)")
-    jobs, references = prepare(files, problem, variants_dir, rtol, atol)
+    jobs, problems = read_jobs(files, problem, variants_dir)
+    inputs += input_paths(files, problems)
+    check_output_folder(Path(out), inputs)
+    references = solve_jobs(jobs, problems, rtol, atol)
     if progress_factory is not None:
         with progress_factory(len(jobs)) as advance:
             results = grade_all(jobs, references, n_jobs, advance)
