@@ -23,7 +23,7 @@ def problem_path(sub, override) -> Path:
 def solve_reference(path, rtol=None, atol=None) -> Reference:
     """Load and solve a problem once (InputError when it is not valid input)."""
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
 
     return Reference.from_report(solve_problem(load_problem(path)), rtol=rtol, atol=atol)
 
@@ -35,7 +35,7 @@ def check_file(answers, problem=None, rtol=None, atol=None, before_solving=None)
     its problem) before any work: the caller refuses an output that would overwrite one."""
     sub = read_answers(answers)
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
 
     path = problem_path(sub, problem)
     if before_solving is not None:

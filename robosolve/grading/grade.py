@@ -4,7 +4,7 @@ The parent reads every answers file, finds each one's problem (`--problem`, `--v
 or its own `problem:`), solves each distinct problem once, and sends the references to
 worker processes (pickled once per worker, through the pool's initializer); the workers
 grade the submissions. Outputs are written into a temporary folder that replaces DIR at
-the end (`robosolve.outputs`, the output-folder rule of problem-format.md §2), so they are
+the end (`robosolve.run.outputs`, the output-folder rule of problem-format.md §2), so they are
 deterministic and never half-written.
 """
 
@@ -16,13 +16,13 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
+from robosolve.errors import ExitStatus, InputError
 from robosolve.grading.answers import read_answers, resolve_answers, safe_name
 from robosolve.grading.grader import Grader, invalid_result
 from robosolve.grading.record import (
     GRADES_COLUMNS, SUMMARY_COLUMNS, feedback_markdown, grade_rows, record_json, summary_row,
 )
-from robosolve.interrupts import process_pool
+from robosolve.run.interrupts import process_pool
 
 
 # Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
@@ -193,7 +193,7 @@ _GRADERS: dict = {}
 
 def _init_worker(references, worker: bool = False) -> None:
     if worker:
-        from robosolve.interrupts import worker_init
+        from robosolve.core.processes import worker_init
 
         worker_init()
     _REFERENCES.clear()
@@ -273,9 +273,21 @@ def _titles(ref) -> dict:
     return {q.id: title(q.type) for q in ref.questions}
 
 
+@dataclass
+class GradeOutcome:
+    """What `grade` did, for the CLI to print: the jobs (one per submission, in file order),
+    their results, the exit status."""
+
+    status: int
+    jobs: list
+    results: list
+
+
 def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None, atol=None,
-              progress_factory=None, report=None) -> int:
-    from robosolve.outputs import check_output_folder, write_output_folder
+              progress_factory=None) -> GradeOutcome:
+    """Grade every submission and write DIR. Raises UsageError / OutputFolderError (exit 2,
+    nothing written); `progress_factory(total)` is a context manager yielding `advance(n)`."""
+    from robosolve.run.outputs import check_output_folder, write_output_folder
 
     files = collect(sources)
     inputs = [*files, *([Path(problem)] if problem is not None else []),
@@ -295,9 +307,8 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
         results = grade_all(jobs, references, n_jobs)
     outputs = {rel: text.encode("utf-8") for rel, text in render(jobs, results, references).items()}
     write_output_folder(Path(out), outputs, inputs, own=OWN_OUTPUTS)
-    if report is not None:
-        report(jobs, results)
-    return EXIT_ANSWER_ERROR if any(j.answers is None for j in jobs) else EXIT_OK
+    status = ExitStatus.ANSWER_ERROR if any(j.answers is None for j in jobs) else ExitStatus.OK
+    return GradeOutcome(status, jobs, results)
 
 
-__all__ = ["run_grade", "UsageError", "EXIT_INPUT"]
+__all__ = ["run_grade", "UsageError", "GradeOutcome"]

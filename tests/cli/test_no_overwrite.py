@@ -11,7 +11,7 @@ from pathlib import Path
 from typer.testing import CliRunner
 
 from robosolve.cli import app
-from robosolve.outputs import MARK
+from robosolve.run.outputs import MARK
 from tests._grading import dedent
 from tests.workflows.test_grading_grade import ALICE, PROBLEM
 
@@ -111,7 +111,7 @@ def test_check_json_writes_a_new_file_atomically(tmp_path):
 
 def test_solve_in_the_working_folder_never_overwrites_its_input(tmp_path, monkeypatch):
     """`--out .` is written in place: an input named like an output (results.json) is refused."""
-    from robosolve.outputs import OutputFolderError, write_output_folder
+    from robosolve.run.outputs import OutputFolderError, write_output_folder
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "results.json").write_text("mine")

@@ -16,9 +16,9 @@ import pytest
 from typer.testing import CliRunner
 
 from conftest import MINI, PROBLEMS, ROOT
-from robosolve import interrupts
+from robosolve.run import interrupts
 from robosolve.cli import app
-from robosolve.outputs import MARK, OutputFolderError, check_output_folder, write_output_folder
+from robosolve.run.outputs import MARK, OutputFolderError, check_output_folder, write_output_folder
 
 runner = CliRunner()
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from robosolve.core.course_notes import NOTES, notes_page
-from robosolve.pipeline import solve_file
+from robosolve.run.pipeline import solve_file
 from robosolve.render.markdown import render_report
 
 ROOT = Path(__file__).resolve().parents[2]

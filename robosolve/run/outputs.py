@@ -36,7 +36,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 from robosolve.errors import RobosolveError
-from robosolve.interrupts import raise_if_interrupted
+from robosolve.run.interrupts import raise_if_interrupted
 
 MARK = ".robosolve"
 # Files robosolve itself writes into an output folder: in the working directory (written in
