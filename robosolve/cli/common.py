@@ -51,7 +51,17 @@ def problem_option(help_text: str):
 
 
 def tolerance_option(flag: str, kind: str, default: str):
-    return typer.Option(None, flag, help=f"{kind} tolerance (default {default}, or the problem's grading:).")
+    return typer.Option(None, flag, callback=_tolerance,
+                        help=f"{kind} tolerance (default {default}, or the problem's grading:).")
+
+
+def _tolerance(value: Optional[float]) -> Optional[float]:
+    """--rtol / --atol: a finite number >= 0, as the problem file's `grading:` requires."""
+    import math
+
+    if value is not None and not (math.isfinite(value) and value >= 0):
+        raise typer.BadParameter(f"expected a number >= 0, got {value:g}")
+    return value
 
 
 # ---------------------------------------------------------------- printing

@@ -67,6 +67,8 @@ def show(outcome, out, con) -> None:
         table.add_row(r.student, number_text(r.score), number_text(r.max_score),
                       percent_text(r.score, r.max_score), jobs[i].file)
     con.print(table)
+    for w in outcome.warnings:
+        err(w)
     for j in jobs:
         if j.answers is None:
             con.print(j.error, markup=False, highlight=False)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import csv
 import io
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from robosolve.errors import ExitStatus, InputError
@@ -46,12 +46,18 @@ class Job:
     duplicate: bool = False        # a second submission with an earlier one's student id
 
 
-def collect(sources) -> list[Path]:
+def collect(sources, warnings=None) -> list[Path]:
+    """The answers files of `sources` (files, or folders of *.yaml / *.yml); a link in a folder
+    that points nowhere is left out with a warning appended to `warnings`."""
     files = []
     for s in sources:
         p = Path(s)
         if p.is_dir():
-            files += [f for f in p.iterdir() if f.suffix in (".yaml", ".yml") and f.is_file()]
+            found = sorted(f for f in p.iterdir() if f.suffix in (".yaml", ".yml"))
+            files += [f for f in found if f.is_file()]
+            if warnings is not None:
+                warnings += [f"{f}: skipped: a symbolic link to {os.readlink(f)}, which does not exist"
+                             for f in found if f.is_symlink() and not f.exists()]
         elif p.is_file():
             files.append(p)
         else:
@@ -281,6 +287,7 @@ class GradeOutcome:
     status: int
     jobs: list
     results: list
+    warnings: list = field(default_factory=list)
 
 
 def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None, atol=None,
@@ -289,13 +296,14 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
     nothing written); `progress_factory(total)` is a context manager yielding `advance(n)`."""
     from robosolve.run.outputs import check_output_folder, write_output_folder
 
-    files = collect(sources)
+    warnings: list = []
+    files = collect(sources, warnings)
     inputs = [*files, *([Path(problem)] if problem is not None else []),
               *([Path(variants_dir)] if variants_dir is not None else []),
               *(Path(s) for s in sources if Path(s).is_dir())]
     check_output_folder(Path(out), inputs)
     if not files:
-        raise UsageError("no answers files found (*.yaml, *.yml)")
+        raise UsageError("\n".join([*warnings, "no answers files found (*.yaml, *.yml)"]))
     jobs, problems = read_jobs(files, problem, variants_dir)
     inputs += input_paths(files, problems)
     check_output_folder(Path(out), inputs)
@@ -308,7 +316,7 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
     outputs = {rel: text.encode("utf-8") for rel, text in render(jobs, results, references).items()}
     write_output_folder(Path(out), outputs, inputs, own=OWN_OUTPUTS)
     status = ExitStatus.ANSWER_ERROR if any(j.answers is None for j in jobs) else ExitStatus.OK
-    return GradeOutcome(status, jobs, results)
+    return GradeOutcome(status, jobs, results, warnings)
 
 
 __all__ = ["run_grade", "UsageError", "GradeOutcome"]
