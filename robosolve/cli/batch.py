@@ -66,12 +66,19 @@ def show(outcome, golden, update, con) -> None:
             err(m)
     for m in outcome.write_errors:
         err(m)
+    for d in outcome.orphans:
+        err(f"golden check: {d}: no problem file checked has the name '{d.name}' (was its problem "
+            "removed or renamed? delete the folder, or check it with its problem file)")
     if golden is not None and update:
-        err(f"golden folder {golden} updated ({outcome.solved - len(outcome.write_errors)} problems)")
+        err(f"golden folder {golden} updated ({problems(outcome.solved - len(outcome.write_errors))})")
     elif golden is not None:
         for line in outcome.diff_lines:
             out(line)
         if outcome.diff_lines:
             err("golden check: differences found (rerun with --update to accept them)")
         else:
-            err(f"golden check: {outcome.solved} problems identical")
+            err(f"golden check: {problems(outcome.solved)} identical")
+
+
+def problems(n: int) -> str:
+    return f"{n} problem" + ("" if n == 1 else "s")

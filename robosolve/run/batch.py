@@ -112,6 +112,7 @@ class BatchOutcome:
     write_errors: list = field(default_factory=list)
     diff_lines: list = field(default_factory=list)
     solved: int = 0
+    orphans: list = field(default_factory=list)    # golden folders no file checked makes
 
 
 def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), scheduler=None,
@@ -140,7 +141,19 @@ def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), sch
     lines = [line for f in sorted(diffs) for line in diffs[f]]
     if lines:
         status = max(status, ExitStatus.ANSWER_ERROR)
-    return BatchOutcome(status, results=results, write_errors=write_errors, diff_lines=lines, solved=solved)
+    known = {r.name for r in results if r.name} | {n for n in names.values() if n}
+    return BatchOutcome(status, results=results, write_errors=write_errors, diff_lines=lines, solved=solved,
+                        orphans=orphan_goldens(golden, known) if golden is not None else [])
+
+
+def orphan_goldens(golden, names) -> list[Path]:
+    """Golden folders (holding report.md or results.json) that none of `names` makes: their
+    problem was removed or renamed, or is not among the files checked."""
+    root = Path(golden)
+    if not root.is_dir():
+        return []
+    return [d for d in sorted(root.iterdir()) if d.is_dir() and d.name not in names
+            and any((d / g).is_file() for g in GOLDEN_FILES)]
 
 
 def _solve_and_write(files, names, out, jobs, golden, update, formats, scheduler, progress):

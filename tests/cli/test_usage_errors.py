@@ -53,3 +53,20 @@ def test_only_dangling_links_is_a_usage_error_that_names_them(tmp_path):
     r = runner.invoke(app, ["grade", str(subs), "--out", str(tmp_path / "o")])
     assert r.exit_code == 2
     assert "bob.yaml: skipped" in r.output and "no answers files found" in r.output
+
+
+def test_missing_extras_are_said_at_once_with_both_install_forms(monkeypatch, tmp_path):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: None if name in ("latex2mathml", "nbformat") else real(name, *a))
+    (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    r = runner.invoke(app, ["solve", str(tmp_path / "p.yaml"), "--format", "md,html,ipynb",
+                            "--out", str(tmp_path / "o")])
+    assert r.exit_code == 2
+    lines = [ln for ln in r.output.splitlines() if ln.strip()]
+    assert len(lines) == 1, r.output                               # one message, not one per extra
+    assert "latex2mathml" in lines[0] and "nbformat" in lines[0]
+    assert "pip install 'robosolve[html,notebook]'" in lines[0] and "pip install '.[html,notebook]'" in lines[0]
+    assert not (tmp_path / "o").exists()
