@@ -79,11 +79,13 @@ def warm_worker() -> None:
 
 def estimate(task: dict) -> int:
     """A cheap guess of a task's cost, to start the longest ones first."""
+    from robosolve.questions.registry import types_where
+
     text = task["text"]
     joints = len(re.findall(r"\btype:\s*(revolute|prismatic)\b", text)) + text.count("theta:")
     questions = max(1, len(re.findall(r"\btype:\s*[a-z_]+", text)) - joints)
-    dynamic = 2 if re.search(r"\b(bodies|equations_of_motion|joint_torques|p_control|forward_dynamics)\b",
-                             text) else 1
+    words = ["bodies"] + [t.name for t in types_where("needs_dynamics")]
+    dynamic = 2 if re.search(r"\b(" + "|".join(words) + r")\b", text) else 1
     return questions * (1 + joints) ** 2 * dynamic
 
 
