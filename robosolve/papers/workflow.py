@@ -10,7 +10,6 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from robosolve.errors import EXIT_INPUT, EXIT_OK, InputError
 
 PAPER_FORMATS = ("md", "html")
 
@@ -66,31 +65,19 @@ def default_folder(problem) -> Path:
     return Path("out") / f"{problem.name}-paper"
 
 
-def run_paper(problem_file: Path, out: str | None, formats: tuple, student: str | None, say) -> int:
-    """`robosolve paper`: load, check DIR, write the paper's folder. `say(text)` prints."""
+def write_paper(problem_file: Path, out: str | None, formats: tuple, student: str | None):
+    """`robosolve paper`: load the problem, check DIR, write the paper's folder (atomic).
+    Returns (problem, DIR); raises InputError or OutputFolderError (exit 2) with nothing written."""
     from robosolve.load.loader import load_problem
-    from robosolve.outputs import OutputFolderError, check_output_folder, write_output_folder
+    from robosolve.run.outputs import check_output_folder, write_output_folder
 
-    try:
-        problem = load_problem(problem_file)
-    except InputError as exc:
-        say(str(exc))
-        return EXIT_INPUT
+    problem = load_problem(problem_file)
     target = Path(out) if out is not None else default_folder(problem)
-    try:
-        check_output_folder(target, inputs=[problem_file])
-    except OutputFolderError as exc:
-        say(str(exc))
-        return EXIT_INPUT
+    check_output_folder(target, inputs=[problem_file])
     rel = os.path.relpath(os.path.abspath(problem_file), os.path.abspath(target))
     files = paper_files(problem, Path(rel).as_posix(), student or "", None, formats)
-    try:
-        write_output_folder(target, dict(sorted(files.items())), inputs=[problem_file])
-    except (OutputFolderError, OSError) as exc:
-        say(str(exc) if isinstance(exc, OutputFolderError) else f"{target}: cannot write ({exc})")
-        return EXIT_INPUT
-    say(f"{problem_file}: paper of {len(problem.questions)} questions -> {target}")
-    return EXIT_OK
+    write_output_folder(target, dict(sorted(files.items())), inputs=[problem_file])
+    return problem, target
 
 
 def papers_html(pages: list[tuple[str, bytes]], title: str) -> bytes:
