@@ -34,6 +34,7 @@ class Equation:
 
 
 MAP_KINDS = (R.JOINT_MAP, R.ACTUATOR_MAP, R.BODY_MAP)
+ARRAY_KINDS = (R.VECTOR, R.MATRIX, R.VECTOR_SET, R.AXES)
 SET_KINDS = (R.JOINT_MAP_SET, R.VECTOR_SET)
 
 
@@ -103,6 +104,8 @@ class Reader:
     # -- by kind ----------------------------------------------------------
     def read(self, ak, value, where=""):
         kind = ak.kind
+        if isinstance(value, str) and value.strip().startswith("[") and kind in ARRAY_KINDS:
+            value = self.array_text(ak, value, where)
         if kind == R.SCALAR:
             return self.scalar(value, where)
         if kind == R.VECTOR:
@@ -144,6 +147,20 @@ class Reader:
         if kind == R.TEXT:
             return None if value is None else str(value)
         raise ValueProblem(f"answers of kind {kind} cannot be checked")
+
+    def array_text(self, ak, value, where=""):
+        """A matrix or vector typed as one string (MATLAB or Python notation)."""
+        from robosolve.grading.typed import ArrayTextError, parse_array
+
+        try:
+            out = parse_array(value)
+        except ArrayTextError as exc:
+            raise ValueProblem(f"{_label(where)}cannot read {value!r} as a matrix or vector: {exc}") from None
+        if ak.kind == R.VECTOR and out and all(isinstance(r, list) and len(r) == 1 for r in out):
+            out = [r[0] for r in out]             # a column [a; b; c]
+        if ak.kind == R.MATRIX and out and not isinstance(out[0], list):
+            out = [out]                           # one row
+        return out
 
     def _list(self, value, where):
         if not isinstance(value, (list, tuple)):
