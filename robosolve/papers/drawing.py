@@ -157,5 +157,8 @@ def paper_figure(problem, model):
     points += [pt for link in drawing["links"] for pt in link]
     drawing["plane"] = plane_of(points, drawing["joints"])
     shown = ", ".join(f"{_latex(j.symbol)} = {_latex(config[j.symbol])}" for j in problem.joints)
-    title = f"{problem.title or problem.name}\nat ${shown}$" if shown else (problem.title or problem.name)
+    import textwrap
+
+    name = "\n".join(textwrap.wrap(problem.title or problem.name, 72)[:2])
+    title = f"{name}\nat ${shown}$" if shown else name
     return FigureSpec("robot", "robot_paper", title, drawing)

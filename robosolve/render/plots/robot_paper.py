@@ -83,7 +83,7 @@ def _draw_2d(ax, d, size):
     for p in d["points"]:
         x, y = p["at"][h], p["at"][v]
         ax.plot([x], [y], "s", ms=6, color="tab:orange", zorder=5)
-        ax.annotate(p["name"], (x, y), xytext=(7, -4), textcoords="offset points", fontsize=12,
+        ax.annotate(p["name"], (x, y), xytext=(7, 5), textcoords="offset points", fontsize=12,
                     color="tab:orange", weight="bold")
     for f in d["forces"]:
         o, u = np.array(f["at"]), np.array(f["direction"]) * 0.3 * size
@@ -117,9 +117,9 @@ def _gravity_2d(fig, d):
     h, v = d["plane"]
     gh, gv = g[h], g[v]
     if abs(gh) + abs(gv) < 1e-9:
-        fig.text(0.9, 0.9, "g ⊥ page", fontsize=10, ha="right")
+        fig.text(0.93, 0.78, "g ⊥ page", fontsize=10, ha="right")
         return
-    ax = fig.add_axes([0.86, 0.74, 0.1, 0.14])
+    ax = fig.add_axes([0.86, 0.68, 0.08, 0.12])
     ax.set_axis_off()
     ax.set_xlim(-1, 1)
     ax.set_ylim(-1, 1)
@@ -175,9 +175,9 @@ def draw(spec, path):
     size = extent([d])
     if d.get("plane"):
         fig, ax = subplots(figsize=(6.4, 5.6))
-        fixed_layout(fig, left=0.8, right=0.25, top=0.75, bottom=0.6)
+        fixed_layout(fig, left=0.8, right=0.25, top=0.95, bottom=0.6)
         _draw_2d(ax, d, size)
-        _frame_limits(ax, d, size, (6.4 - 0.8 - 0.25, 5.6 - 0.75 - 0.6))
+        _frame_limits(ax, d, size, (6.4 - 0.8 - 0.25, 5.6 - 0.95 - 0.6))
         _gravity_2d(fig, d)
         ax.set_title(spec.title, fontsize=11)
     else:
