@@ -34,7 +34,7 @@ figure.rs-drawing { float: right; width: 50%; margin: 0 0 .6em 1.2em; }
 .rs-data .rs-table, .rs-data p { break-inside: avoid; }
 .rs-data > h2:first-child { column-span: all; }
 @media print {
-  @page { margin: 15mm 14mm 16mm; }
+  @page { size: auto; margin: 15mm 14mm 16mm; }   /* A4 or Letter: the printer's paper */
   html { font-size: 9pt; }
   p { margin: .45em 0; }
   .rs-table { margin: .4em 0; }

@@ -146,10 +146,20 @@ def header(problem, student: str | None, variant: str | None) -> list[str]:
     return out
 
 
+def gravity_sentence(g) -> str:
+    """'Gravity points along −z₀ (the data's gravity vector).' for an axis-aligned gravity."""
+    parts = [(i, e) for i, e in enumerate(g) if e != 0]
+    if len(parts) == 1:
+        i, e = parts[0]
+        sign = e.could_extract_minus_sign() if hasattr(e, "could_extract_minus_sign") else e < 0
+        return f"Gravity points along {'−' if sign else '+'}{'xyz'[i]}₀ (the gravity of the data)."
+    return "Gravity is the vector of the data, in frame 0."
+
+
 def conventions(problem) -> str:
     gravity = ""
     if problem.gravity is not None and (problem.bodies or problem.gravity_given):
-        gravity = " Gravity is the vector given in the data, in frame 0."
+        gravity = " " + gravity_sentence(problem.gravity)
     return ("**Conventions.** ${}^{i}M_{j}$ is the pose of frame $j$ in frame $i$ (4×4); angles are in "
             "radians and every quantity in SI units (m, kg, s, N, N·m)." + gravity
             + " Give each answer in the layout of the answers file (answers.yaml): matrices as lists "
