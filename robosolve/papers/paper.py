@@ -51,6 +51,20 @@ class Say:
             out.append(f"${self.tex(sym)} = {_value(v, self.tex)}$")
         return ", ".join(out)
 
+    def per_joint(self, mapping: dict, unit: str = "") -> str:
+        """{joint name: value} of a limit or a gain -> '$θ₁$: $2$ rad/s², $θ₂$: $3$ rad/s²';
+        `unit` "joint/s²" etc. is told by each joint's kind (rad or m)."""
+        by_name = {j.name: j for j in self.problem.joints}
+        out = []
+        for name, v in mapping.items():
+            j = by_name.get(name)
+            sym = j.symbol if j is not None else sp.Symbol(name)
+            u = unit
+            if unit.startswith("joint"):
+                u = ("rad" if j is None or j.is_revolute else "m") + unit[len("joint"):]
+            out.append(f"${self.tex(sym)}$: ${_value(v, self.tex)}$" + (f" {u}" if u else ""))
+        return ", ".join(out)
+
     def at(self, question) -> str:
         """'at θ₁ = …, θ₂ = … (rates …; accelerations …), with L₁ = … instead of the data's …'
         ('' without `at`)."""

@@ -26,9 +26,9 @@ def _statement(q, say) -> str:
     shape = o.get("shape", "bang-bang")
     text = (f"The joints move from {say.joint_values(o['from'])} to {say.joint_values(o['to'])}, "
             f"synchronized, each with a {shape} profile and the maximum accelerations "
-            f"{say.joint_values(o['max_acceleration'])}")
+            f"{say.per_joint(o['max_acceleration'], 'joint/s²')}")
     if "max_velocity" in o:
-        text += f" and maximum velocities {say.joint_values(o['max_velocity'])}"
+        text += f" and maximum velocities {say.per_joint(o['max_velocity'], 'joint/s')}"
     return (text + ". Compute the duration of each joint alone at its limits, the synchronized "
             "duration $T$, and the accelerations the joints use to finish together.")
 

@@ -20,9 +20,9 @@ def _statement(q, say) -> str:
             "computed_torque": "a computed-torque"}
     text = (f"The robot follows the motion of {say.question_number(o['profile'])} under "
             f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller with the gains "
-            f"$K_p$: {say.joint_values(o['gains'])}")
+            f"$K_p$ {say.per_joint(o['gains'])}")
     if "gains_d" in o:
-        text += f" and $K_d$: {say.joint_values(o['gains_d'])}"
+        text += f" and $K_d$ {say.per_joint(o['gains_d'])}"
     if "start" in o:
         text += f", starting from {say.joint_values(o['start'])}"
     if "duration" in o:

@@ -166,3 +166,14 @@ def test_paper_html_boxes_shaped_like_the_answers(write_problem, tmp_path):
     cells = [g.count("<td></td>") for g in grids]
     assert cells == [16, 3, 4]            # M 4×4, position [x, y, z], J 2×2
     assert page.count('<div class="rs-line"></div>') == 1 + 4     # det: a line; singularities: a set
+
+
+def test_every_type_writes_its_statement():
+    from robosolve.questions.registry import QUESTION_TYPES
+
+    assert all(t.statement is not None for t in QUESTION_TYPES.values())
+    problem = load_problem(PROBLEMS / "exam-2r-full.yaml")
+    paper = render_paper(problem, RobotModel(problem))
+    assert "maximum accelerations $\\theta_{1}$: $2$ rad/s², $\\theta_{2}$: $3$ rad/s²" in paper
+    assert "$E_{y} = 0.6$, $E_{z} = 0.3$" in paper and "question 8" in paper
+    assert "$F_s = $" in paper and "Gravity points along −z₀" in paper
