@@ -53,8 +53,8 @@ def _run(tmp_path, name, *extra, text=ARM):
 
 
 def test_papers_same_with_and_without_solving(tmp_path):
-    solved = _run(tmp_path, "solved", "--count", "2", "--format", "md,html")
-    bare = _run(tmp_path, "bare", "--count", "2", "--no-solve", "--format", "md,html")
+    solved = _run(tmp_path, "solved", "--count", "2", "--format", "md,html", text=ONE_PAGE)
+    bare = _run(tmp_path, "bare", "--count", "2", "--no-solve", "--format", "md,html", text=ONE_PAGE)
     for v in ("arm-1", "arm-2"):
         for f in PAPER_FILES:
             assert (solved / v / f).read_bytes() == (bare / v / f).read_bytes(), (v, f)
