@@ -129,32 +129,72 @@ def _gravity_2d(fig, d):
     ax.text(0.25, 0.0, "$g$", fontsize=13)
 
 
-def _draw_3d(ax, d, size):
+def _draw_3d(ax, d, size) -> list:
+    """The robot in 3-D; returns its labels [(xyz, text, colour, size, weight)], placed later
+    by `_place_labels` (once the view is fixed) so that they do not overlap."""
+    labels = []
     for link in d["links"]:
         a = np.array(link, dtype=float)
         ax.plot(a[:, 0], a[:, 1], a[:, 2], "-", color=LINK, lw=4)
     for j in d["joints"]:
         x, y, z = j["at"]
-        ax.scatter([x], [y], [z], s=50, facecolors="white", edgecolors=LINK, linewidths=2, depthshade=False)
-        ax.text(x, y, z + 0.06 * size, j["label"], fontsize=12, color="0.1")
+        ax.scatter([x], [y], [z], s=50, facecolors="white", edgecolors=LINK, linewidths=2,
+                   depthshade=False, marker="o" if j["revolute"] else "s")
+        labels.append((j["at"], j["label"], "0.1", 12, "normal"))
     for f, s in zip(d["frames"], _scales(d["frames"], size, 0.1)):
         o = np.array(f["origin"], dtype=float)
         for c, axis in enumerate(f["axes"]):
             tip = o + np.array(axis, dtype=float) * s
             ax.plot([o[0], tip[0]], [o[1], tip[1]], [o[2], tip[2]], color=AXIS_COLOURS[c], lw=1.4)
-            ax.text(*tip, f"${AXIS_NAMES[c]}_{{{f['label']}}}$", fontsize=9, color=AXIS_COLOURS[c])
+            labels.append((tip, f"${AXIS_NAMES[c]}_{{{f['label']}}}$", AXIS_COLOURS[c], 9, "normal"))
     for p in d["points"]:
         ax.scatter(*[[x] for x in p["at"]], s=30, color="tab:orange", marker="s", depthshade=False)
-        ax.text(*p["at"], f"  {p['name']}", fontsize=12, color="tab:orange", weight="bold")
+        labels.append((p["at"], p["name"], "tab:orange", 12, "bold"))
     for f in d["forces"]:
         o, u = np.array(f["at"]), np.array(f["direction"]) * 0.3 * size
         ax.quiver(*o, *u, color=FORCE, lw=2, arrow_length_ratio=0.25)
-        ax.text(*(o + u), f["label"], fontsize=12, color=FORCE)
+        labels.append((o + u, f["label"], FORCE, 12, "normal"))
     g = d.get("gravity")
     if g is not None:
         a = np.array([1.0, 1.0, 1.0]) * 0.45 * size
         ax.quiver(*a, *(np.array(g) * 0.3 * size), color="0.15", lw=2, arrow_length_ratio=0.3)
-        ax.text(*(a + np.array(g) * 0.3 * size), " $g$", fontsize=12)
+        labels.append((a + np.array(g) * 0.3 * size, "$g$", "0.15", 12, "normal"))
+    return labels
+
+
+# offsets (points) tried in turn for a label, nearest first
+OFFSETS = [(4, 3), (4, -11), (-12, 3), (-12, -11), (4, 13), (-12, 13), (14, -3), (-22, -3),
+           (4, -21), (-12, -21), (4, 23), (18, 9), (-26, 9), (18, -15), (-26, -15)]
+
+
+def _width(text: str, points: float) -> float:
+    shown = text.replace("\\mathrm", "").replace("$", "").replace("{", "").replace("}", "")
+    shown = shown.replace("\\", "").replace("_", "")
+    shown = shown.replace("theta", "θ")
+    return max(len(shown), 1) * points * 0.6
+
+
+def _place_labels(ax, labels) -> None:
+    """Each label at the first offset from its anchor where it overlaps no label placed before."""
+    from mpl_toolkits.mplot3d import proj3d
+
+    m = ax.get_proj()
+    boxes = []
+    for xyz, text, colour, points, weight in labels:
+        x2, y2, _ = proj3d.proj_transform(*[float(v) for v in xyz], m)
+        px, py = ax.transData.transform((x2, y2)) * 72 / ax.figure.dpi      # in points
+        w, h = _width(text, points), points * 1.1
+        for dx, dy in OFFSETS:
+            box = (px + dx, py + dy, px + dx + w, py + dy + h)
+            if not any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3] for b in boxes):
+                break
+        else:
+            dx, dy = OFFSETS[0]
+            box = (px + dx, py + dy, px + dx + w, py + dy + h)
+        boxes.append(box)
+        ax.annotate(text, (x2, y2), xytext=(dx, dy), textcoords="offset points", fontsize=points,
+                    color=colour, weight=weight, annotation_clip=False, zorder=20,
+                    bbox=dict(boxstyle="square,pad=0.05", fc="white", ec="none", alpha=0.75))
 
 
 def _equal_3d(ax, d, size):
@@ -182,8 +222,9 @@ def draw(spec, path):
         ax.set_title(spec.title, fontsize=11)
     else:
         fig, ax = one_3d_box(6.4, 6.2)
-        _draw_3d(ax, d, size)
+        labels = _draw_3d(ax, d, size)
         _equal_3d(ax, d, size)
         ax.view_init(elev=22, azim=-55)
+        _place_labels(ax, labels)
         fig.suptitle(spec.title, fontsize=11)
     save(fig, path)
