@@ -191,7 +191,7 @@ def lagrange(at=None):
 
 def _s(expr) -> str:
     """A sympy expression as Python source the notebook evaluates with S(...)."""
-    return f'S("{_str(expr)}")'
+    return f'S({_str(expr)!r})'
 
 
 def _str(expr) -> str:
@@ -230,7 +230,7 @@ def _data_cell(problem) -> str:
             pose = f"{f.kind}(" + ", ".join(_s(x) for x in f.factors) + ")"
         else:
             pose = "sp.Matrix([" + ", ".join(_vec(list(f.matrix.row(i))) for i in range(4)) + "])"
-        lines.append(f'    "{f.name}": ("{f.parent}", {pose}),')
+        lines.append(f'    {f.name!r}: ({f.parent!r}, {pose}),')
     lines.append("}")
     if problem.bodies:
         lines.append("# body: (frame, mass, centre of mass in that frame)")
@@ -238,7 +238,7 @@ def _data_cell(problem) -> str:
         for b in problem.bodies:
             com = _centre_of_mass(b)
             if com is not None:
-                lines.append(f'    "{b.name}": ("{b.frame}", {_s(b.mass)}, {_vec(com)}),')
+                lines.append(f'    {b.name!r}: ({b.frame!r}, {_s(b.mass)}, {_vec(com)}),')
         lines.append("}")
         lines.append(f"gravity = sp.Matrix({_vec(list(problem.gravity))})")
         lines.extend(_pseudo_inertia_lines(problem))
@@ -246,7 +246,7 @@ def _data_cell(problem) -> str:
     lines.append("# point: (frame, coordinates in that frame)")
     lines.append("points = {")
     for p in problem.points.values():
-        lines.append(f'    "{p.name}": ("{p.frame}", {_vec(list(p.at))}),')
+        lines.append(f'    {p.name!r}: ({p.frame!r}, {_vec(list(p.at))}),')
     lines.append("}")
     return "\n".join(lines)
 
@@ -268,7 +268,7 @@ def _pseudo_inertia_lines(problem) -> list[str]:
             J = d["J"]
         J = sp.Matrix(J)
         rows = ", ".join(_vec(list(J.row(i))) for i in range(4))
-        lines.append(f'    "{b.name}": ("{b.frame}", sp.Matrix([{rows}])),')
+        lines.append(f'    {b.name!r}: ({b.frame!r}, sp.Matrix([{rows}])),')
     lines.append("}")
     return lines
 
@@ -280,7 +280,7 @@ def _force_lines(problem) -> list[str]:
     for f in getattr(problem, "forces", None) or []:
         force = _vec(list(f.force)) if f.force is not None else "None"
         torque = _vec(list(f.torque)) if f.torque is not None else "None"
-        lines.append(f'    "{f.name}": ("{f.frame}", {_vec(list(f.at))}, {force}, {torque}, "{f.in_frame}"),')
+        lines.append(f'    {f.name!r}: ({f.frame!r}, {_vec(list(f.at))}, {force}, {torque}, {f.in_frame!r}),')
     lines.append("}")
     return lines
 
@@ -300,8 +300,8 @@ def _point_names_cell(problem) -> str:
     """P.x, P.y, P.z of every point, usable in coordinates as P_x, P_y, P_z."""
     lines = []
     for p in problem.points:
-        lines.append(f'{p}_x, {p}_y, {p}_z = point0("{p}")')
-        lines.append(f'NAMES.update({{"{p}_x": {p}_x, "{p}_y": {p}_y, "{p}_z": {p}_z}})')
+        lines.append(f'{p}_x, {p}_y, {p}_z = point0({p!r})')
+        lines.append(f'NAMES.update({{{p + "_x"!r}: {p}_x, {p + "_y"!r}: {p}_y, {p + "_z"!r}: {p}_z}})')
     return "\n".join(lines)
 
 
@@ -345,7 +345,7 @@ print('position =', number(P, at).ravel())
 
 def _cell_position(q, answer, problem):
     return "\n".join([
-        f'frame, point, at = "{q.frame}", "{q.point}", {_at(q)}',
+        f'frame, point, at = {q.frame!r}, {q.point!r}, {_at(q)}',
         _POSITION_CODE,
         _expected(answer, ["M", "position"]),
     ])
@@ -372,7 +372,7 @@ print('acceleration =', number(H * P, at).ravel()[:3])
 
 def _cell_velocity(q, answer, problem):
     return "\n".join([
-        f'frame, point, at = "{q.frame}", "{q.point}", {_at(q)}',
+        f'frame, point, at = {q.frame!r}, {q.point!r}, {_at(q)}',
         _VELOCITY_CODE,
         _expected(answer, ["W", "H", "velocity", "acceleration"]),
     ])
@@ -534,7 +534,7 @@ def _pose_source(side, q) -> str:
     if "matrix" in side:
         return _matrix(side["matrix"])
     config = "{" + ", ".join(f"NAMES[{k!r}]: {_s(v)}" for k, v in side["config"].items()) + "}"
-    return f'M0("{q.frame}").subs({config})'
+    return f'M0({q.frame!r}).subs({config})'
 
 
 _SCREW_Q_CODE = _code(r'''
@@ -620,7 +620,7 @@ def _cell_orientation(q, answer, problem):
     if q.options.get("matrix") is not None:
         source = _matrix(q.options["matrix"])
     else:
-        source = f'M0("{q.frame}")'
+        source = f'M0({q.frame!r})'
     return "\n".join([
         f"at = {_at(q)}",
         f"R = number({source}, at)[:3, :3]",
