@@ -6,6 +6,8 @@ LaTeX uses only what GitHub's math renderer supports: `$...$` inline and
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import sympy as sp
 
 from robosolve.questions.registry import title as question_title
@@ -221,27 +223,47 @@ def render_answer(index: int, answer, figure_paths: list[str], tex: Tex,
     return out
 
 
-def render_report(report, figure_paths: dict) -> str:
+@dataclass(frozen=True)
+class ReportSections:
+    """report.md in its parts: the head (title, description, conventions, notation, data), each
+    answer's blocks (by answer id, in report order) and the course notes; report.md is their
+    blocks joined by blank lines (the notebook interleaves its code cells between them)."""
+
+    head: list
+    answers: list            # [(answer id, [block, ...])]
+    notes: list
+
+    def blocks(self) -> list:
+        return self.head + [b for _, blocks in self.answers for b in blocks] + self.notes
+
+
+def report_sections(report, figure_paths: dict) -> ReportSections:
     problem, model = report.problem, report.model
     names = model.symbol_latex if model is not None else {}
     tex = Tex(names, CompactTrig(problem))
-    out = [f"# {problem.title or problem.name}"]
+    head = [f"# {problem.title or problem.name}"]
     if problem.description:
-        out.append(problem.description.strip())
-    out.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
-               "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
-    notation_at = len(out)
-    out += render_data(problem, model, tex)
+        head.append(problem.description.strip())
+    head.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
+                "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
+    notation_at = len(head)
+    head += render_data(problem, model, tex)
     questions = {q.id: q for q in problem.questions}
+    answers = []
     for i, answer in enumerate(report.answers, 1):
         q = questions.get(answer.id)
         config = configuration_text(q, problem, tex) if q is not None else None
-        out += render_answer(i, answer, figure_paths.get(answer.id, []), tex, config)
-    out += render_course_notes(out)
-    notation = tex.compact.definitions("\n".join(out), names)
+        answers.append((answer.id, render_answer(i, answer, figure_paths.get(answer.id, []), tex, config)))
+    body = head + [b for _, blocks in answers for b in blocks]
+    notes = render_course_notes(body)
+    notation = tex.compact.definitions("\n".join(body + notes), names)
     if notation:                # defined once, before the data and answers that use it
-        out.insert(notation_at, notation)
-    return "\n\n".join(out) + "\n"
+        head.insert(notation_at, notation)
+    return ReportSections(head, answers, notes)
+
+
+def render_report(report, figure_paths: dict) -> str:
+    return "\n\n".join(report_sections(report, figure_paths).blocks()) + "\n"
 
 
 def render_course_notes(blocks: list[str]) -> list[str]:
