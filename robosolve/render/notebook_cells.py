@@ -169,25 +169,41 @@ def ellipsoids(q, answer, problem):
 
 def inverse_kinematics(q, answer, problem):
     target = q.options.get("target") or []
-    if not target or q.options.get("velocity"):
+    if not target:
         return None
-    if any(not str(name).endswith((".x", ".y", ".z")) for name, _, _ in target):
-        return None                                  # orientation targets: not rebuilt here
     limits = []
     for j in problem.joints:
         lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-10, 10))
         limits.append([text(lo), text(hi)])
     residual = [f"({text(lhs)}) - ({text(rhs)})" for _, lhs, rhs in target]
-    want = sorted(answer.numeric.get("solutions") or [], key=lambda s: tuple(s.values()))
-    return _lines(
+    names = [j.name for j in problem.joints]
+    want = {"solutions": sorted(answer.numeric.get("solutions") or [], key=lambda s: tuple(s.values()))}
+    lines = [
         f"at = {at_literal(q)}",
         "# Newton iterations (least-squares steps) from a grid of starts, kept within the joint limits",
-        f"residual = robot.vector({literal(residual)}).subs(robot.fixed(at))",
+        f"task = robot.vector({literal([text(lhs) for _, lhs, _ in target])})",
+        f"residual = (task - robot.vector({literal([text(rhs) for _, _, rhs in target])})).subs(robot.fixed(at))",
         f"limits = [[robot.number(robot.parse(x), at) for x in pair] for pair in {literal(limits)}]",
         f"solutions = newton_solutions(residual, robot.joints, limits, {literal([j.kind == 'revolute' for j in problem.joints])})",
-        "robosolve = " + literal({"solutions": want}),
-        _compare("solutions", "[dict(zip(robot.names_of_joints, s)) for s in solutions]"),
-    )
+        _compare("solutions", f"[dict(zip({names!r}, s)) for s in solutions]"),
+    ]
+    velocity = q.options.get("velocity")
+    if velocity and "q_dot" in answer.numeric and answer.numeric.get("selected"):
+        want["selected"] = answer.numeric["selected"]
+        want["q_dot"] = answer.numeric["q_dot"]
+        lines += [
+            "# velocity IK at the solution robosolve selected: J(q) q' = v",
+            "selected = robosolve['selected']",
+            "if solutions:",
+            "    selected = dict(zip(" + repr(names) + ", min(solutions, key=lambda s: np.linalg.norm(s - list(selected.values())))))",
+            f"v = robot.number(robot.vector({literal([text(v) for _, _, v in velocity])}), at).ravel()",
+            f"rates_of = robot.vector({literal([text(lhs) for _, lhs, _ in velocity])})",
+            "Jq = robot.number(rates_of.jacobian(robot.joints), {**at, **{k: repr(float(x)) for k, x in selected.items()}})",
+            "q_dot = np.linalg.lstsq(Jq, v, rcond=None)[0]",
+            _compare("q_dot", f"dict(zip({names!r}, q_dot))"),
+        ]
+    return _lines(lines[0], lines[1], lines[2], lines[3], lines[4], lines[5],
+                  "robosolve = " + literal(want), *lines[6:])
 
 
 # -- geometry -------------------------------------------------------------------------------------
@@ -382,10 +398,11 @@ def forward_dynamics(q, answer, problem):
         f"duration = robot.number(robot.parse({text(q.options['duration'])!r}), at)",
         f"times, qs, rates = forward_run(robot, laws, numbers({literal(q0)}), numbers({literal(v0)}), duration, at)",
         robosolve_numbers(answer, keys),
+        "low, high = extremes(times, qs, rates)",
         *_guarded(answer, ("final", _compare("final", f"dict(zip({names!r}, qs[-1]))", rtol=1e-6)),
                   ("final_velocity", _compare("final_velocity", f"dict(zip({names!r}, rates[-1]))", rtol=1e-6)),
-                  ("max", _compare("max", f"dict(zip({names!r}, qs.max(axis=0)))", rtol=1e-5)),
-                  ("min", _compare("min", f"dict(zip({names!r}, qs.min(axis=0)))", rtol=1e-5))),
+                  ("max", _compare("max", f"dict(zip({names!r}, high))", rtol=1e-6)),
+                  ("min", _compare("min", f"dict(zip({names!r}, low))", rtol=1e-6))),
         "plot_joints(times, qs, " + literal(names) + ")",
     )
 

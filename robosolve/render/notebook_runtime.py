@@ -539,8 +539,8 @@ class Profile:
         up, down = np.minimum(t, ramp), np.maximum(t - (T - ramp), 0.0)
         cruise = np.clip(t - ramp, 0.0, T - 2 * ramp)
         q = a * up ** 2 / 2 + vmax * cruise + vmax * down - a * down ** 2 / 2
-        qd = np.where(t < ramp, a * t, np.where(t > T - ramp, vmax - a * down, vmax))
-        qdd = np.where(t < ramp, a, np.where(t > T - ramp, -a, 0.0))
+        qd = np.where(t < ramp, a * t, np.where(t >= T - ramp, vmax - a * down, vmax))
+        qdd = np.where(t < ramp, a, np.where(t >= T - ramp, -a, 0.0))   # right-sided at a switch
         if t >= T:
             qd, qdd = np.zeros_like(a), np.zeros_like(a)
         return self.start + sign * q, sign * qd, sign * qdd
@@ -689,6 +689,23 @@ def forward_run(robot, laws, start, start_rates, duration, at=None, rtol=1e-10):
     y0 = np.concatenate([np.asarray(start, dtype=float), np.asarray(start_rates, dtype=float)])
     times, states = integrate(rhs, 0.0, float(duration), y0, rtol=rtol, atol=1e-12, max_step=float(duration) / 400)
     return times, states[:, :n], states[:, n:]
+
+
+def extremes(times, qs, rates):
+    """The smallest and largest value of each joint over a run: the samples, and between two
+    samples where the rate changes sign, the stationary point of the cubic Hermite interpolant."""
+    low, high = qs.min(axis=0).copy(), qs.max(axis=0).copy()
+    for i in range(qs.shape[1]):
+        q, v = qs[:, i], rates[:, i]
+        for k in np.nonzero(np.sign(v[:-1]) * np.sign(v[1:]) < 0)[0]:
+            h = times[k + 1] - times[k]
+            p = np.polynomial.Polynomial([q[k], h * v[k], 3 * (q[k + 1] - q[k]) - h * (2 * v[k] + v[k + 1]),
+                                          2 * (q[k] - q[k + 1]) + h * (v[k] + v[k + 1])])
+            for s in p.deriv().roots():
+                if abs(s.imag) < 1e-12 and 0 <= s.real <= 1:
+                    value = p(s.real)
+                    low[i], high[i] = min(low[i], value), max(high[i], value)
+    return low, high
 
 
 # -- mobility -----------------------------------------------------------------------------------------
