@@ -284,17 +284,20 @@ def dof(q, answer, problem):
 # -- dynamics and motion ---------------------------------------------------------------------------
 
 def equations_of_motion(q, answer, problem):
+    actuators = [str(j.actuator) for j in problem.joints]
     return _lines(
         f"at = {at_literal(q)}",
-        "mass, c, grav, Q = robot.lagrange(at)",
-        "if len(robot.joints) <= 3:",
-        "    show(mass, grav)",
+        "# M, c, g and the external forces' Q at the configuration (numbers along the chain)",
+        "mass, c, grav, Q = robot.dynamics_at(at)",
+        "accelerations = robot.number(sp.Matrix(robot.accelerations), at).ravel()",
+        "if len(robot.joints) <= 2:                # the formulas of a small arm, by Lagrange",
+        "    show(*robot.lagrange(at)[:3])",
         robosolve_numbers(answer, ["mass_matrix", "velocity_terms", "gravity_terms", "actuators"]),
-        *_guarded(answer, ("mass_matrix", _compare("mass_matrix", "robot.number(mass, at)")),
-                  ("velocity_terms", _compare("velocity_terms", "robot.number(c, at).ravel()")),
-                  ("gravity_terms", _compare("gravity_terms", "robot.number(grav, at).ravel()")),
+        *_guarded(answer, ("mass_matrix", _compare("mass_matrix", "mass")),
+                  ("velocity_terms", _compare("velocity_terms", "c")),
+                  ("gravity_terms", _compare("gravity_terms", "grav")),
                   ("actuators", "# the joint actions tau = M q'' + c + g - Q\n"
-                   + _compare("actuators", "robot.number(robot.joint_actions(at), at).ravel()"))),
+                   + _compare("actuators", f"dict(zip({actuators!r}, mass @ accelerations + c + grav - Q))"))),
     )
 
 

@@ -245,6 +245,70 @@ class Robot:
         c = momenta.jacobian(self.joints) * sp.Matrix(self.rates) - sp.Matrix([T.diff(q) for q in self.joints])
         return mass, sp.expand(c), grav, self.external_forces(at)
 
+    def _chain_at(self, at):
+        """Per frame, at the numbers of `at`: 0M, its derivatives D[i] = d0M/dq_i and
+        D2[i][k] = d2 0M/dq_i dq_k (numpy), by the product rule along the chain."""
+        subs = self.values(at)
+        n = len(self.joints)
+        zero = np.zeros((4, 4))
+
+        def num(m):
+            return np.array(sp.N(m.subs(subs)).tolist(), dtype=float)
+
+        chain = {"0": (np.eye(4), [zero] * n, [[zero] * n for _ in range(n)])}
+
+        def of(frame):
+            if frame not in chain:
+                parent, local = self.frames[frame]
+                P, DP, D2P = of(parent)
+                used = [i for i, q in enumerate(self.joints) if local.has(q)]
+                L = num(local)
+                DL = [num(local.diff(self.joints[i])) if i in used else zero for i in range(n)]
+                D2L = [[num(local.diff(self.joints[i], self.joints[k])) if i in used and k in used else zero
+                        for k in range(n)] for i in range(n)]
+                D = [DP[i] @ L + P @ DL[i] for i in range(n)]
+                D2 = [[D2P[i][k] @ L + DP[i] @ DL[k] + DP[k] @ DL[i] + P @ D2L[i][k] for k in range(n)]
+                      for i in range(n)]
+                chain[frame] = (P @ L, D, D2)
+            return chain[frame]
+
+        return of, subs
+
+    def dynamics_at(self, at):
+        """M, c, g and Q as numbers at the configuration `at` (joints, rates), without a symbolic
+        derivation (a six-joint arm in seconds): M_ik = sum tr(D_i J D_k^T), c from the
+        derivatives of M (Christoffel), g_i = -sum g.(D_i J e4), Q from the forces' Jacobians."""
+        of, subs = self._chain_at(at)
+        n = len(self.joints)
+        rates = np.array([float(sp.N(sp.sympify(r).subs(subs))) for r in self.rates])
+        gravity = np.array(sp.N(self.gravity.subs(subs)).tolist(), dtype=float).ravel()
+        mass, dmass, grav = np.zeros((n, n)), np.zeros((n, n, n)), np.zeros(n)
+        for frame, J in self.bodies.values():
+            J = np.array(sp.N(J.subs(subs)).tolist(), dtype=float)
+            _, D, D2 = of(frame)
+            for i in range(n):
+                grav[i] -= gravity @ (D[i] @ J[:, 3])[:3]
+                for k in range(n):
+                    mass[i, k] += np.trace(D[i] @ J @ D[k].T)
+                    for m in range(n):              # d M_ik / d q_m
+                        dmass[i, k, m] += np.trace(D2[i][m] @ J @ D[k].T + D[i] @ J @ D2[k][m].T)
+        c = np.array([sum((dmass[i, j, k] - dmass[j, k, i] / 2) * rates[j] * rates[k]
+                          for j in range(n) for k in range(n)) for i in range(n)])
+        Q = np.zeros(n)
+        for frame, point, force, torque, in_frame in self.forces.values():
+            M, D, _ = of(frame)
+            R = of(in_frame)[0][:3, :3]
+            for i in range(n):
+                if force is not None:
+                    F = np.array(sp.N(force.subs(subs)).tolist(), dtype=float).ravel()
+                    p = np.array(sp.N(sp.Matrix([*point, 1]).subs(subs)).tolist(), dtype=float).ravel()
+                    Q[i] += (D[i] @ p)[:3] @ (R @ F)
+                if torque is not None:
+                    tau = np.array(sp.N(torque.subs(subs)).tolist(), dtype=float).ravel()
+                    S = D[i][:3, :3] @ M[:3, :3].T
+                    Q[i] += np.array([S[2, 1], S[0, 2], S[1, 0]]) @ (R @ tau)
+        return mass, c, grav, Q
+
     def joint_actions(self, at=None):
         """tau = M q'' + c + g - Q: what the actuators exert at the configuration `at`."""
         mass, c, grav, Q = self.lagrange(at)
