@@ -118,6 +118,13 @@ def question_cell(question, answer, problem) -> str:
     return code if code is not None else fallback_cell(answer)
 
 
+def code_cells(problem, answers) -> list[str]:
+    """The notebook's code cells: the runtime, the data, then one per answer (in report order)."""
+    questions = {q.id: q for q in problem.questions}
+    return [runtime_source(), data_cell(problem)] + [question_cell(questions.get(a.id), a, problem)
+                                                     for a in answers]
+
+
 def build_notebook(report, figure_paths=None):
     import nbformat
     from nbformat import v4
@@ -133,14 +140,13 @@ def build_notebook(report, figure_paths=None):
         cells.append(cell)
 
     sections = report_sections(report, figure_paths or {})
+    runtime, data, *per_answer = code_cells(problem, report.answers)
     add("md", "\n\n".join(sections.head))
-    add("code", runtime_source())
-    add("code", data_cell(problem))
-    questions = {q.id: q for q in problem.questions}
-    answers = {a.id: a for a in report.answers}
-    for answer_id, blocks in sections.answers:
+    add("code", runtime)
+    add("code", data)
+    for (_, blocks), code in zip(sections.answers, per_answer):
         add("md", "\n\n".join(blocks))
-        add("code", question_cell(questions.get(answer_id), answers[answer_id], problem))
+        add("code", code)
     if sections.notes:
         add("md", "\n\n".join(sections.notes))
     nb = v4.new_notebook(cells=cells, metadata={

@@ -108,14 +108,19 @@ def _jacobian_lines(q) -> list[str]:
 
 def jacobian(q, answer, problem):
     if q.options.get("geometric"):
-        return None
+        head = [f"at = {at_literal(q)}",
+                "# geometric: the point's linear velocity over the angular velocity, column by joint",
+                f"J = robot.geometric_jacobian({q.point!r})",
+                "Jn = robot.number(J, at)"]
+    else:
+        head = _jacobian_lines(q)
     return _lines(
-        *_jacobian_lines(q),
+        *head,
         "show(J)",
         robosolve_numbers(answer, ["J", "det", "manipulability"]),
         *_guarded(answer, ("J", _compare("J", "Jn")),
                   ("det", _compare("det", "np.linalg.det(Jn)")),
-                  ("manipulability", _compare("manipulability", "np.sqrt(np.linalg.det(Jn @ Jn.T))"))),
+                  ("manipulability", _compare("manipulability", "np.prod(np.linalg.svd(Jn, compute_uv=False))"))),
     )
 
 
@@ -148,8 +153,8 @@ def ellipsoids(q, answer, problem):
     want = {"eigenvalues": sorted(answer.numeric.get("eigenvalues") or [])}
     for kind in ("force", "velocity", "compliance"):
         lengths = (answer.numeric.get(kind) or {}).get("lengths")
-        if lengths is not None:
-            want[kind] = sorted(lengths, reverse=True)
+        if lengths is not None:                     # None: infinite (a singular direction)
+            want[kind] = sorted((math.inf if x is None else x for x in lengths), reverse=True)
     if "condition_number" in answer.numeric:
         want["condition_number"] = answer.numeric["condition_number"]
     kq_arg = "" if not kq else f", Kq=robot.number(robot.vector({literal([text(x) for x in kq])}), at).ravel()"
@@ -185,7 +190,8 @@ def inverse_kinematics(q, answer, problem):
         f"residual = (task - robot.vector({literal([text(rhs) for _, _, rhs in target])})).subs(robot.fixed(at))",
         f"limits = [[robot.number(robot.parse(x), at) for x in pair] for pair in {literal(limits)}]",
         f"solutions = newton_solutions(residual, robot.joints, limits, {literal([j.kind == 'revolute' for j in problem.joints])})",
-        _compare("solutions", f"[dict(zip({names!r}, s)) for s in solutions]"),
+        "# (at a workspace boundary a solution is a double root: Newton then finds it to ~1e-7 only)",
+        f"compare('solutions', [dict(zip({names!r}, s)) for s in solutions], robosolve['solutions'], atol=1e-6)",
     ]
     velocity = q.options.get("velocity")
     if velocity and "q_dot" in answer.numeric and answer.numeric.get("selected"):

@@ -203,6 +203,10 @@ class Robot:
         inv = inverse_pose(M)
         return sp.Matrix.hstack(*[vex((M.diff(q) * inv)[:3, :3]) for q in self.joints])
 
+    def geometric_jacobian(self, point):
+        """[J_v; J_w]: the point's velocity d0P/dq over the angular velocity of its frame."""
+        return self.point0(point).jacobian(self.joints).col_join(self.angular_jacobian(self.points[point][0]))
+
     # -- statics and dynamics
     def weight_forces(self, at=None):
         """Fq = -sum J_G^T m g: what the joints exert to hold the bodies' weight."""
@@ -512,15 +516,16 @@ def newton_solutions(residual, joints, limits, revolute, starts=200):
     solutions = []
     for start in np.stack([g.ravel() for g in grid], axis=1):
         x = start.astype(float)
-        for _ in range(60):
-            r = np.asarray(f(x), dtype=float).ravel()
-            if np.linalg.norm(r) < 1e-13:
+        for _ in range(100):                       # until the step vanishes (linear at a double root)
+            step = np.linalg.lstsq(np.asarray(jac(x), dtype=float), np.asarray(f(x), dtype=float).ravel(),
+                                   rcond=None)[0]
+            x = x - step
+            if np.linalg.norm(step) < 1e-14 * max(1.0, np.linalg.norm(x)):
                 break
-            x = x - np.linalg.lstsq(np.asarray(jac(x), dtype=float), r, rcond=None)[0]
         x = np.where(revolute, [wrap(v) for v in x], x)
         ok = np.linalg.norm(np.asarray(f(x), dtype=float)) < 1e-9
-        inside = np.all((x >= limits[:, 0] - 1e-9) & (x <= limits[:, 1] + 1e-9))
-        if ok and inside and not any(np.allclose(x, s, atol=1e-6) for s in solutions):
+        inside = np.all((x >= limits[:, 0] - 1e-6) & (x <= limits[:, 1] + 1e-6))
+        if ok and inside and not any(np.allclose(x, s, atol=1e-5) for s in solutions):
             solutions.append(x)
     return sorted(solutions, key=lambda s: tuple(np.round(s, 9)))
 
