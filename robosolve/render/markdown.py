@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 from robosolve.questions.registry import title as question_title
-from robosolve.core.prose import Num, Text
+from robosolve.core.prose import Num, Text, name_md
 from robosolve.render.compact import CompactTrig, display_lines
 from robosolve.render.configuration import configuration_text, overrides_by_parameter
 from robosolve.render.numbers import report_number, text
@@ -110,11 +110,11 @@ def render_data(problem, model, tex: Tex) -> list[str]:
                 "explicit matrix" if f.kind == "matrix" else f"${factors[0][0]}$ ({f.kind})")
             if f.kind == "pose":
                 pose = f"${pose}$"
-            rows.append((name, f.parent, pose))
+            rows.append((name_md(name), name_md(f.parent), pose))
         out += ["### Frames", "Each pose is applied in the current (moving) frame, left to right.",
                 render_table(("frame", "parent", "pose in parent"), rows)]
     if problem.points:
-        rows = [(p.name, p.frame, f"${tex(list(p.at))}$" + (" (default: origin of the last frame)"
+        rows = [(p.name, name_md(p.frame), f"${tex(list(p.at))}$" + (" (default: origin of the last frame)"
                                                               if p.implicit else ""))
                 for p in problem.points.values()]
         out += ["### Points", render_table(("point", "frame", "coordinates in its frame"), rows)]
@@ -132,14 +132,14 @@ def render_data(problem, model, tex: Tex) -> list[str]:
                 dist = f"centre of mass ${tex(list(d['com']))}$, inertia ${tex(d['inertia'])}$"
             else:
                 dist = f"pseudo-inertia ${tex(d['J'])}$"
-            rows.append((b.name, b.frame, f"${tex(b.mass)}$", dist))
+            rows.append((name_md(b.name), name_md(b.frame), f"${tex(b.mass)}$", dist))
         out += ["### Bodies", render_table(("body", "frame", "mass", "distribution"), rows)]
     if problem.forces:
         rows = []
         for f in problem.forces:
-            rows.append((f.name, f.frame, f"${tex(list(f.at))}$",
+            rows.append((name_md(f.name), name_md(f.frame), f"${tex(list(f.at))}$",
                          f"${tex(list(f.force))}$" if f.force is not None else "—",
-                         f"${tex(list(f.torque))}$" if f.torque is not None else "—", f.in_frame))
+                         f"${tex(list(f.torque))}$" if f.torque is not None else "—", name_md(f.in_frame)))
         out += ["### External forces",
                 render_table(("name", "acts on frame", "at (in its frame)", "force", "torque",
                               "components in frame"), rows)]

@@ -3,6 +3,7 @@ force, frame and point names that look like code neither run nor break a cell.""
 
 import ast
 import json
+import re
 
 import pytest
 
@@ -13,7 +14,7 @@ from robosolve.render.drawing import InlineFigures
 EVIL = 'b": open("X","w").write("x"), "c'
 QUOTED = 'arm "A"'
 FORCE = "f\\\"); open('X','w').write('x'); (\\\""       # YAML-escaped: f"); open('X','w')...
-LATEX = "$\\\\{_<script>x"                                # YAML-escaped: $\{_<script>x
+LATEX = "$\\\\{_<script>x|y"                              # YAML-escaped: $\{_<script>x|y
 
 PROBLEM = f"""\
 robosolve: 1
@@ -48,7 +49,7 @@ def evil_files(tmp_path_factory):
     path = tmp_path_factory.mktemp("evil") / "evil.yaml"
     path.write_text(PROBLEM, encoding="utf-8")
     problem = load_problem(path)
-    assert {b.name for b in problem.bodies} == {EVIL, "$\\{_<script>x"}
+    assert {b.name for b in problem.bodies} == {EVIL, "$\\{_<script>x|y"}
     assert {f.name for f in problem.forces} == {"f\"); open('X','w').write('x'); (\""}
     assert set(problem.frames) == {QUOTED, EVIL}
     return render_files(solve_problem(problem), ("md", "html", "ipynb"), InlineFigures())
@@ -84,3 +85,31 @@ def test_running_the_notebook_creates_no_file(evil_files, tmp_path, monkeypatch)
                             resources={"metadata": {"path": str(elsewhere)}}).execute()
     assert [p.name for p in folder.iterdir()] == ["report.ipynb"]
     assert list(elsewhere.iterdir()) == []
+
+
+def _balanced(tex: str) -> bool:
+    depth = 0
+    for m in re.finditer(r"\\.|[{}]", tex):
+        if m.group() == "{":
+            depth += 1
+        elif m.group() == "}":
+            depth -= 1
+            if depth < 0:
+                return False
+    return depth == 0
+
+
+def test_the_names_are_escaped_in_the_markdown_and_the_html(evil_files):
+    from robosolve.render.html import DISPLAY, INLINE
+
+    md = evil_files["report.md"].decode("utf-8")
+    assert not re.search(r"(?<!\\)<script", md)        # in prose, tables and formulas
+    formulas = DISPLAY.findall(md) + INLINE.findall(DISPLAY.sub("", md))
+    assert formulas and all(_balanced(f) for f in formulas), [f for f in formulas if not _balanced(f)][:3]
+    assert "\\mathrm{\\$\\backslash{}\\{\\_\\lt{}script\\gt{}x|y}" in md
+    for line in md.splitlines():                            # a name with | does not split a table row
+        if line.startswith("| ") and "script" in line:
+            assert len(re.findall(r"(?<!\\)\|", line)) == 5, line     # the bodies: 4 columns
+    html = evil_files["report.html"].decode("utf-8")
+    assert "<script" not in html.lower()
+    assert "&lt;script&gt;x|y" in html                    # shown as written in the bodies' table
