@@ -155,8 +155,9 @@ def ellipsoids(q, answer, problem):
         lengths = (answer.numeric.get(kind) or {}).get("lengths")
         if lengths is not None:                     # None: infinite (a singular direction)
             want[kind] = sorted((math.inf if x is None else x for x in lengths), reverse=True)
-    if "condition_number" in answer.numeric:
-        want["condition_number"] = answer.numeric["condition_number"]
+    if "condition_number" in answer.numeric:            # None: infinite (singular)
+        cond = answer.numeric["condition_number"]
+        want["condition_number"] = math.inf if cond is None else cond
     kq_arg = "" if not kq else f", Kq=robot.number(robot.vector({literal([text(x) for x in kq])}), at).ravel()"
     compared = [_compare(k, f"axes[{k if k != 'eigenvalues' else 'nu'!r}]") for k in want
                 if k != "condition_number" and (k != "compliance" or kq)]
