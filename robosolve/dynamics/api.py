@@ -1,5 +1,5 @@
-"""Public interface of the dynamics engine (used by `equations_of_motion`, `joint_torques`,
-the control solvers and the benchmark).
+"""Public interface of the dynamics engine (used by the solvers of the
+dynamics question types and the benchmark).
 
 Inputs are plain sympy objects (no dependency on the loader):
 

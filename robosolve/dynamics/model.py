@@ -1,5 +1,5 @@
 """The one bridge between a problem's `RobotModel` and the dynamics engine (one derivation
-per model, shared by `equations_of_motion`, `joint_torques` and the control solvers).
+per model, shared by the solvers of every question type with `needs_dynamics`).
 
     dyn = dynamics_for(model)                 # Dynamics (symbolic), cached per model
     nd, note = numeric_for(model, subs)       # NumericDynamics; numeric-only fallback

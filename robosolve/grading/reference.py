@@ -137,7 +137,7 @@ def _roles(problem, q, subs, answers) -> SymbolRoles:
         joints[j.symbol] = (lo, hi)
     rates = {j.dot for j in problem.joints} | {j.ddot for j in problem.joints}
     actuators = {j.actuator for j in problem.joints}
-    # t runs over the motion's duration: the answer's own T, else its profile's (joint_torques)
+    # t runs over the motion's duration: the answer's own T, else its profile's (a type with `uses_profile`)
     T = None
     own = answers.get(q.id)
     if own is not None and isinstance(own.numeric.get("T"), (int, float)):

@@ -19,6 +19,7 @@ from robosolve.load.problem import (
     PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
 )
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, read_text_file
+from robosolve.questions.registry import types_where
 
 NAME_RE = re.compile(r"[a-z0-9_-]+")  # used with fullmatch: "$" would accept a final newline
 IDENT_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
@@ -28,9 +29,18 @@ PYTHON_KEYWORDS = {
     "if", "import", "in", "is", "lambda", "nonlocal", "not", "or", "pass", "raise",
     "return", "try", "while", "with", "yield",
 }
-TIME_REFUSED = ("`t` (time) has no meaning here: time may appear only in `forces` (followed along a "
-                "forward_dynamics run, a p_control simulation or a joint_torques profile) and in the "
-                "`actuators` laws of a forward_dynamics question")
+
+
+def _time_refused() -> str:
+    """Where time may appear, from the types following forces in time (`QuestionType.time_use`)
+    and those with laws in t (`time_laws`)."""
+    uses = [phrase for _, phrase in sorted(t.time_use for t in types_where("time_use"))]
+    laws = " and ".join(f"in the `{t.time_laws}` laws of a {t.name} question" for t in types_where("time_laws"))
+    return ("`t` (time) has no meaning here: time may appear only in `forces` (followed along "
+            + ", ".join(uses[:-1]) + " or " + uses[-1] + ") and " + laws)
+
+
+TIME_REFUSED = _time_refused()
 TOP_KEYS = ("robosolve", "name", "title", "description", "parameters", "joints", "frames",
             "dh", "points", "gravity", "bodies", "forces", "questions", "grading", "variants")
 POSE_OPS = ("Tx", "Ty", "Tz", "Rx", "Ry", "Rz")
@@ -252,7 +262,7 @@ class _ProblemBuilder:
         self.joints = self._joints(data.get("joints"))
         self.names = self._names()
         # time: meaningful only in forces (along a run, a simulation or a profile) and in
-        # forward_dynamics laws; anywhere else a `t` is refused with what to do instead
+        # the laws of a type with `time_laws`; anywhere else a `t` is refused with what to do instead
         static = {k: v for k, v in self.names.items() if k != "t"}
         self.ns = Namespace(static, what="name", refused={"t": TIME_REFUSED})
         self.ns_time = Namespace(self.names, what="name")
@@ -788,7 +798,7 @@ class _ProblemBuilder:
             if "force" not in item and "torque" not in item:
                 chk.error(path, "expected a force, a torque, or both")
                 continue
-            # a force may vary with time t (used along forward_dynamics, p_control, joint_torques)
+            # a force may vary with time t (followed by the types with a `time_use`)
             force = chk.vector(path + ("force",), item["force"], self.ns_time) if "force" in item else None
             torque = chk.vector(path + ("torque",), item["torque"], self.ns_time) if "torque" in item else None
             if ("force" in item and force is None) or ("torque" in item and torque is None):

@@ -19,12 +19,13 @@ import sympy as sp
 
 from robosolve.core.simplify import full, is_zero
 from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
+from robosolve.questions.registry import types_where
 
 SECTION_KEYS = ("parameters", "require")
 PARAMETER_KEYS = ("range", "step", "choices")
 REQUIRE_KINDS = ("reachable", "nonsingular")
 # the question types whose answer has a Jacobian J evaluated at the question's `at`
-JACOBIAN_TYPES = ("jacobian", "statics", "ellipsoids")
+JACOBIAN_TYPES = tuple(t.name for t in types_where("has_jacobian"))
 INEQUALITY_RE = re.compile(r"<=|>=|==|!=|<|>|=")
 OPERATORS = ("<", "<=", ">", ">=")
 
@@ -265,9 +266,10 @@ def _question_ref(chk, builder, path, kind, qid, questions):
                   + f" (known: {known})")
         return None
     q = questions[qid]
-    if kind == "reachable" and q.type != "inverse_kinematics":
+    reaching = [t.name for t in types_where("reaches")]
+    if kind == "reachable" and q.type not in reaching:
         chk.error(path, f"question '{qid}' is a {q.type} question: reachable needs an "
-                  "inverse_kinematics question")
+                  f"{' or '.join(reaching)} question")
         return None
     if kind == "nonsingular":
         if q.type not in JACOBIAN_TYPES:

@@ -1,8 +1,8 @@
 """Stage 3: one module per question type, each with `solve(question, ctx) -> Answer`.
 
 Which module answers which type is the registry's business
-(`robosolve.questions.registry`): adding a type = a module here, a registry entry,
-a doc page.
+(`robosolve.questions.registry`): adding a type = a module here, a type module
+`robosolve/questions/<type>.py` (named in the registry's `MODULES`), a doc page.
 """
 
 from __future__ import annotations

@@ -117,11 +117,11 @@ class SolveContext:
 
     # -- results of earlier questions ------------------------------------
     def record_profile(self, qid: str, profile: SyncProfile) -> None:
-        """The synchronized profile of motion_profile question `qid` (for joint_torques, p_control)."""
+        """The synchronized profile of the profile question `qid` (for the types with `uses_profile`)."""
         self._profiles[qid] = profile
 
     def profile(self, qid: str) -> SyncProfile:
-        """The SyncProfile of motion_profile question `qid`; SolverError when it has no answer."""
+        """The SyncProfile of the profile question `qid`; SolverError when it has no answer."""
         prof = self._profiles.get(qid)
         if prof is None:
             raise SolverError(f"the motion profile '{qid}' has no answer")

@@ -1,7 +1,7 @@
 """Question 9: the actuator forces that make the arm follow the motion profile.
 
 The equations of motion M(q) qdd + c(q, qd) + g(q) = actuators + f_ext are solved
-for the actuators, and the profile of the referenced motion_profile question is
+for the actuators, and the profile of the referenced motion profile question is
 substituted for q, qd, qdd.  The profile is polynomial between switching instants,
 so each actuator is a closed-form expression of t on each interval; it jumps where
 an acceleration jumps (0, T/2, T for bang-bang).  Peaks are signed, over [0, T],

@@ -10,7 +10,7 @@ evaluation per distinct sub-combination, not one per combination.
 - `nonsingular`: the smallest singular value of J at the question's `at` is above 1e-6
   times the largest (J from robosolve.kinematics' analytic / geometric Jacobian);
 - `reachable`: the IK engine's numeric search (robosolve.ik.numeric.solve_all, the same
-  multi-start search and the same joint-limit rule as the inverse_kinematics solver)
+  multi-start search and the same joint-limit rule as the inverse kinematics solver)
   finds at least one solution inside the limits.
 
 The checks run on a *template* problem in which the varied parameters are null (plain

@@ -5,7 +5,8 @@ Every `import` of every module is read from the AST (function-level imports incl
 * each module belongs to a declared layer (a new package must be declared here and in
   docs/architecture.md);
 * a module imports only its own layer or lower ones: load -> model -> engines -> solvers
-  -> render -> pipeline/batch -> cli, with errors/core/questions below everything;
+  -> render -> run/grading/variants -> cli, with errors/core below everything and the
+  question types (questions/) beside the loader;
 * the engines (kinematics, ik, dynamics, motion, geometry) are pure math: besides each
   other they import only core and errors (no question, no context, no model);
 * no import circle between modules.
@@ -16,30 +17,23 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
-import pytest
-
 PACKAGE = Path(__file__).resolve().parents[2] / "robosolve"
 
 # layer rank of each top-level part of the package
 LAYERS = {
-    "robosolve": 0, "errors": 0, "interrupts": 0, "core": 0, "questions": 0,
-    "load": 1,
+    "robosolve": 0, "errors": 0, "core": 0,
+    # the question types sit with the loader: a type module names its option validators
+    # (load/validators.py) and the loader reads the registry
+    "load": 1, "questions": 1,
     "model": 2,
     "kinematics": 3, "ik": 3, "dynamics": 3, "motion": 3, "geometry": 3,
     "solvers": 4,
     "render": 5,
-    "pipeline": 6, "outputs": 6, "batch": 6, "grading": 6, "variants": 6, "execution": 6, "split_solve": 6,
+    "run": 6, "grading": 6, "variants": 6,
     "cli": 7, "__main__": 7,
 }
 ENGINES = {"kinematics", "ik", "dynamics", "motion", "geometry"}
 ENGINE_MAY_IMPORT = ENGINES | {"core", "errors"}
-
-
-def _module_name(path: Path) -> str:
-    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
-    if parts[-1] == "__init__":
-        parts = parts[:-1]
-    return ".".join(parts)
 
 
 def _part(module: str) -> str:
@@ -48,9 +42,16 @@ def _part(module: str) -> str:
     return parts[1] if len(parts) > 1 else "robosolve"
 
 
-def import_graph() -> dict[str, list[tuple[str, int]]]:
+def _module_name_in(path: Path, package: Path) -> str:
+    parts = list(path.relative_to(package.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def import_graph(package: Path = PACKAGE) -> dict[str, list[tuple[str, int]]]:
     """module -> [(imported robosolve module, line)], every import statement included."""
-    files = {_module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+    files = {_module_name_in(p, package): p for p in sorted(package.rglob("*.py"))}
     graph = {}
     for name, path in files.items():
         package = name if path.name == "__init__.py" else name.rpartition(".")[0]
@@ -87,13 +88,18 @@ def test_every_module_has_a_declared_layer():
                          f"tests/architecture/test_layers.py and docs/architecture.md): {unknown}")
 
 
-def test_imports_go_down_the_layers():
+def layer_violations(graph) -> list[str]:
     bad = []
-    for mod, edges in GRAPH.items():
+    for mod, edges in graph.items():
         for target, line in edges:
             a, b = _part(mod), _part(target)
             if a in LAYERS and b in LAYERS and LAYERS[b] > LAYERS[a]:
                 bad.append(f"{mod}:{line} imports {target} (layer {b} is above {a})")
+    return bad
+
+
+def test_imports_go_down_the_layers():
+    bad = layer_violations(GRAPH)
     assert not bad, "\n".join(bad)
 
 
@@ -148,15 +154,41 @@ def test_no_import_circles():
     assert _cycles(GRAPH) == []
 
 
-def test_the_checks_can_fail():
-    """The walker sees function-level imports and the cycle finder finds a circle."""
-    assert ("robosolve.solvers.base", 0) not in GRAPH["robosolve.errors"]
+def test_the_checks_can_fail(tmp_path):
+    """On a small package: the walker sees a function-level import with its line, the layer
+    check reports it and the cycle finder finds the circle it closes."""
+    pkg = tmp_path / "robosolve"
+    (pkg / "solvers").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "errors.py").write_text('"""doc"""\n\n\ndef f():\n    from robosolve.solvers import base\n')
+    (pkg / "solvers" / "__init__.py").write_text("")
+    (pkg / "solvers" / "base.py").write_text("import os\nimport robosolve.errors\n")
+    graph = import_graph(pkg)
+    assert graph["robosolve.errors"] == [("robosolve.solvers", 5), ("robosolve.solvers.base", 5)]
+    assert graph["robosolve.solvers.base"] == [("robosolve.errors", 2)]
+    assert layer_violations(graph) == [
+        "robosolve.errors:5 imports robosolve.solvers (layer solvers is above errors)",
+        "robosolve.errors:5 imports robosolve.solvers.base (layer solvers is above errors)"]
+    assert _cycles(graph) == [["robosolve.errors", "robosolve.solvers.base"]]
     fake = {"a": [("b", 1)], "b": [("c", 2)], "c": [("a", 3)], "d": [("a", 1)]}
     assert _cycles(fake) == [["a", "b", "c"]]
-    func_level = [e for e in GRAPH["robosolve.pipeline"] if e[0] == "robosolve.model"]
+    func_level = [e for e in GRAPH["robosolve.run.pipeline"] if e[0] == "robosolve.model"]
     assert func_level, "the function-level import of robosolve.model in pipeline.py is seen"
 
 
-@pytest.mark.parametrize("path", ["robosolve/dynamics/examples.py", "robosolve/dynamics/reference.py"])
-def test_fixtures_live_outside_the_package(path):
-    assert not (PACKAGE.parent / path).exists()
+# what only the tests may use: the test runner, the test fixtures, the reference libraries
+TEST_ONLY = ("tests", "pytest", "hypothesis", "roboticstoolbox", "pinocchio", "spatialmath")
+
+
+def test_fixtures_live_outside_the_package():
+    """No module of the package imports the tests, their fixtures or the reference libraries
+    they check against (the fixtures live in tests/support/, the references in the tests)."""
+    bad = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import)
+                     else [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else [])
+            bad += [f"{path.relative_to(PACKAGE.parent)}:{node.lineno} imports {n}"
+                    for n in names if n.split(".")[0] in TEST_ONLY]
+    assert not bad, "\n".join(bad)
+    assert (PACKAGE.parent / "tests" / "support" / "robots.py").is_file()

@@ -20,7 +20,7 @@ _RC = {
     "figure.dpi": 100, "savefig.dpi": 100, "font.size": 10, "axes.grid": True,
     "grid.alpha": 0.3, "svg.hashsalt": "robosolve",
     # titles at a fixed height: the automatic one measures the top axis' tick labels on every
-    # draw; a figure with tick labels on top (motion_profile) gives its title a larger pad
+    # draw; a figure with tick labels on top (a motion profile) gives its title a larger pad
     "axes.titley": 1.0,
 }
 PNG_OPTIONS = {"compress_level": 1}

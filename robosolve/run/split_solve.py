@@ -47,7 +47,7 @@ def units(questions) -> dict:
 
 def to_solve_again(questions, received) -> list[int]:
     """The questions the parent solves after the helper: each one not received, with the rest of
-    its unit (a joint_torques question needs its motion profile solved in the same process)."""
+    its unit (the torques along a profile need the profile solved in the same process)."""
     again: set = set()
     for members in units(questions).values():
         if any(i not in received for i in members):

@@ -1,0 +1,232 @@
+"""The validators of question options, shared by the question types.
+
+A question type (``robosolve/questions/<type>.py``) maps each of its option keys to one of
+these functions. Each is called as ``validator(ql, path, value, question)`` by the question
+loader ``ql`` (``load/questions.py``: its checker ``ql.chk``, the problem builder ``ql.b``, the
+parameters' namespace ``ql.params_ns``, the joint names ``ql.joint_names`` and the name of the
+profile type ``ql.profile_type``); it reports a mistake with ``ql.chk.error(path, ...)`` and
+returns the parsed value, or None. A type's cross-field ``check(ql, path, item, question)``
+gets the same loader, with ``ql.require_gravity(path)`` and ``ql.type_name(flag)``.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
+
+SHAPES = ("bang-bang", "trapezoidal", "quintic")
+LAWS = ("p", "pd", "pd_gravity", "computed_torque")
+
+
+def v_bool(ql, path, value, q):
+    return ql.chk.boolean(path, value)
+
+
+def v_expr(ql, path, value, q):
+    return ql.chk.expr(path, value, ql.params_ns)
+
+
+def v_exprs(ql, path, value, q):
+    v = ql.chk.vector(path, value, ql.b.ns, length=None)
+    return list(v) if v is not None else None
+
+
+def v_vector3_params(ql, path, value, q):
+    v = ql.chk.vector(path, value, ql.params_ns, length=3)
+    return list(v) if v is not None else None
+
+
+def v_vector3(ql, path, value, q):
+    v = ql.chk.vector(path, value, ql.b.ns, length=3)
+    return list(v) if v is not None else None
+
+
+def v_coordinates(ql, path, value, q):
+    if not isinstance(value, list) or not value:
+        ql.chk.error(path, "expected a non-empty list of coordinate expressions (e.g. [E.x, E.y])")
+        return None
+    out = [ql.chk.expr(path + (i,), v, ql.b.ns_points) for i, v in enumerate(value)]
+    return None if any(e is None for e in out) else out
+
+
+def v_budgets(ql, path, value, q):
+    if not ql.chk.mapping(path, value, ("force", "velocity", "compliance")):
+        return None
+    out = {}
+    for k, v in value.items():
+        if k in ("force", "velocity", "compliance"):
+            e = ql.chk.expr(path + (k,), v, ql.params_ns)
+            if e is not None:
+                out[k] = e
+    return out
+
+
+def v_equations(ql, path, value, q):
+    chk = ql.chk
+    if not isinstance(value, dict) or not value:
+        chk.error(path, "expected a mapping coordinate expression: value (e.g. {E.x: 1.2, E.y: 0.3})")
+        return None
+    out = []
+    for key, v in value.items():
+        try:
+            lhs = ql.b.ns_points.parse_text(str(key))
+        except ExpressionError as exc:
+            chk.error(path + (key,), str(exc))
+            continue
+        rhs = chk.expr(path + (key,), v, ql.params_ns)
+        if rhs is not None:
+            out.append((str(key), lhs, rhs))
+    return out if len(out) == len(value) else None
+
+
+def v_joint_values(ql, path, value, q, require_all=True):
+    chk = ql.chk
+    if not isinstance(value, dict):
+        chk.error(path, "expected a mapping joint: value")
+        return None
+    for key in value:
+        if key not in ql.joint_names:
+            chk.error(path + (key,), f"unknown joint '{key}'" + did_you_mean(key, ql.joint_names)
+                      + f" (joints: {', '.join(ql.joint_names)})")
+    missing = [n for n in ql.joint_names if n not in value]
+    if require_all and missing:
+        chk.error(path, f"missing joint(s) {', '.join(missing)} (give a value for every joint)")
+    out = {}
+    for n in ql.joint_names:
+        if n in value:
+            e = chk.expr(path + (n,), value[n], ql.params_ns)
+            if e is not None:
+                out[n] = e
+    return out
+
+
+def v_select(ql, path, value, q):
+    if value == "limits":
+        return "limits"
+    if isinstance(value, dict):
+        return v_joint_values(ql, path, value, q)
+    ql.chk.error(path, "expected 'limits' or a configuration (mapping joint: value)")
+    return None
+
+
+def v_shape(ql, path, value, q):
+    return _choice(ql, path, value, SHAPES)
+
+
+def v_law(ql, path, value, q):
+    return _choice(ql, path, value, LAWS)
+
+
+def v_space(ql, path, value, q):
+    return _choice(ql, path, value, ("planar", "spatial"))
+
+
+def _choice(ql, path, value, choices):
+    if value not in choices:
+        ql.chk.error(path, f"unknown value {value!r}"
+                       + (did_you_mean(value, choices) if isinstance(value, str) else "")
+                       + f" (expected one of: {', '.join(choices)})")
+        return None
+    return value
+
+
+def v_profile_ref(ql, path, value, q):
+    if not isinstance(value, str):
+        ql.chk.error(path, f"expected the id of a {ql.profile_type} question")
+        return None
+    return value
+
+
+def v_count(ql, path, value, q):
+    if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+        ql.chk.error(path, "expected a whole number >= 0")
+        return None
+    if value > 10_000:
+        ql.chk.error(path, "unreasonably large count (at most 10000)")
+        return None
+    return value
+
+
+def v_pose_or_config(ql, path, value, q):
+    if isinstance(value, dict):
+        return {"config": v_joint_values(ql, path, value, q)}
+    m = ql.chk.matrix(path, value, ql.params_ns, shapes=((4, 4),))
+    if m is not None and (list(m[3, :]) != [0, 0, 0, 1] or not ql.b._is_rigid(m)):
+        ql.chk.error(path, "not a rototranslation: the last row must be [0, 0, 0, 1] and the 3x3 "
+                       "rotation block orthonormal with determinant 1")
+        return None
+    return {"matrix": m} if m is not None else None
+
+
+def v_start_state(ql, path, value, q):
+    """`start`: joint values and `<joint>_dot` rates at t = 0 (missing ones: 0)."""
+    chk, joints = ql.chk, ql.b.joints
+    if not isinstance(value, dict):
+        chk.error(path, "expected a mapping joint: value and <joint>_dot: rate (e.g. {theta: 0, theta_dot: 1})")
+        return None
+    allowed = [j.name for j in joints] + [j.dot.name for j in joints]
+    ddots = {j.ddot.name for j in joints}
+    out = {}
+    for key, v in value.items():
+        if key in ddots:
+            chk.error(path + (key,), f"'{key}' cannot be given: the accelerations follow from the "
+                      "equations of motion (give joint values and <joint>_dot rates)")
+            continue
+        if key not in allowed:
+            chk.error(path + (key,), f"unknown joint or joint rate '{key}'" + did_you_mean(key, allowed)
+                      + f" (expected: {', '.join(allowed)})")
+            continue
+        e = chk.expr(path + (key,), v, ql.params_ns)
+        if e is not None:
+            out[key] = e
+    return {k: out[k] for k in allowed if k in out}
+
+
+def v_actuator_laws(ql, path, value, q):
+    """`actuators`: actuator -> expression in t, the joints, their rates and the parameters."""
+    chk, b = ql.chk, ql.b
+    if not isinstance(value, dict):
+        chk.error(path, "expected a mapping actuator: law (e.g. {C: 70*sin(t)})")
+        return None
+    acts = [str(j.actuator) for j in b.joints]
+    names = {s.name: s for s in b.parameters}
+    for j in b.joints:
+        names[j.name], names[j.dot.name] = j.symbol, j.dot
+    names["t"] = b.names["t"]
+    ns = Namespace(names, what="name in the law (it may use t, the joints, their _dot rates, the parameters)")
+    out = {}
+    for key, v in value.items():
+        if key not in acts:
+            chk.error(path + (str(key),), f"unknown actuator '{key}'" + did_you_mean(str(key), acts)
+                      + f" (actuators: {', '.join(acts)})")
+            continue
+        e = chk.expr(path + (key,), v, ns)
+        if e is not None:
+            out[key] = e
+    return {a: out[a] for a in acts if a in out}
+
+
+def v_duration(ql, path, value, q):
+    e = ql.chk.expr(path, value, ql.params_ns)
+    if e is not None and e.is_number and not (e.is_real and e.is_positive and e.is_finite):
+        ql.chk.error(path, f"expected a positive duration in seconds, got {value!r}")
+        return None
+    return e
+
+
+def v_rotation_matrix(ql, path, value, q):
+    m = ql.chk.matrix(path, value, ql.params_ns, shapes=((3, 3), (4, 4)))
+    if m is None:
+        return None
+    full = m if m.shape == (4, 4) else sp.diag(m, 1)
+    if m.shape == (4, 4) and list(m[3, :]) != [0, 0, 0, 1]:
+        ql.chk.error(path, "the last row of a pose matrix must be [0, 0, 0, 1]")
+        return None
+    if not ql.b._is_rigid(full):
+        ql.chk.error(path, "not a rotation: the 3x3 block must be orthonormal with determinant 1"
+                       + (" (checked at sample values of " + ", ".join(sorted(s.name for s in m.free_symbols))
+                          + ")" if m.free_symbols else ""))
+        return None
+    return m
+

@@ -1,0 +1,41 @@
+"""The `equations_of_motion` question type (Equations of motion): options, checks, answer schema."""
+
+from __future__ import annotations
+
+from robosolve.questions.schema import ACTUATOR_MAP, BODY_MAP, EQUATIONS, JOINT_MAP, MATRIX, N, VECTOR, QuestionType, _k
+
+
+def _has_time(force) -> bool:
+    parts = list(force.force or []) + list(force.torque or [])
+    return any("t" in {s.name for s in getattr(e, "free_symbols", ())} for e in parts)
+
+
+def _check(ql, path, item, q):
+    if "at" not in item:
+        return
+    timed = [f.name for f in ql.b.problem.forces if _has_time(f)]
+    if timed:
+        follow = ql.type_name("time_laws")
+        ql.chk.error(path + ("at",), f"the force{'s' if len(timed) > 1 else ''} {', '.join(timed)} "
+                     "vary with time t, so the numbers at a configuration would need a time: drop `at` "
+                     f"(the symbolic equations keep t), or follow the motion with a {follow} question")
+
+
+TYPE = QuestionType(
+    "equations_of_motion", "Equations of motion", "§8 question 8",
+    options={},
+    needs_dynamics=True,
+    answers=(
+        _k("mass_matrix", MATRIX, "M(q)", principal=True, shape=(N, N), notation="M(q)"),
+        _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, shape=(N,)),
+        _k("gravity_terms", VECTOR, "g(q)", principal=True, shape=(N,)),
+        _k("generalized_forces", JOINT_MAP, "actuator plus external forces, per joint",
+           principal=True),
+        _k("equations", EQUATIONS, "one equation per joint", numeric=False),
+        _k("kinetic_energy", BODY_MAP, "T per body and total"),
+        _k("potential_energy", BODY_MAP, "U per body and total"),
+        _k("actuators", ACTUATOR_MAP, "actuator values needed at `at`", symbolic=False),
+    ),
+    cost=0.7, cost_growth=2.5, unit="dynamics",
+    check=_check,
+)

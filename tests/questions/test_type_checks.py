@@ -1,0 +1,165 @@
+"""The cross-field checks of each question type (`check` in robosolve/questions/<type>.py):
+a bad combination of keys gives one FILE:LINE: path: message, a good one none."""
+
+from __future__ import annotations
+
+import pytest
+
+from robosolve.errors import InputError
+from robosolve.load.loader import load_problem_text
+from robosolve.questions.registry import QUESTION_TYPES
+
+HEAD = """\
+robosolve: 1
+name: t
+parameters: {L1: 1, L2: 1, m: 1, g: 9.81}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+points: {E: {frame: "2"}}
+bodies: [{name: b, frame: "2", mass: m, point: [0, 0, 0]}]
+questions:
+"""
+
+
+def messages(questions: str, head: str = HEAD) -> list[str]:
+    """The loader's messages for `questions` (YAML list items, one per line), [] when valid."""
+    try:
+        load_problem_text(head + questions, "f.yaml")
+    except InputError as exc:
+        return [str(i) for i in exc.issues]
+    return []
+
+
+Q = 13  # the line of the first question in HEAD + questions
+
+
+@pytest.mark.parametrize("name", sorted(QUESTION_TYPES))
+def test_every_type_module_builds_its_type(name):
+    import importlib
+
+    module = importlib.import_module(f"robosolve.questions.{name}")
+    assert module.TYPE is QUESTION_TYPES[name]
+    assert all(callable(v) for v in module.TYPE.options.values()), "validators are functions"
+
+
+def test_orientation_matrix_or_frame():
+    assert messages("  - {type: orientation, matrix: [[1, 0, 0], [0, 1, 0], [0, 0, 1]], frame: '1'}\n") == [
+        f"f.yaml:{Q}: questions[0]: give either matrix or frame (with at), not both"]
+    assert messages("  - {type: orientation, matrix: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n") == []
+
+
+def test_jacobian_geometric_without_coordinates():
+    assert messages("  - {type: jacobian, geometric: true, coordinates: [E.x, E.y]}\n") == [
+        f"f.yaml:{Q}: questions[0].geometric: geometric: true cannot be combined with coordinates"]
+    assert messages("  - {type: jacobian, geometric: true}\n") == []
+
+
+def test_statics_load_and_components():
+    assert messages("  - {type: statics}\n") == [f"f.yaml:{Q}: questions[0]: expected force, torque or weight: true"]
+    assert messages("  - {type: statics, coordinates: [E.x, E.y], force: [1, 2, 3]}\n") == [
+        f"f.yaml:{Q}: questions[0].force: expected 2 components (one per coordinate), got 3"]
+    assert messages("  - {type: statics, coordinates: [E.x, E.y], torque: [0, 0, 1], force: [1, 2]}\n") == [
+        f"f.yaml:{Q}: questions[0].torque: a torque needs the default coordinates (the point's x, y, z)"]
+    assert messages("  - {type: statics, weight: true}\n") == []
+
+
+def test_statics_weight_needs_gravity_and_bodies():
+    head = HEAD.replace("m: 1, g: 9.81", "m: 1").replace(HEAD.splitlines(keepends=True)[10], "")
+    assert messages("  - {type: statics, weight: true}\n", head) == [
+        f"f.yaml:{Q - 1}: questions[0].type: this question uses gravity: declare g in parameters "
+        "(the default gravity is [0, 0, -g]) or give gravity",
+        f"f.yaml:{Q - 1}: questions[0].weight: weight: true needs bodies (masses)"]
+
+
+def test_ellipsoids_lengths():
+    assert messages("  - {type: ellipsoids, at: {q1: 0, q2: 1}, velocity: [1, 2]}\n") == [
+        f"f.yaml:{Q}: questions[0].velocity: expected 3 components (one per coordinate), got 2"]
+    assert messages("  - {type: ellipsoids, at: {q1: 0, q2: 1}, joint_compliance: [1]}\n") == [
+        f"f.yaml:{Q}: questions[0].joint_compliance: expected 2 values (one per joint), got 1"]
+
+
+def test_motion_profile_shape_and_limits():
+    base = "  - {type: motion_profile, from: {q1: 0, q2: 0}, to: {q1: 1, q2: 1}, "
+    assert messages(base + "max_acceleration: {q1: 1, q2: 1}, shape: trapezoidal}\n") == [
+        f"f.yaml:{Q}: questions[0]: a trapezoidal profile needs max_velocity"]
+    assert messages(base + "max_acceleration: {q1: 1, q2: 1}, max_velocity: {q1: 1, q2: 1}}\n") == [
+        f"f.yaml:{Q}: questions[0].max_velocity: max_velocity goes with shape: trapezoidal"]
+    assert messages(base + "max_acceleration: {q1: 1, q2: -2}}\n") == [
+        f"f.yaml:{Q}: questions[0].max_acceleration.q2: must be positive, got -2"]
+
+
+def test_p_control_law_and_derivative_gains():
+    prof = "  - {type: motion_profile, from: {q1: 0, q2: 0}, to: {q1: 1, q2: 1}, max_acceleration: {q1: 1, q2: 1}}\n"
+    assert messages(prof + "  - {type: p_control, gains: {q1: 1, q2: 1}, law: pd}\n") == [
+        f"f.yaml:{Q + 1}: questions[1]: law pd needs gains_d"]
+    assert messages(prof + "  - {type: p_control, gains: {q1: 1, q2: 1}, gains_d: {q1: 1, q2: 1}}\n") == [
+        f"f.yaml:{Q + 1}: questions[1].gains_d: gains_d goes with law pd, pd_gravity or computed_torque"]
+    assert messages("  - {type: p_control, gains: {q1: 1, q2: 1}}\n") == [
+        f"f.yaml:{Q}: questions[0]: needs a motion_profile question (none in the file)"]
+
+
+def test_forward_dynamics_at_overrides_parameters_only():
+    assert messages("  - {type: forward_dynamics, duration: 1, at: {q1: 0, m: 2}}\n") == [
+        f"f.yaml:{Q}: questions[0].at.q1: a forward_dynamics question's `at` may override parameters "
+        "only: give the starting value of 'q1' in `start` (joint values and <joint>_dot rates)"]
+    assert messages("  - {type: forward_dynamics, duration: 1, at: {m: 2}}\n") == []
+
+
+def test_forward_dynamics_massless_bodies():
+    head = HEAD.replace("mass: m,", "mass: 0,")
+    assert messages("  - {type: forward_dynamics, duration: 1}\n", head) == [
+        f"f.yaml:{Q}: questions[0].type: every body has mass 0, so the mass matrix M(q) is singular and "
+        "the motion cannot be integrated: give the bodies their masses"]
+    assert messages("  - {type: equations_of_motion}\n", head) == []
+
+
+def test_equations_of_motion_at_with_forces_in_time():
+    head = HEAD.replace("questions:\n", "forces: [{name: push, frame: \"2\", at: [0, 0, 0], force: [sin(t), 0, 0]}]\nquestions:\n")
+    assert messages("  - {type: equations_of_motion, at: {q1: 0, q2: 0}}\n", head) == [
+        f"f.yaml:{Q + 1}: questions[0].at: the force push vary with time t, so the numbers at a "
+        "configuration would need a time: drop `at` (the symbolic equations keep t), or follow the "
+        "motion with a forward_dynamics question"]
+    assert messages("  - {type: equations_of_motion}\n", head) == []
+
+
+def test_displacement_forms():
+    assert messages("  - {type: displacement, from: {q1: 0, q2: 0}, axis: [0, 0, 1]}\n") == [
+        f"f.yaml:{Q}: questions[0]: give either from/to or a screw (axis, angle, through, translation), "
+        "not both (found from, axis)"]
+    assert messages("  - {type: displacement, from: {q1: 0, q2: 0}}\n") == [
+        f"f.yaml:{Q}: questions[0]: missing required key 'to' (or give a screw: axis and angle)"]
+    assert messages("  - {type: displacement, angle: 1}\n") == [
+        f"f.yaml:{Q}: questions[0]: angle describe a screw: give its axis too"]
+    assert messages("  - {type: displacement, axis: [0, 0, 0], angle: 1}\n") == [
+        f"f.yaml:{Q}: questions[0].axis: the zero vector has no direction (give the axis direction, "
+        "any non-zero length)"]
+
+
+def test_dof_spatial_joints():
+    assert messages("  - {type: dof, bodies: 3, joints_3dof: 1}\n") == [
+        f"f.yaml:{Q}: questions[0].joints_3dof: 3-DOF joints exist only with space: spatial"]
+    assert messages("  - {type: dof, bodies: 3, joints_3dof: 1, space: spatial}\n") == []
+
+
+def test_duration_must_be_positive():
+    assert messages("  - {type: forward_dynamics, duration: L1 - 2}\n") == [
+        f"f.yaml:{Q}: questions[0].duration: must be positive (seconds), got 'L1 - 2'"]
+
+
+def test_a_check_called_directly_reports_through_the_loader_checker():
+    """`QuestionType.check(ql, path, item, question)` only needs the loader's checker."""
+    from types import SimpleNamespace
+
+    errors = []
+    chk = SimpleNamespace(error=lambda path, message: errors.append((path, message)))
+    ql = SimpleNamespace(chk=chk)
+    q = SimpleNamespace(options={"space": "planar"})
+    QUESTION_TYPES["dof"].check(ql, ("questions", 2), {"joints_3dof": 1}, q)
+    assert errors == [(("questions", 2, "joints_3dof"), "3-DOF joints exist only with space: spatial")]
+    errors.clear()
+    QUESTION_TYPES["dof"].check(ql, ("questions", 2), {"joints_3dof": 1}, SimpleNamespace(options={"space": "spatial"}))
+    assert errors == []
