@@ -6,7 +6,7 @@
   from any working directory): first the runtime, the source of
   robosolve/render/notebook_runtime.py copied in (`inspect.getsource`); then the data cell,
   `robot = Robot(...)` with the problem's values as text, so that a reader can change a number
-  and re-run; then after each answer's section the cell of its type (render/notebook_cells.py),
+  and re-run; then after each answer's section the cell of its type (its type module's `notebook_cells`, questions/<type>.py),
   which recomputes the answer from the data and prints it beside robosolve's numbers (held in the
   cell as literals: no cell reads a file). A type or option layout without a builder gets a cell
   that prints robosolve's numbers and says so.
@@ -20,8 +20,9 @@ import inspect
 
 import sympy as sp
 
-from robosolve.render import notebook_cells, notebook_runtime
-from robosolve.render.notebook_cells import literal, text
+from robosolve.questions.notebook_code import literal, text
+from robosolve.questions.registry import QUESTION_TYPES
+from robosolve.render import notebook_runtime
 
 
 def runtime_source() -> str:
@@ -107,7 +108,8 @@ def fallback_cell(answer) -> str:
 
 def question_cell(question, answer, problem) -> str:
     """The code cell after an answer's section: its type's builder, or robosolve's numbers."""
-    make = notebook_cells.CELLS.get(answer.type)
+    qt = QUESTION_TYPES.get(answer.type)
+    make = qt.notebook_cells if qt is not None else None
     code = None
     if answer.error is None and question is not None and make is not None:
         try:

@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import pytest
 
 from robosolve.load.loader import load_problem
-from robosolve.render import notebook_cells
+from robosolve.questions.registry import QUESTION_TYPES
 from robosolve.render.notebook import code_cells
 
 from conftest import PROBLEMS, ROOT
@@ -59,7 +59,7 @@ def test_every_answer_gets_its_recomputing_cell(bundled):
     assert len(per_answer) == len(answers)
     for answer, source in zip(answers, per_answer):
         rebuilt = "compare(" in source
-        expected = answer.error is None and answer.type in notebook_cells.CELLS \
+        expected = answer.error is None and QUESTION_TYPES[answer.type].notebook_cells is not None \
             and (name, answer.id) not in NOT_REBUILT
         assert rebuilt == expected, (name, answer.id, source[:300])
 
@@ -78,7 +78,7 @@ def test_the_data_cell_holds_the_values_as_text(bundled):
 def test_the_same_problem_gives_the_same_notebook_bytes(tmp_path):
     import nbformat
 
-    from robosolve.pipeline import render_files, solve_problem
+    from robosolve.run.pipeline import render_files, solve_problem
     from robosolve.render.drawing import InlineFigures
 
     problem = load_problem(PROBLEMS / "scara-rrp.yaml")
@@ -105,7 +105,7 @@ def test_every_bundled_notebook_runs_from_an_unrelated_directory(name, tmp_path,
     top to bottom with sympy, numpy and matplotlib, and every recomputed value agrees."""
     nbformat = pytest.importorskip("nbformat")
     nbclient = pytest.importorskip("nbclient")
-    from robosolve.pipeline import render_files, solve_problem
+    from robosolve.run.pipeline import render_files, solve_problem
     from robosolve.render.drawing import InlineFigures
 
     report = solve_problem(load_problem(PROBLEMS / f"{name}.yaml"))

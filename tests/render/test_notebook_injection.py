@@ -8,7 +8,7 @@ import re
 import pytest
 
 from robosolve.load.loader import load_problem
-from robosolve.pipeline import render_files, solve_problem
+from robosolve.run.pipeline import render_files, solve_problem
 from robosolve.render.drawing import InlineFigures
 
 EVIL = 'b": open("X","w").write("x"), "c'

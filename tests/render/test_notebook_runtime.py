@@ -14,7 +14,7 @@ from robosolve.load.loader import load_problem
 from robosolve.model.chain import RobotModel
 from robosolve.render import notebook_runtime as rt
 from robosolve.render.notebook import data_cell
-from robosolve.render.notebook_cells import literal
+from robosolve.questions.notebook_code import literal
 
 from conftest import PROBLEMS
 
@@ -157,7 +157,7 @@ def test_closed_loop_matches_the_control_engine(law, kp, kd):
 
 
 def test_a_forward_run_matches_the_solver():
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
 
     problem, model, robot, values = _setup("pendulum-runs")
     report = solve_problem(problem)
