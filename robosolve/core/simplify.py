@@ -513,9 +513,14 @@ def is_zero(e) -> bool:
     """True when e == 0 is proved (equivalence checks: a - b). A polynomial in sines and
     cosines of symbols with exact coefficients is decided by its normal form modulo
     sin² + cos² = 1 (unique: zero exactly when e is), in milliseconds; anything else by
-    simplify."""
+    simplify (Floats at their own precision: 0.1 - 1/10 is 0). A number is evaluated first
+    (30 digits away from 0: not zero, no simplify); the one fallback, where no proof can be
+    had (equality of constants is undecidable in general): a number simplify does not reduce
+    to 0 whose value is below 1e-50 on 60 digits is taken as zero."""
     e = sp.sympify(e)
-    if e.free_symbols and not e.atoms(sp.Float):
+    if not e.free_symbols:
+        return _number_is_zero(e)
+    if not e.atoms(sp.Float):
         expanded = sp.expand(e)
         if expanded == 0:
             return True
@@ -523,6 +528,19 @@ def is_zero(e) -> bool:
         if reduced is not None:
             return sp.expand(reduced) == 0
     return full(e) == 0
+
+
+def _number_is_zero(e) -> bool:
+    if e.is_Number:
+        return e == 0
+    try:
+        if abs(complex(e.evalf(30))) > 1e-20:
+            return False
+        if full(e) == 0:
+            return True
+        return abs(complex(e.evalf(60))) < 1e-50
+    except (TypeError, ValueError):      # not a number sympy can evaluate (zoo, nan)
+        return False
 
 
 # ---------------------------------------------------------------------------- algebra

@@ -36,7 +36,7 @@ import numpy as np
 import sympy as sp
 
 from robosolve.core.angles import wrap_angle
-from robosolve.core.simplify import exact_geometry
+from robosolve.core.simplify import exact_geometry, is_zero
 
 __all__ = [
     "SINGULAR_TOL", "ZERO_TOL",
@@ -149,29 +149,6 @@ def _rot3_symbolic(m) -> sp.Matrix:
 #: The simplification of every symbolic quantity here: the policy's `exact_geometry`
 #: variant (exact numbers fully, small expressions with trigsimp, large ones untouched).
 _default_simplify = exact_geometry
-
-
-def is_zero(e) -> bool:
-    """True when e is (identically) zero.
-
-    Without free symbols: decided on 30 significant digits, then confirmed
-    exactly when sympy can.  With free symbols: identically zero after
-    simplification.
-    """
-    e = sp.sympify(e)
-    if e == 0:
-        return False if e.free_symbols else True
-    if e.free_symbols:
-        # identically zero: probe a few deterministic points, then trust them.
-        syms = sorted(e.free_symbols, key=sp.default_sort_key)
-        for k in range(3):
-            pt = {x: sp.Float(0.3 + 0.71 * k + 0.37 * i, 30) for i, x in enumerate(syms)}
-            v = complex(e.evalf(30, subs=pt))
-            if abs(v) > 1e-20:
-                return False
-        return True
-    v = complex(e.evalf(30))
-    return abs(v) < 1e-25
 
 
 def _num(e) -> float:

@@ -11,6 +11,7 @@ import tempfile
 from pathlib import Path
 
 from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
+from robosolve.outputs import _umask   # the thread-safe one (a lock: os.umask is read by setting it)
 
 VERDICT_STYLE = {"correct": "green", "incorrect": "red", "missing": "yellow", "invalid": "magenta",
                  "no_reference": "dim"}
@@ -53,12 +54,6 @@ def write_text_atomic(path: Path, text: str) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
-
-
-def _umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 def run_check(answers: Path, problem: Path | None, json_out: str | None,
