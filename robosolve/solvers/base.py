@@ -14,7 +14,7 @@ import sympy as sp
 from robosolve.core.parameters import resolve_parameters
 from robosolve.core.simplify import DEFAULT_BUDGETS, SimplifyBudgets
 from robosolve.core.timing import time_limit
-from robosolve.dynamics.model import DYNAMICS_SECONDS, simulation_dynamics, dynamics_for
+from robosolve.dynamics.bridge import DYNAMICS_SECONDS, simulation_dynamics, dynamics_for
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.dynamics.types import Dynamics
 from robosolve.errors import MissingValues, SolverError, SymbolicTimeout

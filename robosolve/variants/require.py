@@ -186,7 +186,7 @@ class RequirementChecker:
 
     def _nonsingular(self, r) -> Condition:
         from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian
-        from robosolve.kinematics.task import joint_l0
+        from robosolve.solvers.task_space import joint_l0
 
         q = self._question(r.question)
         model = self.model

@@ -17,7 +17,7 @@ import sympy as sp
 from robosolve.core.symbols import TIME
 from robosolve.load.loader import load_problem_text
 from robosolve.model import RobotModel
-from robosolve.dynamics.model import dynamics_for
+from robosolve.dynamics.bridge import dynamics_for
 from robosolve.motion.forward import RunTooLong, compile_plant, integrate
 
 pin = pytest.importorskip("pinocchio")
