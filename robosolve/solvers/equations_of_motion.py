@@ -12,7 +12,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.course_notes import note_link
-from robosolve.dynamics.model import numeric_for
+from robosolve.dynamics.bridge import numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step

@@ -19,7 +19,7 @@ from robosolve.core.prose import Num, Text, name_md, name_tex
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
-from robosolve.kinematics.task import (
+from robosolve.solvers.task_space import (
     joint_kinds, joint_l0, limited, task_space, tidy_limited)
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 

@@ -16,7 +16,7 @@ import sympy as sp
 from robosolve.core.course_notes import note_link
 from robosolve.core.simplify import is_zero
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
-from robosolve.kinematics.task import limited, task_space, tidy_limited
+from robosolve.solvers.task_space import limited, task_space, tidy_limited
 from robosolve.solvers.base import Answer, SolveContext, Step
 from robosolve.core.prose import name_tex
 
