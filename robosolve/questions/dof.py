@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import compare_line, lines, robosolve_numbers
 
 
 def _check(ql, path, item, q):
@@ -20,6 +21,19 @@ def _statement(q, say) -> str:
             + ", ".join(joints) + ". Give its number of degrees of freedom.")
 
 
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    o = q.options
+    counts = [int(o.get(k, 0)) for k in ("bodies", "joints_1dof", "joints_2dof", "joints_3dof")]
+    planar = o.get("space", "planar") == "planar"
+    return lines(
+        f"dof = mobility({', '.join(map(str, counts))}, planar={planar!r})"
+        f"   # {'Grübler (planar)' if planar else 'Kutzbach (spatial)'}",
+        robosolve_numbers(answer, ["dof"]),
+        compare_line("dof", "dof") if "dof" in answer.numeric else None,
+    )
+
+
 TYPE = QuestionType(
     "dof", "Degrees of freedom", "§1.1",
     statement=_statement,
@@ -33,4 +47,5 @@ TYPE = QuestionType(
     ),
     cost=0.01,
     check=_check,
+    notebook_cells=notebook_cell,
 )

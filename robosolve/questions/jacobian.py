@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP_SET, MATRIX, MATRIX_MAP, N, R, SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, jacobian_lines, lines, robosolve_numbers
 
 
 def _check(ql, path, item, q):
@@ -17,6 +18,7 @@ def _paper_keys(options: dict, joints: int) -> tuple:
     """J and its singularities, with det J when J is square, else the manipulability."""
     rows = 6 if options.get("geometric") else len(options.get("coordinates") or ()) or 3
     return ("J", "det" if rows == joints else "manipulability", "singularities")
+
 
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the coordinates, `geometric`, `bodies` and `at`."""
@@ -33,6 +35,25 @@ def _statement(q, say) -> str:
     if o.get("bodies"):
         text += "; also the Jacobians of the bodies' centres of mass"
     return text + (f"; give the numbers {at}" if at else "") + "."
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    if q.options.get("geometric"):
+        head = [f"at = {at_literal(q)}",
+                "# geometric: the point's linear velocity over the angular velocity, column by joint",
+                f"J = robot.geometric_jacobian({q.point!r})",
+                "Jn = robot.number(J, at)"]
+    else:
+        head = jacobian_lines(q)
+    return lines(
+        *head,
+        "show(J)",
+        robosolve_numbers(answer, ["J", "det", "manipulability"]),
+        *guarded(answer, ("J", compare_line("J", "Jn")),
+                  ("det", compare_line("det", "np.linalg.det(Jn)")),
+                  ("manipulability", compare_line("manipulability", "np.prod(np.linalg.svd(Jn, compute_uv=False))"))),
+    )
 
 
 TYPE = QuestionType(
@@ -53,4 +74,5 @@ TYPE = QuestionType(
     paper_keys=_paper_keys,
     cost=0.5, cost_growth=2,
     check=_check, has_jacobian=True,
+    notebook_cells=notebook_cell,
 )
