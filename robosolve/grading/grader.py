@@ -9,7 +9,7 @@ diagnoses of `diagnose.py`. Scores are exact fractions of the marks.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
 import numpy as np
@@ -37,6 +37,19 @@ class KeyResult:
     compared: str = ""
     diagnosis: str = ""
     feedback: str = ""
+    hidden: str | None = None      # the feedback without the expected value (None: feedback shows none)
+    given: str = ""                # what the submission gave, as read
+    expected: str = ""             # the expected value, as shown in the feedback
+    credit: Fraction = Fraction(0)   # share of the key's marks earned when not correct (partial credit)
+
+    @property
+    def earned(self) -> Fraction:
+        """The fraction of the key's share this verdict earns."""
+        return Fraction(1) if self.verdict == CORRECT else self.credit
+
+    def without_expected(self) -> "KeyResult":
+        return replace(self, feedback=self.feedback if self.hidden is None else self.hidden,
+                       hidden=None, expected="")
 
     def as_dict(self) -> dict:
         return {"verdict": self.verdict, "compared": self.compared,
@@ -57,7 +70,7 @@ class QuestionResult:
 
     @property
     def score(self) -> Fraction:
-        return sum((self.share for k in self.graded if self.keys[k].verdict == CORRECT), Fraction(0))
+        return sum((self.share * self.keys[k].earned for k in self.graded), Fraction(0))
 
     @property
     def max_score(self) -> Fraction:
@@ -79,6 +92,12 @@ class SubmissionResult:
     @property
     def max_score(self) -> Fraction:
         return sum((q.max_score for q in self.questions), Fraction(0))
+
+    def without_expected(self) -> "SubmissionResult":
+        """The same result with no expected value in any feedback (`--no-expected`)."""
+        questions = [replace(q, keys={k: r.without_expected() for k, r in q.keys.items()})
+                     for q in self.questions]
+        return replace(self, questions=questions)
 
     @property
     def all_correct(self) -> bool:
@@ -119,6 +138,37 @@ def _show(tree) -> str:
     return str(tree)
 
 
+def as_written(value) -> str:
+    """A value of an answers file as it was read (plain YAML data), in flow style."""
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k}: {as_written(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(as_written(v) for v in value) + "]"
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return str(value).lower()
+    return str(value)
+
+
+def _wrong_labels(outcome) -> str:
+    """What is wrong, without the expected value (`--no-expected`)."""
+    if outcome.wrong and outcome.wrong != ["the value"]:
+        return "wrong: " + ", ".join(outcome.wrong)
+    return "this is not the expected value"
+
+
+def _entry_count(ak, e) -> int:
+    """The entries of a vector, matrix or per-joint mapping (0 for other kinds)."""
+    if ak.kind == R.MATRIX and isinstance(e, list) and e and isinstance(e[0], list):
+        return sum(len(row) for row in e)
+    if ak.kind == R.VECTOR and isinstance(e, list):
+        return len(e)
+    if ak.kind in (R.JOINT_MAP,) and isinstance(e, dict):
+        return len(e)
+    return 0
+
+
 def _at(tree, path):
     for p in path:
         try:
@@ -139,6 +189,9 @@ class Grader:
         self.expected_reader = Reader(self.ns, expected=True)
         self.revolute = reference.revolute
         self.parameters = set(reference.problem.parameters)
+        grading = reference.problem.grading or {}
+        self.partial = dict(grading.get("partial") or {})
+        self.proportional = grading.get("entries") == "proportional"
 
     # -- one key ------------------------------------------------------------
     def symbol(self, qref, ak) -> str:
@@ -159,7 +212,14 @@ class Grader:
             return KeyResult(NO_REFERENCE, feedback=f"the reference answer has no {key}")
         if given is None:
             expected = num if num is not None else sym
-            return KeyResult(MISSING, feedback=f"not given; expected {self.symbol(qref, ak)} = {show(expected)}")
+            shown = f"{self.symbol(qref, ak)} = {show(expected)}"
+            return KeyResult(MISSING, feedback=f"not given; expected {shown}", hidden="not given",
+                             expected=shown)
+        result = self._read_and_compare(qref, ak, key, given, sym, num)
+        result.given = as_written(given.value)
+        return result
+
+    def _read_and_compare(self, qref, ak, key, given, sym, num) -> KeyResult:
         try:
             g = self.reader.read(ak, given.value)
         except ValueProblem as exc:
@@ -221,13 +281,26 @@ class Grader:
         substituted = (free_symbols(e) & self.parameters) - free   # parameters the answer lacks
         diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted))
         symbol = self.symbol(qref, ak)
-        expected_text = f"expected {symbol} = {show(e)}"
+        shown = f"{symbol} = {show(e)}"
+        expected_text = f"expected {shown}"
+        credit = self._credit(ak, diagnosis, outcome, e)
         if diagnosis:
             params = self._names(substituted)
             text = D.sentence(diagnosis, ak, symbol=symbol, frame=qref.frame, outcome=outcome, params=params)
             verdict = INVALID if diagnosis == "wrong_shape" else INCORRECT
-            return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}")
-        return KeyResult(INCORRECT, compared, "", self._wrong_entries(outcome, g, e) + expected_text)
+            return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}", hidden=text,
+                             expected=shown, credit=credit)
+        return KeyResult(INCORRECT, compared, "", self._wrong_entries(outcome, g, e) + expected_text,
+                         hidden=_wrong_labels(outcome), expected=shown, credit=credit)
+
+    def _credit(self, ak, diagnosis: str, outcome, e) -> Fraction:
+        """Partial credit (grading.md): the diagnosis's share, or the share of entries right."""
+        credit = self.partial.get(diagnosis, Fraction(0)) if diagnosis else Fraction(0)
+        if self.proportional and not outcome.shape and not outcome.unknown:
+            total = _entry_count(ak, e)
+            if total:
+                credit = max(credit, Fraction(max(total - len(outcome.wrong), 0), total))
+        return credit
 
     def _wrong_entries(self, outcome, g, e) -> str:
         if outcome.where:
@@ -261,8 +334,10 @@ class Grader:
         from robosolve.errors import SymbolicTimeout
 
         pairs = _pairs(g, e)
+        shown = f"{self.symbol(qref, ak)} = {show(e)}"
         if pairs is None:
-            return KeyResult(INCORRECT, "symbolic", "", f"expected {self.symbol(qref, ak)} = {show(e)}")
+            return KeyResult(INCORRECT, "symbolic", "", f"expected {shown}",
+                             hidden="this is not the expected value", expected=shown)
         try:
             with time_limit(2.0):
                 same = all(is_zero(a - b) for a, b in pairs)
@@ -270,8 +345,8 @@ class Grader:
             same = False
         if same:
             return KeyResult(CORRECT, "symbolic")
-        return KeyResult(INCORRECT, "symbolic", "",
-                         f"could not be confirmed equal; expected {self.symbol(qref, ak)} = {show(e)}")
+        return KeyResult(INCORRECT, "symbolic", "", f"could not be confirmed equal; expected {shown}",
+                         hidden="could not be confirmed equal", expected=shown)
 
     # -- one submission -----------------------------------------------------
     def grade(self, student: str, answers: dict, notes=()) -> SubmissionResult:

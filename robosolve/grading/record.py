@@ -67,7 +67,7 @@ def grade_rows(result: SubmissionResult) -> list[tuple]:
         for key in q.graded:
             r = q.keys[key]
             out_of = Fraction(0) if r.verdict == NO_REFERENCE else q.share
-            score = out_of if r.verdict == "correct" else Fraction(0)
+            score = out_of * r.earned
             rows.append((result.student, q.id, key, r.verdict, r.diagnosis,
                          number_text(score), number_text(out_of)))
     if not result.questions:      # not even the problem is known: one row says so
