@@ -261,11 +261,15 @@ def grade(
     jobs: int = _jobs_option(),
     rtol: Optional[float] = _tolerance_option("--rtol", "Relative", "0.005"),
     atol: Optional[float] = _tolerance_option("--atol", "Absolute", "1e-6"),
+    gradebook: Optional[str] = typer.Option(
+        None, "--gradebook", help="LMS gradebook files to write (canvas,moodle,blackboard); needs --variants with a roster."),
+    no_expected: bool = typer.Option(False, "--no-expected", help="Feedback pages never show an expected value."),
 ) -> None:
     """Grade a class: every submission against its problem (solved once), with marks and feedback."""
     from robosolve.grading.commands import run_grade_command
 
-    raise typer.Exit(run_grade_command(submissions, out, problem, variants, jobs, rtol, atol))
+    raise typer.Exit(run_grade_command(submissions, out, problem, variants, jobs, rtol, atol,
+                                       gradebook=gradebook, no_expected=no_expected))
 
 
 def main() -> None:

@@ -87,7 +87,8 @@ def run_check(answers: Path, problem: Path | None, json_out: str | None,
     return EXIT_OK if result.all_correct else EXIT_ANSWER_ERROR
 
 
-def run_grade_command(sources, out, problem, variants_dir, jobs, rtol, atol) -> int:
+def run_grade_command(sources, out, problem, variants_dir, jobs, rtol, atol, gradebook=None,
+                      no_expected=False) -> int:
     import contextlib
 
     from rich.console import Console
@@ -126,7 +127,8 @@ def run_grade_command(sources, out, problem, variants_dir, jobs, rtol, atol) -> 
 
     try:
         return run_grade(sources, out, problem, variants_dir, jobs, rtol, atol,
-                         progress_factory=progress_factory, report=report)
+                         progress_factory=progress_factory, report=report, gradebook=gradebook,
+                         no_expected=no_expected)
     except (UsageError, OutputFolderError) as exc:
         sys.stderr.write(str(exc) + "\n")
         return EXIT_INPUT

@@ -368,16 +368,20 @@ class Grader:
         return SubmissionResult(self.ref.name, student, out, notes=list(notes))
 
 
-def invalid_result(reference: Reference | None, student: str, error: str) -> SubmissionResult:
-    """A submission that could not be read: every graded key `invalid`, score 0."""
+def invalid_result(reference: Reference | None, student: str, error: str, reason: str = "",
+                   known: bool = True) -> SubmissionResult:
+    """A submission that could not be graded: every graded key `invalid` (its feedback the
+    reason: by default, that the file could not be read), score 0. `known`: the reference is
+    the submission's own problem (else it only gives the questions, e.g. of any variant)."""
+    reason = reason or "the answers file could not be read"
     questions = []
     for qref in (reference.questions if reference else []):
         graded = qref.graded_keys()
         qr = QuestionResult(qref.id, fraction(qref.marks), graded, no_reference=qref.error is not None)
         for key in graded:
-            qr.keys[key] = KeyResult(INVALID, feedback="the answers file could not be read")
+            qr.keys[key] = KeyResult(INVALID, feedback=reason)
         questions.append(qr)
-    return SubmissionResult(reference.name if reference else "", student, questions, error=error)
+    return SubmissionResult(reference.name if reference and known else "", student, questions, error=error)
 
 
 def _gather(qt, key, given: dict):
