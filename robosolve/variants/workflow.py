@@ -23,7 +23,7 @@ from robosolve.errors import EXIT_INPUT, EXIT_OK, InputError, InputIssue
 from robosolve.execution import make_task, run_tasks
 
 # what a variants folder holds, for the working directory written in place (robosolve.outputs)
-OWN_FILES = ("variants.csv", "*/problem.yaml", "*/report.md", "*/report.html", "*/report.ipynb",
+OWN_FILES = ("variants.csv", "roster.csv", "*/problem.yaml", "*/report.md", "*/report.html", "*/report.ipynb",
              "*/results.json", "*/figures/*.png")
 
 
@@ -42,6 +42,7 @@ class Plan:
     spec: object
     seed: int
     variants: list = field(default_factory=list)
+    roster: bytes = b""           # DIR/roster.csv (with --roster)
 
 
 # ---------------------------------------------------------------------------
@@ -166,6 +167,8 @@ def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=No
     tasks = [make_task(v.text, f"{out}/{v.folder}/problem.yaml", formats, solve) for v in plan.variants]
     results = [None] * len(tasks)
     files = {"variants.csv": variants_csv(plan)}
+    if plan.roster:
+        files["roster.csv"] = plan.roster
     step = progress.task("solving" if solve else "checking the variants", len(tasks)) if progress else None
     for i, res in run_tasks(tasks, jobs, scheduler):
         results[i] = res
@@ -243,7 +246,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
 
     from robosolve.execution import SchedulerError
     from robosolve.outputs import OutputFolderError
-    from robosolve.variants.naming import count_ids, read_roster
+    from robosolve.variants.naming import count_ids, read_roster, roster_csv
 
     console = Console(stderr=True)
 
@@ -260,6 +263,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         ids = [(i, "") for i in count_ids(count)] if roster is None else read_roster(roster)
         with Progress(console=console, transient=True) as bar:
             plan = plan_variants(problem, ids, seed, Steps(bar))
+            plan.roster = roster_csv(roster) if roster is not None else b""
             status, results = run(plan, out, formats, solve, jobs, scheduler, Steps(bar), inputs)
     except InputError as exc:
         say(str(exc))
