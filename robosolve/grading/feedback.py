@@ -71,7 +71,7 @@ def page(result, questions: dict, problem=None, link: str = "", reason: str = ""
         lines += [f"Your worked solution: [report.md]({link})", ""]
     if result.error:
         if reason and reason != NOT_READ:
-            lines += [f"No answer was graded: {reason}.", ""]
+            lines += [f"No answer was graded: {reason}" + ("" if reason.endswith((".", "?")) else "."), ""]
         else:
             lines += ["The answers file could not be read, so no answer was graded:", "", "```",
                       result.error, "```", ""]
