@@ -245,11 +245,14 @@ def check(
     json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
     rtol: Optional[float] = _tolerance_option("--rtol", "Relative", "0.005"),
     atol: Optional[float] = _tolerance_option("--atol", "Absolute", "1e-6"),
+    json_format: str = typer.Option("record", "--json-format", help="Layout of --json: record, or gradescope (results.json)."),
+    no_expected: bool = typer.Option(False, "--no-expected", help="Never show an expected value."),
 ) -> None:
     """Check a student's answers against robosolve's solution: a verdict per key, and what is wrong."""
     from robosolve.grading.commands import run_check
 
-    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol))
+    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol, json_format=json_format,
+                               no_expected=no_expected))
 
 
 @app.command()

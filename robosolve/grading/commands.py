@@ -61,25 +61,47 @@ def _umask() -> int:
     return mask
 
 
+def check_usage(json_out: str | None, json_format: str) -> str:
+    """Why the --json / --json-format pair is a usage error, or ''."""
+    from robosolve.grading.gradescope import FORMATS
+    from robosolve.load.expressions import did_you_mean
+
+    if json_format not in FORMATS:
+        return (f"--json-format: unknown format '{json_format}'" + did_you_mean(json_format, FORMATS)
+                + f" (expected one of: {', '.join(FORMATS)})")
+    if json_format != "record" and not json_out:
+        return "--json-format goes with --json FILE"
+    return ""
+
+
 def run_check(answers: Path, problem: Path | None, json_out: str | None,
-              rtol: float | None, atol: float | None) -> int:
+              rtol: float | None, atol: float | None, json_format: str = "record",
+              no_expected: bool = False) -> int:
+    """`no_expected`: no expected value in the table, the record or the Gradescope output."""
     from rich.console import Console
 
     from robosolve.grading.check import check_file
+    from robosolve.grading.gradescope import gradescope_json
     from robosolve.grading.record import number_text, percent_text, record_json
 
     err = Console(stderr=True)
+    usage = check_usage(json_out, json_format)
+    if usage:
+        sys.stderr.write(usage + "\n")
+        return EXIT_INPUT
     try:
         result, _ = check_file(answers, problem, rtol=rtol, atol=atol)
     except InputError as exc:
         sys.stderr.write(str(exc) + "\n")
         return EXIT_INPUT
+    if no_expected:
+        result = result.without_expected()
     to_stdout = json_out == "-"
     console = err if to_stdout else Console()
     console.print(result_table(result, f"{answers} — {result.student} — {result.problem}"))
     console.print(f"score {number_text(result.score)} / {number_text(result.max_score)} "
                   f"({percent_text(result.score, result.max_score)} %)", markup=False, highlight=False)
-    text = record_json(result)
+    text = gradescope_json(result) if json_format == "gradescope" else record_json(result)
     if to_stdout:
         sys.stdout.write(text)
     elif json_out:
