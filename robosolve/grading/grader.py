@@ -279,7 +279,8 @@ class Grader:
         if outcome.unknown:
             return KeyResult(INVALID, compared, feedback=outcome.unknown)
         substituted = (free_symbols(e) & self.parameters) - free   # parameters the answer lacks
-        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted))
+        alts = self._alternatives(qref, ak, key, compared, points)
+        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted), alts)
         symbol = self.symbol(qref, ak)
         shown = f"{symbol} = {show(e)}"
         expected_text = f"expected {shown}"
@@ -301,6 +302,23 @@ class Grader:
             if total:
                 credit = max(credit, Fraction(max(total - len(outcome.wrong), 0), total))
         return credit
+
+    def _alternatives(self, qref, ak, key, mode, points) -> dict:
+        """diagnosis -> the evaluated value that mistake gives (grading/alternatives.py)."""
+        out = {}
+        for diagnosis, value in qref.alternatives.get(key, {}).items():
+            try:
+                tree = self._expected(qref, ak, key, f"alt:{diagnosis}", value)
+                if mode == "numeric":
+                    tree = substitute(tree, qref.subs)
+                    if free_symbols(tree):
+                        continue
+                    out[diagnosis] = evaluate(tree, points)
+                elif free_symbols(tree) <= set(points.symbols):
+                    out[diagnosis] = evaluate(tree, points)
+            except (ValueProblem, TypeError, ValueError, ZeroDivisionError):
+                continue
+        return out
 
     def _wrong_entries(self, outcome, g, e) -> str:
         if outcome.where:

@@ -11,9 +11,9 @@ TYPE = QuestionType(
     "velocity_acceleration", "Velocity and acceleration", "§8 question 2",
     options={},
     answers=(
-        _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, shape=(3,)),
-        _k("acceleration", VECTOR, "acceleration of the point in frame 0", principal=True, shape=(3,)),
-        _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, shape=(3,)),
+        _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, shape=(3,), in_frame0=True),
+        _k("acceleration", VECTOR, "acceleration of the point in frame 0", principal=True, shape=(3,), in_frame0=True),
+        _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, shape=(3,), in_frame0=True),
         _k("angular_acceleration", VECTOR, "ω̇ of the frame in frame 0", shape=(3,)),
         _k("W", MATRIX, "W₀ₖ = Ṁ M⁻¹, expressed in frame 0", shape=(4, 4)),
         _k("H", MATRIX, "H₀ₖ = M̈ M⁻¹ = Ẇ + W², expressed in frame 0", shape=(4, 4)),
