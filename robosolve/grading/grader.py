@@ -19,6 +19,7 @@ from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
 from robosolve.grading.points import evaluate, sample, single_point
+from robosolve.grading.reach import set_reaches
 from robosolve.grading.reference import Reference, lookup
 from robosolve.grading.values import Equation, Reader, ValueProblem, free_symbols, substitute
 from robosolve.questions import registry as R
@@ -274,7 +275,8 @@ class Grader:
             return self._prove(qref, ak, key, g, e)
         rules = Rules(self.tol, mask, self.revolute, fixed=points.fixed if symbolic else None)
         outcome = compare(ak, ge, ee, rules)
-        if outcome.ok:
+        if outcome.ok or (ak.reaches and not symbolic and qref.reach
+                          and set_reaches(qref.reach, ge, outcome.n_expected, self.revolute, self.tol)):
             return KeyResult(CORRECT, compared)
         if outcome.unknown:
             return KeyResult(INVALID, compared, feedback=outcome.unknown)

@@ -96,6 +96,7 @@ class Reference:
     @classmethod
     def from_report(cls, report, rtol=None, atol=None) -> "Reference":
         from robosolve.grading.alternatives import alternatives
+        from robosolve.grading.reach import reach_data
         from robosolve.solvers.base import SolveContext
 
         problem = report.problem
@@ -110,7 +111,8 @@ class Reference:
                 id=q.id, type=q.type, marks=q.marks, grade=tuple(q.grade), error=a.error,
                 symbolic=dict(a.symbolic), numeric=dict(a.numeric), extra=dict(a.extra),
                 subs=subs, roles=_roles(problem, q, subs, answers), frame=q.frame or problem.last_frame,
-                form=tuple(q.options), alternatives=alts.get(q.id, {})))
+                form=tuple(q.options), alternatives=alts.get(q.id, {}),
+                reach=reach_data(report.model, problem, q, subs) if question_type(q.type).reaches else ()))
         grading = problem.grading or {}
         tol = Tolerance(
             rtol if rtol is not None else grading.get("rtol", DEFAULT_TOLERANCE.rtol),

@@ -116,3 +116,75 @@ def test_dh_convention():
                '"L2*sin(q1)"], [0, 0, 1, 0], [0, 0, 0, 1]]')
     r = key(grade_text(ref, ans("position", "M", M_other)), "position", "M")
     assert (r.verdict, r.diagnosis, r.compared) == ("incorrect", "dh_convention", "symbolic")
+
+
+# -- IK solutions judged by the pose they reach ---------------------------------------
+IK = """
+robosolve: 1
+name: ik
+parameters: {L1: 1/2, L2: 2/5}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: inverse_kinematics, target: {E.x: 0.6, E.y: 0.3}}
+"""
+
+
+def ik_branches(x=0.6, y=0.3):
+    """The two branches by the law of cosines."""
+    c2 = (x * x + y * y - L1 * L1 - L2 * L2) / (2 * L1 * L2)
+    out = []
+    for q2 in (math.acos(c2), -math.acos(c2)):
+        q1 = math.atan2(y, x) - math.atan2(L2 * math.sin(q2), L1 + L2 * math.cos(q2))
+        out.append({"q1": q1, "q2": q2})
+    return out
+
+
+def sols(elements) -> str:
+    return "[" + ", ".join("{" + ", ".join(f"{k}: {v:.6f}" for k, v in e.items()) + "}" for e in elements) + "]"
+
+
+@pytest.fixture(scope="module")
+def ik_ref():
+    return reference_of(IK)
+
+
+def test_ik_solutions_by_the_pose_they_reach(ik_ref):
+    a, b = ik_branches()
+    turned = {"q1": b["q1"] + 2 * math.pi, "q2": b["q2"] - 2 * math.pi}
+    r = key(grade_text(ik_ref, ans("inverse_kinematics", "solutions", sols([turned, a]))),
+            "inverse_kinematics", "solutions")
+    assert r.verdict == "correct"
+    # every branch is still needed
+    r = key(grade_text(ik_ref, ans("inverse_kinematics", "solutions", sols([a]))), "inverse_kinematics", "solutions")
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set")
+    # the same branch twice is not two branches
+    twice = {"q1": a["q1"] + 2 * math.pi, "q2": a["q2"]}
+    r = key(grade_text(ik_ref, ans("inverse_kinematics", "solutions", sols([a, twice]))),
+            "inverse_kinematics", "solutions")
+    assert r.verdict == "incorrect"
+    # a configuration that does not reach the target
+    wrong = {"q1": a["q1"], "q2": -a["q2"]}
+    r = key(grade_text(ik_ref, ans("inverse_kinematics", "solutions", sols([wrong, b]))),
+            "inverse_kinematics", "solutions")
+    assert r.verdict == "incorrect"
+
+
+def test_reach_accepts_a_solution_robosolve_wrote_differently(ik_ref):
+    """A valid solution whose numbers differ from the reference's beyond the comparison's
+    tolerance on angles, but which reaches the target: right."""
+    from robosolve.grading.compare import Tolerance
+    from robosolve.grading.reach import set_reaches
+
+    q = ik_ref.questions[0]
+    a, b = ik_branches()
+    tol = Tolerance(0.005, 1e-6)
+    assert set_reaches(q.reach, [{k: np.array([v]) for k, v in e.items()} for e in (a, b)], 2, {"q1", "q2"}, tol)
+    # the reach test itself: 0.05 rad off does not reach the target
+    off = {"q1": a["q1"] + 0.05, "q2": a["q2"]}
+    assert not set_reaches(q.reach, [{k: np.array([v]) for k, v in e.items()} for e in (off, b)], 2,
+                           {"q1", "q2"}, tol)
