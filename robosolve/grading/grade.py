@@ -269,7 +269,7 @@ def _title(table, references) -> str:
 def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None, atol=None,
               progress_factory=None, report=None, gradebook=None, no_expected=False) -> int:
     """`gradebook`: the --gradebook text ('canvas,moodle'); every usage error before any work."""
-    from robosolve.grading.gradebook import GradebookError, parse_lms
+    from robosolve.grading.gradebook import GradebookError, missing_columns, parse_lms
     from robosolve.outputs import check_output_folder, write_output_folder
 
     try:
@@ -283,6 +283,8 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
     if lms and (table is None or not table.has_roster):
         raise UsageError("--gradebook needs a roster: give --variants DIR of `robosolve variants --roster` "
                          "(DIR/roster.csv)" + ("" if table is None else f"; {table.folder} has no roster.csv"))
+    if lms and missing_columns(lms, table):
+        raise UsageError(missing_columns(lms, table))
     if not files:
         raise UsageError("no answers files found (*.yaml, *.yml)")
     jobs, references = prepare(files, problem, table, rtol, atol)

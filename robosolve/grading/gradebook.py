@@ -44,6 +44,19 @@ def parse_lms(text: str | None) -> tuple:
     return tuple(dict.fromkeys(names))
 
 
+def missing_columns(names, table) -> str:
+    """Why the roster cannot identify the students of one of these LMS files, or ''.
+
+    Canvas finds a student by `ID`, the SIS ids or the name (`Student`, which every roster of
+    `variants --roster` has); Blackboard by `Username` (else the student id); Moodle only by
+    a user field: the roster needs `email` or `idnumber`."""
+    if "moodle" in names and table.column("email") is None and table.column("idnumber") is None:
+        header = ", ".join(h for h in table.header if h) or "none"
+        return (f"--gradebook moodle: {table.folder}/roster.csv has no `email` or `idnumber` column, "
+                f"by which Moodle identifies its users (columns: {header})")
+    return ""
+
+
 def summary_line(result) -> str:
     """'7.5/10: position.M transposed, statics.Fq negated' (the keys that lost marks)."""
     head = f"{number_text(result.score)}/{number_text(result.max_score)}"

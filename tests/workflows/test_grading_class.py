@@ -235,3 +235,16 @@ def test_gradebook_usage_errors(course, tmp_path):
                             "--gradebook", "canvas"])
     assert r.exit_code == 2 and "--gradebook needs a roster" in r.output
     assert not (tmp_path / "b").exists()
+
+
+def test_moodle_needs_email_or_idnumber(tmp_path):
+    (tmp_path / "arm.yaml").write_text(PROBLEM)
+    (tmp_path / "class.csv").write_text("Student,Username\nJo Smith,jsmith\n")
+    exams = tmp_path / "exams"
+    assert runner.invoke(app, ["variants", str(tmp_path / "arm.yaml"), "--roster", str(tmp_path / "class.csv"),
+                               "--out", str(exams), "--no-solve"]).exit_code == 0
+    (tmp_path / "jo.yaml").write_text(answers(FQ, student="jsmith"))
+    r = runner.invoke(app, ["grade", str(tmp_path / "jo.yaml"), "--variants", str(exams), "--out",
+                            str(tmp_path / "g"), "--gradebook", "moodle"])
+    assert r.exit_code == 2 and "has no `email` or `idnumber` column" in r.output
+    assert not (tmp_path / "g").exists()
