@@ -202,7 +202,7 @@ class Grader:
 
     def grade_key(self, qref, key: str, given) -> KeyResult:
         if given is not None and given.problem:
-            return KeyResult(INVALID, feedback=given.problem)
+            return KeyResult(INVALID, feedback=given.problem, given=as_written(given.value))
         qt = question_type(qref.type)
         ak = qt.key(key)
         if qref.error is not None:
