@@ -15,6 +15,18 @@ from robosolve.grading.record import json_number
 FORMATS = ("record", "gradescope")
 
 
+def format_issue(json_out: str | None, json_format: str) -> str:
+    """Why the --json / --json-format pair is a usage error, or ''."""
+    from robosolve.load.expressions import did_you_mean
+
+    if json_format not in FORMATS:
+        return (f"--json-format: unknown format '{json_format}'" + did_you_mean(json_format, FORMATS)
+                + f" (expected one of: {', '.join(FORMATS)})")
+    if json_format != "record" and not json_out:
+        return "--json-format goes with --json FILE"
+    return ""
+
+
 def gradescope(result) -> dict:
     tests = []
     for q in result.questions:
