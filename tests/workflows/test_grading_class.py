@@ -248,3 +248,29 @@ def test_moodle_needs_email_or_idnumber(tmp_path):
                             str(tmp_path / "g"), "--gradebook", "moodle"])
     assert r.exit_code == 2 and "has no `email` or `idnumber` column" in r.output
     assert not (tmp_path / "g").exists()
+
+
+def test_matching_rules_in_order(tmp_path):
+    from robosolve.grading.matching import MatchError, read_table
+
+    for v in ("jo", "ann", "3"):
+        (tmp_path / f"exam-{v}").mkdir()
+        (tmp_path / f"exam-{v}" / "problem.yaml").write_text("robosolve: 1\n")
+    (tmp_path / "variants.csv").write_text("variant,student,seed\njo,Jo,0\nann,Ann,0\n3,,0\n")
+    (tmp_path / "roster.csv").write_text("variant,STUDENT,E-Mail,Group\njo,Jo,jo@x.org,G1\nann,Ann,ann@x.org,G1\n")
+    table = read_table(tmp_path)
+    # 1. problem: inside DIR wins over the student id
+    m = table.match("Ann", tmp_path / "exam-jo" / "problem.yaml")
+    assert (m.variant, m.student) == ("jo", "Ann")
+    # 2. any roster column, trimmed, case ignored; filed under the roster's student
+    m = table.match("  JO@X.ORG ", tmp_path / "elsewhere.yaml")
+    assert (m.variant, m.student, m.row) == ("jo", "Jo", 0)
+    # a value two variants share
+    with pytest.raises(MatchError, match=r"student 'G1' matches 2 variants in the roster of .*\(jo, ann\)"):
+        table.match("G1", None)
+    # 3. the variant ids
+    assert table.match("3", None).variant == "3"
+    # nothing: a did-you-mean among the roster's values
+    with pytest.raises(MatchError) as exc:
+        table.match("ann@x.orgg", None)
+    assert str(exc.value) == f"student 'ann@x.orgg' is not in the roster of {tmp_path}; did you mean 'ann@x.org'?"
