@@ -20,12 +20,14 @@ def check(
     json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
     rtol: Optional[float] = tolerance_option("--rtol", "Relative", "0.005"),
     atol: Optional[float] = tolerance_option("--atol", "Absolute", "1e-6"),
+    json_format: str = typer.Option("record", "--json-format", help="Layout of --json: record, or gradescope (results.json)."),
     echo: bool = typer.Option(False, "--echo", help="First print how each given value was read."),
     no_expected: bool = typer.Option(False, "--no-expected",
                                      help="Verdicts and diagnoses only: never print an expected value."),
 ) -> None:
     """Check a student's answers against robosolve's solution: a verdict per key, and what is wrong."""
-    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol, echo=echo, reveal=not no_expected))
+    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol, json_format=json_format,
+                               echo=echo, no_expected=no_expected))
 
 
 def echo_table(lines):
@@ -60,10 +62,19 @@ def result_table(result, title: str):
 
 
 def run_check(answers: Path, problem: Path | None, json_out: str | None,
-              rtol: float | None, atol: float | None, echo: bool = False, reveal: bool = True) -> int:
+              rtol: float | None, atol: float | None, json_format: str = "record",
+              echo: bool = False, no_expected: bool = False) -> int:
+    """`json_format`: record or gradescope; `echo`: print how each value was read first;
+    `no_expected`: no expected value anywhere."""
     from robosolve.grading.check import check_file, read_back
+    from robosolve.grading.gradescope import format_issue, gradescope_json
     from robosolve.grading.record import number_text, percent_text, record_json
     from robosolve.run.outputs import OutputFolderError, check_output_file, write_file
+
+    issue = format_issue(json_out, json_format)
+    if issue:
+        err(issue)
+        return ExitStatus.INPUT
 
     read: list = []          # the answers file and its problem: --json must not overwrite them
 
@@ -78,16 +89,18 @@ def run_check(answers: Path, problem: Path | None, json_out: str | None,
                 console(stderr=json_out == "-").print(echo_table(read_back(sub, prob)))
 
         result, _ = check_file(answers, problem, rtol=rtol, atol=atol, before_solving=guard,
-                               reveal=reveal, on_read=on_read)
+                               reveal=not no_expected, on_read=on_read)
     except (InputError, OutputFolderError) as exc:
         err(str(exc))
         return ExitStatus.INPUT
+    if no_expected:
+        result = result.without_expected()
     to_stdout = json_out == "-"
     con = console(stderr=to_stdout)
     con.print(result_table(result, f"{answers} — {result.student} — {result.problem}"))
     con.print(f"score {number_text(result.score)} / {number_text(result.max_score)} "
               f"({percent_text(result.score, result.max_score)} %)", markup=False, highlight=False)
-    text = record_json(result)
+    text = gradescope_json(result) if json_format == "gradescope" else record_json(result)
     if to_stdout:
         write_stdout(text)
     elif json_out:

@@ -20,12 +20,17 @@ def grade(
     jobs: int = jobs_option(),
     rtol: Optional[float] = tolerance_option("--rtol", "Relative", "0.005"),
     atol: Optional[float] = tolerance_option("--atol", "Absolute", "1e-6"),
+    gradebook: Optional[str] = typer.Option(
+        None, "--gradebook", help="LMS gradebook files to write (canvas,moodle,blackboard); needs --variants with a roster."),
+    no_expected: bool = typer.Option(False, "--no-expected", help="Feedback pages never show an expected value."),
 ) -> None:
     """Grade a class: every submission against its problem (solved once), with marks and feedback."""
-    raise typer.Exit(run_grade_command(submissions, out, problem, variants, jobs, rtol, atol))
+    raise typer.Exit(run_grade_command(submissions, out, problem, variants, jobs, rtol, atol,
+                                       gradebook=gradebook, no_expected=no_expected))
 
 
-def run_grade_command(sources, out, problem, variants_dir, jobs, rtol, atol) -> int:
+def run_grade_command(sources, out, problem, variants_dir, jobs, rtol, atol, gradebook=None,
+                      no_expected=False) -> int:
     from robosolve.grading.grade import UsageError, run_grade
     from robosolve.run.outputs import OutputFolderError
 
@@ -45,7 +50,7 @@ def run_grade_command(sources, out, problem, variants_dir, jobs, rtol, atol) -> 
 
     try:
         outcome = run_grade(sources, out, problem, variants_dir, jobs, rtol, atol,
-                            progress_factory=progress_factory)
+                            progress_factory=progress_factory, gradebook=gradebook, no_expected=no_expected)
     except (UsageError, OutputFolderError) as exc:
         err(str(exc))
         return ExitStatus.INPUT

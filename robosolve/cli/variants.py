@@ -40,7 +40,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
 
     from robosolve.run.execution import SchedulerError
     from robosolve.run.outputs import OutputFolderError
-    from robosolve.variants.naming import count_ids, read_roster
+    from robosolve.variants.naming import count_ids, read_roster, roster_csv
     from robosolve.variants.workflow import VariantInvalid, check_out, plan_variants, run
 
     con = console()
@@ -53,6 +53,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         ids = [(i, "") for i in count_ids(count)] if roster is None else read_roster(roster)
         with Progress(console=con, transient=True) as bar:
             plan = plan_variants(problem, ids, seed, Steps(bar))
+            plan.roster = roster_csv(roster) if roster is not None else b""
             status, results = run(plan, out, formats, solve, jobs, scheduler, Steps(bar), inputs)
     except (InputError, SchedulerError, OutputFolderError) as exc:
         err(str(exc))

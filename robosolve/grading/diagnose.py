@@ -18,7 +18,8 @@ from robosolve.grading.compare import Outcome, Rules, compare, is_number, negate
 from robosolve.questions import registry as R
 
 ORDER = ("transposed", "negated", "degrees", "inverse", "parameters_substituted",
-         "incomplete_set", "extra_in_set", "wrong_shape")
+         "incomplete_set", "extra_in_set", "wrong_shape", "dh_convention", "rows_swapped",
+         "end_effector_frame", "quaternion_order")
 
 
 def transpose(tree):
@@ -68,8 +69,25 @@ def has_angles(ak) -> bool:
     return ak.angle or any(f.angle for f in ak.fields)
 
 
-def diagnose(ak, g, e, rules: Rules, outcome: Outcome, symbolic: bool) -> str:
-    """The first mistake of ORDER that explains the given value `g`, or ''."""
+def rows_swapped(tree):
+    """[ω; v] for [v; ω]: the lower three rows of a 6-row matrix above the upper three."""
+    if _is_matrix(tree) and len(tree) == 6:
+        return tree[3:] + tree[:3]
+    return None
+
+
+def quaternion_xyzw(tree):
+    """(x, y, z, w) for (w, x, y, z)."""
+    if isinstance(tree, list) and len(tree) == 4 and all(is_number(x) for x in tree):
+        return tree[1:] + tree[:1]
+    return None
+
+
+def diagnose(ak, g, e, rules: Rules, outcome: Outcome, symbolic: bool, alts: dict | None = None) -> str:
+    """The first mistake of ORDER that explains the given value `g`, or ''.
+
+    `alts`: diagnosis -> the evaluated value that mistake gives, for the mistakes that need
+    the robot (grading/alternatives.py: dh_convention, end_effector_frame)."""
     def right(gv, ev, r=rules) -> bool:
         o = compare(ak, gv, ev, r)
         return o.ok
@@ -98,6 +116,20 @@ def diagnose(ak, g, e, rules: Rules, outcome: Outcome, symbolic: bool) -> str:
             return "incomplete_set"
         if outcome.n_given > outcome.n_expected and outcome.matched == outcome.n_expected:
             return "extra_in_set"
+    return _structural(ak, g, e, right, alts or {})
+
+
+def _structural(ak, g, e, right, alts: dict) -> str:
+    """The mistakes of the robot's conventions, in ORDER."""
+    for name in ("dh_convention", "rows_swapped", "end_effector_frame", "quaternion_order"):
+        if name == "rows_swapped":
+            value = rows_swapped(e) if ak.kind == R.MATRIX else None
+        elif name == "quaternion_order":
+            value = quaternion_xyzw(e) if ak.quaternion else None
+        else:
+            value = alts.get(name)
+        if value is not None and right(g, value):
+            return name
     return ""
 
 
@@ -112,6 +144,15 @@ SENTENCES = {
                       "{missing_verb} missing",
     "extra_in_set": "the set has {extra} element{extra_s} too many (every expected one is there)",
     "wrong_shape": "{shape}",
+    "dh_convention": "this is {symbol} computed with the other DH convention (standard rows "
+                     "Rz(θ)·Tz(d)·Tx(a)·Rx(α), modified rows Rx(α)·Tx(a)·Rz(θ)·Tz(d)): the problem's "
+                     "rows are read in the convention they are given in",
+    "rows_swapped": "the angular rows are above the linear ones: the geometric Jacobian is "
+                    "[v; ω] (linear velocity rows first, then ω)",
+    "end_effector_frame": "this is {symbol} expressed in frame {frame}: the answer is expressed "
+                          "in frame 0 (multiply by ⁰R{frame_sub})",
+    "quaternion_order": "the quaternion is written (x, y, z, w): the course writes it "
+                        "(η, εx, εy, εz), the scalar part first",
 }
 
 
@@ -119,9 +160,10 @@ def sentence(diagnosis: str, ak, *, symbol: str, frame: str, outcome: Outcome, p
     missing = outcome.n_expected - outcome.n_given
     extra = outcome.n_given - outcome.n_expected
     text = SENTENCES[diagnosis].format(
-        symbol=symbol, params=params or "the parameters", n_expected=outcome.n_expected,
+        symbol=symbol, frame=frame, params=params or "the parameters", n_expected=outcome.n_expected,
         missing=missing, missing_verb="is" if missing == 1 else "are",
-        extra=extra, extra_s="" if extra == 1 else "s", shape=outcome.shape)
+        extra=extra, extra_s="" if extra == 1 else "s", shape=outcome.shape,
+        frame_sub=frame.translate(str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")) if frame.isdigit() else f"[{frame}]")
     hint = ak.hint(diagnosis)
     if hint:
         text += ": " + hint.format(frame=frame, symbol=symbol)

@@ -19,15 +19,14 @@ from pathlib import Path
 from robosolve.errors import ExitStatus, InputError
 from robosolve.grading.answers import read_answers, resolve_answers, safe_name
 from robosolve.grading.grader import Grader, invalid_result
-from robosolve.grading.record import (
-    GRADES_COLUMNS, SUMMARY_COLUMNS, feedback_markdown, grade_rows, record_json, summary_row,
-)
+from robosolve.grading.matching import TableError, VariantsTable, read_table
+from robosolve.grading.record import GRADES_COLUMNS, SUMMARY_COLUMNS, grade_rows, record_json, summary_row
 from robosolve.run.interrupts import process_pool
 
 
 # Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
 # which could be a user's own file there; a student's earlier record is then left behind.
-OWN_OUTPUTS = ("grades.csv", "summary.csv", "feedback/*.md")
+OWN_OUTPUTS = ("grades.csv", "summary.csv", "feedback/*.md", "gradebook/*.csv")
 
 
 class UsageError(Exception):
@@ -44,6 +43,10 @@ class Job:
     error: str = ""
     notes: tuple = ()              # unknown question ids (the rest is graded)
     duplicate: bool = False        # a second submission with an earlier one's student id
+    reason: str = ""               # why it is invalid, as the feedback says it (no file name)
+    variant: str = ""              # --variants: the variant it answers
+    row: int | None = None         # --variants with a roster: its roster row
+    shape_key: str | None = None   # unmatched (--variants): a variant whose questions its rows list
 
 
 def collect(sources, warnings=None) -> list[Path]:
@@ -65,66 +68,35 @@ def collect(sources, warnings=None) -> list[Path]:
     return sorted(set(files))
 
 
-def read_variants(folder: Path) -> dict:
-    """student id (as written, and made safe) and variant id -> that variant's problem.yaml."""
-    table = folder / "variants.csv"
-    try:
-        text = table.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise UsageError(f"{table}: cannot read the variants table ({exc.strerror or exc})")
-    rows = list(csv.DictReader(io.StringIO(text)))
-    if rows and not {"variant", "student"} <= set(rows[0]):
-        raise UsageError(f"{table}: expected the columns variant,student,seed,…")
-    name = _base_name(folder, [row["variant"] for row in rows], table)
-    out = {}
-    for row in rows:
-        variant = row["variant"]
-        problem = folder / f"{name}-{variant}" / "problem.yaml"
-        student = row.get("student") or ""
-        for key in dict.fromkeys((student, safe_name(student), variant)):   # ordered, no duplicates
-            if key:
-                out.setdefault(key, problem)
-    return out
-
-
-def _base_name(folder: Path, variants: list, table: Path) -> str:
-    """The problem name <name> such that every variant has DIR/<name>-<variant>/problem.yaml.
-
-    (A folder name alone is ambiguous: `exam-jo-smith` ends with `-smith` too.)
-    """
-    if not variants:
-        return ""
-    first = variants[0]
-    candidates = sorted(p.parent.name[: -len(first) - 1] for p in folder.glob(f"*-{first}/problem.yaml"))
-    for name in candidates:
-        if all((folder / f"{name}-{v}" / "problem.yaml").is_file() for v in variants):
-            return name
-    raise UsageError(f"{table}: no folder <name>-<variant>/problem.yaml for every variant in {folder}")
-
-
-def _problem_for(sub, problem, variants):
+def _problem_for(sub, problem, table):
+    """(problem file, Match or None); ValueError (MatchError) when no problem is found."""
     if problem is not None:
-        return Path(problem)
-    if variants is not None:
-        hit = variants.get(sub.student) or variants.get(safe_name(sub.student))
-        if hit is None:
-            raise ValueError(f"student '{sub.student}' is not in the variants table")
-        return hit
+        return Path(problem), None
+    if table is not None:
+        match = table.match(sub.student, sub.problem_file)
+        return match.problem, match
     if sub.problem_file is None:
         raise ValueError("no problem: the answers file has no `problem:` (or give --problem)")
-    return sub.problem_file
+    return sub.problem_file, None
 
 
-def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
+def read_variants(folder) -> "VariantsTable":
+    try:
+        return read_table(Path(folder))
+    except TableError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def prepare(files, problem=None, table=None, rtol=None, atol=None):
     """Read every submission, solve every problem once. Returns (jobs, references)."""
-    jobs, problems = read_jobs(files, problem, variants_dir)
+    jobs, problems = read_jobs(files, problem, table)
     return jobs, solve_jobs(jobs, problems, rtol, atol)
 
 
-def read_jobs(files, problem=None, variants_dir=None):
+def read_jobs(files, problem=None, table=None):
     """Read every submission and find its problem (nothing solved yet): (jobs, problems), where
-    `problems` maps each resolved problem file to (its path, the submissions graded against it)."""
-    variants = read_variants(Path(variants_dir)) if variants_dir is not None else None
+    `problems` maps each resolved problem file to (its path, the submissions graded against it).
+    `table`: the VariantsTable of --variants (matching.py)."""
     jobs, problems = [], {}
     common = None                 # with --problem, even an unreadable submission has its problem
     if problem is not None:
@@ -139,16 +111,19 @@ def read_jobs(files, problem=None, variants_dir=None):
             jobs.append(Job(i, str(f), _fallback_student(f), common, None, str(exc)))
             continue
         try:
-            path = _problem_for(sub, problem, variants)
+            path, match = _problem_for(sub, problem, table)
         except ValueError as exc:
-            jobs.append(Job(i, str(f), sub.student, None, None, f"{f}: {exc}"))
+            jobs.append(Job(i, str(f), sub.student, None, None, f"{f}: {exc}", reason=str(exc)))
             continue
+        if match is not None:
+            sub.student = match.student
+        student_fields = {"variant": match.variant, "row": match.row} if match is not None else {}
         if not Path(path).is_file():
             jobs.append(Job(i, str(f), sub.student, None, None, f"{f}: the problem file {path} does not exist"))
             continue
         key = str(Path(path).resolve())
         problems.setdefault(key, (path, []))[1].append((i, sub))
-        jobs.append(Job(i, str(f), sub.student, key, None))
+        jobs.append(Job(i, str(f), sub.student, key, None, **student_fields))
     return jobs, problems
 
 
@@ -174,6 +149,10 @@ def solve_jobs(jobs, problems, rtol=None, atol=None) -> dict:
             except InputError as exc:
                 jobs[i].error = str(exc)
     _mark_duplicates(jobs)
+    if any(j.variant for j in jobs) and references:
+        for job in jobs:
+            if job.problem_key is None:
+                job.shape_key = min(references)
     return references
 
 
@@ -189,6 +168,7 @@ def _mark_duplicates(jobs) -> None:
             job.answers = None
             job.error = job.error or f"{job.file}: duplicate student id '{job.student}' (another submission has it)"
             job.duplicate = True
+            job.reason = f"duplicate student id '{job.student}' (another submission has it)"
         seen.add(name)
 
 
@@ -208,9 +188,9 @@ def _init_worker(references, worker: bool = False) -> None:
 
 
 def grade_job(job: Job):
-    ref = _REFERENCES.get(job.problem_key) if job.problem_key else None
+    ref = _REFERENCES.get(job.problem_key or job.shape_key)
     if job.answers is None:
-        return job.index, invalid_result(ref, job.student, job.error)
+        return job.index, invalid_result(ref, job.student, job.error, job.reason, bool(job.problem_key))
     grader = _GRADERS.get(job.problem_key)
     if grader is None:
         grader = _GRADERS[job.problem_key] = Grader(ref)
@@ -250,33 +230,64 @@ def _csv(rows, header) -> str:
     return buf.getvalue()
 
 
-def render(jobs, results, references) -> dict:
+@dataclass
+class Outputs:
+    """What `grade` writes beyond grades.csv, summary.csv and the records."""
+
+    out: Path | None = None            # DIR (for the relative links of the feedback pages)
+    table: VariantsTable | None = None  # --variants
+    gradebooks: tuple = ()             # LMS names (--gradebook)
+    no_expected: bool = False          # feedback never shows an expected value
+
+
+def render(jobs, results, references, options: Outputs | None = None) -> dict:
     """relative path -> text of every output file."""
+    options = options or Outputs()
+    if options.no_expected:
+        results = [r.without_expected() for r in results]
     order = sorted(range(len(jobs)), key=lambda i: (results[i].student, i))
     files: dict[str, str] = {}
-    grades, summary = [], []
+    grades, summary, by_row = [], [], {}
     for i in order:
         r = results[i]
         grades += grade_rows(r)
         summary.append(summary_row(r))
         if jobs[i].duplicate:
             continue              # the first submission with this id owns its files
+        if jobs[i].row is not None:
+            by_row.setdefault(jobs[i].row, r)
         name = safe_name(r.student) or "student"
         files[f"{name}.json"] = record_json(r)
-        ref = references.get(jobs[i].problem_key) if jobs[i].problem_key else None
-        titles = _titles(ref)
-        files[f"feedback/{name}.md"] = feedback_markdown(r, titles)
+        files[f"feedback/{name}.md"] = _feedback(jobs[i], r, references, options)
     files["grades.csv"] = _csv(grades, GRADES_COLUMNS)
     files["summary.csv"] = _csv(summary, SUMMARY_COLUMNS)
+    if options.gradebooks:
+        from robosolve.grading.gradebook import gradebooks
+
+        files.update(gradebooks(options.gradebooks, options.table, _title(options.table, references), by_row))
     return files
 
 
-def _titles(ref) -> dict:
-    if ref is None:
-        return {}
-    from robosolve.questions.registry import title
+def _feedback(job, result, references, options) -> str:
+    from robosolve.grading.feedback import page
 
-    return {q.id: title(q.type) for q in ref.questions}
+    ref = references.get(job.problem_key) if job.problem_key else None
+    questions = {q.id: q for q in ref.problem.questions} if ref is not None else {}
+    link = ""
+    if job.variant and options.table is not None and options.out is not None:
+        report = options.table.problems[job.variant].parent / "report.md"
+        link = os.path.relpath(report.resolve(), (Path(options.out) / "feedback").resolve()).replace(os.sep, "/")
+    return page(result, questions, ref.problem if ref is not None else None, link=link,
+                reason=job.reason, show_expected=not options.no_expected)
+
+
+def _title(table, references) -> str:
+    for key in sorted(references):
+        title = references[key].problem.title
+        if title:
+            return title.strip()
+    return table.name if table is not None and table.name else \
+        (references[min(references)].name if references else "robosolve")
 
 
 @dataclass
@@ -291,20 +302,32 @@ class GradeOutcome:
 
 
 def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None, atol=None,
-              progress_factory=None) -> GradeOutcome:
+              progress_factory=None, gradebook=None, no_expected=False) -> GradeOutcome:
     """Grade every submission and write DIR. Raises UsageError / OutputFolderError (exit 2,
-    nothing written); `progress_factory(total)` is a context manager yielding `advance(n)`."""
+    nothing written); `progress_factory(total)` is a context manager yielding `advance(n)`;
+    `gradebook`: the --gradebook text ('canvas,moodle'); `no_expected`: --no-expected."""
+    from robosolve.grading.gradebook import GradebookError, missing_columns, parse_lms
     from robosolve.run.outputs import check_output_folder, write_output_folder
 
+    try:
+        lms = parse_lms(gradebook)
+    except GradebookError as exc:
+        raise UsageError(str(exc)) from None
     warnings: list = []
     files = collect(sources, warnings)
     inputs = [*files, *([Path(problem)] if problem is not None else []),
               *([Path(variants_dir)] if variants_dir is not None else []),
               *(Path(s) for s in sources if Path(s).is_dir())]
     check_output_folder(Path(out), inputs)
+    table = read_variants(variants_dir) if variants_dir is not None else None
+    if lms and (table is None or not table.has_roster):
+        raise UsageError("--gradebook needs a roster: give --variants DIR of `robosolve variants --roster` "
+                         "(DIR/roster.csv)" + ("" if table is None else f"; {table.folder} has no roster.csv"))
+    if lms and missing_columns(lms, table):
+        raise UsageError(missing_columns(lms, table))
     if not files:
         raise UsageError("\n".join([*warnings, "no answers files found (*.yaml, *.yml)"]))
-    jobs, problems = read_jobs(files, problem, variants_dir)
+    jobs, problems = read_jobs(files, problem, table)
     inputs += input_paths(files, problems)
     check_output_folder(Path(out), inputs)
     references = solve_jobs(jobs, problems, rtol, atol)
@@ -313,7 +336,8 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
             results = grade_all(jobs, references, n_jobs, advance)
     else:
         results = grade_all(jobs, references, n_jobs)
-    outputs = {rel: text.encode("utf-8") for rel, text in render(jobs, results, references).items()}
+    options = Outputs(Path(out), table, lms, no_expected)
+    outputs = {rel: text.encode("utf-8") for rel, text in render(jobs, results, references, options).items()}
     write_output_folder(Path(out), outputs, inputs, own=OWN_OUTPUTS)
     status = ExitStatus.ANSWER_ERROR if any(j.answers is None for j in jobs) else ExitStatus.OK
     return GradeOutcome(status, jobs, results, warnings)

@@ -9,7 +9,7 @@ diagnoses of `diagnose.py`. Scores are exact fractions of the marks.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
 import numpy as np
@@ -19,6 +19,7 @@ from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
 from robosolve.grading.points import evaluate, sample, single_point
+from robosolve.grading.reach import set_reaches
 from robosolve.grading.reference import Reference, lookup
 from robosolve.grading.values import Equation, Reader, ValueProblem, blanks, free_symbols, substitute
 from robosolve.questions import registry as R
@@ -37,6 +38,19 @@ class KeyResult:
     compared: str = ""
     diagnosis: str = ""
     feedback: str = ""
+    hidden: str | None = None      # the feedback without the expected value (None: feedback shows none)
+    given: str = ""                # what the submission gave, as read
+    expected: str = ""             # the expected value, as shown in the feedback
+    credit: Fraction = Fraction(0)   # share of the key's marks earned when not correct (partial credit)
+
+    @property
+    def earned(self) -> Fraction:
+        """The fraction of the key's share this verdict earns."""
+        return Fraction(1) if self.verdict == CORRECT else self.credit
+
+    def without_expected(self) -> "KeyResult":
+        return replace(self, feedback=self.feedback if self.hidden is None else self.hidden,
+                       hidden=None, expected="")
 
     def as_dict(self) -> dict:
         return {"verdict": self.verdict, "compared": self.compared,
@@ -57,7 +71,7 @@ class QuestionResult:
 
     @property
     def score(self) -> Fraction:
-        return sum((self.share for k in self.graded if self.keys[k].verdict == CORRECT), Fraction(0))
+        return sum((self.share * self.keys[k].earned for k in self.graded), Fraction(0))
 
     @property
     def max_score(self) -> Fraction:
@@ -79,6 +93,12 @@ class SubmissionResult:
     @property
     def max_score(self) -> Fraction:
         return sum((q.max_score for q in self.questions), Fraction(0))
+
+    def without_expected(self) -> "SubmissionResult":
+        """The same result with no expected value in any feedback (`--no-expected`)."""
+        questions = [replace(q, keys={k: r.without_expected() for k, r in q.keys.items()})
+                     for q in self.questions]
+        return replace(self, questions=questions)
 
     @property
     def all_correct(self) -> bool:
@@ -119,6 +139,37 @@ def _show(tree) -> str:
     return str(tree)
 
 
+def as_written(value) -> str:
+    """A value of an answers file as it was read (plain YAML data), in flow style."""
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{k}: {as_written(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(as_written(v) for v in value) + "]"
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return str(value).lower()
+    return str(value)
+
+
+def _wrong_labels(outcome) -> str:
+    """What is wrong, without the expected value (`--no-expected`)."""
+    if outcome.wrong and outcome.wrong != ["the value"]:
+        return "wrong: " + ", ".join(outcome.wrong)
+    return "this is not the expected value"
+
+
+def _entry_count(ak, e) -> int:
+    """The entries of a vector, matrix or per-joint mapping (0 for other kinds)."""
+    if ak.kind == R.MATRIX and isinstance(e, list) and e and isinstance(e[0], list):
+        return sum(len(row) for row in e)
+    if ak.kind == R.VECTOR and isinstance(e, list):
+        return len(e)
+    if ak.kind in (R.JOINT_MAP,) and isinstance(e, dict):
+        return len(e)
+    return 0
+
+
 def _at(tree, path):
     for p in path:
         try:
@@ -140,6 +191,9 @@ class Grader:
         self.expected_reader = Reader(self.ns, expected=True)
         self.revolute = reference.revolute
         self.parameters = set(reference.problem.parameters)
+        grading = reference.problem.grading or {}
+        self.partial = dict(grading.get("partial") or {})
+        self.proportional = grading.get("entries") == "proportional"
 
     # -- one key ------------------------------------------------------------
     def symbol(self, qref, ak) -> str:
@@ -148,8 +202,12 @@ class Grader:
         return ak.symbol.format(sub=sub, frame=frame)
 
     def grade_key(self, qref, key: str, given) -> KeyResult:
+        result = self._grade_key(qref, key, given)
+        return result if self.reveal else result.without_expected()
+
+    def _grade_key(self, qref, key: str, given) -> KeyResult:
         if given is not None and given.problem:
-            return KeyResult(INVALID, feedback=given.problem)
+            return KeyResult(INVALID, feedback=given.problem, given=as_written(given.value))
         qt = question_type(qref.type)
         ak = qt.key(key)
         if qref.error is not None:
@@ -158,17 +216,24 @@ class Grader:
         sym, num = self._reference(qref, ak, key)
         if sym is None and num is None:
             return KeyResult(NO_REFERENCE, feedback=f"the reference answer has no {key}")
-
-        def expected():
-            return f"expected {self.symbol(qref, ak)} = {show(num if num is not None else sym)}"
-
         if given is None:
-            return KeyResult(MISSING, feedback=self._reveal("not given", expected))
+            expected = num if num is not None else sym
+            shown = f"{self.symbol(qref, ak)} = {show(expected)}"
+            return KeyResult(MISSING, feedback=f"not given; expected {shown}", hidden="not given",
+                             expected=shown)
         holes = blanks(given.value, num if num is not None else sym)
         if holes:                 # a template's `~` left: not given yet (papers.md)
-            shown = ", ".join(holes[:6]) + (f" (and {len(holes) - 6} more)" if len(holes) > 6 else "")
-            what = "not filled in (still ~)" if _all_blank(given.value) else f"not filled in: {shown} still ~"
-            return KeyResult(MISSING, feedback=self._reveal(what, expected))
+            listed = ", ".join(holes[:6]) + (f" (and {len(holes) - 6} more)" if len(holes) > 6 else "")
+            what = "not filled in (still ~)" if _all_blank(given.value) else f"not filled in: {listed} still ~"
+            expected = num if num is not None else sym
+            shown = f"{self.symbol(qref, ak)} = {show(expected)}"
+            return KeyResult(MISSING, feedback=f"{what}; expected {shown}", hidden=what, expected=shown,
+                             given=as_written(given.value))
+        result = self._read_and_compare(qref, ak, key, given, sym, num)
+        result.given = as_written(given.value)
+        return result
+
+    def _read_and_compare(self, qref, ak, key, given, sym, num) -> KeyResult:
         try:
             g = self.reader.read(ak, given.value)
         except ValueProblem as exc:
@@ -177,13 +242,6 @@ class Grader:
             return self._compare(qref, ak, key, g, sym, num)
         except ValueProblem as exc:
             return KeyResult(INVALID, diagnosis="wrong_shape" if exc.wrong_shape else "", feedback=str(exc))
-
-    def _reveal(self, text: str, expected: str) -> str:
-        """Feedback with the expected value, unless the grader hides it (`--no-expected`)."""
-        if not self.reveal:
-            return text
-        return f"{text}; {expected() if callable(expected) else expected}" if text else (
-            expected() if callable(expected) else expected)
 
     def _reference(self, qref, ak, key):
         if ak.top:
@@ -230,27 +288,56 @@ class Grader:
             return self._prove(qref, ak, key, g, e)
         rules = Rules(self.tol, mask, self.revolute, fixed=points.fixed if symbolic else None)
         outcome = compare(ak, ge, ee, rules)
-        if outcome.ok:
+        if outcome.ok or (ak.reaches and not symbolic and qref.reach
+                          and set_reaches(qref.reach, ge, outcome.n_expected, self.revolute, self.tol)):
             return KeyResult(CORRECT, compared)
         if outcome.unknown:
             return KeyResult(INVALID, compared, feedback=outcome.unknown)
         substituted = (free_symbols(e) & self.parameters) - free   # parameters the answer lacks
-        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted))
+        alts = self._alternatives(qref, ak, key, compared, points)
+        diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted), alts)
         symbol = self.symbol(qref, ak)
-        expected_text = f"expected {symbol} = {show(e)}"
+        shown = f"{symbol} = {show(e)}"
+        expected_text = f"expected {shown}"
+        credit = self._credit(ak, diagnosis, outcome, e)
         if diagnosis:
             params = self._names(substituted)
             text = D.sentence(diagnosis, ak, symbol=symbol, frame=qref.frame, outcome=outcome, params=params)
             verdict = INVALID if diagnosis == "wrong_shape" else INCORRECT
-            return KeyResult(verdict, compared, diagnosis, self._reveal(text, expected_text))
-        wrong = self._wrong_entries(outcome, g, e)
-        if not self.reveal:
-            return KeyResult(INCORRECT, compared, "", wrong.removesuffix(" In full: ").rstrip("; ") or "wrong")
-        return KeyResult(INCORRECT, compared, "", wrong + expected_text)
+            return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}", hidden=text,
+                             expected=shown, credit=credit)
+        return KeyResult(INCORRECT, compared, "", self._wrong_entries(outcome, g, e) + expected_text,
+                         hidden=_wrong_labels(outcome), expected=shown, credit=credit)
+
+    def _credit(self, ak, diagnosis: str, outcome, e) -> Fraction:
+        """Partial credit (grading.md): the diagnosis's share, or the share of entries right."""
+        credit = self.partial.get(diagnosis, Fraction(0)) if diagnosis else Fraction(0)
+        if self.proportional and not outcome.shape and not outcome.unknown:
+            total = _entry_count(ak, e)
+            if total:
+                credit = max(credit, Fraction(max(total - len(outcome.wrong), 0), total))
+        return credit
+
+    def _alternatives(self, qref, ak, key, mode, points) -> dict:
+        """diagnosis -> the evaluated value that mistake gives (grading/alternatives.py)."""
+        out = {}
+        for diagnosis, value in qref.alternatives.get(key, {}).items():
+            try:
+                tree = self._expected(qref, ak, key, f"alt:{diagnosis}", value)
+                if mode == "numeric":
+                    tree = substitute(tree, qref.subs)
+                    if free_symbols(tree):
+                        continue
+                    out[diagnosis] = evaluate(tree, points)
+                elif free_symbols(tree) <= set(points.symbols):
+                    out[diagnosis] = evaluate(tree, points)
+            except (ValueProblem, TypeError, ValueError, ZeroDivisionError):
+                continue
+        return out
 
     def _wrong_entries(self, outcome, g, e) -> str:
         if outcome.where:
-            parts = [f"{label} is {show(_at(g, p))}" + (f"; expected {show(_at(e, p))}" if self.reveal else "")
+            parts = [f"{label} is {show(_at(g, p))}; expected {show(_at(e, p))}"
                      for label, p in zip(outcome.wrong, outcome.where)][:3]
             more = len(outcome.where) - len(parts)
             return "; ".join(parts) + (f" (and {more} more)" if more > 0 else "") + ". In full: "
@@ -280,9 +367,10 @@ class Grader:
         from robosolve.errors import SymbolicTimeout
 
         pairs = _pairs(g, e)
+        shown = f"{self.symbol(qref, ak)} = {show(e)}"
         if pairs is None:
-            return KeyResult(INCORRECT, "symbolic", "", self._reveal("", f"expected {self.symbol(qref, ak)} = {show(e)}")
-                             or "not equal")
+            return KeyResult(INCORRECT, "symbolic", "", f"expected {shown}",
+                             hidden="this is not the expected value", expected=shown)
         try:
             with time_limit(2.0):
                 same = all(is_zero(a - b) for a, b in pairs)
@@ -290,8 +378,8 @@ class Grader:
             same = False
         if same:
             return KeyResult(CORRECT, "symbolic")
-        return KeyResult(INCORRECT, "symbolic", "", self._reveal(
-            "could not be confirmed equal", f"expected {self.symbol(qref, ak)} = {show(e)}"))
+        return KeyResult(INCORRECT, "symbolic", "", f"could not be confirmed equal; expected {shown}",
+                         hidden="could not be confirmed equal", expected=shown)
 
     # -- one submission -----------------------------------------------------
     def grade(self, student: str, answers: dict, notes=()) -> SubmissionResult:
@@ -313,16 +401,20 @@ class Grader:
         return SubmissionResult(self.ref.name, student, out, notes=list(notes))
 
 
-def invalid_result(reference: Reference | None, student: str, error: str) -> SubmissionResult:
-    """A submission that could not be read: every graded key `invalid`, score 0."""
+def invalid_result(reference: Reference | None, student: str, error: str, reason: str = "",
+                   known: bool = True) -> SubmissionResult:
+    """A submission that could not be graded: every graded key `invalid` (its feedback the
+    reason: by default, that the file could not be read), score 0. `known`: the reference is
+    the submission's own problem (else it only gives the questions, e.g. of any variant)."""
+    reason = reason or "the answers file could not be read"
     questions = []
     for qref in (reference.questions if reference else []):
         graded = qref.graded_keys()
         qr = QuestionResult(qref.id, fraction(qref.marks), graded, no_reference=qref.error is not None)
         for key in graded:
-            qr.keys[key] = KeyResult(INVALID, feedback="the answers file could not be read")
+            qr.keys[key] = KeyResult(INVALID, feedback=reason)
         questions.append(qr)
-    return SubmissionResult(reference.name if reference else "", student, questions, error=error)
+    return SubmissionResult(reference.name if reference and known else "", student, questions, error=error)
 
 
 def _gather(qt, key, given: dict):

@@ -67,7 +67,7 @@ def grade_rows(result: SubmissionResult) -> list[tuple]:
         for key in q.graded:
             r = q.keys[key]
             out_of = Fraction(0) if r.verdict == NO_REFERENCE else q.share
-            score = out_of if r.verdict == "correct" else Fraction(0)
+            score = out_of * r.earned
             rows.append((result.student, q.id, key, r.verdict, r.diagnosis,
                          number_text(score), number_text(out_of)))
     if not result.questions:      # not even the problem is known: one row says so
@@ -78,37 +78,3 @@ def grade_rows(result: SubmissionResult) -> list[tuple]:
 def summary_row(result: SubmissionResult) -> tuple:
     return (result.student, number_text(result.score), number_text(result.max_score),
             percent_text(result.score, result.max_score))
-
-
-def feedback_markdown(result: SubmissionResult, titles: dict | None = None) -> str:
-    titles = titles or {}
-    lines = [f"# Feedback for {result.student}", "",
-             f"Problem `{result.problem}`: **{number_text(result.score)} / "
-             f"{number_text(result.max_score)}** ({percent_text(result.score, result.max_score)} %)", ""]
-    if result.error:
-        lines += ["The answers file could not be read, so no answer was graded:", "", "```",
-                  result.error, "```", ""]
-    if result.notes:
-        lines += ["These answers could not be graded:", ""] + [f"- {n}" for n in result.notes] + [""]
-    for q in result.questions:
-        title = titles.get(q.id, "")
-        lines.append(f"## {q.id}" + (f" — {title}" if title else ""))
-        lines.append("")
-        if q.no_reference:
-            lines.append("Not graded: robosolve could not answer this question.")
-        else:
-            lines.append(f"Score: {number_text(q.score)} / {number_text(q.max_score)}.")
-        lines.append("")
-        lines.append("| key | verdict | what is wrong |")
-        lines.append("| --- | --- | --- |")
-        for key, r in q.keys.items():
-            graded = "" if key in q.graded else " (not graded)"
-            verdict = r.verdict + (f" ({r.diagnosis})" if r.diagnosis else "")
-            lines.append(f"| `{key}`{graded} | {verdict} | {_cell(r.feedback)} |")
-        lines.append("")
-    return "\n".join(lines).rstrip("\n") + "\n"
-
-
-def _cell(text: str) -> str:
-    """Table-cell text: `|` and `*` escaped (L1*cos(theta1)*L2 must not turn italic)."""
-    return text.replace("\\", "\\\\").replace("|", "\\|").replace("*", "\\*").replace("\n", " ")

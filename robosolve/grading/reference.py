@@ -47,6 +47,8 @@ class QuestionRef:
     roles: SymbolRoles
     frame: str
     form: tuple = ()               # the question's option keys (principal keys may depend on its form)
+    alternatives: dict = field(default_factory=dict)   # key -> diagnosis -> value (alternatives.py)
+    reach: tuple = ()              # IK: (residual expressions of the target, joint limits) (reach.py)
 
     def has(self, key: str) -> bool:
         qt = question_type(self.type)
@@ -93,12 +95,15 @@ class Reference:
 
     @classmethod
     def from_report(cls, report, rtol=None, atol=None) -> "Reference":
+        from robosolve.grading.alternatives import alternatives
+        from robosolve.grading.reach import reach_data
         from robosolve.solvers.base import SolveContext
 
         problem = report.problem
         ctx = SolveContext(problem, None)
         answers = {a.id: a for a in report.answers}
         refs = []
+        alts = alternatives(report)
         for q in problem.questions:
             a = answers[q.id]
             subs = ctx.substitutions(q.at)
@@ -106,7 +111,8 @@ class Reference:
                 id=q.id, type=q.type, marks=q.marks, grade=tuple(q.grade), error=a.error,
                 symbolic=dict(a.symbolic), numeric=dict(a.numeric), extra=dict(a.extra),
                 subs=subs, roles=_roles(problem, q, subs, answers), frame=q.frame or problem.last_frame,
-                form=tuple(q.options)))
+                form=tuple(q.options), alternatives=alts.get(q.id, {}),
+                reach=reach_data(report.model, problem, q, subs) if question_type(q.type).reaches else ()))
         grading = problem.grading or {}
         tol = Tolerance(
             rtol if rtol is not None else grading.get("rtol", DEFAULT_TOLERANCE.rtol),

@@ -293,22 +293,10 @@ class _ProblemBuilder:
         return self.problem
 
     def _grading(self, value) -> dict:
-        """`grading: {rtol, atol}`: the tolerances of grading.md, plain non-negative numbers."""
-        chk = self.chk
-        if value is None or not chk.mapping(("grading",), value, ("rtol", "atol")):
-            return {}
-        out = {}
-        for key, v in value.items():
-            if key not in ("rtol", "atol"):
-                continue
-            e = chk.expr(("grading", key), v, Namespace({}, what="number"))
-            if e is None:
-                continue
-            if not (e.is_number and e.is_real and e.is_nonnegative and e.is_finite):
-                chk.error(("grading", key), f"expected a number >= 0, got {v!r}")
-                continue
-            out[key] = float(e)
-        return out
+        """`grading:` (grading.md): tolerances and partial credit (load/grading_options.py)."""
+        from robosolve.load.grading_options import read_grading
+
+        return read_grading(self.chk, value)
 
     # -- parameters -----------------------------------------------------
     def _parameters(self, value) -> dict:

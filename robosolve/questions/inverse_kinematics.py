@@ -71,7 +71,7 @@ TYPE = QuestionType(
     defaults={"select": "limits"},
     answers=(
         _k("solutions", JOINT_MAP_SET, "every solution within the limits, sorted",
-           principal=True, unit="joint", angle=True, unordered=True, symbolic=False),
+           principal=True, unit="joint", angle=True, unordered=True, symbolic=False, reaches=True),
         _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True, unit="joint/s",
            symbolic=False),
         _k("selected", JOINT_MAP, "the selected solution", angle=True, symbolic=False),

@@ -62,7 +62,7 @@ TYPE = QuestionType(
     options={"coordinates": V.v_coordinates, "geometric": V.v_bool, "bodies": V.v_bool},
     defaults={"geometric": False, "bodies": False},
     answers=(
-        _k("J", MATRIX, "the Jacobian of the coordinates", principal=True, shape=(R, N),
+        _k("J", MATRIX, "the Jacobian of the coordinates", principal=True, shape=(R, N), in_frame0=True,
            hints=(("transposed", "J has one row per coordinate and one column per joint: "
                                  "column i is ∂(coordinates)/∂qᵢ"),)),
         _k("det", SCALAR, "det J (square J)", principal=True),

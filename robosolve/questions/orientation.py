@@ -67,7 +67,7 @@ TYPE = QuestionType(
         _k("axis_angle", RECORD, "axis and angle in [0, π]", principal=True, fields=(
             _k("axis", VECTOR, "unit axis", shape=(3,)),
             _k("angle", SCALAR, "angle in [0, π]", angle=True))),
-        _k("quaternion", VECTOR, "[η, εx, εy, εz], η ≥ 0", principal=True, shape=(4,)),
+        _k("quaternion", VECTOR, "[η, εx, εy, εz], η ≥ 0", principal=True, shape=(4,), quaternion=True),
     ),
     cost=0.1,
     check=_check, needs_joints=False,

@@ -32,12 +32,13 @@ TYPE = QuestionType(
     options={},
     answers=(
         _k("M", MATRIX, "pose ⁰Mₖ of the frame in frame 0", principal=True, unit="m", shape=(4, 4),
-           pose=True, notation="⁰M{sub}", hints=(
+           pose=True, dh_built="pose", notation="⁰M{sub}", hints=(
                ("transposed", "the columns of R are the axes of frame {frame} in frame 0, and the "
                               "last column is the origin of frame {frame} in frame 0"),
                ("inverse", "that is the pose of frame 0 in frame {frame}; {symbol} gives frame "
                            "{frame} in frame 0 ({symbol} = ⁰M₁·¹M₂·…)"))),
-        _k("position", VECTOR, "the point in frame 0", principal=True, unit="m", shape=(3,)),
+        _k("position", VECTOR, "the point in frame 0", principal=True, unit="m", shape=(3,),
+           dh_built="point"),
         _k("chain", MATRIX_LIST, "ⁱ⁻¹Mᵢ of each frame in its parent, from frame 1 on"),
     ),
     figures=(("robot", "robot"),),

@@ -69,6 +69,11 @@ class AnswerKey:
     # -- for the grader (grading.md) --
     by_value: bool = False        # values compared as numbers even when written as expressions
     pose: bool = False            # a 4x4 homogeneous pose: the `inverse` diagnosis applies
+    quaternion: bool = False      # [η, εx, εy, εz]: the `quaternion_order` diagnosis applies
+    dh_built: str = ""            # "pose" / "point": built from the pose of the question's frame
+                                  #   (the `dh_convention` diagnosis applies)
+    in_frame0: bool = False       # a vector or Jacobian in frame 0 (`end_effector_frame` applies)
+    reaches: bool = False         # IK solutions: judged by the pose they reach
     notation: str = ""            # the course's symbol in feedback ("{sub}": the question's frame
                                   #   as a subscript); hints may use {frame} and {symbol}
     hints: tuple = ()             # (diagnosis, sentence in the course's words) pairs

@@ -24,6 +24,22 @@ def count_ids(n: int) -> list[str]:
 
 def read_roster(path) -> list[tuple[str, str]]:
     """(variant id, student id as written), in roster order; InputError for a bad roster."""
+    return roster_table(path)[0]
+
+
+def roster_csv(path) -> bytes:
+    """DIR/roster.csv: the roster as read (blank lines left out), a first column `variant` added."""
+    ids, header, rows = roster_table(path)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["variant"] + header)
+    for (vid, _), row in zip(ids, rows):
+        w.writerow([vid] + row)
+    return buf.getvalue().encode("utf-8")
+
+
+def roster_table(path):
+    """(ids as read_roster gives them, the header as written, each student's row as written)."""
     file = str(path)
     try:
         text = open(path, encoding="utf-8-sig", newline="").read()
@@ -39,11 +55,11 @@ def read_roster(path) -> list[tuple[str, str]]:
     if not rows:
         raise InputError([InputIssue(file, 1, "", "the roster is empty (expected a header with a `student` column)")])
     header = [h.strip() for h in rows[0]]
-    if "student" not in header:
+    if "student" not in [h.casefold() for h in header]:
         raise InputError([InputIssue(file, 1, "", "no `student` column" + did_you_mean("student", header)
                                      + f" (columns: {', '.join(header) or 'none'})")])
-    col = header.index("student")
-    out, seen, issues = [], {}, []
+    col = [h.casefold() for h in header].index("student")
+    out, seen, issues, kept = [], {}, [], []
     for line, row in enumerate(rows[1:], start=2):
         if not any(c.strip() for c in row):
             continue                     # a blank line
@@ -62,8 +78,9 @@ def read_roster(path) -> list[tuple[str, str]]:
             continue
         seen[name] = (line, student)
         out.append((name, student))
+        kept.append(row)
     if issues:
         raise InputError(issues)
     if not out:
         raise InputError([InputIssue(file, 1, "", "the roster has no students")])
-    return out
+    return out, rows[0], kept

@@ -22,9 +22,9 @@ from robosolve.errors import ExitStatus, InputError, InputIssue
 from robosolve.run.execution import make_task, run_tasks
 
 # what a variants folder holds, for the working directory written in place (robosolve.run.outputs)
-OWN_FILES = ("variants.csv", "*/problem.yaml", "*/report.md", "*/report.html", "*/report.ipynb",
-             "*/results.json", "*/figures/*.png", "*/paper.md", "*/paper.html", "*/answers.yaml",
-             "papers.html")
+OWN_FILES = ("variants.csv", "roster.csv", "*/problem.yaml", "*/report.md", "*/report.html",
+             "*/report.ipynb", "*/results.json", "*/figures/*.png", "*/paper.md", "*/paper.html",
+             "*/answers.yaml", "papers.html")
 
 
 @dataclass
@@ -42,6 +42,7 @@ class Plan:
     spec: object
     seed: int
     variants: list = field(default_factory=list)
+    roster: bytes = b""           # DIR/roster.csv (with --roster)
 
 
 # ---------------------------------------------------------------------------
@@ -167,6 +168,8 @@ def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=No
                        paper={"student": v.student, "variant": v.folder}) for v in plan.variants]
     results = [None] * len(tasks)
     files = {"variants.csv": variants_csv(plan)}
+    if plan.roster:
+        files["roster.csv"] = plan.roster
     step = progress.task("solving" if solve else "checking the variants", len(tasks)) if progress else None
     for i, res in run_tasks(tasks, jobs, scheduler):
         results[i] = res

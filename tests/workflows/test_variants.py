@@ -291,7 +291,8 @@ def test_roster_student_k_gets_variant_k(tmp_path):
     assert [row[3:] for row in r[1:]] == [row[3:] for row in c[1:]]
     assert [row[:3] for row in c[1:]] == [["1", "", "5"], ["2", "", "5"], ["3", "", "5"]]
     assert sorted(x.name for x in by_roster.iterdir()) == [".robosolve", "arm-2024-017", "arm-ann",
-                                                           "arm-jo-smith", "variants.csv"]
+                                                           "arm-jo-smith", "roster.csv", "variants.csv"]
+    assert (by_roster / "roster.csv").read_text() == "variant,student\njo-smith,Jo Smith\n2024-017,2024/017\nann,Ann\n"
 
 
 # ---------------------------------------------------------------------------

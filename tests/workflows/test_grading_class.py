@@ -1,0 +1,276 @@
+"""Grading a class (grading.md, last section): roster matching, feedback pages, gradebooks.
+
+One fixture runs the teacher's workflow once: an LMS-style roster (headers in the LMS's
+case) -> `variants --roster` -> four students, three submissions (one by `problem:`, one by
+the roster's ID column, one mistyped id) -> `grade --variants --gradebook`. Each LMS file is
+read back by a checker written from that LMS's documented import rules.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import re
+from pathlib import Path
+
+import pytest
+import yaml
+from typer.testing import CliRunner
+
+from robosolve.cli import app
+
+runner = CliRunner()
+
+PROBLEM = """\
+robosolve: 1
+name: arm
+title: Midterm, two-link arm
+parameters: {L1: 1/2, L2: 2/5, F: 5}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: position, at: {q1: pi/6, q2: pi/3}, grade: [M]}
+  - {type: statics, force: [0, -F], coordinates: [E.x, E.y], at: {q1: pi/6, q2: pi/3}, marks: 3}
+grading:
+  partial: {negated: 1/2}
+variants:
+  parameters:
+    L2: {choices: [3/10, 2/5, 1/2, 3/5]}
+"""
+# the LMS export: Canvas's five student columns, then Moodle's and Blackboard's ids
+ROSTER = """\
+Student,ID,SIS User ID,SIS Login ID,Section,Email,IDNumber,Username
+Jo Smith,101,S-1,jsmith,A,jo@uni.edu,2025/314,jsmith
+Ann Lee,102,S-2,alee,A,ann@uni.edu,2025/100,alee
+Bo Chen,103,S-3,bchen,B,bo@uni.edu,2025/207,bchen
+Al Ng,104,S-4,ang,B,al@uni.edu,2025/555,ang
+"""
+M = [["cos(q1 + q2)", "-sin(q1 + q2)", 0, "L1*cos(q1) + L2*cos(q1 + q2)"],
+     ["sin(q1 + q2)", "cos(q1 + q2)", 0, "L1*sin(q1) + L2*sin(q1 + q2)"], [0, 0, 1, 0], [0, 0, 0, 1]]
+FQ = {"q1": "F*(L1*cos(q1) + L2*cos(q1 + q2))", "q2": "F*L2*cos(q1 + q2)"}      # Fq = −Jᵀ·Fs
+FQ_NEG = {"q1": "-F*(L1*cos(q1) + L2*cos(q1 + q2))", "q2": "-F*L2*cos(q1 + q2)"}
+
+
+def answers(fq, student=None, problem=None) -> str:
+    data = {"robosolve-answers": 1}
+    if problem:
+        data["problem"] = problem
+    if student:
+        data["student"] = student
+    data["answers"] = {"position": {"M": M}, "statics": {"Fq": fq}}
+    return yaml.safe_dump(data, sort_keys=False)
+
+
+@pytest.fixture(scope="module")
+def course(tmp_path_factory):
+    root = tmp_path_factory.mktemp("course")
+    (root / "arm.yaml").write_text(PROBLEM, encoding="utf-8")
+    (root / "roster.csv").write_text(ROSTER, encoding="utf-8")
+    exams = root / "exams"
+    r = runner.invoke(app, ["variants", str(root / "arm.yaml"), "--roster", str(root / "roster.csv"),
+                            "--out", str(exams), "--no-solve"])
+    assert r.exit_code == 0, r.output
+    subs = root / "subs"
+    subs.mkdir()
+    # Jo: no `student:` line, but `problem:` names Jo's own variant
+    (subs / "paper-17.yaml").write_text(answers(FQ, problem="../exams/arm-jo-smith/problem.yaml"))
+    # Ann: the roster's IDNumber column, with blanks around it; Fq negated (half credit)
+    (subs / "ann.yaml").write_text(answers(FQ_NEG, student=" 2025/100 "))
+    # someone mistyped their id
+    (subs / "typo.yaml").write_text(answers(FQ, student="2025/10"))
+    out = root / "grades"
+    r = runner.invoke(app, ["grade", str(subs), "--variants", str(exams), "--out", str(out),
+                            "--gradebook", "canvas,moodle,blackboard", "--jobs", "1"])
+    assert r.exit_code == 1, r.output          # the mistyped id is invalid
+    return root
+
+
+def rows(path: Path) -> list:
+    return list(csv.reader(io.StringIO(path.read_text(encoding="utf-8"))))
+
+
+def test_roster_csv_is_the_roster_with_variant_first(course):
+    got = rows(course / "exams" / "roster.csv")
+    given = rows(course / "roster.csv")
+    assert got[0] == ["variant"] + given[0]
+    assert [r[1:] for r in got[1:]] == given[1:]
+    assert [r[0] for r in got[1:]] == ["jo-smith", "ann-lee", "bo-chen", "al-ng"]
+
+
+def test_matching_and_filing(course):
+    summary = {r[0]: r[1:] for r in rows(course / "grades" / "summary.csv")[1:]}
+    # matched by problem: filed under its own id (the file name); through the roster: the roster's student
+    assert summary == {"2025/10": ["0", "4", "0.0"], "Ann Lee": ["2.5", "4", "62.5"],
+                       "paper-17": ["4", "4", "100.0"]}
+    grades = rows(course / "grades" / "grades.csv")
+    assert ["Ann Lee", "statics", "Fq", "incorrect", "negated", "1.5", "3"] in grades
+
+
+def test_unmatched_student_says_why_with_did_you_mean(course):
+    exams = course / "exams"
+    reason = f"student '2025/10' is not in the roster of {exams}; did you mean '2025/100'?"
+    page = (course / "grades" / "feedback" / "2025-10.md").read_text()
+    assert f"No answer was graded: {reason}\n" in page and "could not be read" not in page
+    record = yaml.safe_load((course / "grades" / "2025-10.json").read_text())
+    keys = record["questions"]["statics"]["keys"]
+    assert keys["Fq"]["verdict"] == "invalid" and keys["Fq"]["feedback"] == reason
+
+
+def test_feedback_page(course):
+    page = (course / "grades" / "feedback" / "ann-lee.md").read_text()
+    assert "## 2. statics\n\nStatics (force = [0, -F]; coordinates = [E.x, E.y]; at q1 = pi/6, q2 = pi/3)." in page
+    assert "### `Fq`: incorrect (negated)" in page
+    assert "- You gave: `{q1: -F*(L1*cos(q1) + L2*cos(q1 + q2)), q2: -F*L2*cos(q1 + q2)}`" in page
+    assert "- What is wrong: this is −Fq" in page
+    assert "- Expected: `Fq = " in page
+    assert "- Marks: 1.5 of 3 (partial credit)" in page
+    assert "Your worked solution: [report.md](../../exams/arm-ann-lee/report.md)" in page
+    jo = (course / "grades" / "feedback" / "paper-17.md").read_text()
+    assert "(../../exams/arm-jo-smith/report.md)" in jo
+
+
+def test_no_expected_feedback(course, tmp_path):
+    out = tmp_path / "g"
+    r = runner.invoke(app, ["grade", str(course / "subs" / "ann.yaml"), "--variants", str(course / "exams"),
+                            "--out", str(out), "--no-expected", "--jobs", "1"])
+    assert r.exit_code == 0, r.output
+    page = (out / "feedback" / "ann-lee.md").read_text()
+    assert "this is −Fq" in page and "- You gave:" in page
+    assert "xpected" not in page
+    assert "xpected" not in (out / "ann-lee.json").read_text()
+
+
+# -- the importers' rules ---------------------------------------------------------
+def canvas_import(text: str) -> dict:
+    """lib/gradebook_importer.rb: a header row with `Student` then `ID` (more than 3 columns);
+    `SIS User ID` and `SIS Login ID` together after ID; `Section` the last student column;
+    an optional `Points Possible` row; a student found by ID, SIS ids or name; a blank or
+    `-` score is no score; the other columns are assignments (by title)."""
+    table = list(csv.reader(io.StringIO(text)))
+    header = table[0]
+    assert len(header) > 3 and "Student" in header[0] and "ID" in header[1]
+    columns = 3
+    if re.search(r"SIS\s+User\s+ID", header[2]) and re.search(r"SIS\s+Login\s+ID", header[3]):
+        columns += 2
+    assert "Section" in header[columns - 1]
+    assignments = header[columns:]
+    assert assignments and all(a not in ("Student", "ID", "SIS User ID", "SIS Login ID", "Section")
+                               and not re.search("Current Score|Final Score|Current Grade|Final Grade", a)
+                               for a in assignments)
+    body = [r for r in table[1:] if not r[0].startswith("Points Possible")]
+    scores = {}
+    for r in body:
+        assert len(r) == len(header)
+        who = r[1] or r[2] or r[3] or r[0]
+        assert who, "a student row needs an ID, SIS id or name"
+        for a, v in zip(assignments, r[columns:]):
+            assert v in ("", "-") or re.fullmatch(r"-?\d+(\.\d{1,4})?", v), v
+            scores[(who, a)] = v
+    return scores
+
+
+def moodle_import(text: str, map_by: str) -> dict:
+    """grade/import/csv: a header row of unique names; the teacher maps one column to a user
+    field (email, idnumber) and the others to grade items or their feedback; a grade is a
+    number, an empty cell is left alone."""
+    table = list(csv.reader(io.StringIO(text)))
+    header = table[0]
+    assert len(set(header)) == len(header) and all(header)
+    ident = header.index(map_by)
+    out = {}
+    for r in table[1:]:
+        assert len(r) == len(header) and r[ident]
+        assert r[2] == "" or re.fullmatch(r"\d+(\.\d{1,4})?", r[2])
+        out[r[ident]] = (r[2], r[3])
+    return out
+
+
+def blackboard_upload(text: str) -> dict:
+    """Grade Center upload: a `Username` column identifies the user (required, unique);
+    each other column is a Grade Center column by name; a number or empty."""
+    table = list(csv.reader(io.StringIO(text)))
+    header = table[0]
+    assert header[0] == "Username" and len(header) == 2
+    users = [r[0] for r in table[1:]]
+    assert all(users) and len(set(users)) == len(users)
+    return {r[0]: r[1] for r in table[1:]}
+
+
+def test_canvas_gradebook(course):
+    text = (course / "grades" / "gradebook" / "canvas.csv").read_text()
+    assert text.splitlines()[0] == "Student,ID,SIS User ID,SIS Login ID,Section,"  '"Midterm, two-link arm"'
+    scores = canvas_import(text)
+    assert scores == {("101", "Midterm, two-link arm"): "4", ("102", "Midterm, two-link arm"): "2.5",
+                      ("103", "Midterm, two-link arm"): "", ("104", "Midterm, two-link arm"): ""}
+    assert rows(course / "grades" / "gradebook" / "canvas.csv")[1] == \
+        ["Jo Smith", "101", "S-1", "jsmith", "A", "4"]
+
+
+def test_moodle_gradebook(course):
+    text = (course / "grades" / "gradebook" / "moodle.csv").read_text()
+    assert rows(course / "grades" / "gradebook" / "moodle.csv")[0] == \
+        ["email", "idnumber", "Midterm, two-link arm", "Midterm, two-link arm feedback"]
+    by_email = moodle_import(text, "email")
+    assert by_email == {"jo@uni.edu": ("4", "4/4"), "ann@uni.edu": ("2.5", "2.5/4: statics.Fq negated"),
+                        "bo@uni.edu": ("", ""), "al@uni.edu": ("", "")}
+    assert moodle_import(text, "idnumber")["2025/100"][0] == "2.5"
+
+
+def test_blackboard_gradebook(course):
+    got = blackboard_upload((course / "grades" / "gradebook" / "blackboard.csv").read_text())
+    assert list(got.items()) == [("jsmith", "4"), ("alee", "2.5"), ("bchen", ""), ("ang", "")]
+
+
+def test_gradebook_usage_errors(course, tmp_path):
+    subs = str(course / "subs" / "ann.yaml")
+    r = runner.invoke(app, ["grade", subs, "--variants", str(course / "exams"), "--out", str(tmp_path / "a"),
+                            "--gradebook", "canvas,moodel"])
+    assert r.exit_code == 2 and "unknown LMS 'moodel' (did you mean 'moodle'?)" in r.output
+    assert not (tmp_path / "a").exists()
+    r = runner.invoke(app, ["grade", subs, "--problem", str(course / "arm.yaml"), "--out", str(tmp_path / "b"),
+                            "--gradebook", "canvas"])
+    assert r.exit_code == 2 and "--gradebook needs a roster" in r.output
+    assert not (tmp_path / "b").exists()
+
+
+def test_moodle_needs_email_or_idnumber(tmp_path):
+    (tmp_path / "arm.yaml").write_text(PROBLEM)
+    (tmp_path / "class.csv").write_text("Student,Username\nJo Smith,jsmith\n")
+    exams = tmp_path / "exams"
+    assert runner.invoke(app, ["variants", str(tmp_path / "arm.yaml"), "--roster", str(tmp_path / "class.csv"),
+                               "--out", str(exams), "--no-solve"]).exit_code == 0
+    (tmp_path / "jo.yaml").write_text(answers(FQ, student="jsmith"))
+    r = runner.invoke(app, ["grade", str(tmp_path / "jo.yaml"), "--variants", str(exams), "--out",
+                            str(tmp_path / "g"), "--gradebook", "moodle"])
+    assert r.exit_code == 2 and "has no `email` or `idnumber` column" in r.output
+    assert not (tmp_path / "g").exists()
+
+
+def test_matching_rules_in_order(tmp_path):
+    from robosolve.grading.matching import MatchError, read_table
+
+    for v in ("jo", "ann", "3"):
+        (tmp_path / f"exam-{v}").mkdir()
+        (tmp_path / f"exam-{v}" / "problem.yaml").write_text("robosolve: 1\n")
+    (tmp_path / "variants.csv").write_text("variant,student,seed\njo,Jo,0\nann,Ann,0\n3,,0\n")
+    (tmp_path / "roster.csv").write_text("variant,STUDENT,E-Mail,Group\njo,Jo,jo@x.org,G1\nann,Ann,ann@x.org,G1\n")
+    table = read_table(tmp_path)
+    # 1. problem: inside DIR wins over the student id
+    m = table.match("Ann", tmp_path / "exam-jo" / "problem.yaml")
+    assert (m.variant, m.student) == ("jo", "Ann")
+    # 2. any roster column, trimmed, case ignored; filed under the roster's student
+    m = table.match("  JO@X.ORG ", tmp_path / "elsewhere.yaml")
+    assert (m.variant, m.student, m.row) == ("jo", "Jo", 0)
+    # a value two variants share
+    with pytest.raises(MatchError, match=r"student 'G1' matches 2 variants in the roster of .*\(jo, ann\)"):
+        table.match("G1", None)
+    # 3. the variant ids
+    assert table.match("3", None).variant == "3"
+    # nothing: a did-you-mean among the roster's values
+    with pytest.raises(MatchError) as exc:
+        table.match("ann@x.orgg", None)
+    assert str(exc.value) == f"student 'ann@x.orgg' is not in the roster of {tmp_path}; did you mean 'ann@x.org'?"
