@@ -19,8 +19,8 @@ def statement_text(question, problem) -> str:
     from robosolve.questions.registry import question_type
 
     qt = question_type(question.type)
-    if qt.statement is not None:
-        text = _call_statement(qt.statement, question, problem)
+    if problem is not None:
+        text = _paper_statement(question, problem)
         if text:
             return text
     parts = [f"{_name(k)} = {_value(v)}" for k, v in question.options.items()]
@@ -29,16 +29,15 @@ def statement_text(question, problem) -> str:
     return qt.title + (" (" + "; ".join(parts) + ")" if parts else "") + "."
 
 
-def _call_statement(fn, question, problem) -> str:
-    for args in ((question, problem), (question,)):
-        try:
-            out = fn(*args)
-        except TypeError:
-            continue
-        except Exception:  # noqa: BLE001 - a statement bug must not lose the feedback page
-            return ""
-        return out if isinstance(out, str) else str(getattr(out, "text", "") or "")
-    return ""
+def _paper_statement(question, problem) -> str:
+    """The statement the paper prints (the teacher's `text`, else the type's own)."""
+    from robosolve.papers.paper import Say, statement
+    from robosolve.render.markdown import Tex
+
+    try:
+        return statement(question, Say(problem, Tex({})))
+    except Exception:  # noqa: BLE001 - a statement bug must not lose the feedback page
+        return ""
 
 
 def _name(k) -> str:
