@@ -64,10 +64,15 @@ def solve_task(task: dict) -> dict:
 
 def read_error(path, exc: BaseException) -> dict:
     """The summary row of a problem file that cannot be read."""
-    why = ("the file is not UTF-8 text" if isinstance(exc, UnicodeDecodeError)
-           else f"cannot read the file: {getattr(exc, 'strerror', None) or exc}")
+    issues = getattr(exc, "issues", None)
+    if issues:          # an InputError of robosolve.load.yamlsource.read_text_file
+        messages = [str(i) if i.line > 0 else f"{i.file}:1: {i.message}" for i in issues]
+    else:
+        why = ("the file is not UTF-8 text" if isinstance(exc, UnicodeDecodeError)
+               else f"cannot read the file: {getattr(exc, 'strerror', None) or exc}")
+        messages = [f"{path}:1: {why}"]
     return {"file": str(path), "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
-            "messages": [f"{path}:1: {why}"], "files": {}, "version": None}
+            "messages": messages, "files": {}, "version": None}
 
 
 def warm_worker() -> None:

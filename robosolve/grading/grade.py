@@ -23,6 +23,7 @@ from robosolve.grading.record import (
     GRADES_COLUMNS, SUMMARY_COLUMNS, feedback_markdown, grade_rows, record_json, summary_row,
 )
 from robosolve.interrupts import process_pool
+from robosolve.load.yamlsource import read_text_file
 
 
 # Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
@@ -63,9 +64,9 @@ def read_variants(folder: Path) -> dict:
     """student id (as written, and made safe) and variant id -> that variant's problem.yaml."""
     table = folder / "variants.csv"
     try:
-        text = table.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise UsageError(f"{table}: cannot read the variants table ({exc.strerror or exc})")
+        text = read_text_file(table, what="the variants table")
+    except InputError as exc:       # unreadable, not a regular file, too long, not UTF-8 (line)
+        raise UsageError(str(exc)) from None
     rows = list(csv.DictReader(io.StringIO(text)))
     if rows and not {"variant", "student"} <= set(rows[0]):
         raise UsageError(f"{table}: expected the columns variant,student,seed,…")
@@ -126,6 +127,10 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
             sub = read_answers(f)
         except InputError as exc:
             jobs.append(Job(i, str(f), _fallback_student(f), common, None, str(exc)))
+            continue
+        refused = [str(x) for x in sub.issues if x.path == "problem"]
+        if refused and problem is None and variants is None:   # a device or folder as `problem:`
+            jobs.append(Job(i, str(f), sub.student, None, None, "\n".join(refused)))
             continue
         try:
             path = _problem_for(sub, problem, variants)

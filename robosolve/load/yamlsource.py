@@ -8,7 +8,9 @@ nesting are stopped by a node budget instead of exhausting memory, and
 
 from __future__ import annotations
 
-import pathlib
+import codecs
+import os
+import stat
 from dataclasses import dataclass, field
 
 import yaml
@@ -98,17 +100,60 @@ class _Converter:
             raise YamlProblem(node.start_mark.line + 1, f"invalid value {node.value[:40]!r}: {exc}")
 
 
-def read_text_file(file, line: int = 0) -> str:
-    """The UTF-8 text of `file`, or an InputError (at `line`) saying why it cannot be read."""
+def read_input_bytes(file, limit: int = MAX_FILE_BYTES, line: int = 0, what: str = "the file") -> bytes:
+    """At most `limit` bytes of the regular file `file`: an InputError (at `line`) for a device,
+    a pipe, a folder or a longer file. Never reads more than `limit` + 1 bytes, so that
+    `/dev/zero` or a huge file cannot fill the memory; a FIFO is opened without waiting."""
     name = str(file)
+
+    def refuse(message):
+        return InputError([InputIssue(name, line, "", message)])
+
     try:
-        raw = pathlib.Path(file).read_bytes()
+        fd = os.open(file, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     except OSError as exc:
-        raise InputError([InputIssue(name, line, "", f"cannot read the file: {exc.strerror or exc}")])
+        raise refuse(f"cannot read {what}: {exc.strerror or exc}") from None
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            kind = "a folder" if stat.S_ISDIR(mode) else "a device, pipe or socket"
+            raise refuse(f"{what} is {kind}, not a regular file")
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as exc:
+        raise refuse(f"cannot read {what}: {exc.strerror or exc}") from None
+    finally:
+        os.close(fd)
+    if size > limit:
+        raise refuse(f"{what} is larger than {limit} bytes")
+    return b"".join(chunks)
+
+
+def decode_utf8(raw: bytes, file, what: str = "the file", bom: bool = True) -> str:
+    """`raw` as UTF-8 text (a leading byte-order mark dropped when `bom`), or an InputError at
+    the line of the first byte that is not UTF-8."""
+    if bom and raw.startswith(codecs.BOM_UTF8):
+        raw = raw[len(codecs.BOM_UTF8):]
     try:
         return raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError([InputIssue(name, line, "", "the file is not UTF-8 text")])
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
+        byte = raw[exc.start:exc.start + 1].hex()
+        raise InputError([InputIssue(str(file), line, "",
+                                     f"{what} is not UTF-8 text: byte 0x{byte} at column {column} "
+                                     "(save it as UTF-8)")]) from None
+
+
+def read_text_file(file, line: int = 0, what: str = "the file") -> str:
+    """The UTF-8 text of `file` (at most MAX_FILE_BYTES), or an InputError saying why it cannot
+    be read: at `line` when the file cannot be opened, at the line of a bad byte."""
+    return decode_utf8(read_input_bytes(file, line=line, what=what), file, what)
 
 
 def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int, Path, str]]]:
