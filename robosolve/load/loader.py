@@ -23,6 +23,13 @@ from robosolve.questions.registry import types_where
 
 NAME_RE = re.compile(r"[a-z0-9_-]+")  # used with fullmatch: "$" would accept a final newline
 IDENT_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+# `E` is a point's name (problem-format.md, Expressions): the end point, by default the origin of
+# the last frame, that every question about "the point" uses. A parameter, joint or actuator
+# of that name would leave those questions without their point: refused where it is declared.
+DEFAULT_POINT = "E"
+DEFAULT_POINT_TAKEN = ("'E' is the name of the end point (by default the origin of the last frame, "
+                       "used by every question without `point`; E.x is its x): choose another name, "
+                       "such as E_1 or Ey")
 PYTHON_KEYWORDS = {
     "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
     "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global",
@@ -320,6 +327,9 @@ class _ProblemBuilder:
                 chk.error(("parameters", key), f"invalid parameter name '{key}' (expected a name like L1 or m_2)")
             elif key in RESERVED:
                 chk.error(("parameters", key), f"'{key}' is reserved (a function, a constant or time)")
+            elif key == DEFAULT_POINT:     # kept as a name, so that its uses say nothing more
+                chk.error(("parameters", key), DEFAULT_POINT_TAKEN)
+                names.append(key)
             else:
                 names.append(key)
         # First pass with plain real symbols, to resolve values and detect cycles.
@@ -407,7 +417,9 @@ class _ProblemBuilder:
                 kind = None
             if name is None or kind is None:
                 continue
-            if name in taken or name in seen or name in PYTHON_KEYWORDS:
+            if name == DEFAULT_POINT:     # still a joint below, so that its uses say nothing more
+                chk.error(path + ("name",), DEFAULT_POINT_TAKEN)
+            elif name in taken or name in seen or name in PYTHON_KEYWORDS:
                 chk.error(path + ("name",), f"name '{name}' is already used")
                 continue
             seen.add(name)
@@ -426,11 +438,13 @@ class _ProblemBuilder:
             ))
             joints[-1]._raw_limits = item.get("limits")
         # derived names must not collide with anything
-        all_names = {s.name for s in self.parameters} | RESERVED
+        all_names = {s.name for s in self.parameters} | RESERVED | {DEFAULT_POINT}
         for j in joints:
             for derived, where in ((f"{j.name}_dot", "name"), (f"{j.name}_ddot", "name"),
                                    (j.actuator.name, "actuator")):
-                if derived in all_names:
+                if derived == DEFAULT_POINT:
+                    chk.error(("joints", j.index, where), DEFAULT_POINT_TAKEN)
+                elif derived in all_names:
                     chk.error(("joints", j.index, where),
                               f"'{derived}' (of joint {j.name}) is already used")
                 all_names.add(derived)

@@ -97,7 +97,11 @@ class _Converter:
         try:
             return self._scalar_loader.construct_object(node, deep=True)
         except Exception as exc:  # e.g. an integer with too many digits
-            raise YamlProblem(node.start_mark.line + 1, f"invalid value {node.value[:40]!r}: {exc}")
+            line = node.start_mark.line + 1
+            digits = sum(c.isdigit() for c in node.value)
+            if isinstance(exc, ValueError) and "digits" in str(exc):
+                raise YamlProblem(line, f"number too long ({digits} digits; at most 4300)") from None
+            raise YamlProblem(line, f"invalid value {node.value[:40]!r}: {exc}") from None
 
 
 def read_input_bytes(file, limit: int = MAX_FILE_BYTES, line: int = 0, what: str = "the file") -> bytes:
