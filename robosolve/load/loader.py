@@ -15,6 +15,7 @@ from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
     RESERVED, ExpressionError, Namespace, did_you_mean, size_issue, value_issue,
 )
+from robosolve.load.physical import inertia_issue, pseudo_inertia_issue
 from robosolve.load.problem import (
     PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
 )
@@ -248,6 +249,7 @@ class _ProblemBuilder:
         self.file = chk.src.file
         self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
         self.rejected_points: set[str] = set()
+        self.bodies_given = False
 
     def build(self) -> Problem | None:
         chk, data = self.chk, self.data
@@ -728,6 +730,7 @@ class _ProblemBuilder:
 
     def _bodies(self, value) -> list:
         chk = self.chk
+        self.bodies_given = bool(value)   # a body refused has its message: no "needs bodies" too
         out, seen = [], set()
         kinds = ("point", "rod", "com", "pseudo_inertia")
         for i, path, item in chk.entries("bodies", value, "bodies", ("name", "frame", "mass") + kinds + ("inertia",),
@@ -782,10 +785,16 @@ class _ProblemBuilder:
                 if data["inertia"] is not None and data["inertia"] != data["inertia"].T:
                     chk.error(path + ("inertia",), "the inertia tensor must be symmetric")
                     data["inertia"] = None
+                elif not self._physical(path + ("inertia",), data["inertia"],
+                                        lambda v: inertia_issue(v, triangle=False)):
+                    data["inertia"] = None
             else:
                 data["J"] = chk.matrix(path + ("pseudo_inertia",), item["pseudo_inertia"], self.ns)
                 if data["J"] is not None and data["J"] != data["J"].T:
                     chk.error(path + ("pseudo_inertia",), "the pseudo-inertia matrix must be symmetric")
+                    data["J"] = None
+                elif data["J"] is not None and not self._physical(path + ("pseudo_inertia",), data["J"],
+                                                                  pseudo_inertia_issue):
                     data["J"] = None
                 if data["J"] is not None:
                     mass = data["J"][3, 3]
@@ -793,6 +802,19 @@ class _ProblemBuilder:
                 continue
             out.append(Body(name, frame, mass, kind, data, line=chk.src.line(path)))
         return out
+
+    def _physical(self, path, matrix, issue) -> bool:
+        """False (with the error at `path`) when the numeric values of `matrix` say no body has it
+        (robosolve.load.physical); True when it can exist or a value is still unknown."""
+        if matrix is None:
+            return True
+        values = [self.chk.number_value(sp.sympify(e)) for e in matrix]
+        if any(v is None for v in values):
+            return True
+        why = issue([values[r * matrix.cols:(r + 1) * matrix.cols] for r in range(matrix.rows)])
+        if why:
+            self.chk.error(path, why)
+        return why is None
 
     def _forces(self, value) -> list:
         chk = self.chk

@@ -127,7 +127,7 @@ class _QuestionLoader:
             qt.check(self, path, item, q)
         if qt.needs_dynamics:
             self.require_gravity(path)
-            if not b.problem.bodies:
+            if not b.problem.bodies and not b.bodies_given:
                 chk.error(path + ("type",), "this question needs bodies (masses)")
             masses = [chk.number_value(body.mass) for body in b.problem.bodies if body.mass is not None]
             if qt.integrates and masses and all(m == 0 for m in masses):
