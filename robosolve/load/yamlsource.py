@@ -160,6 +160,39 @@ def read_text_file(file, line: int = 0, what: str = "the file") -> str:
     return decode_utf8(read_input_bytes(file, line=line, what=what), file, what)
 
 
+_OPENING = (yaml.FlowSequenceStartToken, yaml.FlowMappingStartToken, yaml.BlockMappingStartToken,
+            yaml.BlockSequenceStartToken)
+_CLOSING = (yaml.FlowSequenceEndToken, yaml.FlowMappingEndToken, yaml.BlockEndToken)
+
+
+def _deep_line(text: str) -> int:
+    """The line where the nesting first goes deeper than MAX_DEPTH levels (PyYAML's scanner is
+    not recursive: it reads any depth)."""
+    depth = 0
+    try:
+        for token in yaml.scan(text, Loader=yaml.SafeLoader):
+            if isinstance(token, _OPENING):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    return token.start_mark.line + 1
+            elif isinstance(token, _CLOSING):
+                depth -= 1
+    except (yaml.YAMLError, RecursionError):
+        pass
+    return 1
+
+
+def _character_problem(text: str, exc) -> YamlProblem:
+    """A character YAML does not allow, at its line and column, named in words."""
+    pos = exc.position if isinstance(exc.position, int) else 0
+    line = text.count("\n", 0, pos) + 1
+    column = pos - (text.rfind("\n", 0, pos) + 1) + 1
+    code = exc.character if isinstance(exc.character, int) else ord(text[pos]) if pos < len(text) else 0
+    what = "a NUL character (byte 0)" if code == 0 else f"the control character U+{code:04X}"
+    return YamlProblem(line, f"{what} at column {column}: YAML does not allow it in a file "
+                       "(remove it; was the file saved as UTF-16 or binary?)")
+
+
 def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int, Path, str]]]:
     """Parse YAML text. Raises YamlProblem for syntax errors and resource limits.
 
@@ -178,10 +211,12 @@ def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int
         if "\t" in text and (any("\t" in ln for ln in near) or "tab" in what):
             what += " (a tab character: indent with spaces, YAML does not allow tabs)"
         raise YamlProblem(line, f"YAML syntax error: {what}") from None
+    except yaml.reader.ReaderError as exc:      # a character YAML does not allow (NUL, ...)
+        raise _character_problem(text, exc) from None
     except yaml.YAMLError as exc:
         raise YamlProblem(1, f"YAML error: {exc}") from None
     except RecursionError:
-        raise YamlProblem(1, f"nesting deeper than {MAX_DEPTH} levels") from None
+        raise YamlProblem(_deep_line(text), f"nesting deeper than {MAX_DEPTH} levels") from None
     if len(documents) > 1:
         raise YamlProblem(documents[1].start_mark.line + 1,
                           "more than one YAML document in the file ('---')")
@@ -191,6 +226,6 @@ def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int
     try:
         data = conv.convert(documents[0], (), 0)
     except RecursionError:
-        raise YamlProblem(1, f"nesting deeper than {MAX_DEPTH} levels") from None
+        raise YamlProblem(_deep_line(text), f"nesting deeper than {MAX_DEPTH} levels") from None
     conv.lines[()] = documents[0].start_mark.line + 1
     return Source(data, conv.lines, file), conv.duplicates
