@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
+from robosolve.core.plain import plain
 from robosolve.core.prose import Num, Text
 from robosolve.core.simplify import factored
 from robosolve.core.timing import time_limit
@@ -206,7 +207,7 @@ class _Fmt:
 
     def __call__(self, e) -> str:
         if self.plain:
-            return str(e)
+            return e if isinstance(e, str) else plain(e)
         return "$" + (e if isinstance(e, str) else self.tex(e)) + "$"
 
     def name(self, latex_name: str, joint) -> str:

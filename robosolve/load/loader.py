@@ -217,6 +217,15 @@ class Checker:
 
 
 # ----------------------------------------------------------------------
+def _not_real(written, fv: complex) -> str:
+    """Why a parameter's value is refused, in the words the user wrote."""
+    what = f"{written!r}" if isinstance(written, str) else str(written)
+    if fv.real != fv.real or abs(fv.real) == float("inf") or fv.imag != fv.imag or abs(fv.imag) == float("inf"):
+        return f"{what} is undefined or infinite"
+    return (f"{what} is not a real number (it is complex, {fv.real:.6g}{fv.imag:+.6g}i: a square root or "
+            "logarithm of a negative number, or acos/asin beyond [-1, 1]?)")
+
+
 def load_problem(file) -> Problem:
     """Read and validate a problem file. Raises InputError with every issue."""
     return load_problem_text(read_text_file(file), str(file))
@@ -250,6 +259,7 @@ class _ProblemBuilder:
         self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
         self.rejected_points: set[str] = set()
         self.bodies_given = False
+        self.gravity_refused = False
 
     def build(self) -> Problem | None:
         chk, data = self.chk, self.data
@@ -281,6 +291,10 @@ class _ProblemBuilder:
         self.ns_points = Namespace(static, list(self.points) + sorted(self.rejected_points), what="name",
                                    refused={"t": TIME_REFUSED})
         gravity, gravity_given = self._gravity(data.get("gravity"))
+        # given but refused (its own message says why): no "declare g" for each question too
+        params = data.get("parameters")
+        self.gravity_refused = gravity is None and (data.get("gravity") is not None or (
+            isinstance(params, dict) and "g" in params))
         bodies = self._bodies(data.get("bodies"))
         forces = self._forces(data.get("forces"))
         has_robot = bool(self.joints) or bool(self.frames)
@@ -366,7 +380,7 @@ class _ProblemBuilder:
                 chk.error(("parameters", n), "value is not a finite number")
                 continue
             if abs(fv.imag) > 1e-12 or fv.real != fv.real or abs(fv.real) == float("inf"):
-                chk.error(("parameters", n), f"value {v} is not a finite real number")
+                chk.error(("parameters", n), _not_real(value[n], fv))
                 continue
             numeric[n] = v
         # Final symbols: positive when the value is a positive number (helps sqrt/atan2).

@@ -136,7 +136,7 @@ class _QuestionLoader:
 
     def require_gravity(self, path):
         """A question using gravity needs it declared."""
-        if self.b.problem.gravity is None:
+        if self.b.problem.gravity is None and not self.b.gravity_refused:
             self.chk.error(path + ("type",), "this question uses gravity: declare g in parameters "
                            "(the default gravity is [0, 0, -g]) or give gravity")
 
