@@ -6,6 +6,7 @@ so one run reports every problem of the file (spec §4).
 
 from __future__ import annotations
 
+import math
 import re
 
 import sympy as sp
@@ -217,6 +218,17 @@ class Checker:
 
 
 # ----------------------------------------------------------------------
+def _degrees_hint(raw) -> str:
+    """A revolute joint's limits beyond one turn: degrees written where radians are read."""
+    shown = ", ".join(f"deg({v})" for v in raw)
+    return (f"limits {_flow(raw)} of a revolute joint are beyond one turn (±2π ≈ ±6.283 rad): angles "
+            f"are radians; if they are degrees, write [{shown}]")
+
+
+def _flow(raw) -> str:
+    return "[" + ", ".join(str(v) for v in raw) + "]"
+
+
 def _not_real(written, fv: complex) -> str:
     """Why a parameter's value is refused, in the words the user wrote."""
     what = f"{written!r}" if isinstance(written, str) else str(written)
@@ -481,6 +493,9 @@ class _ProblemBuilder:
                 flo, fhi = float(sp.N(lo.xreplace(vals))), float(sp.N(hi.xreplace(vals)))
                 if not flo < fhi:
                     chk.error(path, f"lower limit {lo} is not below upper limit {hi}")
+                    continue
+                if j.kind == REVOLUTE and max(abs(flo), abs(fhi)) > 2 * math.pi + 0.01:  # rounded ±6.2832 is a turn
+                    chk.error(path, _degrees_hint(raw))
                     continue
             except (TypeError, ValueError):
                 pass
