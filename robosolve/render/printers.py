@@ -51,11 +51,7 @@ class SharedLatexPrinter(_PrintsEachOnce, LatexPrinter):
         x = float(expr)
         if not math.isfinite(x) or (x == int(x) and abs(x) < 1e15):
             return super()._print_Float(expr)      # 18.0 stays a visible decimal
-        text = f"{x:.{REPORT_DIGITS}g}"
-        if "e" in text:
-            mantissa, exponent = text.split("e")
-            return f"{mantissa} \\cdot 10^{{{int(exponent)}}}"
-        return text
+        return super()._print_Float(sp.Float(f"{x:.{REPORT_DIGITS}g}"))   # sympy's layout, 6 digits
 
     def _print_Mul(self, expr):
         coeff, rest = expr.as_coeff_Mul()
