@@ -40,7 +40,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
 
     from robosolve.run.execution import SchedulerError
     from robosolve.run.outputs import OutputFolderError
-    from robosolve.variants.naming import count_ids, read_roster, roster_csv
+    from robosolve.variants.naming import CountedIds, read_roster, roster_csv
     from robosolve.variants.workflow import VariantInvalid, check_out, plan_variants, run
 
     con = console()
@@ -50,7 +50,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         err(reason)
         return ExitStatus.INPUT
     try:
-        ids = [(i, "") for i in count_ids(count)] if roster is None else read_roster(roster)
+        ids = CountedIds(count) if roster is None else read_roster(roster)
         with Progress(console=con, transient=True) as bar:
             plan = plan_variants(problem, ids, seed, Steps(bar))
             plan.roster = roster_csv(roster) if roster is not None else b""

@@ -12,7 +12,8 @@ that key's `invalid` verdict, not an error of the file).
 
 from __future__ import annotations
 
-import re
+import os
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -21,6 +22,7 @@ from robosolve.load.expressions import did_you_mean
 from robosolve.load.loader import path_str, type_name
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, read_text_file
 from robosolve.questions.registry import RECORD, question_type
+from robosolve.variants.naming import safe_name  # noqa: F401  (the one rule, variants.md)
 
 FORMAT_KEY = "robosolve-answers"
 TOP_KEYS = (FORMAT_KEY, "problem", "student", "answers")
@@ -50,11 +52,6 @@ class Submission:
 
     def where(self, path) -> tuple[int, str]:
         return self.source.line(path), path_str(path)
-
-
-def safe_name(student: str) -> str:
-    """variants.md's rule: lower case, runs outside [a-z0-9_-] -> '-', no '-' at the ends."""
-    return re.sub(r"[^a-z0-9_-]+", "-", student.lower()).strip("-")
 
 
 class _Issues:
@@ -107,21 +104,8 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
         issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1){hint}")
     elif data[FORMAT_KEY] != 1 or isinstance(data[FORMAT_KEY], bool):
         issues.error((FORMAT_KEY,), f"unsupported answers format {data[FORMAT_KEY]!r} (expected 1)")
-    problem_file = None
-    if data.get("problem") is not None:
-        if isinstance(data["problem"], str) and data["problem"].strip():
-            problem_file = Path(file).parent / data["problem"]
-        else:
-            issues.error(("problem",), f"expected the path of the problem file, got {type_name(data['problem'])}")
-    student = Path(file).stem
-    if "student" in data:
-        s = data["student"]
-        if isinstance(s, (str, int)) and not isinstance(s, bool) and str(s).strip():
-            student = str(s).strip()
-        elif s is None or s == "":
-            pass                  # a template's blank: the file name (papers.md)
-        else:
-            issues.error(("student",), f"expected the student's id, got {type_name(s)}")
+    problem_file = _problem_file(issues, data, file)
+    student = _student(issues, data, file)
     raw = {}
     if "answers" not in data:
         issues.error((), "missing required key 'answers' (question id -> answer key -> value)")
@@ -136,6 +120,39 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
     if any(i.path in ("", FORMAT_KEY, "answers") for i in issues.items):
         issues.raise_if_any()     # no answers to check against a problem: stop here
     return Submission(file, student, problem_file, raw, source, issues=list(issues.items))
+
+
+def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
+    """The `problem:` path, resolved against the answers file's folder; a device, a pipe or a
+    folder is refused here (it would be read without end or block)."""
+    value = data.get("problem")
+    if value is None:
+        return None
+    if not (isinstance(value, str) and value.strip()):
+        issues.error(("problem",), f"expected the path of the problem file, got {type_name(value)}")
+        return None
+    path = Path(file).parent / value
+    try:
+        mode = os.stat(path).st_mode
+    except (OSError, ValueError):
+        return path               # missing or unreadable: the loader says so, with the path
+    if not stat.S_ISREG(mode):
+        kind = "a folder" if stat.S_ISDIR(mode) else "a device, pipe or socket"
+        issues.error(("problem",), f"{value!r} is {kind}, not a problem file")
+        return None
+    return path
+
+
+def _student(issues: _Issues, data: dict, file: str) -> str:
+    """The `student:` id (default: the answers file's name)."""
+    if "student" not in data:
+        return Path(file).stem
+    s = data["student"]
+    if isinstance(s, (str, int)) and not isinstance(s, bool) and str(s).strip():
+        return str(s).strip()
+    if not (isinstance(s, str) or s is None):
+        issues.error(("student",), f"expected the student's id, got {type_name(s)}")
+    return Path(file).stem    # "" or ~: a template's blank (papers.md), the file's name stands
 
 
 def resolve_answers(sub: Submission, problem, strict: bool = True) -> Submission:

@@ -13,6 +13,8 @@ from robosolve.grading.reference import Reference
 def problem_path(sub, override) -> Path:
     if override is not None:
         return Path(override)
+    if sub.problem_file is None and any(i.path == "problem" for i in sub.issues):
+        raise InputError(sub.issues)      # `problem:` given but refused: said once
     if sub.problem_file is None:
         raise InputError(sub.issues + [InputIssue(sub.file, sub.source.line(()), "",
                                                   "no problem: give `problem: FILE` in the answers file "

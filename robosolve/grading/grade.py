@@ -22,6 +22,7 @@ from robosolve.grading.grader import Grader, invalid_result
 from robosolve.grading.matching import TableError, VariantsTable, read_table
 from robosolve.grading.record import GRADES_COLUMNS, SUMMARY_COLUMNS, grade_rows, record_json, summary_row
 from robosolve.run.interrupts import process_pool
+from robosolve.load.yamlsource import read_text_file
 
 
 # Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
@@ -109,6 +110,10 @@ def read_jobs(files, problem=None, table=None):
             sub = read_answers(f)
         except InputError as exc:
             jobs.append(Job(i, str(f), _fallback_student(f), common, None, str(exc)))
+            continue
+        refused = [str(x) for x in sub.issues if x.path == "problem"]
+        if refused and problem is None and table is None:   # a device or folder as `problem:`
+            jobs.append(Job(i, str(f), sub.student, None, None, "\n".join(refused)))
             continue
         try:
             path, match = _problem_for(sub, problem, table)

@@ -15,6 +15,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
+from robosolve.core.plain import plain
 from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
@@ -135,8 +136,8 @@ def _show(tree) -> str:
     if isinstance(tree, float) or (isinstance(tree, sp.Basic) and tree.is_Float):
         return f"{float(tree):.4g}"
     if isinstance(tree, sp.Basic) and tree.is_number and not tree.is_Rational and tree.free_symbols == set():
-        return str(tree) if len(str(tree)) <= 12 else f"{float(sp.N(tree)):.4g}"
-    return str(tree)
+        return plain(tree) if len(plain(tree)) <= 12 else f"{float(sp.N(tree)):.4g}"
+    return plain(tree) if isinstance(tree, sp.Basic) else str(tree)
 
 
 def as_written(value) -> str:

@@ -110,12 +110,13 @@ def _resolved(path) -> str:
 
 
 def _read_csv(path: Path, what: str) -> list:
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as exc:
-        raise TableError(f"{path}: cannot read the {what} ({exc.strerror or exc})")
-    except UnicodeDecodeError:
-        raise TableError(f"{path}: the {what} is not UTF-8 text")
+    from robosolve.errors import InputError
+    from robosolve.load.yamlsource import read_text_file
+
+    try:         # bounded, regular files only, a bad byte reported at its line
+        text = read_text_file(path, what=f"the {what}").removeprefix("\ufeff")
+    except InputError as exc:
+        raise TableError(str(exc)) from None
     try:
         return [row for row in csv.reader(io.StringIO(text)) if any(c.strip() for c in row)]
     except csv.Error as exc:

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
+from robosolve.core.plain import plain
 from robosolve.core.prose import Num, Text
 from robosolve.core.simplify import factored
 from robosolve.core.timing import time_limit
@@ -206,7 +207,7 @@ class _Fmt:
 
     def __call__(self, e) -> str:
         if self.plain:
-            return str(e)
+            return e if isinstance(e, str) else plain(e)
         return "$" + (e if isinstance(e, str) else self.tex(e)) + "$"
 
     def name(self, latex_name: str, joint) -> str:
@@ -334,7 +335,7 @@ def _leave_out_constant_equations(res, equations, exprs, joints, values, labels)
     coordinate): (equations, exprs) kept, or None when one contradicts the target (res says why)."""
     qset = {j.symbol for j in joints}
     constant = [k for k, e in enumerate(exprs) if not (e.free_symbols & qset)]
-    if not constant or len(constant) >= len(exprs):
+    if not constant:
         return equations, exprs
     for k in constant:
         lhs, rhs = equations[k]
@@ -351,10 +352,31 @@ def _leave_out_constant_equations(res, equations, exprs, joints, values, labels)
                                   _fmt(rv))
             return None
     which = ", ".join(labels[k] if labels else f"equation {k + 1}" for k in constant)
+    if len(constant) == len(exprs):
+        return _every_configuration(res, joints, which)
     res.notes.append(f"{which} {'hold' if len(constant) > 1 else 'holds'} whatever the joints "
                      f"(no joint in {'them' if len(constant) > 1 else 'it'}): left out")
     return ([eq for k, eq in enumerate(equations) if k not in constant],
             [e for k, e in enumerate(exprs) if k not in constant])
+
+
+def _every_configuration(res, joints, which):
+    """No joint in any equation, and each holds: the point does not depend on the joints (a chain
+    with zero-length links), so every configuration reaches the target. One example inside the
+    limits (0, else the middle of the range) stands for the continuum; returns None (res is final)."""
+    example = {}
+    for j in joints:
+        lo, hi = j.limits if j.limits is not None else (None, None)
+        inside = (lo is None or lo <= 0) and (hi is None or hi >= 0)
+        example[j.name] = 0.0 if inside else float(lo + hi) / 2
+    res.status = "family"
+    res.family = {"free": [j.name for j in joints], "fixed": {}, "example": example}
+    res.notes.append(f"{which} {'hold' if ',' in which else 'holds'} whatever the joints: the point does "
+                     "not depend on them (a chain with zero-length links), so every configuration "
+                     "reaches the target, a continuum of solutions; the one listed is an example")
+    res.solutions, res.all_solutions, res.singular = [example], [example], [True]
+    res.selected, res.selected_index = example, 0
+    return None
 
 
 def _overdetermined_with_free_joints(res, exprs, used, unused, values, budget):

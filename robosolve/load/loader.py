@@ -6,6 +6,7 @@ so one run reports every problem of the file (spec §4).
 
 from __future__ import annotations
 
+import math
 import re
 
 import sympy as sp
@@ -17,6 +18,7 @@ from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
     RESERVED, ExpressionError, Namespace, did_you_mean, size_issue, value_issue,
 )
+from robosolve.load.physical import inertia_issue, pseudo_inertia_issue
 from robosolve.load.problem import (
     PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
 )
@@ -25,6 +27,13 @@ from robosolve.questions.registry import types_where
 
 NAME_RE = re.compile(r"[a-z0-9_-]+")  # used with fullmatch: "$" would accept a final newline
 IDENT_RE = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+# `E` is a point's name (problem-format.md, Expressions): the end point, by default the origin of
+# the last frame, that every question about "the point" uses. A parameter, joint or actuator
+# of that name would leave those questions without their point: refused where it is declared.
+DEFAULT_POINT = "E"
+DEFAULT_POINT_TAKEN = ("'E' is the name of the end point (by default the origin of the last frame, "
+                       "used by every question without `point`; E.x is its x): choose another name, "
+                       "such as E_1 or Ey")
 PYTHON_KEYWORDS = {
     "False", "None", "True", "and", "as", "assert", "async", "await", "break", "class",
     "continue", "def", "del", "elif", "else", "except", "finally", "for", "from", "global",
@@ -211,6 +220,26 @@ class Checker:
 
 
 # ----------------------------------------------------------------------
+def _degrees_hint(raw) -> str:
+    """A revolute joint's limits beyond one turn: degrees written where radians are read."""
+    shown = ", ".join(f"deg({v})" for v in raw)
+    return (f"limits {_flow(raw)} of a revolute joint are beyond one turn (±2π ≈ ±6.283 rad): angles "
+            f"are radians; if they are degrees, write [{shown}]")
+
+
+def _flow(raw) -> str:
+    return "[" + ", ".join(str(v) for v in raw) + "]"
+
+
+def _not_real(written, fv: complex) -> str:
+    """Why a parameter's value is refused, in the words the user wrote."""
+    what = f"{written!r}" if isinstance(written, str) else str(written)
+    if fv.real != fv.real or abs(fv.real) == float("inf") or fv.imag != fv.imag or abs(fv.imag) == float("inf"):
+        return f"{what} is undefined or infinite"
+    return (f"{what} is not a real number (it is complex, {fv.real:.6g}{fv.imag:+.6g}i: a square root or "
+            "logarithm of a negative number, or acos/asin beyond [-1, 1]?)")
+
+
 def load_problem(file) -> Problem:
     """Read and validate a problem file. Raises InputError with every issue."""
     return load_problem_text(read_text_file(file), str(file))
@@ -243,6 +272,8 @@ class _ProblemBuilder:
         self.file = chk.src.file
         self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
         self.rejected_points: set[str] = set()
+        self.bodies_given = False
+        self.gravity_refused = False
 
     def build(self) -> Problem | None:
         chk, data = self.chk, self.data
@@ -274,6 +305,10 @@ class _ProblemBuilder:
         self.ns_points = Namespace(static, list(self.points) + sorted(self.rejected_points), what="name",
                                    refused={"t": TIME_REFUSED})
         gravity, gravity_given = self._gravity(data.get("gravity"))
+        # given but refused (its own message says why): no "declare g" for each question too
+        params = data.get("parameters")
+        self.gravity_refused = gravity is None and (data.get("gravity") is not None or (
+            isinstance(params, dict) and "g" in params))
         bodies = self._bodies(data.get("bodies"))
         forces = self._forces(data.get("forces"))
         has_robot = bool(self.joints) or bool(self.frames)
@@ -312,6 +347,9 @@ class _ProblemBuilder:
                 chk.error(("parameters", key), f"invalid parameter name '{key}' (expected a name like L1 or m_2)")
             elif key in RESERVED:
                 chk.error(("parameters", key), f"'{key}' is reserved (a function, a constant or time)")
+            elif key == DEFAULT_POINT:     # kept as a name, so that its uses say nothing more
+                chk.error(("parameters", key), DEFAULT_POINT_TAKEN)
+                names.append(key)
             else:
                 names.append(key)
         # First pass with plain real symbols, to resolve values and detect cycles.
@@ -346,7 +384,7 @@ class _ProblemBuilder:
                 chk.error(("parameters", n), "value is not a finite number")
                 continue
             if abs(fv.imag) > 1e-12 or fv.real != fv.real or abs(fv.real) == float("inf"):
-                chk.error(("parameters", n), f"value {v} is not a finite real number")
+                chk.error(("parameters", n), _not_real(value[n], fv))
                 continue
             numeric[n] = v
         # Final symbols: positive when the value is a positive number (helps sqrt/atan2).
@@ -399,7 +437,9 @@ class _ProblemBuilder:
                 kind = None
             if name is None or kind is None:
                 continue
-            if name in taken or name in seen or name in PYTHON_KEYWORDS:
+            if name == DEFAULT_POINT:     # still a joint below, so that its uses say nothing more
+                chk.error(path + ("name",), DEFAULT_POINT_TAKEN)
+            elif name in taken or name in seen or name in PYTHON_KEYWORDS:
                 chk.error(path + ("name",), f"name '{name}' is already used")
                 continue
             seen.add(name)
@@ -418,11 +458,13 @@ class _ProblemBuilder:
             ))
             joints[-1]._raw_limits = item.get("limits")
         # derived names must not collide with anything
-        all_names = {s.name for s in self.parameters} | RESERVED
+        all_names = {s.name for s in self.parameters} | RESERVED | {DEFAULT_POINT}
         for j in joints:
             for derived, where in ((f"{j.name}_dot", "name"), (f"{j.name}_ddot", "name"),
                                    (j.actuator.name, "actuator")):
-                if derived in all_names:
+                if derived == DEFAULT_POINT:
+                    chk.error(("joints", j.index, where), DEFAULT_POINT_TAKEN)
+                elif derived in all_names:
                     chk.error(("joints", j.index, where),
                               f"'{derived}' (of joint {j.name}) is already used")
                 all_names.add(derived)
@@ -443,6 +485,9 @@ class _ProblemBuilder:
                 flo, fhi = float(sp.N(lo.xreplace(vals))), float(sp.N(hi.xreplace(vals)))
                 if not flo < fhi:
                     chk.error(path, f"lower limit {lo} is not below upper limit {hi}")
+                    continue
+                if j.kind == REVOLUTE and max(abs(flo), abs(fhi)) > 2 * math.pi + 0.01:  # rounded ±6.2832 is a turn
+                    chk.error(path, _degrees_hint(raw))
                     continue
             except (TypeError, ValueError):
                 pass
@@ -696,6 +741,7 @@ class _ProblemBuilder:
 
     def _bodies(self, value) -> list:
         chk = self.chk
+        self.bodies_given = bool(value)   # a body refused has its message: no "needs bodies" too
         out, seen = [], set()
         kinds = ("point", "rod", "com", "pseudo_inertia")
         for i, path, item in chk.entries("bodies", value, "bodies", ("name", "frame", "mass") + kinds + ("inertia",),
@@ -750,10 +796,16 @@ class _ProblemBuilder:
                 if data["inertia"] is not None and data["inertia"] != data["inertia"].T:
                     chk.error(path + ("inertia",), "the inertia tensor must be symmetric")
                     data["inertia"] = None
+                elif not self._physical(path + ("inertia",), data["inertia"],
+                                        lambda v: inertia_issue(v, triangle=False)):
+                    data["inertia"] = None
             else:
                 data["J"] = chk.matrix(path + ("pseudo_inertia",), item["pseudo_inertia"], self.ns)
                 if data["J"] is not None and data["J"] != data["J"].T:
                     chk.error(path + ("pseudo_inertia",), "the pseudo-inertia matrix must be symmetric")
+                    data["J"] = None
+                elif data["J"] is not None and not self._physical(path + ("pseudo_inertia",), data["J"],
+                                                                  pseudo_inertia_issue):
                     data["J"] = None
                 if data["J"] is not None:
                     mass = data["J"][3, 3]
@@ -761,6 +813,19 @@ class _ProblemBuilder:
                 continue
             out.append(Body(name, frame, mass, kind, data, line=chk.src.line(path)))
         return out
+
+    def _physical(self, path, matrix, issue) -> bool:
+        """False (with the error at `path`) when the numeric values of `matrix` say no body has it
+        (robosolve.load.physical); True when it can exist or a value is still unknown."""
+        if matrix is None:
+            return True
+        values = [self.chk.number_value(sp.sympify(e)) for e in matrix]
+        if any(v is None for v in values):
+            return True
+        why = issue([values[r * matrix.cols:(r + 1) * matrix.cols] for r in range(matrix.rows)])
+        if why:
+            self.chk.error(path, why)
+        return why is None
 
     def _forces(self, value) -> list:
         chk = self.chk

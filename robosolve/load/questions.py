@@ -130,7 +130,7 @@ class _QuestionLoader:
             qt.check(self, path, item, q)
         if qt.needs_dynamics:
             self.require_gravity(path)
-            if not b.problem.bodies:
+            if not b.problem.bodies and not b.bodies_given:
                 chk.error(path + ("type",), "this question needs bodies (masses)")
             masses = [chk.number_value(body.mass) for body in b.problem.bodies if body.mass is not None]
             if qt.integrates and masses and all(m == 0 for m in masses):
@@ -139,7 +139,7 @@ class _QuestionLoader:
 
     def require_gravity(self, path):
         """A question using gravity needs it declared."""
-        if self.b.problem.gravity is None:
+        if self.b.problem.gravity is None and not self.b.gravity_refused:
             self.chk.error(path + ("type",), "this question uses gravity: declare g in parameters "
                            "(the default gravity is [0, 0, -g]) or give gravity")
 

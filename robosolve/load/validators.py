@@ -32,6 +32,45 @@ def v_exprs(ql, path, value, q):
     return list(v) if v is not None else None
 
 
+class CoordinateMapping(list):
+    """A mapping coordinate -> value given where a list in the order of `coordinates` is read:
+    [(text, coordinate, value)], put in that order by the type's check."""
+
+
+def v_exprs_or_coordinate_map(ql, path, value, q):
+    """A list in the order of `coordinates`, or a mapping coordinate: value (as
+    the rates of an IK `velocity` are written)."""
+    if isinstance(value, dict):
+        pairs = v_equations(ql, path, value, q)
+        return CoordinateMapping(pairs) if pairs is not None else None
+    if not isinstance(value, list):
+        ql.chk.error(path, "expected a list of values in the order of `coordinates` (default: the "
+                     "point's x, y, z), or a mapping coordinate: value such as {E.x: 0.1, E.y: 0}")
+        return None
+    return v_exprs(ql, path, value, q)
+
+
+def in_coordinate_order(ql, path, given: CoordinateMapping, coordinates: list):
+    """The values of `given` in the order of `coordinates` (sympy expressions), or None with
+    one error naming the coordinates that are missing or unknown."""
+    out, used = [], set()
+    for c in coordinates:
+        hit = [k for k, (_, lhs, _) in enumerate(given) if lhs == c and k not in used]
+        if not hit:
+            out.append(None)
+            continue
+        used.add(hit[0])
+        out.append(given[hit[0]][2])
+    extra = [given[k][0] for k in range(len(given)) if k not in used]
+    if extra or any(v is None for v in out):
+        names = ", ".join(str(c) for c in coordinates)
+        ql.chk.error(path, f"the keys must be the coordinates {names}"
+                     + (f" (not {', '.join(extra)})" if extra else "")
+                     + "; or give a list in that order")
+        return None
+    return out
+
+
 def v_vector3_params(ql, path, value, q):
     v = ql.chk.vector(path, value, ql.params_ns, length=3)
     return list(v) if v is not None else None

@@ -8,7 +8,9 @@ nesting are stopped by a node budget instead of exhausting memory, and
 
 from __future__ import annotations
 
-import pathlib
+import codecs
+import os
+import stat
 from dataclasses import dataclass, field
 
 import yaml
@@ -95,20 +97,100 @@ class _Converter:
         try:
             return self._scalar_loader.construct_object(node, deep=True)
         except Exception as exc:  # e.g. an integer with too many digits
-            raise YamlProblem(node.start_mark.line + 1, f"invalid value {node.value[:40]!r}: {exc}")
+            line = node.start_mark.line + 1
+            digits = sum(c.isdigit() for c in node.value)
+            if isinstance(exc, ValueError) and "digits" in str(exc):
+                raise YamlProblem(line, f"number too long ({digits} digits; at most 4300)") from None
+            raise YamlProblem(line, f"invalid value {node.value[:40]!r}: {exc}") from None
 
 
-def read_text_file(file, line: int = 0) -> str:
-    """The UTF-8 text of `file`, or an InputError (at `line`) saying why it cannot be read."""
+def read_input_bytes(file, limit: int = MAX_FILE_BYTES, line: int = 0, what: str = "the file") -> bytes:
+    """At most `limit` bytes of the regular file `file`: an InputError (at `line`) for a device,
+    a pipe, a folder or a longer file. Never reads more than `limit` + 1 bytes, so that
+    `/dev/zero` or a huge file cannot fill the memory; a FIFO is opened without waiting."""
     name = str(file)
+
+    def refuse(message):
+        return InputError([InputIssue(name, line, "", message)])
+
     try:
-        raw = pathlib.Path(file).read_bytes()
+        fd = os.open(file, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
     except OSError as exc:
-        raise InputError([InputIssue(name, line, "", f"cannot read the file: {exc.strerror or exc}")])
+        raise refuse(f"cannot read {what}: {exc.strerror or exc}") from None
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            kind = "a folder" if stat.S_ISDIR(mode) else "a device, pipe or socket"
+            raise refuse(f"{what} is {kind}, not a regular file")
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, limit + 1 - size)
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as exc:
+        raise refuse(f"cannot read {what}: {exc.strerror or exc}") from None
+    finally:
+        os.close(fd)
+    if size > limit:
+        raise refuse(f"{what} is larger than {limit} bytes")
+    return b"".join(chunks)
+
+
+def decode_utf8(raw: bytes, file, what: str = "the file", bom: bool = True) -> str:
+    """`raw` as UTF-8 text (a leading byte-order mark dropped when `bom`), or an InputError at
+    the line of the first byte that is not UTF-8."""
+    if bom and raw.startswith(codecs.BOM_UTF8):
+        raw = raw[len(codecs.BOM_UTF8):]
     try:
         return raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError([InputIssue(name, line, "", "the file is not UTF-8 text")])
+    except UnicodeDecodeError as exc:
+        line = raw.count(b"\n", 0, exc.start) + 1
+        column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
+        byte = raw[exc.start:exc.start + 1].hex()
+        raise InputError([InputIssue(str(file), line, "",
+                                     f"{what} is not UTF-8 text: byte 0x{byte} at column {column} "
+                                     "(save it as UTF-8)")]) from None
+
+
+def read_text_file(file, line: int = 0, what: str = "the file") -> str:
+    """The UTF-8 text of `file` (at most MAX_FILE_BYTES), or an InputError saying why it cannot
+    be read: at `line` when the file cannot be opened, at the line of a bad byte."""
+    return decode_utf8(read_input_bytes(file, line=line, what=what), file, what)
+
+
+_OPENING = (yaml.FlowSequenceStartToken, yaml.FlowMappingStartToken, yaml.BlockMappingStartToken,
+            yaml.BlockSequenceStartToken)
+_CLOSING = (yaml.FlowSequenceEndToken, yaml.FlowMappingEndToken, yaml.BlockEndToken)
+
+
+def _deep_line(text: str) -> int:
+    """The line where the nesting first goes deeper than MAX_DEPTH levels (PyYAML's scanner is
+    not recursive: it reads any depth)."""
+    depth = 0
+    try:
+        for token in yaml.scan(text, Loader=yaml.SafeLoader):
+            if isinstance(token, _OPENING):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    return token.start_mark.line + 1
+            elif isinstance(token, _CLOSING):
+                depth -= 1
+    except (yaml.YAMLError, RecursionError):
+        pass
+    return 1
+
+
+def _character_problem(text: str, exc) -> YamlProblem:
+    """A character YAML does not allow, at its line and column, named in words."""
+    pos = exc.position if isinstance(exc.position, int) else 0
+    line = text.count("\n", 0, pos) + 1
+    column = pos - (text.rfind("\n", 0, pos) + 1) + 1
+    code = exc.character if isinstance(exc.character, int) else ord(text[pos]) if pos < len(text) else 0
+    what = "a NUL character (byte 0)" if code == 0 else f"the control character U+{code:04X}"
+    return YamlProblem(line, f"{what} at column {column}: YAML does not allow it in a file "
+                       "(remove it; was the file saved as UTF-16 or binary?)")
 
 
 def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int, Path, str]]]:
@@ -129,10 +211,12 @@ def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int
         if "\t" in text and (any("\t" in ln for ln in near) or "tab" in what):
             what += " (a tab character: indent with spaces, YAML does not allow tabs)"
         raise YamlProblem(line, f"YAML syntax error: {what}") from None
+    except yaml.reader.ReaderError as exc:      # a character YAML does not allow (NUL, ...)
+        raise _character_problem(text, exc) from None
     except yaml.YAMLError as exc:
         raise YamlProblem(1, f"YAML error: {exc}") from None
     except RecursionError:
-        raise YamlProblem(1, f"nesting deeper than {MAX_DEPTH} levels") from None
+        raise YamlProblem(_deep_line(text), f"nesting deeper than {MAX_DEPTH} levels") from None
     if len(documents) > 1:
         raise YamlProblem(documents[1].start_mark.line + 1,
                           "more than one YAML document in the file ('---')")
@@ -142,6 +226,6 @@ def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int
     try:
         data = conv.convert(documents[0], (), 0)
     except RecursionError:
-        raise YamlProblem(1, f"nesting deeper than {MAX_DEPTH} levels") from None
+        raise YamlProblem(_deep_line(text), f"nesting deeper than {MAX_DEPTH} levels") from None
     conv.lines[()] = documents[0].start_mark.line + 1
     return Source(data, conv.lines, file), conv.duplicates

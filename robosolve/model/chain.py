@@ -14,6 +14,7 @@ from __future__ import annotations
 from functools import cached_property
 
 import sympy as sp
+from sympy.printing.conventions import split_super_sub
 
 from robosolve.core import matrices as mx
 from robosolve.core.simplify import tidy, tidy_matrix, tidy_products_matrix
@@ -22,9 +23,9 @@ from robosolve.load.expressions import point_symbol
 from robosolve.load.problem import Body, Problem
 
 
-def elementary_latex(op: str, arg) -> str:
+def elementary_latex(op: str, arg, names: dict | None = None) -> str:
     """LaTeX of one factor of a pose string, e.g. R_z(\\theta_1)."""
-    return f"{'T' if op[0] == 'T' else 'R'}_{{{op[1]}}}\\left({sp.latex(arg)}\\right)"
+    return f"{'T' if op[0] == 'T' else 'R'}_{{{op[1]}}}\\left({sp.latex(arg, symbol_names=names or {})}\\right)"
 
 
 class RobotModel:
@@ -65,17 +66,20 @@ class RobotModel:
     def local_factors(self, frame: str) -> list[tuple[str, sp.Matrix]]:
         """The elementary matrices of a frame's pose, with their LaTeX names."""
         f = self.frames[frame]
+        names = self.symbol_latex
+
+        def tex(e):
+            return sp.latex(e, symbol_names=names)
+
         if f.kind == "pose":
-            return [(elementary_latex(op, arg), ELEMENTARY[op](arg)) for op, arg in f.factors]
+            return [(elementary_latex(op, arg, names), ELEMENTARY[op](arg)) for op, arg in f.factors]
         if f.kind == "matrix":
             return [("M", f.matrix)]
         if f.kind == "dh":
             th, d, a, al = f.factors
-            return [(f"DH({sp.latex(th)}, {sp.latex(d)}, {sp.latex(a)}, {sp.latex(al)})",
-                     dh_standard(th, d, a, al))]
+            return [(f"DH({tex(th)}, {tex(d)}, {tex(a)}, {tex(al)})", dh_standard(th, d, a, al))]
         al, a, th, d = f.factors
-        return [(f"MDH({sp.latex(al)}, {sp.latex(a)}, {sp.latex(th)}, {sp.latex(d)})",
-                 dh_modified(al, a, th, d))]
+        return [(f"MDH({tex(al)}, {tex(a)}, {tex(th)}, {tex(d)})", dh_modified(al, a, th, d))]
 
     def elementary_factors(self, frame: str) -> list | None:
         """The frame's pose as elementary motions [(op, arg)] (DH rows expanded), or
@@ -340,15 +344,32 @@ class RobotModel:
     @cached_property
     def symbol_latex(self) -> dict:
         """LaTeX names of the problem's symbols: theta1_dot -> \\dot{\\theta}_{1}."""
-        out = {}
+        out = {s: upright_name(s.name) for s in self.parameters if upright_name(s.name)}
         for j in self.joints:
-            base = sp.latex(j.symbol)
+            if upright_name(j.name):
+                out[j.symbol] = upright_name(j.name)
+            base = out.get(j.symbol) or sp.latex(j.symbol)
             out[j.dot] = f"\\dot{{{base}}}" if "_" not in base else _accent(base, "dot")
             out[j.ddot] = f"\\ddot{{{base}}}" if "_" not in base else _accent(base, "ddot")
         for name in self.points:
             for axis in "xyz":
                 out[point_symbol(name, axis)] = f"{name}_{{{axis}}}"
         return out
+
+
+def upright_name(name: str) -> str | None:
+    """The LaTeX of a name whose letters before its subscript are several and not a Greek
+    letter (`ma`, `Jg2`, `Kp`): upright, \\mathrm{ma}, so that it does not read as a product of
+    italic one-letter symbols (m·a); None for the names sympy prints well (L1, m_p, theta1)."""
+    base, sups, subs = split_super_sub(name)
+    if len(base) < 2 or sp.latex(sp.Symbol(base)).startswith("\\"):
+        return None
+    out = f"\\mathrm{{{base}}}"
+    if subs:
+        out += "_{" + " ".join(subs) + "}"
+    if sups:
+        out += "^{" + " ".join(sups) + "}"
+    return out
 
 
 def _moved_velocity_matrix(m: sp.Matrix, a: sp.Matrix) -> sp.Matrix:

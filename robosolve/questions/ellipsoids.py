@@ -24,7 +24,15 @@ def _ellipse(name: str, what: str, principal: bool) -> AnswerKey:
 def _check(ql, path, item, q):
     chk, opts, joints = ql.chk, q.options, ql.b.joints
     ncoord = len(opts["coordinates"]) if "coordinates" in opts else 3
-    if "velocity" in opts and len(opts["velocity"]) != ncoord:
+    if isinstance(opts.get("velocity"), V.CoordinateMapping):
+        point = q.point
+        coordinates = opts.get("coordinates") or [ql.b.ns_points.parse_text(f"{point}.{a}") for a in "xyz"]
+        if "coordinates" in item and opts.get("coordinates") is None:
+            return                      # the coordinates have their own error
+        opts["velocity"] = V.in_coordinate_order(ql, path + ("velocity",), opts["velocity"], coordinates)
+        if opts["velocity"] is None:
+            del opts["velocity"]
+    elif "velocity" in opts and len(opts["velocity"]) != ncoord:
         chk.error(path + ("velocity",), f"expected {ncoord} components (one per coordinate), "
                   f"got {len(opts['velocity'])}")
     if "joint_compliance" in opts and len(opts["joint_compliance"]) != len(joints):
@@ -81,7 +89,7 @@ TYPE = QuestionType(
     "ellipsoids", "Force, velocity and compliance ellipsoids", "§8 question 5",
     statement=_statement,
     options={"coordinates": V.v_coordinates, "budgets": V.v_budgets,
-             "joint_compliance": V.v_exprs, "velocity": V.v_exprs},
+             "joint_compliance": V.v_exprs, "velocity": V.v_exprs_or_coordinate_map},
     required=("at",),
     defaults={"budgets": {"force": 1, "velocity": 1, "compliance": 1}},
     answers=(

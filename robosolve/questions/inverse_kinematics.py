@@ -63,6 +63,22 @@ def _statement(q, say) -> str:
     return text + "."
 
 
+def _check(ql, path, item, q):
+    """`at` overrides parameters only: the joints are the unknowns (they were ignored silently)."""
+    at = item.get("at")
+    if not isinstance(at, dict):
+        return
+    motion = {}
+    for j in ql.b.joints:
+        motion[j.name] = motion[j.dot.name] = motion[j.ddot.name] = j.name
+    for key in at:
+        if key in motion:
+            hint = (" (to choose the solution nearest a configuration, give it in `select`)"
+                    if key == motion[key] else " (joint rates come from `velocity`)")
+            ql.chk.error(path + ("at", key), "an inverse_kinematics question solves for the joints: "
+                         f"its `at` may override parameters only, not '{key}'{hint}")
+
+
 TYPE = QuestionType(
     "inverse_kinematics", "Inverse kinematics", "§8 question 6",
     statement=_statement,
@@ -84,4 +100,5 @@ TYPE = QuestionType(
     cost=0.8,
     reaches=True,
     notebook_cells=notebook_cell,
+    check=_check,
 )

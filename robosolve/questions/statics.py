@@ -19,7 +19,7 @@ def _check(ql, path, item, q):
         chk.error(path + ("torque",), "a torque needs the default coordinates (the point's x, y, z)")
     if opts.get("weight"):
         ql.require_gravity(path)
-        if not ql.b.problem.bodies:
+        if not ql.b.problem.bodies and not ql.b.bodies_given:
             chk.error(path + ("weight",), "weight: true needs bodies (masses)")
 
 def _statement(q, say) -> str:

@@ -12,16 +12,40 @@ import sympy as sp
 from robosolve.render.numbers import report_number
 
 
-def _value(v, tex) -> str:
-    """Exact value, followed by its decimal when the exact form is not already a decimal."""
+def _value(v, tex, values=None) -> str:
+    """Exact value, followed by its decimal when the exact form is not already a decimal; a
+    value written with parameters (`q1a`, as variants.md varies a configuration) also shows
+    the exact value they give (`q_{1a} = \\frac{\\pi}{2} \\approx 1.5708`)."""
     v = sp.sympify(v)
     exact = tex(v)
+    if not v.is_number and values:
+        resolved = resolve(v, values)
+        if resolved.is_number and resolved != v:
+            return f"{exact} = {_value(resolved, tex)}"
     if v.is_Integer or v.is_Float or not v.is_number:
         return exact
     try:
         return f"{exact} \\approx {report_number(float(v))}"
     except TypeError:       # complex or not evaluable: the exact form alone
         return exact
+
+
+def resolve(v, values: dict):
+    """`v` with the parameters' values (which may name other parameters) put in, exactly."""
+    for _ in range(len(values) + 1):
+        nxt = v.xreplace(values)
+        if nxt == v:
+            break
+        v = nxt
+    return v
+
+
+def _known_values(question, problem) -> dict:
+    """The parameters' values with the question's own overrides: symbol -> exact value."""
+    at = question.at or {}
+    out = {s: e for s, e in problem.parameters.items() if e is not None}
+    out.update({s: at[s] for s in problem.parameters if s in at and at[s] is not None})
+    return out
 
 
 def split_at(question, problem) -> tuple[list, list, list, list]:
@@ -39,9 +63,10 @@ def configuration_text(question, problem, tex) -> str | None:
     q, qd, qdd, params = split_at(question, problem)
     if not (q or qd or qdd or params):
         return None
+    known = _known_values(question, problem)
 
     def listing(pairs):
-        return ", ".join(f"${tex(s)} = {_value(v, tex)}$" for s, v in pairs)
+        return ", ".join(f"${tex(s)} = {_value(v, tex, known)}$" for s, v in pairs)
 
     parts = []
     if q:

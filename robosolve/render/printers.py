@@ -11,9 +11,13 @@ half of a report's printing time.
 
 from __future__ import annotations
 
+import math
+
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 from sympy.printing.str import StrPrinter
+
+from robosolve.render.numbers import REPORT_DIGITS
 
 
 class _PrintsEachOnce:
@@ -39,6 +43,21 @@ class SharedLatexPrinter(_PrintsEachOnce, LatexPrinter):
     def __init__(self, symbol_names: dict):
         super().__init__({"symbol_names": symbol_names})
         self._printed: dict = {}
+
+    # The report's number policy (render/numbers.py: REPORT_DIGITS significant digits) for the
+    # decimals inside expressions too (a decimal `from` gives T = 1.41421 √π, not 1.4142135623731),
+    # and no "1.0 t²" for a decimal coefficient that prints as ±1.
+    def _print_Float(self, expr):
+        x = float(expr)
+        if not math.isfinite(x) or (x == int(x) and abs(x) < 1e15):
+            return super()._print_Float(expr)      # 18.0 stays a visible decimal
+        return super()._print_Float(sp.Float(f"{x:.{REPORT_DIGITS}g}"))   # sympy's layout, 6 digits
+
+    def _print_Mul(self, expr):
+        coeff, rest = expr.as_coeff_Mul()
+        if coeff.is_Float and f"{abs(float(coeff)):.{REPORT_DIGITS}g}" == "1" and rest != 1:
+            return self._print(-rest if coeff < 0 else rest)
+        return super()._print_Mul(expr)
 
 
 class SharedStrPrinter(_PrintsEachOnce, StrPrinter):

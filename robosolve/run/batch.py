@@ -33,11 +33,12 @@ def collect(source: str) -> list[Path]:
 def solve_one(path: str, formats=("md",)) -> dict:
     """Load, solve, render one problem file in this process: a summary and the files
     (relative path -> bytes); never raises on bad input. Writes nothing."""
+    from robosolve.load.yamlsource import read_text_file
     from robosolve.run.execution import make_task, read_error, solve_task
 
     try:
-        text = Path(path).read_bytes().decode("utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
+        text = read_text_file(path)
+    except InputError as exc:
         return read_error(path, exc)
     return solve_task(make_task(text, str(path), formats))
 
@@ -51,11 +52,12 @@ def declared_names(files) -> dict[str, str | None]:
     import yaml
 
     from robosolve.load.loader import NAME_RE
+    from robosolve.load.yamlsource import read_text_file
 
     names = {}
     for f in files:
         try:
-            data = yaml.safe_load(Path(f).read_text(encoding="utf-8"))
+            data = yaml.safe_load(read_text_file(f))
             name = data.get("name") if isinstance(data, dict) else None
         except Exception:  # reported properly by the loader later
             name = None
@@ -89,13 +91,14 @@ def refusals(names: dict, out, golden, update) -> list[str]:
 def _results(files, jobs, formats=("md",), scheduler=None):
     """Yield each file's summary as it is solved, on the chosen back-end (robosolve.run.execution:
     this process, the warm process pool, or Dask); an interrupt stops the workers at once."""
+    from robosolve.load.yamlsource import read_text_file
     from robosolve.run.execution import make_task, read_error, run_tasks
 
     tasks = []
     for f in files:
         try:
-            tasks.append(make_task(Path(f).read_bytes().decode("utf-8"), str(f), formats))
-        except (OSError, UnicodeDecodeError) as exc:
+            tasks.append(make_task(read_text_file(f), str(f), formats))
+        except InputError as exc:
             yield read_error(str(f), exc)
     for _, r in run_tasks(tasks, jobs, scheduler):
         yield r

@@ -71,9 +71,15 @@ def solve_task(task: dict):
 
 
 def read_error(path, exc: BaseException):
-    """The summary of a problem file that cannot be read."""
+    """The summary of a problem file that cannot be read (an InputError of
+    robosolve.load.yamlsource.read_text_file: its messages, with their lines)."""
     from robosolve.run.pipeline import FileResult
 
+    issues = getattr(exc, "issues", None)
+    if issues:
+        result = FileResult.unreadable(path, "")
+        result.messages = [str(i) if i.line > 0 else f"{i.file}:1: {i.message}" for i in issues]
+        return result
     why = ("the file is not UTF-8 text" if isinstance(exc, UnicodeDecodeError)
            else f"cannot read the file: {getattr(exc, 'strerror', None) or exc}")
     return FileResult.unreadable(path, f"{path}:1: {why}")

@@ -206,6 +206,24 @@ def _closed_form_work(model, st, params, start, final):
     return float(total)
 
 
+def _no_closed_work(model, st, params) -> str:
+    """Why the work has no closed form, in what the forces really depend on."""
+    t = sp.Symbol("t", real=True)
+    rates = {j.dot for j in model.joints}
+    found = []
+    for i, j in enumerate(model.joints):
+        free = sp.sympify(st.forces[i]).xreplace(params).free_symbols
+        others = {k.symbol for k in model.joints if k is not j} & free
+        for what, hit in (("time", any(s.name == "t" for s in free) or t in free),
+                          ("the rates", bool(free & rates)), ("the other joints", bool(others))):
+            if hit and what not in found:
+                found.append(what)
+    if not found:
+        return "The forces are not integrable in closed form here, so the work is the run's. "
+    return (f"A generalized force depends on {' and on '.join(found)}, so the work has no closed "
+            "form here. ")
+
+
 def _bound(x: float) -> str:
     """A power of ten above x (round-off sized numbers are shown as a bound, not as noise)."""
     import math
@@ -235,7 +253,7 @@ def _step_energy(question, model, st, run, params, energy) -> Step:
                  "$W = \\sum_i \\int_{q_i(0)}^{q_i(t)} (\\tau_i + f_i)\\,dq_i$. ")
         eqs.append(("W \\text{ (closed form)}", closed))
     else:
-        text += "The force depends on time or on the rates, so the work has no closed form here. "
+        text += _no_closed_work(model, st, params)
     text += Text(f"The balance holds to within {_bound(run.energy_drift / scale)} of the energy scale "
              "(", Num(scale, "J"), ") all along the run.")
     return Step("Energy balance", text, equations=eqs)

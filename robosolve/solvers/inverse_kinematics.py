@@ -259,6 +259,9 @@ def _solutions_step(res, names, ik_joints) -> Step:
             f"{len(res.all_solutions)} distinct solution{'s' if len(res.all_solutions) != 1 else ''}, "
             "each checked with the direct kinematics (residual below $10^{-9}$); angles wrapped into "
             "(−π, π].")
+    if res.family is not None and len(res.family["free"]) == len(ik_joints) and not res.family["fixed"]:
+        text = ("No joint appears in the equations: every configuration is a solution (a continuum); "
+                "the table lists one example.")
     if res.closed_form is not None and res.agree is not None:
         text += (" The closed form gives the same set." if res.agree else
                  " The closed form and the numeric search do not give the same set: see the notes.")

@@ -3,23 +3,50 @@
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import re
 
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean
+from robosolve.load.yamlsource import read_text_file
 
 UNSAFE_RUN = re.compile(r"[^a-z0-9_-]+")
 
 
+MAX_NAME = 64                   # characters of a name made from a student id (a file name part)
+
+
 def safe_name(student: str) -> str:
-    """variants.md: lower case, each run outside [a-z0-9_-] -> one '-', no leading/trailing '-'."""
-    return UNSAFE_RUN.sub("-", student.lower()).strip("-")
+    """variants.md: lower case, each run outside [a-z0-9_-] -> one '-', no leading/trailing '-';
+    a name longer than MAX_NAME keeps its first characters and ends with 8 hexadecimal digits of
+    the SHA-256 of the whole id (file systems refuse names over 255 bytes)."""
+    name = UNSAFE_RUN.sub("-", student.lower()).strip("-")
+    if len(name) <= MAX_NAME:
+        return name
+    digest = hashlib.sha256(student.encode("utf-8")).hexdigest()[:8]
+    return f"{name[:MAX_NAME - 9].rstrip('-')}-{digest}"
 
 
 def count_ids(n: int) -> list[str]:
     width = len(str(n))
     return [str(k).zfill(width) for k in range(1, n + 1)]
+
+
+class CountedIds:
+    """The (variant id, "") pairs of `--count n`, made one at a time: `len` is known before any
+    id exists, so a count larger than the variants that exist is refused without allocating."""
+
+    def __init__(self, n: int):
+        self.n = n
+        self.width = len(str(n))
+
+    def __len__(self) -> int:
+        return self.n
+
+    def __iter__(self):
+        for k in range(1, self.n + 1):
+            yield str(k).zfill(self.width), ""
 
 
 def read_roster(path) -> list[tuple[str, str]]:
@@ -41,12 +68,7 @@ def roster_csv(path) -> bytes:
 def roster_table(path):
     """(ids as read_roster gives them, the header as written, each student's row as written)."""
     file = str(path)
-    try:
-        text = open(path, encoding="utf-8-sig", newline="").read()
-    except OSError as exc:
-        raise InputError([InputIssue(file, 1, "", f"cannot read the roster: {exc.strerror or exc}")])
-    except UnicodeDecodeError:
-        raise InputError([InputIssue(file, 1, "", "the roster is not UTF-8 text")])
+    text = read_text_file(path, line=1, what="the roster")
     reader = csv.reader(io.StringIO(text))
     try:
         rows = list(reader)

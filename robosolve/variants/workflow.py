@@ -89,15 +89,10 @@ def variant_data(data: dict, name: str, values: dict) -> dict:
 
 def load_source(path: Path):
     from robosolve.load.loader import load_problem_text
-    from robosolve.load.yamlsource import parse_yaml
+    from robosolve.load.yamlsource import parse_yaml, read_text_file
 
     file = str(path)
-    try:
-        text = path.read_bytes().decode("utf-8")
-    except OSError as exc:
-        raise InputError([InputIssue(file, 1, "", f"cannot read the file: {exc.strerror or exc}")])
-    except UnicodeDecodeError:
-        raise InputError([InputIssue(file, 1, "", "the file is not UTF-8 text")])
+    text = read_text_file(path, line=1)
     problem = load_problem_text(text, file)
     if problem.variants is None:
         raise InputError([InputIssue(file, 1, "", "no `variants` section: nothing to vary "
@@ -114,6 +109,27 @@ def template_problem(data: dict, problem):
     return load_problem_text(dump_problem(tdata), problem.file)
 
 
+MAX_VARIANTS = 100_000         # variants made at once (each holds its problem text in memory)
+
+
+def too_few(file, spec, n: int, asked: int, what: str):
+    what = what.replace("meet", "meets").replace("exist", "exists") if n == 1 else what
+    raise InputError([InputIssue(file, spec.line, "variants",
+                                 f"only {n} distinct variant{'s' if n != 1 else ''} {what} "
+                                 f"({asked} asked)")])
+
+
+def check_count(file, spec, asked: int) -> None:
+    """Refuse a count that cannot be met before anything is drawn or allocated: more than the
+    grid of drawn values holds, or more than MAX_VARIANTS."""
+    if asked > spec.grid_size:
+        too_few(file, spec, spec.grid_size, asked, "exist")
+    if asked > MAX_VARIANTS:
+        raise InputError([InputIssue(file, spec.line, "variants",
+                                     f"{asked} variants asked: robosolve makes at most "
+                                     f"{MAX_VARIANTS} at once")])
+
+
 def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
     """ids: [(variant id, student)] in order. Raises InputError (exit 2) on any problem."""
     from robosolve.variants.draw import Drawer
@@ -123,14 +139,11 @@ def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
     spec = problem.variants
     checker = RequirementChecker(template_problem(data, problem), spec, problem.file)
     drawer = Drawer(spec, checker, seed, problem.file)
+    check_count(problem.file, spec, len(ids))
     step = progress.task("checking the conditions over the grid", checker.table_work()) if progress else None
     n_valid = drawer.count(step)
     if n_valid is not None and n_valid < len(ids):
-        what = "meet `require`" if spec.require else "exist"
-        raise InputError([InputIssue(problem.file, spec.line, "variants",
-                                     f"only {n_valid} distinct variant{'s' if n_valid != 1 else ''} "
-                                     f"{what.replace('meet', 'meets') if n_valid == 1 else what} "
-                                     f"({len(ids)} asked)")])
+        too_few(problem.file, spec, n_valid, len(ids), "meet `require`" if spec.require else "exist")
     plan = Plan(problem, spec, seed)
     step = progress.task("drawing", len(ids)) if progress else None
     for vid, student in ids:

@@ -224,3 +224,83 @@ def test_fuzz_solve_small(harness, tmp_path):
     problems = [m for f, r in results if (m := _check(r, f))]
     assert not problems, "\n".join(problems[:10])
     assert any(r["status"] == "valid" for _, r in results)  # some mutations still solve
+
+
+# -- the input families of issue 22: names, encodings, special files, huge counts -------------
+NAMES = ["E", "t", "pi", "sin", "lambda", "q1_dot", "x" * 300, "é", "C1", "Ä1", "a-b", "_a", "1a", "E_1"]
+
+
+def rename(text: str, rng: random.Random) -> str:
+    """A parameter, joint, actuator, body or point renamed to a name that collides or is odd."""
+    new = rng.choice(NAMES)
+    old = rng.choice(["L1", "L2", "q1", "d2", "m1", "link1", "G", "F"])
+    if rng.random() < 0.3:
+        return text.replace("revolute, limits", f"revolute, actuator: {new}, limits", 1)
+    return re.sub(rf"\b{old}\b", new, text)
+
+
+def encode(text: str, rng: random.Random) -> bytes:
+    """The same text with bytes YAML or UTF-8 refuse, or a different encoding."""
+    raw = text.encode("utf-8")
+    k = rng.randrange(len(raw))
+    kind = rng.randrange(6)
+    if kind == 0:
+        return raw[:k] + b"\x00" + raw[k:]
+    if kind == 1:
+        return raw[:k] + bytes([rng.choice([0xff, 0xe9, 0xc3, 0x80])]) + raw[k:]
+    if kind == 2:
+        return b"\xef\xbb\xbf" + raw                      # a byte-order mark: fine
+    if kind == 3:
+        return text.encode("utf-16")
+    if kind == 4:
+        return raw.replace(b"\n", b"\r\n")               # Windows line ends: fine
+    return raw[:k] + bytes([rng.choice([1, 7, 8, 11, 12, 27, 127])]) + raw[k:]
+
+
+def huge(text: str, rng: random.Random) -> str:
+    kind = rng.randrange(4)
+    if kind == 0:
+        return text.replace("L1: 1/2", "L1: " + "7" * rng.choice([4400, 5000, 20000]), 1)
+    if kind == 1:
+        d = rng.choice([41, 500, 5000])
+        return text + "extra: " + "[" * d + "]" * d + "\n"
+    if kind == 2:
+        return text.replace("m1: 2", "m1: [" + ", ".join(["1"] * rng.choice([10, 100000])) + "]", 1)
+    return text + text.split("questions:")[1] * rng.choice([2, 50])     # many questions
+
+
+def test_fuzz_names_encodings_and_huge_counts(harness, tmp_path):
+    rng = random.Random(22)
+    files = []
+    for k in range(36):
+        path = tmp_path / f"{k:03d}.yaml"
+        family = k % 3
+        if family == 0:
+            path.write_text(rename(SMALL, rng), encoding="utf-8")
+        elif family == 1:
+            path.write_bytes(encode(SMALL, rng))
+        else:
+            path.write_text(huge(SMALL, rng), encoding="utf-8")
+        files.append(path)
+    results = [(f, harness.run("validate", f)) for f in files]
+    problems = [m for f, r in results if (m := _check(r, f))]
+    assert not problems, "\n".join(problems[:10])
+    statuses = [r["status"] for _, r in results]
+    assert "refused" in statuses and "valid" in statuses
+
+
+def test_fuzz_special_files(harness, tmp_path):
+    """Devices, pipes, folders and huge sparse files: refused at once, memory bounded."""
+    fifo = tmp_path / "fifo.yaml"
+    os.mkfifo(fifo)
+    (tmp_path / "dir.yaml").mkdir()
+    (tmp_path / "zero.yaml").symlink_to("/dev/zero")
+    (tmp_path / "null.yaml").symlink_to("/dev/null")
+    (tmp_path / "dangling.yaml").symlink_to(tmp_path / "nowhere")
+    with open(tmp_path / "sparse.yaml", "wb") as fh:
+        fh.truncate(10 ** 10)
+    for name in ("fifo", "dir", "zero", "null", "dangling", "sparse"):
+        path = tmp_path / f"{name}.yaml"
+        r = harness.run("validate", path)
+        assert r["status"] == "refused", (name, r)
+        assert all(m.startswith(f"{path}") and "Traceback" not in m for m in r["messages"]), r

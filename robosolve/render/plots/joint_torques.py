@@ -19,8 +19,11 @@ def draw(spec, path):
         mark_switches(ax, d["switches"], d["T"])
         ax.axhline(0.0, color="0.6", lw=0.6)
         ax.plot([a["t_peak"]], [a["peak"]], "o", color="k", ms=5)
+        # to the left of a peak in the second half of the run: the text stays inside the axes
+        right = a["t_peak"] > d["T"] / 2
         ax.annotate(f"peak {a['peak']:.4g} {a['unit']} at t = {a['t_peak']:.4g} s", (a["t_peak"], a["peak"]),
-                    textcoords="offset points", xytext=(8, -12 if a["peak"] > 0 else 6), fontsize=8)
+                    textcoords="offset points", xytext=(-8 if right else 8, -12 if a["peak"] > 0 else 6),
+                    ha="right" if right else "left", fontsize=8)
         ax.set_ylabel(f"${a['label']}$ ({a['unit']})")
     axes[0, 0].set_title(spec.title)
     axes[-1, 0].set_xlabel("t (s)")

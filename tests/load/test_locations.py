@@ -1,0 +1,50 @@
+"""Every message about a file's bytes names the line (issue 22): a byte that is not UTF-8, a NUL
+or another character YAML refuses, nesting thousands of levels deep (no RecursionError)."""
+
+from __future__ import annotations
+
+import pytest
+
+from robosolve.errors import InputError
+from robosolve.load.loader import load_problem, load_problem_text
+
+HEAD = "robosolve: 1\nname: n\nparameters: {L: 1}\n"
+
+
+def messages(text, name="p.yaml"):
+    with pytest.raises(InputError) as exc:
+        load_problem_text(text, name)
+    return [str(i) for i in exc.value.issues]
+
+
+def test_a_byte_that_is_not_utf8_is_reported_at_its_line(tmp_path):
+    p = tmp_path / "p.yaml"
+    p.write_bytes(HEAD.encode() + b"joints: []\n# caf\xe9\n")
+    with pytest.raises(InputError) as exc:
+        load_problem(p)
+    assert str(exc.value) == f"{p}:5: the file is not UTF-8 text: byte 0xe9 at column 6 (save it as UTF-8)"
+
+
+def test_a_nul_byte_is_reported_at_its_line_in_words():
+    found = messages(HEAD + 'questions:\n  - {type: position, id: "a\x00b"}\n')
+    assert found == ["p.yaml:5: a NUL character (byte 0) at column 28: YAML does not allow it in a file "
+                     "(remove it; was the file saved as UTF-16 or binary?)"]
+    assert "<unicode string>" not in found[0] and "position" not in found[0]
+
+
+def test_another_control_character():
+    [m] = messages(HEAD + "x: \x07\n")
+    assert m.startswith("p.yaml:4: the control character U+0007 at column 4")
+
+
+@pytest.mark.parametrize("deep", [
+    "x: " + "[" * 5000 + "]" * 5000 + "\n",                      # flow sequences
+    "x: " + "{a: " * 3000 + "1" + "}" * 3000 + "\n",             # flow mappings
+    "x:\n" + "".join(" " * i + "- \n" for i in range(1, 600)),   # block sequences, one per line
+])
+def test_deep_nesting_is_reported_where_it_gets_too_deep(deep):
+    [m] = messages(HEAD + deep)
+    line = int(m.split(":")[1])
+    assert line >= 4 and m.endswith("nesting deeper than 40 levels"), m
+    if deep.startswith("x:\n"):
+        assert line == 4 + 40, m                                 # the first line past 40 levels
