@@ -22,7 +22,6 @@ from robosolve.grading.grader import Grader, invalid_result
 from robosolve.grading.matching import TableError, VariantsTable, read_table
 from robosolve.grading.record import GRADES_COLUMNS, SUMMARY_COLUMNS, grade_rows, record_json, summary_row
 from robosolve.run.interrupts import process_pool
-from robosolve.load.yamlsource import read_text_file
 
 
 # Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
