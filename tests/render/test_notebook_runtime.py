@@ -78,7 +78,7 @@ def test_chain_products_points_and_velocity_matrices_match_the_model(name):
 
 @pytest.mark.parametrize("name", ["exam-2r-full", "scara-payload-dynamics", "one-link-eom"])
 def test_lagrange_matches_the_dynamics_engine(name):
-    from robosolve.dynamics.model import dynamics_for
+    from robosolve.dynamics.bridge import dynamics_for
 
     problem, model, robot, values = _setup(name)
     dyn = dynamics_for(model)
@@ -119,7 +119,7 @@ def test_profiles_match_the_motion_engine(shape):
 
 
 def _exam_profile_and_dynamics():
-    from robosolve.dynamics.model import simulation_dynamics
+    from robosolve.dynamics.bridge import simulation_dynamics
     from robosolve.motion.profiles import synchronize
 
     problem, model, robot, values = _setup("exam-2r-full")
