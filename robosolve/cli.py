@@ -82,6 +82,7 @@ def solve(
 ) -> None:
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
+    from robosolve.pipeline import check_inputs
     from robosolve.render.drawing import figure_drawer
 
     formats = _formats(format)
@@ -90,7 +91,7 @@ def solve(
     problems, status = [], EXIT_OK
     for f in files:
         try:
-            problems.append(load_problem(f))
+            problems.append(check_inputs(load_problem(f)))
         except InputError as exc:
             _err(str(exc))
             status = EXIT_INPUT

@@ -47,7 +47,9 @@ def solve_task(task: dict) -> dict:
     base = {"file": file, "name": None, "answered": 0, "total": 0, "messages": [],
             "files": {}, "version": robosolve.__version__}
     try:
-        problem = load_problem_text(task["text"], file)
+        from robosolve.pipeline import check_inputs
+
+        problem = check_inputs(load_problem_text(task["text"], file))
     except InputError as exc:
         return {**base, "status": EXIT_INPUT, "messages": [str(i) for i in exc.issues]}
     base["name"] = problem.name

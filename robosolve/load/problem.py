@@ -89,6 +89,7 @@ class Question:
     frame_given: bool = False
     marks: object = 1                               # weight when graded (sympy Rational or Float)
     grade: tuple = ()                               # graded answer keys (dotted); () = principal
+    lines: dict = field(default_factory=dict)       # option key -> its line in the file
 
 
 @dataclass

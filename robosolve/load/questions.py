@@ -98,6 +98,7 @@ class _QuestionLoader:
             q.marks = self.marks(path + ("marks",), item["marks"])
         if "grade" in item:
             q.grade = self.grade_keys(path + ("grade",), item["grade"], qt)
+        q.lines = {str(k): chk.src.line(path + (k,)) for k in item}
         for key, validator in schema.items():
             if key in item:
                 v = validator(self, path + (key,), item[key], q)

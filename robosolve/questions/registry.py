@@ -25,7 +25,7 @@ from robosolve.questions.schema import (  # noqa: F401  (the vocabulary, re-expo
 # The type modules, in the order of the course (the order of every listing of the types).
 MODULES = (
     "position", "velocity_acceleration", "jacobian", "statics", "ellipsoids", "inverse_kinematics",
-    "motion_profile", "equations_of_motion", "joint_torques", "p_control", "forward_dynamics",
+    "motion_profile", "task_trajectory", "equations_of_motion", "joint_torques", "p_control", "forward_dynamics",
     "displacement", "orientation", "dof",
 )
 
