@@ -162,7 +162,9 @@ class _QuestionLoader:
         source = self.profile_type
         profiles = [q for q in questions if QUESTION_TYPES[q.type].makes_profile]
         for q in questions:
-            if not QUESTION_TYPES[q.type].uses_profile:
+            if QUESTION_TYPES[q.type].resolve is not None:
+                QUESTION_TYPES[q.type].resolve(self, q, questions)
+            if not QUESTION_TYPES[q.type].uses_profile or "trajectory" in q.options:
                 continue
             ref = q.options.get("profile")
             if ref is None:

@@ -114,8 +114,12 @@ class QuestionType:
     # The type's own cross-field checks, called by the question loader after the options are
     # parsed: check(ql, path, item, question) reports with ql.chk.error (load/questions.py).
     check: Callable | None = None
+    # Its checks across questions, after every question is loaded: resolve(ql, question, questions)
+    # (references to other questions by id, beyond the `profile` of `uses_profile`).
+    resolve: Callable | None = None
     needs_joints: bool = True      # with a robot, it needs joints (False: frames alone will do)
     integrates: bool = False       # integrates the motion: the mass matrix must be invertible
+    makes_trajectory: bool = False  # its answer is a work-space trajectory (p_control `trajectory`)
     makes_profile: bool = False    # its answer is a motion profile other questions refer to
     uses_profile: bool = False     # refers to a profile question by id (`profile` option)
     has_jacobian: bool = False     # its answer has a Jacobian J at the question's `at`

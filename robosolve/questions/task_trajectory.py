@@ -115,5 +115,5 @@ TYPE = QuestionType(
     ),
     figures=(("path", "task_path"), ("joints", "joint_motion")),
     cost=0.4, unit="dynamics",
-    check=_check, model_checked=True,
+    check=_check, model_checked=True, makes_trajectory=True,
 )

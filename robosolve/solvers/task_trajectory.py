@@ -39,6 +39,7 @@ class BadInput(Exception):
 class TaskTrajectory:
     """A converted trajectory, as p_control reads it."""
 
+    coords: list                   # the coordinates as written (point placeholders kept)
     labels: list                   # the coordinates as text ("E.y")
     tex: list
     path: tp.Path
@@ -225,7 +226,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     labels = [str(c) for c in coords]
     tex = [sp.latex(c, symbol_names=model.symbol_latex) for c in coords]
     conv = tp.follow(arm, path, timing, q_from, samples=SAMPLES)
-    traj = TaskTrajectory(labels, tex, path, timing, arm, conv, names)
+    traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names)
     ans.numeric["T"] = timing.T
     ans.numeric["length"] = path.length
     ans.numeric["start"] = {n: float(q_from[i]) for i, n in enumerate(names)}
