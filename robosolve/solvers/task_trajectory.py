@@ -137,8 +137,11 @@ def _ik(ctx, model, x_expr, target, subs, key):
     values = {s: float(v) for s, v in subs.items() if getattr(v, "is_number", False)}
     if m < n:
         return None, None
-    res = solve_ik([(x_expr[i], float(target[i])) for i in range(m)], _ik_joints(model, ctx, subs), values,
-                   time_limit_s=ctx.budgets.closed_form_seconds)
+    try:
+        res = solve_ik([(x_expr[i], float(target[i])) for i in range(m)], _ik_joints(model, ctx, subs), values,
+                       time_limit_s=ctx.budgets.closed_form_seconds)
+    except (TypeError, ValueError):      # a closed form evaluated off its domain (complex values)
+        raise BadInput(key, "out of reach: no configuration of the arm puts the point there") from None
     if res.status == "unreachable" or res.selected is None:
         raise BadInput(key, "out of reach: " + (res.reason or "no configuration reaches it"))
     return np.array([res.selected[j.name] for j in model.joints], dtype=float), res
