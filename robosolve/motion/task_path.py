@@ -234,7 +234,7 @@ def follow(arm: Arm, path: Path, timing: Timing, q_start, samples: int = 401,
         guess = q_prev + qd_prev * (t - t_prev)
         q = newton(arm, x, guess)
         if q is None:
-            failure = {"kind": "unreachable", "t": float(t), "x": x.tolist(), "q": q_prev.tolist()}
+            failure = _leaving(arm, path, timing, t_prev, float(t), seg, q_prev)
             break
         qd, qdd, sig = joint_state(arm, q, xd, xdd)
         jump = float(np.max(np.abs(q - guess)))
@@ -309,3 +309,17 @@ def _singular_between(arm, path, timing, conv, tol):
                 conv.failure = {"kind": "singular", "t": t, "x": x.tolist(),
                                 "q": state_at(arm, path, timing, conv, t, conv.segment[k])[0].tolist()}
                 return
+
+
+def _leaving(arm, path, timing, t_in: float, t_out: float, seg: int, q_in):
+    """Where the path leaves the reach, by bisection between a reached and an unreached instant."""
+    q_last = np.asarray(q_in, dtype=float)
+    for _ in range(40):
+        mid = 0.5 * (t_in + t_out)
+        q = newton(arm, task_state(path, timing, mid, seg)[1], q_last)
+        if q is None:
+            t_out = mid
+        else:
+            t_in, q_last = mid, q
+    x = task_state(path, timing, t_out, seg)[1]
+    return {"kind": "unreachable", "t": float(t_out), "x": x.tolist(), "q": q_last.tolist()}

@@ -91,12 +91,12 @@ def _resolve(ql, q, questions):
         gains = q.options.get(key)
         if not isinstance(gains, dict) or "coordinates" not in gains:
             continue
-        for text, lhs, _v in gains["coordinates"]:
-            if not any(sp.expand(lhs - c) == 0 for c in coords):
-                ql.chk.error(base + (key, text), f"the trajectory '{ref}' has no coordinate '{text}' "
-                             f"(its coordinates: {', '.join(texts)})" + V.did_you_mean(text, texts))
+        unknown = [t for t, lhs, _v in gains["coordinates"] if not any(sp.expand(lhs - c) == 0 for c in coords)]
+        for text in unknown:
+            ql.chk.error(base + (key, text), f"the trajectory '{ref}' has no coordinate '{text}' "
+                         f"(its coordinates: {', '.join(texts)})" + V.did_you_mean(text, texts))
         for c, t in zip(coords, texts):
-            if not any(sp.expand(lhs - c) == 0 for _t, lhs, _v in gains["coordinates"]):
+            if not unknown and not any(sp.expand(lhs - c) == 0 for _t, lhs, _v in gains["coordinates"]):
                 ql.chk.error(base + (key,), f"missing the gain of the coordinate {t}")
 
 

@@ -230,7 +230,19 @@ def _solve_trajectory(question, ctx, ans, subs, law):
         ans.steps.append(Step("Joint errors", "", table=(["joint", "max |e|", "at t (s)", "final e"], [
             [n, Num(res.max_error[i]), Num(res.t_max_error[i]), Num(res.final_error[i])] for i, n in enumerate(names)])))
     _task_figure(ans, traj, t_grid, e_task, law, duration)
+    if not task:
+        syms = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in model.joints]
+        plan = traj.plan()
+        plan.breaks = np.asarray(traj.timing.breaks)     # the switching instants marked in the figure
+        _figures(ans, res, _Horizon(traj.timing.T), plan, duration, law, model.joints, syms)
     return ans
+
+
+class _Horizon:
+    """The reference's duration, as `_figures` reads it from a profile."""
+
+    def __init__(self, T):
+        self.T = T
 
 
 TASK_LAW_TEX = {
@@ -263,6 +275,7 @@ def _task_figure(ans, traj, t, e_task, law, duration):
         "task", "control_tracking", f"{law} control: each task coordinate against its reference, and the error",
         {"t": [float(v) for v in t], "T": traj.timing.T, "duration": float(duration),
          "switches": [float(v) for v in traj.timing.breaks[1:-1] if v < duration],
+         "error_title": "error $e = x_d - x$",
          "joints": [{"name": lab, "label": traj.tex[i], "unit": "m", "q": (xd[i] - e_task[i]).tolist(),
                      "q_desired": xd[i].tolist(), "error": e_task[i].tolist()}
                     for i, lab in enumerate(traj.labels)]}))

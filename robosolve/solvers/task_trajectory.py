@@ -275,7 +275,7 @@ def _figures(ans, ctx, traj, subs, question) -> None:
 
 # -- report --------------------------------------------------------------------------------
 def _vec(tex_list, values):
-    return Text.join(",\\; ", [Text(f"{t} = ", Num(v)) for t, v in zip(tex_list, values)])
+    return Text("$", Text.join(",\\; ", [Text(f"{t} = ", Num(v)) for t, v in zip(tex_list, values)]), "$")
 
 
 def _path_steps(ans, traj, res, question, model) -> None:
@@ -286,7 +286,9 @@ def _path_steps(ans, traj, res, question, model) -> None:
         text = Text("A straight line from ", _vec(traj.tex, path.a), " to ", _vec(traj.tex, path.b),
                     ", of length $L = ", Num(path.length), "$; with s the length travelled, "
                     "$x(s) = a + s\\,u$, $u = (b - a)/L = [", Text.join(", ", [Num(v) for v in u]), "]$.")
-        eq = [(f"{xs}(s)", "a + s\\,\\frac{b - a}{L}")]
+        s_ = sp.Symbol("s")
+        eq = [(f"{xs}(s)", "a + s\\,\\frac{b - a}{L}"),
+              (f"{xs}(s)", sp.Matrix([sp.Float(path.a[i], 12) + sp.Float(u[i], 12) * s_ for i in range(u.size)]))]
     else:
         text = Text("An arc of the circle of centre c = [", Text.join(", ", [Num(v) for v in path.center]),
                     "] and radius $r = ", Num(path.radius), "$, from ", _vec(traj.tex, path.a), " to ",
@@ -365,8 +367,8 @@ def _joint_steps(ans, traj, model, vel, acc, smin, tmin) -> None:
         [f"$\\dot {n}$" for n in names]
     rows = [[Num(conv.t[k]), Num(conv.s[k])] + [Num(v) for v in conv.x[:, k]] + [Num(v) for v in conv.q[:, k]]
             + [Num(v) for v in conv.qd[:, k]] for k in idx]
-    ans.steps.append(Step("Samples", Text("Every ", Num(conv.t.size), " samples' worth, ", Num(len(idx)),
-                                          " of them shown:"), table=(head, rows)))
+    ans.steps.append(Step("Samples", Text(Num(conv.t.size), " samples (the switching instants of the "
+                                          "timing law twice, one per side), ", Num(len(idx)), " of them shown:"), table=(head, rows)))
     rows = [[f"${names[i]}$", Num(vel[i]), Num(acc[i])] for i in range(len(names))]
     ans.steps.append(Step("Extremes over [0, T]", Text(
         "The largest magnitudes, refined between samples on each interval of the timing law; the smallest "
