@@ -119,7 +119,7 @@ class QuestionType:
     resolve: Callable | None = None
     needs_joints: bool = True      # with a robot, it needs joints (False: frames alone will do)
     integrates: bool = False       # integrates the motion: the mass matrix must be invertible
-    makes_trajectory: bool = False  # its answer is a work-space trajectory (p_control `trajectory`)
+    makes_trajectory: bool = False  # its answer is a work-space trajectory (a control question follows it)
     makes_profile: bool = False    # its answer is a motion profile other questions refer to
     uses_profile: bool = False     # refers to a profile question by id (`profile` option)
     has_jacobian: bool = False     # its answer has a Jacobian J at the question's `at`

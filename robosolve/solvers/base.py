@@ -129,11 +129,11 @@ class SolveContext:
         return prof
 
     def record_trajectory(self, qid: str, trajectory) -> None:
-        """The converted work-space trajectory of the task_trajectory question `qid`."""
+        """The converted work-space trajectory of the work-space trajectory question `qid`."""
         self._trajectories[qid] = trajectory
 
     def trajectory(self, qid: str):
-        """The trajectory of `qid` (solvers/task_trajectory.py's `TaskTrajectory`); SolverError when
+        """The trajectory of `qid` (its solver's `TaskTrajectory`); SolverError when
         it has no answer."""
         tr = self._trajectories.get(qid)
         if tr is None:

@@ -37,7 +37,7 @@ class BadInput(Exception):
 
 @dataclass
 class TaskTrajectory:
-    """A converted trajectory, as p_control reads it."""
+    """A converted trajectory, as the closed-loop control reads it."""
 
     coords: list                   # the coordinates as written (point placeholders kept)
     labels: list                   # the coordinates as text ("E.y")
