@@ -107,7 +107,7 @@ def _qt(q):
 
 
 TYPE = QuestionType(
-    "p_control", "Closed-loop control", "§8 question 10, §1.2",
+    "p_control", "Closed-loop control", "§8 question 10",
     options={"profile": V.v_profile_ref, "trajectory": v_trajectory_ref, "gains": v_gains,
              "law": v_control_law, "gains_d": v_gains, "start": V.v_joint_values, "duration": V.v_expr},
     required=("gains",),
@@ -119,7 +119,7 @@ TYPE = QuestionType(
            symbolic=False, digits=6),
         _k("final_error", JOINT_MAP, "signed e at the end (per coordinate for a task law)", principal=True,
            symbolic=False, digits=6),
-        _k("max_task_error", JOINT_MAP, "coordinate -> max |x_d - x| along a trajectory", principal=True,
+        _k("max_task_error", JOINT_MAP, "coordinate -> max |x_d - x| along a trajectory",
            symbolic=False, digits=6),
         _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False, digits=6),
     ),
