@@ -11,7 +11,7 @@ import sympy as sp
 
 from robosolve.load import validators as V
 from robosolve.load.expressions import ExpressionError, point_symbol
-from robosolve.questions.schema import JOINT_MAP, QuestionType, _k
+from robosolve.questions.schema import CONTROL_MAP, COORDINATE_MAP, QuestionType, _k
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 
@@ -115,13 +115,13 @@ TYPE = QuestionType(
     needs_dynamics=True,
     answers=(
         # the simulation is accurate to ~1e-6 relative: 6 digits, the same on every machine
-        _k("max_error", JOINT_MAP, "max |e| over the run (per coordinate for a task law)", principal=True,
+        _k("max_error", CONTROL_MAP, "max |e| over the run (per coordinate for a task law)", principal=True,
            symbolic=False, digits=6),
-        _k("final_error", JOINT_MAP, "signed e at the end (per coordinate for a task law)", principal=True,
+        _k("final_error", CONTROL_MAP, "signed e at the end (per coordinate for a task law)", principal=True,
            symbolic=False, digits=6),
-        _k("max_task_error", JOINT_MAP, "coordinate -> max |x_d - x| along a trajectory",
+        _k("max_task_error", COORDINATE_MAP, "coordinate -> max |x_d - x| along a trajectory",
            symbolic=False, digits=6),
-        _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False, digits=6),
+        _k("t_max_error", CONTROL_MAP, "time of the largest |e|", symbolic=False, digits=6),
     ),
     figures=(("tracking", "control_tracking"), ("effort", "control_effort"), ("task", "control_tracking")),
     cost=1.3, unit="dynamics",

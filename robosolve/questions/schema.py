@@ -18,6 +18,8 @@ MATRIX = "matrix"                 # list of rows; `shape` = (rows, cols)
 MATRIX_LIST = "matrix_list"       # list of matrices (e.g. the chain ⁰M₁, ¹M₂, …)
 JOINT_MAP = "joint_map"           # joint name -> scalar, in joint order
 ACTUATOR_MAP = "actuator_map"     # actuator name -> scalar, in joint order
+COORDINATE_MAP = "coordinate_map"  # task coordinate (as written, "E.y") -> scalar, in the question's order
+CONTROL_MAP = "control_map"       # a JOINT_MAP, or a COORDINATE_MAP for a work-space control law
 BODY_MAP = "body_map"             # body name -> scalar, plus `total`
 MATRIX_MAP = "matrix_map"         # name -> matrix (e.g. body -> 3xn Jacobian)
 JOINT_MAP_SET = "joint_map_set"   # set of joint mappings (IK solutions, singularities)
@@ -30,7 +32,7 @@ ACTUATOR_RECORDS = "actuator_records"  # actuator name -> record (`fields`)
 BOOL = "bool"
 TEXT = "text"
 
-KINDS = (SCALAR, VECTOR, MATRIX, MATRIX_LIST, JOINT_MAP, ACTUATOR_MAP, BODY_MAP, MATRIX_MAP,
+KINDS = (SCALAR, VECTOR, MATRIX, MATRIX_LIST, JOINT_MAP, ACTUATOR_MAP, COORDINATE_MAP, CONTROL_MAP, BODY_MAP, MATRIX_MAP,
          JOINT_MAP_SET, JOINT_MAP_LIST, VECTOR_SET, AXES, EQUATIONS, RECORD, ACTUATOR_RECORDS,
          BOOL, TEXT)
 
