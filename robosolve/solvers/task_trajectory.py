@@ -172,7 +172,9 @@ def setup(question, ctx: SolveContext):
         if np.linalg.svd(arm.J(q), compute_uv=False)[-1] < 1e-6 * max(scale, 1e-300):
             raise BadInput(key, "a singular configuration of the arm (J loses rank there)")
     if len(coords) == len(model.q):
-        q_to, _ = _ik(ctx, model, x_expr, b, subs, "to")
+        q_to = tp.newton(arm, b, q_from, max_iter=100)       # the engine's search only when needed
+        if q_to is None:
+            q_to, _ = _ik(ctx, model, x_expr, b, subs, "to")
         if np.linalg.svd(arm.J(q_to), compute_uv=False)[-1] < 1e-6 * max(scale, 1e-300):
             raise BadInput("to", "a singular configuration of the arm (J loses rank there)")
     elif tp.newton(arm, b, q_from, max_iter=200) is None:
