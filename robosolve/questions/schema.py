@@ -127,7 +127,7 @@ class QuestionType:
     has_jacobian: bool = False     # its answer has a Jacobian J at the question's `at`
     reaches: bool = False          # it searches configurations reaching a target (`reachable`)
     model_checked: bool = False    # its solver's `check_input(question, ctx)` finds input mistakes
-                                   #   only the robot's model shows (pipeline.check_inputs)
+                                   #   only the robot's model shows (run/pipeline.py check_inputs)
     # (rank, phrase): where time-varying forces are followed, in the loader's message that
     # refuses `t` elsewhere ("a simulation run"); time_laws: its option whose values
     # may use t

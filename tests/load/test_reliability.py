@@ -250,7 +250,7 @@ def test_question_budget_cannot_be_swallowed(write_problem, monkeypatch):
     import robosolve.solvers.position as position
     from robosolve.errors import SymbolicTimeout
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
     from robosolve.solvers.base import Budgets
 
     def stubborn(question, ctx):

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 from robosolve.solvers.base import Budgets
 
 ARM = """
@@ -171,7 +171,7 @@ def test_two_routes_scara_prismatic_three_joints_symbolic_vs_numeric_only():
 
 
 def test_figures_are_drawn(tmp_path):
-    from robosolve.pipeline import write_outputs
+    from robosolve.run.pipeline import write_outputs
 
     report = solve_problem(load_problem_text(ARM % ("5", PROFILE + """  - {type: joint_torques}
   - {type: p_control, law: pd, gains: {theta1: 300, theta2: 300}, gains_d: {theta1: 20, theta2: 20}}
