@@ -15,12 +15,12 @@ import sympy as sp
 
 from robosolve.core.numpy_code import numpy_modules
 from robosolve.core.prose import Num, Text
-from robosolve.errors import SolverError
+from robosolve.errors import MissingValues, SolverError
 from robosolve.ik.engine import IKJoint, solve_ik
 from robosolve.load.expressions import point_symbol
 from robosolve.motion import task_path as tp
 from robosolve.motion.profiles import NumericPlan
-from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
+from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
 
 SAMPLES = 401
@@ -162,6 +162,9 @@ def setup(question, ctx: SolveContext):
     subs = ctx.substitutions(question.at)
     coords = coordinates(question, model)
     arm, x_expr = _arm(model, coords, subs)
+    unknown = sorted(str(v) for v in x_expr.free_symbols - set(model.q))
+    if unknown:
+        raise MissingValues(unknown)
     a = _values(ctx, opts["from"], coords, "from", subs)
     b = _values(ctx, opts["to"], coords, "to", subs)
     path = _path(ctx, opts.get("path", {"kind": "line"}), a, b, subs)
@@ -234,6 +237,8 @@ def solve(question, ctx: SolveContext) -> Answer:
         coords, arm, path, timing, q_from, res, subs = setup(question, ctx)
     except BadInput as exc:
         raise SolverError(f"{exc.key}: {exc.message}") from None
+    except MissingValues as exc:
+        raise SolverError(missing_note("trajectory", exc.names, ctx.problem)) from None
     except (TypeError, ValueError) as exc:
         raise SolverError(f"the trajectory needs numeric data ({exc})") from None
     names = [j.name for j in model.joints]

@@ -161,10 +161,41 @@ def test_solver_answers_and_pd_matches_an_independent_integration(write_problem,
     (LINE.replace("    max_velocity: 0.6\n", "    path: {circle: {center: [0.1, 0.1]}}\n    max_velocity: 0.6\n"),
      "path"),
     (LINE + "  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {E.x: 1, E.z: 1}, "
-            "gains_d: {E.x: 1, E.y: 1}}\n", "gains"),
+            "gains_d: {E.x: 1, E.y: 1}}\n", "gains.E.z"),
+    (LINE.replace("E.x: 0.2, E.y: 0.6", "E.x: 0.9, E.y: 0.0"), "to"),          # stretched: singular
+    (LINE.replace("coordinates: [E.x, E.y]", "coordinates: [E.x]").replace(", E.y: 0.1", "").replace(", E.y: 0.6", "")
+     + "  - {type: p_control, trajectory: line, law: task_computed_torque, gains: {E.x: 1}, gains_d: {E.x: 1}}\n",
+     "square"),
+    (LINE + "  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {q1: 1, q2: 1}, "
+            "gains_d: {q1: 1, q2: 1}}\n", "per coordinate"),
 ])
 def test_bad_inputs_exit_2_with_file_and_line(write_problem, tmp_path, edit, where):
     r, _ = _solve(write_problem, tmp_path, ARM_2R + edit)
     assert r.returncode == 2, r.stderr
     assert ".yaml:" in r.stderr and where in r.stderr and "Traceback" not in r.stderr
     assert not (tmp_path / "out").exists()
+
+
+def test_an_arc_leaving_the_reach_is_an_unreachable_answer(write_problem, tmp_path):
+    arc = (LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 0.8, E.y: 0.3").replace("E.x: 0.2, E.y: 0.6", "E.x: 0.3, E.y: 0.8")
+           .replace("    max_velocity: 0.6\n", "    path: {circle: {center: [0.3, 0.3]}}\n    max_velocity: 0.6\n"))
+    r, res = _solve(write_problem, tmp_path, ARM_2R + arc)
+    assert r.returncode == 0, r.stderr
+    a = res["answers"]["line"]
+    assert a["unreachable"] is True and "out of the arm's reach" in a["reason"]
+    # the instant where the arc crosses the circle of radius L1 + L2 = 0.9 about the base
+    c, rad = np.array([0.3, 0.3]), 0.5
+    th = [math.atan2(p[1] - c[1], p[0] - c[0]) for p in ((0.8, 0.3), (0.3, 0.8))]
+    ths = np.linspace(th[0], th[1], 200001)
+    pts = c[:, None] + rad * np.vstack([np.cos(ths), np.sin(ths)])
+    k = int(np.argmax(np.hypot(*pts) > 0.9))
+    s_cross = rad * (ths[k] - th[0])
+    timing = tp.trapezoidal(rad * math.pi / 2, 0.6, 3.0)
+    ts = np.linspace(0, timing.T, 200001)
+    t_cross = ts[int(np.argmax([timing.at(t)[0] >= s_cross for t in ts]))]
+    assert a["reason"].startswith("at t = ") and abs(float(a["reason"].split()[3]) - t_cross) < 1e-4
+
+
+def test_a_parameter_without_value_is_an_answer_error_not_an_input_error(write_problem, tmp_path):
+    r, res = _solve(write_problem, tmp_path, ARM_2R.replace("L2: 2/5", "L2: ~") + LINE)
+    assert r.returncode == 1 and "L2" in res["answers"]["line"]["error"]
