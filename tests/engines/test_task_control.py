@@ -98,17 +98,21 @@ def _simulate(law, q0):
     return task_err, joint_err
 
 
-@pytest.fixture(scope="module")
-def answers(tmp_path_factory):
-    d = tmp_path_factory.mktemp("wsc")
-    (d / "p.yaml").write_text(PROBLEM)
-    r = subprocess.run([sys.executable, "-m", "robosolve", "solve", str(d / "p.yaml"), "--out", str(d / "out")],
-                       capture_output=True, text=True)
+def _answers(tmp_path, keep):
+    """The problem's trajectory and its control question `keep` (ct or ideal), solved."""
+    head, rest = PROBLEM.split("  - {type: p_control, id: ct")
+    ct, ideal = ("  - {type: p_control, id: ct" + rest).split("  - {type: p_control, id: ideal")
+    text = head + (ct if keep == "ct" else "  - {type: p_control, id: ideal" + ideal)
+    (tmp_path / "p.yaml").write_text(text)
+    r = subprocess.run([sys.executable, "-m", "robosolve", "solve", str(tmp_path / "p.yaml"), "--out",
+                        str(tmp_path / "out")], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
-    return json.loads((d / "out" / "results.json").read_text())["answers"]
+    return json.loads((tmp_path / "out" / "results.json").read_text())["answers"]
 
 
-def test_task_computed_torque_matches_pinocchio(answers):
+@pytest.mark.slow
+def test_task_computed_torque_matches_pinocchio(tmp_path):
+    answers = _answers(tmp_path, "ct")
     task_err, _ = _simulate("ct", np.array([-0.2, 1.35]))
     got = answers["ct"]["numeric"]
     for i, c in enumerate(("E.x", "E.y")):
@@ -117,7 +121,8 @@ def test_task_computed_torque_matches_pinocchio(answers):
         assert got["max_task_error"][c] == got["max_error"][c]
 
 
-def test_ideal_scheme_matches_pinocchio_with_a_closed_form_reference(answers):
+def test_ideal_scheme_matches_pinocchio_with_a_closed_form_reference(tmp_path):
+    answers = _answers(tmp_path, "ideal")
     start = answers["line"]["numeric"]["start"]
     q0 = np.array([start["q1"], start["q2"]])
     assert np.allclose(q0, ik(np.array([0.7, 0.1]), 1.0), atol=1e-10)     # the branch followed
