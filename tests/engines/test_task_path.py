@@ -168,7 +168,8 @@ def test_solver_answers_and_pd_matches_an_independent_integration(write_problem,
      "square"),
     (LINE + "  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {q1: 1, q2: 1}, "
             "gains_d: {q1: 1, q2: 1}}\n", "per coordinate"),
-])
+], ids=["from-out-of-reach", "centre-not-equidistant", "gain-of-a-missing-coordinate", "to-singular",
+        "computed-torque-wide-J", "joint-gains-for-a-task-law"])
 def test_bad_inputs_exit_2_with_file_and_line(write_problem, tmp_path, edit, where):
     r, _ = _solve(write_problem, tmp_path, ARM_2R + edit)
     assert r.returncode == 2, r.stderr
