@@ -10,6 +10,8 @@ import re
 
 import sympy as sp
 
+from robosolve.core.parameters import resolve_parameters
+from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
@@ -42,7 +44,7 @@ def _time_refused() -> str:
 
 TIME_REFUSED = _time_refused()
 TOP_KEYS = ("robosolve", "name", "title", "description", "parameters", "joints", "frames",
-            "dh", "points", "gravity", "bodies", "forces", "questions", "grading", "variants")
+            "dh", "points", "gravity", "bodies", "forces", "questions", "grading", "variants", "paper")
 POSE_OPS = ("Tx", "Ty", "Tz", "Rx", "Ry", "Rz")
 DH_KEYS = ("theta", "d", "a", "alpha")
 MDH_KEYS = ("alpha", "a", "theta", "d")
@@ -286,6 +288,8 @@ class _ProblemBuilder:
         # validated like every key, then ignored by `solve` (load/variants.py, variants.md)
         from robosolve.load.variants import load_variants
         self.problem.variants = load_variants(self, data.get("variants"))
+        from robosolve.load.paper import load_paper
+        self.problem.paper_at = load_paper(self, data.get("paper"))
         return self.problem
 
     def _grading(self, value) -> dict:
@@ -460,17 +464,7 @@ class _ProblemBuilder:
     def _values(self, overrides: dict | None = None) -> dict:
         """Numeric values of the parameters that have one (for sanity checks), with `overrides`
         (a question's `at` values of parameters) replacing theirs."""
-        vals, pending = {}, {**self.parameters, **(overrides or {})}
-        for _ in range(len(pending) + 1):
-            for s, e in list(pending.items()):
-                if e is None:
-                    pending.pop(s)
-                    continue
-                v = e.xreplace(vals)
-                if not v.free_symbols:
-                    vals[s] = v
-                    pending.pop(s)
-        return vals
+        return resolve_parameters(self.parameters, overrides)
 
     def _names(self) -> dict:
         names = {s.name: s for s in self.parameters}
@@ -479,7 +473,7 @@ class _ProblemBuilder:
             names[j.dot.name] = j.dot
             names[j.ddot.name] = j.ddot
             names[j.actuator.name] = j.actuator
-        names["t"] = sp.Symbol("t", real=True)
+        names["t"] = TIME
         return names
 
     # -- frames ---------------------------------------------------------

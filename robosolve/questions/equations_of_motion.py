@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.questions.schema import ACTUATOR_MAP, BODY_MAP, EQUATIONS, JOINT_MAP, MATRIX, N, VECTOR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
 
 
 def _has_time(force) -> bool:
@@ -20,17 +23,45 @@ def _check(ql, path, item, q):
                      "vary with time t, so the numbers at a configuration would need a time: drop `at` "
                      f"(the symbolic equations keep t), or follow the motion with a {follow} question")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the bodies, forces and `at` of the data."""
+    at = say.at(q)
+    return ("With the bodies, forces and gravity of the data, derive the equations of motion "
+            "$M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = Q$: the mass matrix $M(q)$, the velocity terms "
+            "$c(q, \\dot q)$, the gravity terms $g(q)$ and the generalized forces $Q$ (actuators plus "
+            "external forces)" + (f"; give the numbers {at}" if at else "") + ".")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    actuators = [str(j.actuator) for j in problem.joints]
+    return lines(
+        f"at = {at_literal(q)}",
+        "# M, c, g and the external forces' Q at the configuration (numbers along the chain)",
+        "mass, c, grav, Q = robot.dynamics_at(at)",
+        "accelerations = robot.number(sp.Matrix(robot.accelerations), at).ravel()",
+        "if len(robot.joints) <= 2:                # the formulas of a small arm, by Lagrange",
+        "    show(*robot.lagrange(at)[:3])",
+        robosolve_numbers(answer, ["mass_matrix", "velocity_terms", "gravity_terms", "actuators"]),
+        *guarded(answer, ("mass_matrix", compare_line("mass_matrix", "mass")),
+                  ("velocity_terms", compare_line("velocity_terms", "c")),
+                  ("gravity_terms", compare_line("gravity_terms", "grav")),
+                  ("actuators", "# the joint actions tau = M q'' + c + g - Q\n"
+                   + compare_line("actuators", f"dict(zip({actuators!r}, mass @ accelerations + c + grav - Q))"))),
+    )
+
 
 TYPE = QuestionType(
     "equations_of_motion", "Equations of motion", "§8 question 8",
+    statement=_statement,
     options={},
     needs_dynamics=True,
     answers=(
         _k("mass_matrix", MATRIX, "M(q)", principal=True, shape=(N, N), notation="M(q)"),
-        _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, shape=(N,)),
-        _k("gravity_terms", VECTOR, "g(q)", principal=True, shape=(N,)),
+        _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, unit="effort", shape=(N,)),
+        _k("gravity_terms", VECTOR, "g(q)", principal=True, unit="effort", shape=(N,)),
         _k("generalized_forces", JOINT_MAP, "actuator plus external forces, per joint",
-           principal=True),
+           principal=True, unit="effort"),
         _k("equations", EQUATIONS, "one equation per joint", numeric=False),
         _k("kinetic_energy", BODY_MAP, "T per body and total"),
         _k("potential_energy", BODY_MAP, "U per body and total"),
@@ -38,4 +69,5 @@ TYPE = QuestionType(
     ),
     cost=0.7, cost_growth=2.5, unit="dynamics",
     check=_check,
+    notebook_cells=notebook_cell,
 )

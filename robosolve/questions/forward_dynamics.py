@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import EQUATIONS, JOINT_MAP, RECORD, SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, literal, robosolve_numbers, text
 
 
 def _check(ql, path, item, q):
@@ -22,19 +23,59 @@ def _check(ql, path, item, q):
                          f"parameters only: give the starting value of '{key}' in `start` "
                          "(joint values and <joint>_dot rates)")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the start state, actuator laws and duration."""
+    o = q.options
+    start = o.get("start")
+    text = ("Starting " + (f"from {say.joint_values(start)}" if start else "at rest at zero")
+            + (f", with the actuators {say.joint_values(o['actuators'])}" if o.get("actuators")
+               else ", with no actuator action")
+            + f", the robot moves for {say.value(o['duration'])} s under the bodies, forces and "
+            "gravity of the data.")
+    return text + " Give each joint's value at the end, and its largest and smallest values over the run."
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    laws = {str(k): text(v) for k, v in (q.options.get("actuators") or {}).items()}
+    actuators = {str(j.actuator) for j in problem.joints}
+    if any(a not in actuators for a in laws):
+        return None
+    start = q.options.get("start") or {}
+    names = [j.name for j in problem.joints]
+    q0 = [text(start.get(n, 0)) for n in names]
+    v0 = [text(start.get(f"{n}_dot", 0)) for n in names]
+    keys = ["final", "final_velocity", "max", "min"]
+    return lines(
+        f"at = {at_literal(q)}",
+        "# M(q) q'' + c + g = tau + Q with the actuator laws, integrated by Dormand-Prince 5(4)",
+        f"laws = {literal(laws)}",
+        "numbers = lambda texts: [robot.number(robot.parse(x), at) for x in texts]",
+        f"duration = robot.number(robot.parse({text(q.options['duration'])!r}), at)",
+        f"times, qs, rates = forward_run(robot, laws, numbers({literal(q0)}), numbers({literal(v0)}), duration, at)",
+        robosolve_numbers(answer, keys),
+        "low, high = extremes(times, qs, rates)",
+        *guarded(answer, ("final", compare_line("final", f"dict(zip({names!r}, qs[-1]))", rtol=1e-6)),
+                  ("final_velocity", compare_line("final_velocity", f"dict(zip({names!r}, rates[-1]))", rtol=1e-6)),
+                  ("max", compare_line("max", f"dict(zip({names!r}, high))", rtol=1e-6)),
+                  ("min", compare_line("min", f"dict(zip({names!r}, low))", rtol=1e-6))),
+        "plot_joints(times, qs, " + literal(names) + ")",
+    )
+
 
 TYPE = QuestionType(
     "forward_dynamics", "Forward dynamics (the motion under given actuators)", "§6.5",
+    statement=_statement,
     options={"start": V.v_start_state, "actuators": V.v_actuator_laws, "duration": V.v_duration},
     required=("duration",),
     needs_dynamics=True,
     answers=(
         # the run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio): 10 digits
-        _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, symbolic=False,
+        _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, unit="joint", symbolic=False,
            digits=10),
-        _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True,
+        _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True, unit="joint",
            symbolic=False, digits=10),
-        _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True,
+        _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True, unit="joint",
            symbolic=False, digits=10),
         _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False, digits=10),
         _k("energy", RECORD, "total energy T + U", symbolic=False, fields=(
@@ -46,4 +87,5 @@ TYPE = QuestionType(
     figures=(("joint_<name>", "forward_dynamics"),),
     cost=0.2, cost_growth=2.5, unit="dynamics",
     check=_check, integrates=True, time_use=(1, "a forward_dynamics run"), time_laws="actuators",
+    notebook_cells=notebook_cell,
 )

@@ -2,19 +2,77 @@
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.load import validators as V
 from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MAP_SET, TEXT, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, text
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    target = q.options.get("target") or []
+    if not target:
+        return None
+    limits = []
+    for j in problem.joints:
+        lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-10, 10))
+        limits.append([text(lo), text(hi)])
+    residual = [f"({text(lhs)}) - ({text(rhs)})" for _, lhs, rhs in target]
+    names = [j.name for j in problem.joints]
+    want = {"solutions": sorted(answer.numeric.get("solutions") or [], key=lambda s: tuple(s.values()))}
+    code = [
+        f"at = {at_literal(q)}",
+        "# Newton iterations (least-squares steps) from a grid of starts, kept within the joint limits",
+        f"task = robot.vector({literal([text(lhs) for _, lhs, _ in target])})",
+        f"residual = (task - robot.vector({literal([text(rhs) for _, _, rhs in target])})).subs(robot.fixed(at))",
+        f"limits = [[robot.number(robot.parse(x), at) for x in pair] for pair in {literal(limits)}]",
+        f"solutions = newton_solutions(residual, robot.joints, limits, {literal([j.kind == 'revolute' for j in problem.joints])})",
+        "# (at a workspace boundary a solution is a double root: Newton then finds it to ~1e-7 only)",
+        f"compare('solutions', [dict(zip({names!r}, s)) for s in solutions], robosolve['solutions'], atol=1e-6)",
+    ]
+    velocity = q.options.get("velocity")
+    if velocity and "q_dot" in answer.numeric and answer.numeric.get("selected"):
+        want["selected"] = answer.numeric["selected"]
+        want["q_dot"] = answer.numeric["q_dot"]
+        code += [
+            "# velocity IK at the solution robosolve selected: J(q) q' = v",
+            "selected = robosolve['selected']",
+            "if solutions:",
+            "    selected = dict(zip(" + repr(names) + ", min(solutions, key=lambda s: np.linalg.norm(s - list(selected.values())))))",
+            f"v = robot.number(robot.vector({literal([text(v) for _, _, v in velocity])}), at).ravel()",
+            f"rates_of = robot.vector({literal([text(lhs) for _, lhs, _ in velocity])})",
+            "Jq = robot.number(rates_of.jacobian(robot.joints), {**at, **{k: repr(float(x)) for k, x in selected.items()}})",
+            "q_dot = np.linalg.lstsq(Jq, v, rcond=None)[0]",
+            compare_line("q_dot", f"dict(zip({names!r}, q_dot))"),
+        ]
+    return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
+
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the target, the velocity and the selection."""
+    o = q.options
+    target = ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in o["target"])
+    text = (f"Find every configuration ({say.joints()}) within the joint limits that puts {target}"
+            " (none, if the target cannot be reached)")
+    if "velocity" in o:
+        wanted = ", ".join(f"$\\dot{{{say.tex(lhs)}}} = {say.tex(rhs)}$" for _, lhs, rhs in o["velocity"])
+        select = o.get("select")
+        which = (f"the solution nearest to {say.joint_values(select)}" if isinstance(select, dict)
+                 else "the selected solution")
+        text += f"; at {which}, the joint rates giving {wanted}"
+    return text + "."
 
 
 TYPE = QuestionType(
     "inverse_kinematics", "Inverse kinematics", "§8 question 6",
+    statement=_statement,
     options={"target": V.v_equations, "velocity": V.v_equations, "select": V.v_select},
     required=("target",),
     defaults={"select": "limits"},
     answers=(
         _k("solutions", JOINT_MAP_SET, "every solution within the limits, sorted",
-           principal=True, angle=True, unordered=True, symbolic=False),
-        _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True,
+           principal=True, unit="joint", angle=True, unordered=True, symbolic=False),
+        _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True, unit="joint/s",
            symbolic=False),
         _k("selected", JOINT_MAP, "the selected solution", angle=True, symbolic=False),
         _k("closed_form", JOINT_MAP_LIST, "closed-form solution branches", numeric=False),
@@ -22,6 +80,8 @@ TYPE = QuestionType(
         _k("reason", TEXT, "why there is no solution", top=True),
     ),
     figures=(("solutions", "ik_solutions"),),
+    paper_keys=lambda options, joints: ("solutions",) + (("q_dot",) if "velocity" in options else ()),
     cost=0.8,
     reaches=True,
+    notebook_cells=notebook_cell,
 )

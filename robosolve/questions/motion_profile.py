@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP, SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import compare_line, guarded, lines, profile_lines, robosolve_numbers
 
 
 def _check(ql, path, item, q):
@@ -20,20 +21,49 @@ def _check(ql, path, item, q):
                 chk.error(path + (key, name), f"must be positive, got {item[key][name]!r}"
                           + (f" (= {value:g})" if not v.is_number else ""))
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the start, goal, limits and shape."""
+    o = q.options
+    shape = o.get("shape", "bang-bang")
+    text = (f"The joints move from {say.joint_values(o['from'])} to {say.joint_values(o['to'])}, "
+            f"synchronized, each with a {shape} profile and the maximum accelerations "
+            f"{say.per_joint(o['max_acceleration'], 'joint/s²')}")
+    if "max_velocity" in o:
+        text += f" and maximum velocities {say.per_joint(o['max_velocity'], 'joint/s')}"
+    return (text + ". Compute the duration of each joint alone at its limits, the synchronized "
+            "duration $T$, and the accelerations the joints use to finish together.")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    names = [j.name for j in problem.joints]
+    keys = ["durations", "T", "accelerations", "velocities"]
+    return lines(
+        *profile_lines(q, problem),
+        "# each joint alone needs its own time; all end together at T, the largest",
+        robosolve_numbers(answer, keys),
+        *guarded(answer, ("durations", compare_line("durations", f"dict(zip({names!r}, profile.durations))")),
+                  ("T", compare_line("T", "profile.T")),
+                  ("accelerations", compare_line("accelerations", f"dict(zip({names!r}, profile.accelerations))")),
+                  ("velocities", compare_line("velocities", f"dict(zip({names!r}, profile.velocities))"))),
+    )
+
 
 TYPE = QuestionType(
     "motion_profile", "Motion profile", "§8 question 7",
+    statement=_statement,
     options={"from": V.v_joint_values, "to": V.v_joint_values, "max_acceleration": V.v_joint_values,
              "shape": V.v_shape, "max_velocity": V.v_joint_values},
     required=("from", "to", "max_acceleration"),
     defaults={"shape": "bang-bang"},
     answers=(
-        _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True),
-        _k("T", SCALAR, "the synchronized duration", principal=True),
-        _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True),
+        _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True, unit="s"),
+        _k("T", SCALAR, "the synchronized duration", principal=True, unit="s"),
+        _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True, unit="joint/s²"),
         _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", numeric=False),
     ),
     figures=(("profile", "motion_profile"),),
     cost=0.1, unit="dynamics",
     check=_check, makes_profile=True,
+    notebook_cells=notebook_cell,
 )

@@ -12,6 +12,7 @@ import sympy as sp
 from robosolve.load import validators as V
 from robosolve.load.expressions import ExpressionError, point_symbol
 from robosolve.questions.schema import CONTROL_MAP, COORDINATE_MAP, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id, robosolve_numbers, text
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 
@@ -106,8 +107,71 @@ def _qt(q):
     return QUESTION_TYPES.get(q.type)
 
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the profile, law, gains, start and duration."""
+    o = q.options
+    laws = {"p": "a proportional", "pd": "a PD", "pd_gravity": "a PD with gravity compensation",
+            "computed_torque": "a computed-torque"}
+    if "trajectory" in o:
+        return _task_statement(q, say)
+    text = (f"The robot follows the motion of {say.question_number(o['profile'])} under "
+            f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller with the gains "
+            f"$K_p$ {say.per_joint(o['gains'])}")
+    if "gains_d" in o:
+        text += f" and $K_d$ {say.per_joint(o['gains_d'])}"
+    if "start" in o:
+        text += f", starting from {say.joint_values(o['start'])}"
+    if "duration" in o:
+        text += f", for {say.value(o['duration'])} s"
+    return (text + ". Simulate the closed loop; give, for each joint, the largest tracking error "
+            "$|e|$ over the run and the signed error at the end.")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    o = q.options
+    if "profile" not in o and o.get("trajectory") is not None:
+        return None                                  # a work-space reference: not rebuilt here
+    pq = question_by_id(problem, o["profile"])
+    if "max_error" not in answer.numeric:
+        return None
+    names = [j.name for j in problem.joints]
+
+    def gains(key):
+        return f"numbers({literal([text(o[key][n]) for n in names])})" if key in o else "None"
+
+    duration = f"robot.number(robot.parse({text(o['duration'])!r}), at)" if "duration" in o else "None"
+    return lines(
+        "# the reference followed (its profile question)",
+        *profile_lines(pq, problem),
+        f"at = {at_literal(q)}",
+        f"law = {o.get('law', 'p')!r}",
+        f"kp, kd, start = {gains('gains')}, {gains('gains_d')}, {gains('start')}",
+        f"max_error, t_max_error, final_error, times, errors = simulate_control(robot, profile, law, kp, kd, "
+        f"start, {duration}, at)",
+        robosolve_numbers(answer, ["max_error", "t_max_error", "final_error"]),
+        compare_line("max_error", f"dict(zip({names!r}, max_error))", rtol=1e-4),
+        f"compare('final_error', dict(zip({names!r}, final_error)), robosolve['final_error'], rtol=1e-3, atol=1e-7)",
+        "plot_errors(times, errors, " + literal(names) + ", law)",
+    )
+
+
+def _task_statement(q, say) -> str:
+    """The statement of a run along a work-space trajectory."""
+    o = q.options
+    law = o.get("law", "p")
+    scheme = ("the actual work-space scheme, " + {"task_pd_gravity": "a PD on the task error through J^T "
+              "with gravity compensation", "task_computed_torque": "a resolved-acceleration computed torque"}[law]
+              if law in TASK_LAWS else f"the ideal work-space scheme (the path converted to joint references, "
+              f"then a {law} joint law)")
+    return (f"The end effector follows the path of {say.question_number(o['trajectory'])} under {scheme}. "
+            "Simulate the closed loop; give the largest error and the signed error at the end, and the "
+            "largest error of each task coordinate.")
+
+
 TYPE = QuestionType(
     "p_control", "Closed-loop control", "§8 question 10",
+    statement=_statement,
     options={"profile": V.v_profile_ref, "trajectory": v_trajectory_ref, "gains": v_gains,
              "law": v_control_law, "gains_d": v_gains, "start": V.v_joint_values, "duration": V.v_expr},
     required=("gains",),
@@ -116,9 +180,9 @@ TYPE = QuestionType(
     answers=(
         # the simulation is accurate to ~1e-6 relative: 6 digits, the same on every machine
         _k("max_error", CONTROL_MAP, "max |e| over the run (per coordinate for a task law)", principal=True,
-           symbolic=False, digits=6),
+           unit="joint", symbolic=False, digits=6),
         _k("final_error", CONTROL_MAP, "signed e at the end (per coordinate for a task law)", principal=True,
-           symbolic=False, digits=6),
+           unit="joint", symbolic=False, digits=6),
         _k("max_task_error", COORDINATE_MAP, "coordinate -> max |x_d - x| along a trajectory",
            symbolic=False, digits=6),
         _k("t_max_error", CONTROL_MAP, "time of the largest |e|", symbolic=False, digits=6),
@@ -126,4 +190,5 @@ TYPE = QuestionType(
     figures=(("tracking", "control_tracking"), ("effort", "control_effort"), ("task", "control_tracking")),
     cost=1.3, unit="dynamics",
     check=_check, resolve=_resolve, integrates=True, uses_profile=True, time_use=(2, "a p_control simulation"),
+    notebook_cells=notebook_cell,
 )

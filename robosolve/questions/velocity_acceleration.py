@@ -4,16 +4,42 @@ Velocity and acceleration; its options, checks and answer schema.
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.questions.schema import MATRIX, VECTOR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    return lines(
+        f"at = {at_literal(q)}",
+        "# W = M' M^-1 and H = M'' M^-1 of 0M (in frame 0); a point's velocity W P, acceleration H P",
+        f"W, H = robot.velocity_matrices({q.frame!r})",
+        f"P = sp.Matrix([*robot.point0({q.point!r}), 1])",
+        robosolve_numbers(answer, ["W", "H", "velocity", "acceleration"]),
+        *guarded(answer, ("W", compare_line("W", "robot.number(W, at)")),
+                  ("H", compare_line("H", "robot.number(H, at)")),
+                  ("velocity", compare_line("velocity", "robot.number(W * P, at).ravel()[:3]")),
+                  ("acceleration", compare_line("acceleration", "robot.number(H * P, at).ravel()[:3]"))),
+    )
+
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the question's point, frame and `at`."""
+    at = say.at(q)
+    return (f"Compute the velocity and the acceleration of {say.point(q)} in frame 0 and the angular "
+            f"velocity of {say.frame(q)} in frame 0" + (f", {at}" if at else "")
+            + " (symbolic in the joint variables and their rates, or the numbers of this configuration).")
 
 
 TYPE = QuestionType(
     "velocity_acceleration", "Velocity and acceleration", "§8 question 2",
+    statement=_statement,
     options={},
     answers=(
-        _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, shape=(3,)),
-        _k("acceleration", VECTOR, "acceleration of the point in frame 0", principal=True, shape=(3,)),
-        _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, shape=(3,)),
+        _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, unit="m/s", shape=(3,)),
+        _k("acceleration", VECTOR, "acceleration of the point in frame 0", principal=True, unit="m/s²", shape=(3,)),
+        _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, unit="rad/s", shape=(3,)),
         _k("angular_acceleration", VECTOR, "ω̇ of the frame in frame 0", shape=(3,)),
         _k("W", MATRIX, "W₀ₖ = Ṁ M⁻¹, expressed in frame 0", shape=(4, 4)),
         _k("H", MATRIX, "H₀ₖ = M̈ M⁻¹ = Ẇ + W², expressed in frame 0", shape=(4, 4)),
@@ -21,4 +47,5 @@ TYPE = QuestionType(
         _k("H_aux", MATRIX, "H in the auxiliary frame", shape=(4, 4)),
     ),
     cost=0.8, cost_growth=2,
+    notebook_cells=notebook_cell,
 )

@@ -71,7 +71,7 @@ def test_joint_torques_peaks_by_hand():
     # the closed forms hold the arm after T: gravity of the final pose and the force
     import sympy as sp
     pw = a.symbolic["profiles"]["C1"]
-    t = sp.Symbol("t")
+    from robosolve.core.symbols import TIME as t
     # final pose: link 1 vertical (no gravity moment), link 2 at pi/6 from horizontal; F stays
     # perpendicular to link 2, so its moment about joint 1 is F (L1 cos(theta2) + L2/2)
     hold = 9.81 * 0.4 * 2.5 * math.cos(math.pi / 6) + 5 * (0.5 * math.cos(-math.pi / 3) + 0.2)
