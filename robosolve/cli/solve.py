@@ -23,6 +23,7 @@ def solve(
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
     from robosolve.render.drawing import figure_drawer
+    from robosolve.run.pipeline import check_inputs
 
     formats = parse_formats(format)
 
@@ -30,7 +31,7 @@ def solve(
     problems, status = [], ExitStatus.OK
     for f in files:
         try:
-            problems.append(load_problem(f))
+            problems.append(check_inputs(load_problem(f)))
         except InputError as exc:
             err(str(exc))
             status = ExitStatus.INPUT

@@ -14,11 +14,12 @@ from robosolve.errors import ExitStatus, InputError
 def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).")) -> None:
     """Check problem files without solving them (exit 2 on any problem)."""
     from robosolve.load.loader import load_problem
+    from robosolve.run.pipeline import check_inputs
 
     status = ExitStatus.OK
     for f in files:
         try:
-            p = load_problem(f)
+            p = check_inputs(load_problem(f))
             out(f"{f}: ok ({len(p.questions)} questions)")
         except InputError as exc:
             err(str(exc))

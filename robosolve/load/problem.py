@@ -90,6 +90,7 @@ class Question:
     marks: object = 1                               # weight when graded (sympy Rational or Float)
     grade: tuple = ()                               # graded answer keys (dotted); () = principal
     text: str | None = None                         # the teacher's wording on the paper (papers.md)
+    lines: dict = field(default_factory=dict)       # option key -> its line in the file
 
 
 @dataclass

@@ -101,6 +101,7 @@ class _QuestionLoader:
         if "text" in item:
             from robosolve.load.paper import question_text
             q.text = question_text(self.chk, path + ("text",), item["text"], self.b.parameters)
+        q.lines = {str(k): chk.src.line(path + (k,)) for k in item}
         for key, validator in schema.items():
             if key in item:
                 v = validator(self, path + (key,), item[key], q)
@@ -164,7 +165,9 @@ class _QuestionLoader:
         source = self.profile_type
         profiles = [q for q in questions if QUESTION_TYPES[q.type].makes_profile]
         for q in questions:
-            if not QUESTION_TYPES[q.type].uses_profile:
+            if QUESTION_TYPES[q.type].resolve is not None:
+                QUESTION_TYPES[q.type].resolve(self, q, questions)
+            if not QUESTION_TYPES[q.type].uses_profile or "trajectory" in q.options:
                 continue
             ref = q.options.get("profile")
             if ref is None:

@@ -1,10 +1,48 @@
-"""The `p_control` question type (Closed-loop control): options, checks, answer schema."""
+"""The `p_control` question type (Closed-loop control): options, checks, answer schema.
+
+With a `trajectory` (the id of a work-space trajectory question), the joint laws follow the
+trajectory converted by inverse kinematics (the ideal work-space scheme) and the task laws
+use the error in the task coordinates (the actual scheme); their gains are keyed by coordinate.
+"""
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.load import validators as V
-from robosolve.questions.schema import JOINT_MAP, QuestionType, _k
+from robosolve.load.expressions import ExpressionError, point_symbol
+from robosolve.questions.schema import CONTROL_MAP, COORDINATE_MAP, QuestionType, _k
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id, robosolve_numbers, text
+
+TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
+
+
+def v_control_law(ql, path, value, q):
+    return V._choice(ql, path, value, V.LAWS + TASK_LAWS)
+
+
+def v_gains(ql, path, value, q):
+    """A mapping joint -> gain, or (task laws) coordinate -> gain: {"coordinates": [(text, expr, gain)]}."""
+    if isinstance(value, dict) and value and not any(k in ql.joint_names for k in value):
+        out = []
+        for key, v in value.items():
+            try:
+                lhs = ql.b.ns_points.parse_text(str(key))
+            except ExpressionError as exc:
+                ql.chk.error(path + (key,), str(exc))
+                continue
+            e = ql.chk.expr(path + (key,), v, ql.params_ns)
+            if e is not None:
+                out.append((str(key), lhs, e))
+        return {"coordinates": out} if len(out) == len(value) else None
+    return V.v_joint_values(ql, path, value, q)
+
+
+def v_trajectory_ref(ql, path, value, q):
+    if not isinstance(value, str):
+        ql.chk.error(path, f"expected the id of a {ql.type_name('makes_trajectory')} question")
+        return None
+    return value
 
 
 def _check(ql, path, item, q):
@@ -13,12 +51,69 @@ def _check(ql, path, item, q):
         ql.chk.error(path, f"law {law} needs gains_d")
     if law == "p" and "gains_d" in item:
         ql.chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
+    if "trajectory" in item and "profile" in item:
+        ql.chk.error(path + ("profile",), "give either a profile (joint space) or a trajectory (work space)")
+    if law in TASK_LAWS and "trajectory" not in item:
+        ql.chk.error(path + ("law",), f"law {law} works on a work-space `trajectory` (give its id)")
+    for key in ("gains", "gains_d"):
+        by_coord = isinstance(q.options.get(key), dict) and "coordinates" in q.options[key]
+        if key in q.options and by_coord != (law in TASK_LAWS):
+            ql.chk.error(path + (key,), "the task laws take gains per coordinate (e.g. {E.y: 2000}), the joint "
+                         "laws per joint" if law in TASK_LAWS else
+                         f"law {law} takes gains per joint (joints: {', '.join(ql.joint_names)})")
+
+
+def _coords(tq) -> list:
+    raw = tq.options.get("coordinates")
+    return list(raw) if raw else [point_symbol(tq.point, a) for a in "xyz"]
+
+
+def _resolve(ql, q, questions):
+    """The trajectory reference, and the task gains against its coordinates."""
+    ref = q.options.get("trajectory")
+    if ref is None:
+        return
+    base = ("questions", q.index)
+    trajs = [t for t in questions if getattr(_qt(t), "makes_trajectory", False)]
+    target = next((t for t in trajs if t.id == ref), None)
+    if target is None:
+        ql.chk.error(base + ("trajectory",), f"no {ql.type_name('makes_trajectory')} question with id '{ref}'"
+                     + V.did_you_mean(ref, [t.id for t in trajs]))
+        return
+    law = q.options.get("law", "p")
+    if law not in TASK_LAWS:
+        return
+    coords = _coords(target)
+    texts = [str(c) for c in coords]
+    if law == "task_computed_torque" and len(coords) != len(ql.joint_names):
+        ql.chk.error(base + ("law",), f"task_computed_torque needs a square J: the trajectory '{ref}' has "
+                     f"{len(coords)} coordinates for {len(ql.joint_names)} joints (use task_pd_gravity)")
+    for key in ("gains", "gains_d"):
+        gains = q.options.get(key)
+        if not isinstance(gains, dict) or "coordinates" not in gains:
+            continue
+        unknown = [t for t, lhs, _v in gains["coordinates"] if not any(sp.expand(lhs - c) == 0 for c in coords)]
+        for text in unknown:
+            ql.chk.error(base + (key, text), f"the trajectory '{ref}' has no coordinate '{text}' "
+                         f"(its coordinates: {', '.join(texts)})" + V.did_you_mean(text, texts))
+        for c, t in zip(coords, texts):
+            if not unknown and not any(sp.expand(lhs - c) == 0 for _t, lhs, _v in gains["coordinates"]):
+                ql.chk.error(base + (key,), f"missing the gain of the coordinate {t}")
+
+
+def _qt(q):
+    from robosolve.questions.registry import QUESTION_TYPES
+
+    return QUESTION_TYPES.get(q.type)
+
 
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the profile, law, gains, start and duration."""
     o = q.options
     laws = {"p": "a proportional", "pd": "a PD", "pd_gravity": "a PD with gravity compensation",
             "computed_torque": "a computed-torque"}
+    if "trajectory" in o:
+        return _task_statement(q, say)
     text = (f"The robot follows the motion of {say.question_number(o['profile'])} under "
             f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller with the gains "
             f"$K_p$ {say.per_joint(o['gains'])}")
@@ -61,24 +156,39 @@ def notebook_cell(q, answer, problem):
     )
 
 
+def _task_statement(q, say) -> str:
+    """The statement of a run along a work-space trajectory."""
+    o = q.options
+    law = o.get("law", "p")
+    scheme = ("the actual work-space scheme, " + {"task_pd_gravity": "a PD on the task error through J^T "
+              "with gravity compensation", "task_computed_torque": "a resolved-acceleration computed torque"}[law]
+              if law in TASK_LAWS else f"the ideal work-space scheme (the path converted to joint references, "
+              f"then a {law} joint law)")
+    return (f"The end effector follows the path of {say.question_number(o['trajectory'])} under {scheme}. "
+            "Simulate the closed loop; give the largest error and the signed error at the end, and the "
+            "largest error of each task coordinate.")
+
+
 TYPE = QuestionType(
     "p_control", "Closed-loop control", "§8 question 10",
     statement=_statement,
-    options={"profile": V.v_profile_ref, "gains": V.v_joint_values, "law": V.v_law,
-             "gains_d": V.v_joint_values, "start": V.v_joint_values, "duration": V.v_expr},
+    options={"profile": V.v_profile_ref, "trajectory": v_trajectory_ref, "gains": v_gains,
+             "law": v_control_law, "gains_d": v_gains, "start": V.v_joint_values, "duration": V.v_expr},
     required=("gains",),
     defaults={"law": "p"},
     needs_dynamics=True,
     answers=(
         # the simulation is accurate to ~1e-6 relative: 6 digits, the same on every machine
-        _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, unit="joint", symbolic=False,
-           digits=6),
-        _k("final_error", JOINT_MAP, "signed e at the end", principal=True, unit="joint", symbolic=False,
-           digits=6),
-        _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False, digits=6),
+        _k("max_error", CONTROL_MAP, "max |e| over the run (per coordinate for a task law)", principal=True,
+           unit="joint", symbolic=False, digits=6),
+        _k("final_error", CONTROL_MAP, "signed e at the end (per coordinate for a task law)", principal=True,
+           unit="joint", symbolic=False, digits=6),
+        _k("max_task_error", COORDINATE_MAP, "coordinate -> max |x_d - x| along a trajectory",
+           symbolic=False, digits=6),
+        _k("t_max_error", CONTROL_MAP, "time of the largest |e|", symbolic=False, digits=6),
     ),
-    figures=(("tracking", "control_tracking"), ("effort", "control_effort")),
+    figures=(("tracking", "control_tracking"), ("effort", "control_effort"), ("task", "control_tracking")),
     cost=1.3, unit="dynamics",
-    check=_check, integrates=True, uses_profile=True, time_use=(2, "a p_control simulation"),
+    check=_check, resolve=_resolve, integrates=True, uses_profile=True, time_use=(2, "a p_control simulation"),
     notebook_cells=notebook_cell,
 )

@@ -17,7 +17,7 @@ from __future__ import annotations
 import importlib
 
 from robosolve.questions.schema import (  # noqa: F401  (the vocabulary, re-exported)
-    ACTUATOR_MAP, ACTUATOR_RECORDS, AXES, BODY_MAP, BOOL, EQUATIONS, JOINT_MAP, JOINT_MAP_LIST,
+    ACTUATOR_MAP, ACTUATOR_RECORDS, AXES, CONTROL_MAP, COORDINATE_MAP, BODY_MAP, BOOL, EQUATIONS, JOINT_MAP, JOINT_MAP_LIST,
     JOINT_MAP_SET, KINDS, MATRIX, MATRIX_LIST, MATRIX_MAP, RECORD, SCALAR, TEXT, VECTOR, VECTOR_SET,
     AnswerKey, M, N, QuestionType, R,
 )
@@ -25,7 +25,7 @@ from robosolve.questions.schema import (  # noqa: F401  (the vocabulary, re-expo
 # The type modules, in the order of the course (the order of every listing of the types).
 MODULES = (
     "position", "velocity_acceleration", "jacobian", "statics", "ellipsoids", "inverse_kinematics",
-    "motion_profile", "equations_of_motion", "joint_torques", "p_control", "forward_dynamics",
+    "motion_profile", "task_trajectory", "equations_of_motion", "joint_torques", "p_control", "forward_dynamics",
     "displacement", "orientation", "dof",
 )
 

@@ -18,6 +18,8 @@ MATRIX = "matrix"                 # list of rows; `shape` = (rows, cols)
 MATRIX_LIST = "matrix_list"       # list of matrices (e.g. the chain ⁰M₁, ¹M₂, …)
 JOINT_MAP = "joint_map"           # joint name -> scalar, in joint order
 ACTUATOR_MAP = "actuator_map"     # actuator name -> scalar, in joint order
+COORDINATE_MAP = "coordinate_map"  # task coordinate (as written, "E.y") -> scalar, in the question's order
+CONTROL_MAP = "control_map"       # a JOINT_MAP, or a COORDINATE_MAP for a work-space control law
 BODY_MAP = "body_map"             # body name -> scalar, plus `total`
 MATRIX_MAP = "matrix_map"         # name -> matrix (e.g. body -> 3xn Jacobian)
 JOINT_MAP_SET = "joint_map_set"   # set of joint mappings (IK solutions, singularities)
@@ -30,7 +32,7 @@ ACTUATOR_RECORDS = "actuator_records"  # actuator name -> record (`fields`)
 BOOL = "bool"
 TEXT = "text"
 
-KINDS = (SCALAR, VECTOR, MATRIX, MATRIX_LIST, JOINT_MAP, ACTUATOR_MAP, BODY_MAP, MATRIX_MAP,
+KINDS = (SCALAR, VECTOR, MATRIX, MATRIX_LIST, JOINT_MAP, ACTUATOR_MAP, COORDINATE_MAP, CONTROL_MAP, BODY_MAP, MATRIX_MAP,
          JOINT_MAP_SET, JOINT_MAP_LIST, VECTOR_SET, AXES, EQUATIONS, RECORD, ACTUATOR_RECORDS,
          BOOL, TEXT)
 
@@ -122,12 +124,18 @@ class QuestionType:
     # The type's own cross-field checks, called by the question loader after the options are
     # parsed: check(ql, path, item, question) reports with ql.chk.error (load/questions.py).
     check: Callable | None = None
+    # Its checks across questions, after every question is loaded: resolve(ql, question, questions)
+    # (references to other questions by id, beyond the `profile` of `uses_profile`).
+    resolve: Callable | None = None
     needs_joints: bool = True      # with a robot, it needs joints (False: frames alone will do)
     integrates: bool = False       # integrates the motion: the mass matrix must be invertible
+    makes_trajectory: bool = False  # its answer is a work-space trajectory (a control question follows it)
     makes_profile: bool = False    # its answer is a motion profile other questions refer to
     uses_profile: bool = False     # refers to a profile question by id (`profile` option)
     has_jacobian: bool = False     # its answer has a Jacobian J at the question's `at`
     reaches: bool = False          # it searches configurations reaching a target (`reachable`)
+    model_checked: bool = False    # its solver's `check_input(question, ctx)` finds input mistakes
+                                   #   only the robot's model shows (run/pipeline.py check_inputs)
     # (rank, phrase): where time-varying forces are followed, in the loader's message that
     # refuses `t` elsewhere ("a simulation run"); time_laws: its option whose values
     # may use t

@@ -58,7 +58,9 @@ def solve_task(task: dict):
 
     file = task["file"]
     try:
-        problem = load_problem_text(task["text"], file)
+        from robosolve.run.pipeline import check_inputs
+
+        problem = check_inputs(load_problem_text(task["text"], file))
     except InputError as exc:
         return FileResult(file, status=ExitStatus.INPUT, messages=[str(i) for i in exc.issues],
                           version=robosolve.__version__)

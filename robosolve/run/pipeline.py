@@ -27,6 +27,33 @@ class Report:
         return ExitStatus.ANSWER_ERROR if any(a.error is not None for a in self.answers) else ExitStatus.OK
 
 
+def check_inputs(problem: Problem) -> Problem:
+    """The input mistakes only the robot's model shows (the types with `model_checked`: their
+    solver's `check_input`), raised as an InputError (FILE:LINE, exit 2); the problem otherwise."""
+    import importlib
+
+    from robosolve.errors import InputError, InputIssue
+    from robosolve.load.loader import path_str
+    from robosolve.questions.registry import QUESTION_TYPES
+
+    checked = [q for q in problem.questions if QUESTION_TYPES[q.type].model_checked]
+    if not checked or not problem.has_robot:
+        return problem
+    from robosolve.model import RobotModel
+    from robosolve.solvers.base import SolveContext
+
+    ctx = SolveContext(problem, RobotModel(problem))
+    issues = []
+    for q in checked:
+        module = importlib.import_module(QUESTION_TYPES[q.type].solver_module)
+        for key, message in module.check_input(q, ctx):
+            issues.append(InputIssue(problem.file, q.lines.get(key, q.line),
+                                     path_str(("questions", q.index, key)), message))
+    if issues:
+        raise InputError(issues)
+    return problem
+
+
 def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = False) -> Report:
     """Answer every question; `budgets` (solvers.base.Budgets) bounds the symbolic work, each
     question (`question_seconds`) and the whole file (`file_seconds`). Each answer's figures

@@ -108,6 +108,7 @@ class SolveContext:
         self.budgets = budgets or Budgets()
         self.answers: dict[str, Answer] = {}      # earlier answers, by question id
         self._profiles: dict[str, SyncProfile] = {}
+        self._trajectories: dict = {}
 
     @property
     def step_seconds(self) -> float:
@@ -127,6 +128,18 @@ class SolveContext:
         if prof is None:
             raise SolverError(f"the motion profile '{qid}' has no answer")
         return prof
+
+    def record_trajectory(self, qid: str, trajectory) -> None:
+        """The converted work-space trajectory of the work-space trajectory question `qid`."""
+        self._trajectories[qid] = trajectory
+
+    def trajectory(self, qid: str):
+        """The trajectory of `qid` (its solver's `TaskTrajectory`); SolverError when
+        it has no answer."""
+        tr = self._trajectories.get(qid)
+        if tr is None:
+            raise SolverError(f"the task trajectory '{qid}' has no answer")
+        return tr
 
     # -- dynamics (one derivation per model, cached by the bridge) --------
     def dynamics(self) -> Dynamics | None:

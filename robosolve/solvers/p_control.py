@@ -73,12 +73,14 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     opts = question.options
     ref = opts.get("profile")
-    prof = ctx.profile(ref)
+    prof = ctx.profile(ref) if "trajectory" not in opts else None
     ans = Answer(question.type, question.id)
     subs = ctx.substitutions(question.at)
     joints = model.joints
     names = [j.name for j in joints]
     law = opts.get("law", "p")
+    if prof is None:
+        return _solve_trajectory(question, ctx, ans, subs, law)
     if not prof.T.is_number:
         ans.note(missing_note("simulation", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
         return ans
@@ -169,3 +171,111 @@ def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
                                  "external": _external_series(res, i, r)}
                                 for i, j in enumerate(joints)]),
     ))
+
+
+# -- along a work-space trajectory (course summary §1.2.2) ---------------------------------
+def _task_gains(opts, key, traj):
+    given = opts[key]["coordinates"]
+    return [float(next(v for _t, lhs, v in given if sp.expand(lhs - c) == 0)) for c in traj.coords]
+
+
+def _solve_trajectory(question, ctx, ans, subs, law):
+    from robosolve.motion.task_control import TASK_LAWS, simulate_task
+
+    opts, model = question.options, ctx.model
+    traj = ctx.trajectory(opts["trajectory"])
+    names = [j.name for j in model.joints]
+    duration = _float(ctx, opts["duration"], subs, "duration") if "duration" in opts else traj.timing.T
+    start = ([_float(ctx, opts["start"][n], subs, f"start.{n}") for n in names] if "start" in opts
+             else traj.start)
+    try:
+        dyn, _ = ctx.simulation_dynamics(subs)
+    except ValueError as exc:
+        ans.note(f"numeric simulation omitted: {exc}")
+        return ans
+    task = law in TASK_LAWS
+    if task:
+        kp, kd = _task_gains(opts, "gains", traj), _task_gains(opts, "gains_d", traj)
+    else:
+        kp = [_float(ctx, opts["gains"][n], subs, f"gains.{n}") for n in names]
+        kd = [_float(ctx, opts["gains_d"][n], subs, f"gains_d.{n}") for n in names] if "gains_d" in opts else None
+    _trajectory_law_step(ans, opts["trajectory"], law, task, traj, kp, kd, duration)
+    try:
+        if task:
+            res = simulate_task(dyn, traj.arm, traj.desired, traj.timing.breaks, law, kp, kd, start, duration,
+                                samples=SAMPLES)
+            e_task, t_grid = res.error, res.t
+        else:
+            res = simulate(dyn, traj.plan(), law, kp, kd, start=start, duration=duration, samples=SAMPLES)
+            t_grid = res.t
+            xd = np.array([traj.desired(t)[0] for t in t_grid]).T
+            e_task = xd - np.array([traj.arm.x(res.q[:, k]) for k in range(t_grid.size)]).T
+    except RuntimeError as exc:
+        raise SolverError(str(exc)) from None
+    except (np.linalg.LinAlgError, ZeroDivisionError):
+        raise SolverError("a singular matrix along the run (M(q), or J for task_computed_torque: the arm "
+                          "reached a singular configuration)") from None
+    keys = traj.labels if task else names
+    ans.numeric["max_error"] = {k: float(res.max_error[i]) for i, k in enumerate(keys)}
+    ans.numeric["final_error"] = {k: _above_noise(res.final_error[i], res.max_error[i]) for i, k in enumerate(keys)}
+    ans.numeric["t_max_error"] = {k: float(res.t_max_error[i]) for i, k in enumerate(keys)}
+    max_task = res.max_error if task else np.max(np.abs(e_task), axis=1)
+    ans.numeric["max_task_error"] = {k: float(max_task[i]) for i, k in enumerate(traj.labels)}
+    rows = [[f"${traj.tex[i]}$", Num(max_task[i]), Num(e_task[i, -1])] for i in range(len(traj.labels))]
+    ans.steps.append(Step("Work-space errors", Text(
+        "The error $x_d - x(q)$ of each task coordinate along the run (largest over the ", Num(t_grid.size),
+        " output samples" + (", refined on the solver's dense output" if task else "") + ")."),
+        table=(["coordinate", "max |x_d - x|", Text("at t = ", Num(duration), " s")], rows)))
+    if not task:
+        ans.steps.append(Step("Joint errors", "", table=(["joint", "max |e|", "at t (s)", "final e"], [
+            [n, Num(res.max_error[i]), Num(res.t_max_error[i]), Num(res.final_error[i])] for i, n in enumerate(names)])))
+    _task_figure(ans, traj, t_grid, e_task, law, duration)
+    if not task:
+        syms = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in model.joints]
+        plan = traj.plan()
+        plan.breaks = np.asarray(traj.timing.breaks)     # the switching instants marked in the figure
+        _figures(ans, res, _Horizon(traj.timing.T), plan, duration, law, model.joints, syms)
+    return ans
+
+
+class _Horizon:
+    """The reference's duration, as `_figures` reads it from a profile."""
+
+    def __init__(self, T):
+        self.T = T
+
+
+TASK_LAW_TEX = {
+    "task_pd_gravity": "\\tau = J^T(q)\\,(K_p\\,e + K_d\\,\\dot e) + g(q)",
+    "task_computed_torque": "\\tau = M(q)\\,J^{-1}(q)\\,(\\ddot x_d + K_d\\,\\dot e + K_p\\,e - \\dot J\\,\\dot q) "
+                            "+ c(q, \\dot q) + g(q)",
+}
+
+
+def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration):
+    if task:
+        text = Text(f"Actual work-space scheme: the error is measured in the task coordinates, $e = x_d - x(q)$, "
+                    f"$\\dot e = \\dot x_d - J\\,\\dot q$, along the trajectory `{ref}`; gains per coordinate: ",
+                    Text.join(", ", [Text(f"$K_{{p,{t}}} = ", Num(kp[i]), f"$, $K_{{d,{t}}} = ", Num(kd[i]), "$")
+                                     for i, t in enumerate(traj.tex)]), ".")
+        eq = [("", TASK_LAW_TEX[law])]
+    else:
+        text = Text(f"Ideal work-space scheme: the trajectory `{ref}` is converted to joint references by "
+                    "inverse kinematics (its samples' $q$, $\\dot q$, $\\ddot q$, joined by quintics), and the "
+                    f"joint law follows them: {_law_sentence(law, kp)}.")
+        eq = [("", LAW_TEX[law])]
+    ans.steps.append(Step("Closed loop along the work-space trajectory", Text(
+        text, " The plant M(q) q̈ + c + g = τ + f_ext is integrated from the trajectory's start at rest over [0, ",
+        Num(duration), "] s."), equations=eq + [("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)")]))
+
+
+def _task_figure(ans, traj, t, e_task, law, duration):
+    xd = np.array([traj.desired(float(s))[0] for s in t]).T
+    ans.figures.append(FigureSpec(
+        "task", "control_tracking", f"{law} control: each task coordinate against its reference, and the error",
+        {"t": [float(v) for v in t], "T": traj.timing.T, "duration": float(duration),
+         "switches": [float(v) for v in traj.timing.breaks[1:-1] if v < duration],
+         "error_title": "error $e = x_d - x$",
+         "joints": [{"name": lab, "label": traj.tex[i], "unit": "m", "q": (xd[i] - e_task[i]).tolist(),
+                     "q_desired": xd[i].tolist(), "error": e_task[i].tolist()}
+                    for i, lab in enumerate(traj.labels)]}))

@@ -61,6 +61,12 @@ def conform(key: reg.AnswerKey, v, part, ctx):
     elif k == reg.JOINT_MAP:
         assert isinstance(v, dict) and list(v) == [j for j in ctx["joints"] if j in v], (key.name, v)
         assert all(_is_scalar(x, part) for x in v.values())
+    elif k == reg.COORDINATE_MAP or (k == reg.CONTROL_MAP and not set(v) & set(ctx["joints"])):
+        assert isinstance(v, dict) and v and all(isinstance(c, str) for c in v), (key.name, v)
+        assert all(_is_scalar(x, part) for x in v.values())
+    elif k == reg.CONTROL_MAP:
+        assert isinstance(v, dict) and list(v) == [j for j in ctx["joints"] if j in v], (key.name, v)
+        assert all(_is_scalar(x, part) for x in v.values())
     elif k == reg.ACTUATOR_MAP:
         assert isinstance(v, dict) and list(v) == [a for a in ctx["actuators"] if a in v], (key.name, v)
         assert all(_is_scalar(x, part) for x in v.values())

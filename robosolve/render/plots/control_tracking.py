@@ -1,7 +1,8 @@
 """Closed-loop tracking: each joint's actual trajectory over its desired profile (left) and the
 error e = q_d - q (right), one row per joint.
 
-Data: t, T, duration, switches, joints [{name, label, unit, q, q_desired, error}].
+Data: t, T, duration, switches, joints [{name, label, unit, q, q_desired, error}]; optional
+error_title (a work-space error: x_d - x).
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ def draw(spec, path):
         _marks(ax, d)
         ax.set_ylabel(f"$e_{{{j['label']}}}$ ({j['unit']})")
     axes[0, 0].set_title("trajectory")
-    axes[0, 1].set_title("error $e = q_d - q$")
+    axes[0, 1].set_title(d.get("error_title", "error $e = q_d - q$"))
     for ax in axes[-1]:
         ax.set_xlabel("t (s)")
     fig.suptitle(spec.title)

@@ -1,0 +1,325 @@
+"""Work-space trajectories (course summary §1.2.2): a path in the task coordinates, timed along
+its length, converted to joint motion by following one inverse-kinematics branch.
+
+Path x(s), 0 <= s <= L (arc length):
+
+* line:   x(s) = a + s u,                       u = (b - a) / L
+* circle: x(s) = c + r (cos(s/r) e1 + sin(s/r) e2), e1 = (a - c)/r, e2 in the plane of the arc,
+  the shorter way from a to b (angle phi in (0, pi], L = r phi)
+
+Timing s(t) on [0, T]: trapezoidal (accelerate at a_max, cruise at v_max, decelerate; when
+L < v_max^2 / a_max the cruise is never reached: bang-bang, T = 2 sqrt(L / a_max)) or quintic
+(s = L (10 tau^3 - 15 tau^4 + 6 tau^5), tau = t / T).
+
+Joints: at each sample, q solves x(q) = x_d(t) by Newton's method from the previous sample
+(minimum-norm steps when J is wide), then q_dot = J^+ x_dot_d and
+q_ddot = J^+ (x_ddot_d - J_dot q_dot).  Pure numpy: the arm comes in as callables.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["PathError", "Path", "line", "circle", "Timing", "trapezoidal", "quintic", "Arm",
+           "Conversion", "newton", "joint_state", "follow", "extremes"]
+
+
+class PathError(ValueError):
+    """A path that cannot be built; ``key`` names the option at fault."""
+
+    def __init__(self, message: str, key: str):
+        super().__init__(message)
+        self.key = key
+
+
+@dataclass
+class Path:
+    kind: str                       # "line" or "circle"
+    a: np.ndarray
+    b: np.ndarray
+    length: float
+    center: np.ndarray | None = None
+    radius: float = 0.0
+    angle: float = 0.0
+    e1: np.ndarray | None = None
+    e2: np.ndarray | None = None
+
+    def at(self, s: float):
+        """(x, dx/ds, d2x/ds2) at arc length s."""
+        if self.kind == "line":
+            u = (self.b - self.a) / self.length
+            return self.a + s * u, u, np.zeros_like(u)
+        r, th = self.radius, s / self.radius
+        c, sn = math.cos(th), math.sin(th)
+        x = self.center + r * (c * self.e1 + sn * self.e2)
+        d1 = -sn * self.e1 + c * self.e2
+        d2 = -(c * self.e1 + sn * self.e2) / r
+        return x, d1, d2
+
+
+def line(a, b) -> Path:
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    length = float(np.linalg.norm(b - a))
+    if not length > 0:
+        raise PathError("`from` and `to` are the same point: the path has no length", "to")
+    return Path("line", a, b, length)
+
+
+def circle(a, b, center, normal=None, rtol: float = 1e-6) -> Path:
+    """The arc from a to b about ``center``, the shorter way (``normal`` fixes the plane of a half
+    circle, and must be perpendicular to it)."""
+    a, b, c = (np.asarray(v, dtype=float) for v in (a, b, center))
+    if a.size not in (2, 3):
+        raise PathError(f"a circular path needs 2 or 3 coordinates (there are {a.size})", "path")
+    ra, rb = a - c, b - c
+    r, r2 = float(np.linalg.norm(ra)), float(np.linalg.norm(rb))
+    if not r > 0:
+        raise PathError("the centre is the `from` point itself", "path")
+    if abs(r - r2) > rtol * max(r, r2):
+        raise PathError(f"the centre is not equidistant from `from` and `to` (distances {r:.6g} "
+                        f"and {r2:.6g})", "path")
+    if np.linalg.norm(b - a) == 0:
+        raise PathError("`from` and `to` are the same point: the arc has no length", "to")
+    e1 = ra / r
+    perp = rb / r - float(np.dot(rb / r, e1)) * e1
+    cosphi = float(np.clip(np.dot(ra, rb) / (r * r), -1.0, 1.0))
+    phi = math.acos(cosphi)
+    n = None if normal is None else np.asarray(normal, dtype=float)
+    if n is not None and (a.size != 3 or not np.linalg.norm(n) > 0):
+        raise PathError("the normal is a non-zero vector of the 3 coordinates", "path")
+    if n is not None:
+        n = n / np.linalg.norm(n)
+        if abs(float(np.dot(n, e1))) > 1e-6 or abs(float(np.dot(n, rb / r))) > 1e-6:
+            raise PathError("the normal is not perpendicular to the plane of the arc", "path")
+    if np.linalg.norm(perp) > 1e-9:
+        e2 = perp / np.linalg.norm(perp)
+    elif a.size == 2:
+        e2 = np.array([-e1[1], e1[0]])          # a half circle: counter-clockwise
+    elif n is not None:
+        e2 = np.cross(n, e1)
+    else:
+        raise PathError("`from` and `to` are opposite ends of a diameter: give the circle's "
+                        "`normal` to fix its plane", "path")
+    return Path("circle", a, b, r * phi, center=c, radius=r, angle=phi, e1=e1, e2=e2)
+
+
+@dataclass
+class Timing:
+    kind: str                      # "trapezoidal", "bang-bang" or "quintic"
+    length: float
+    T: float
+    breaks: list                   # [0, ..., T]: where s_ddot jumps
+    v_peak: float = 0.0
+    a_max: float = 0.0
+    t_acc: float = 0.0
+
+    def at(self, t: float, segment: int | None = None):
+        """(s, s_dot, s_ddot) at t; ``segment`` picks the side at a switching instant."""
+        if segment is None:
+            segment = max(0, min(int(np.searchsorted(self.breaks, t, side="right")) - 1,
+                                 len(self.breaks) - 2))
+        if self.kind == "quintic":
+            T, L = self.T, self.length
+            u = t / T
+            return (L * (10 * u ** 3 - 15 * u ** 4 + 6 * u ** 5), L * (30 * u ** 2 - 60 * u ** 3 + 30 * u ** 4) / T,
+                    L * (60 * u - 180 * u ** 2 + 120 * u ** 3) / T ** 2)
+        a, v, ta, T, L = self.a_max, self.v_peak, self.t_acc, self.T, self.length
+        if segment == 0:
+            return 0.5 * a * t * t, a * t, a
+        if segment == len(self.breaks) - 2:
+            d = T - t
+            return L - 0.5 * a * d * d, a * d, -a
+        return 0.5 * a * ta * ta + v * (t - ta), v, 0.0
+
+
+def trapezoidal(length: float, v_max: float, a_max: float) -> Timing:
+    """Trapezoidal speed along the path; bang-bang when the cruise speed is not reached."""
+    if length >= v_max * v_max / a_max:
+        ta = v_max / a_max
+        T = length / v_max + ta
+        return Timing("trapezoidal", length, T, [0.0, ta, T - ta, T], v_max, a_max, ta)
+    ta = math.sqrt(length / a_max)
+    return Timing("bang-bang", length, 2 * ta, [0.0, ta, 2 * ta], a_max * ta, a_max, ta)
+
+
+def quintic(length: float, duration: float) -> Timing:
+    return Timing("quintic", length, duration, [0.0, duration], 1.875 * length / duration,
+                  5.773502691896258 * length / duration ** 2)
+
+
+@dataclass
+class Arm:
+    """The arm's task map as numeric callables of numpy arrays."""
+
+    x: Callable                    # q -> (m,)
+    J: Callable                    # q -> (m, n)
+    jdot_qdot: Callable            # (q, q_dot) -> (m,)  = J_dot q_dot
+    revolute: list                 # per joint
+
+
+def newton(arm: Arm, target, q0, tol: float = 1e-12, max_iter: int = 30):
+    """q with x(q) = target near q0 (minimum-norm steps); None when it does not converge."""
+    q = np.array(q0, dtype=float)
+    scale = max(1.0, float(np.max(np.abs(target))))
+    for _ in range(max_iter):
+        r = np.asarray(target, dtype=float) - arm.x(q)
+        if float(np.max(np.abs(r))) <= tol * scale:
+            return q
+        step = np.linalg.lstsq(arm.J(q), r, rcond=None)[0]
+        big = float(np.max(np.abs(step)))
+        q = q + (step if big <= 0.5 else step * (0.5 / big))
+    r = np.asarray(target, dtype=float) - arm.x(q)
+    return q if float(np.max(np.abs(r))) <= 1e3 * tol * scale else None
+
+
+def joint_state(arm: Arm, q, xd, xdd):
+    """(q_dot, q_ddot, smallest singular value of J) at q."""
+    J = arm.J(q)
+    sv = np.linalg.svd(J, compute_uv=False)
+    Jp = np.linalg.pinv(J)
+    qd = Jp @ xd
+    qdd = Jp @ (xdd - arm.jdot_qdot(q, qd))
+    return qd, qdd, float(sv[-1]) if sv.size else 0.0
+
+
+@dataclass
+class Conversion:
+    t: np.ndarray                  # (N,)
+    segment: np.ndarray            # (N,) the timing segment of each sample
+    s: np.ndarray
+    x: np.ndarray                  # (m, N) desired task values, and rates / accelerations
+    xd: np.ndarray
+    xdd: np.ndarray
+    q: np.ndarray                  # (n, N)
+    qd: np.ndarray
+    qdd: np.ndarray
+    sigma: np.ndarray              # (N,) smallest singular value of J
+    failure: dict | None = None    # {"kind": "unreachable" | "singular", "t", "x", "q"}
+    extra: dict = field(default_factory=dict)
+
+
+def task_state(path: Path, timing: Timing, t: float, segment: int | None = None):
+    s, sd, sdd = timing.at(t, segment)
+    x, d1, d2 = path.at(s)
+    return s, x, d1 * sd, d2 * sd * sd + d1 * sdd
+
+
+def _grid(timing: Timing, samples: int):
+    ts, segs = [], []
+    T = timing.T
+    for k in range(len(timing.breaks) - 1):
+        a, b = timing.breaks[k], timing.breaks[k + 1]
+        count = max(3, int(round(samples * (b - a) / T)) + 1)
+        for t in np.linspace(a, b, count):
+            ts.append(float(t))
+            segs.append(k)
+    return np.array(ts), np.array(segs)
+
+
+def follow(arm: Arm, path: Path, timing: Timing, q_start, samples: int = 401,
+           sigma_tol: float = 1e-6) -> Conversion:
+    """The joint motion along the timed path, from the branch of ``q_start`` (which reaches
+    the path's start). Stops at the first sample out of reach or at a singularity."""
+    ts, segs = _grid(timing, samples)
+    m, n = path.a.size, len(q_start)
+    out = {k: [] for k in ("s", "x", "xd", "xdd", "q", "qd", "qdd", "sigma")}
+    q_prev, qd_prev, t_prev, failure = np.asarray(q_start, dtype=float), np.zeros(n), 0.0, None
+    scale = max(float(np.linalg.norm(arm.J(q_prev), 2)), 1e-300)
+    for t, seg in zip(ts, segs):
+        s, x, xd, xdd = task_state(path, timing, t, seg)
+        guess = q_prev + qd_prev * (t - t_prev)
+        q = newton(arm, x, guess)
+        if q is None:
+            failure = _leaving(arm, path, timing, t_prev, float(t), seg, q_prev)
+            break
+        qd, qdd, sig = joint_state(arm, q, xd, xdd)
+        jump = float(np.max(np.abs(q - guess)))
+        if sig < sigma_tol * scale or (t > 0 and jump > 0.2):
+            failure = {"kind": "singular", "t": float(t), "x": x.tolist(), "q": q.tolist()}
+            break
+        for k, v in zip(out, (s, x, xd, xdd, q, qd, qdd, sig)):
+            out[k].append(v)
+        q_prev, qd_prev, t_prev = q, qd, t
+    N = len(out["s"])
+    conv = Conversion(ts[:N], segs[:N], np.array(out["s"]),
+                      *(np.array(out[k]).reshape(N, -1).T for k in ("x", "xd", "xdd")),
+                      *(np.array(out[k]).reshape(N, n).T for k in ("q", "qd", "qdd")),
+                      np.array(out["sigma"]), failure)
+    if failure is None:
+        _singular_between(arm, path, timing, conv, sigma_tol * scale)
+    del m
+    return conv
+
+
+def state_at(arm: Arm, path: Path, timing: Timing, conv: Conversion, t: float, segment: int):
+    """(q, q_dot, q_ddot, sigma) at any t of a segment, by Newton from the nearest sample."""
+    k = int(np.argmin(np.abs(conv.t - t) + 1e9 * (conv.segment != segment)))
+    _s, x, xd, xdd = task_state(path, timing, t, segment)
+    q = newton(arm, x, conv.q[:, k] + conv.qd[:, k] * (t - conv.t[k]))
+    if q is None:
+        q = conv.q[:, k]
+    qd, qdd, sig = joint_state(arm, q, xd, xdd)
+    return q, qd, qdd, sig
+
+
+def _refine(fun, conv: Conversion, k: int, sign: float = 1.0):
+    """max of sign*fun(t, segment) near sample k, within its segment: (value, t)."""
+    from scipy.optimize import minimize_scalar
+
+    seg = conv.segment[k]
+    idx = np.nonzero(conv.segment == seg)[0]
+    lo = conv.t[max(k - 1, idx[0])]
+    hi = conv.t[min(k + 1, idx[-1])]
+    best = (sign * fun(conv.t[k], seg), float(conv.t[k]))
+    if hi > lo:
+        res = minimize_scalar(lambda tt: -sign * fun(tt, seg), bounds=(lo, hi), method="bounded",
+                              options={"xatol": 1e-12 * max(1.0, conv.t[-1])})
+        if -res.fun > best[0]:
+            best = (float(-res.fun), float(res.x))
+    return best
+
+
+def extremes(arm: Arm, path: Path, timing: Timing, conv: Conversion):
+    """max |q_dot_i|, max |q_ddot_i| over [0, T] (refined between samples) and min sigma:
+    (vel (n,), acc (n,), (sigma_min, t))."""
+    n = conv.q.shape[0]
+    vel, acc = np.zeros(n), np.zeros(n)
+    for i in range(n):
+        for arr, out, which in ((conv.qd, vel, 1), (conv.qdd, acc, 2)):
+            k = int(np.argmax(np.abs(arr[i])))
+            out[i] = _refine(lambda tt, sg, i=i, w=which: abs(state_at(arm, path, timing, conv, tt, sg)[w][i]),
+                             conv, k)[0]
+    k = int(np.argmin(conv.sigma))
+    smin, tmin = _refine(lambda tt, sg: state_at(arm, path, timing, conv, tt, sg)[3], conv, k, sign=-1.0)
+    return vel, acc, (-smin, tmin)
+
+
+def _singular_between(arm, path, timing, conv, tol):
+    """A singular configuration between samples (sigma dips to 0 at a local minimum)."""
+    sig = conv.sigma
+    for k in range(1, sig.size - 1):
+        if sig[k] <= sig[k - 1] and sig[k] <= sig[k + 1] and conv.segment[k - 1] == conv.segment[k + 1]:
+            val, t = _refine(lambda tt, sg: state_at(arm, path, timing, conv, tt, sg)[3], conv, k, sign=-1.0)
+            if -val < tol:
+                _s, x, _xd, _xdd = task_state(path, timing, t, conv.segment[k])
+                conv.failure = {"kind": "singular", "t": t, "x": x.tolist(),
+                                "q": state_at(arm, path, timing, conv, t, conv.segment[k])[0].tolist()}
+                return
+
+
+def _leaving(arm, path, timing, t_in: float, t_out: float, seg: int, q_in):
+    """Where the path leaves the reach, by bisection between a reached and an unreached instant."""
+    q_last = np.asarray(q_in, dtype=float)
+    for _ in range(40):
+        mid = 0.5 * (t_in + t_out)
+        q = newton(arm, task_state(path, timing, mid, seg)[1], q_last)
+        if q is None:
+            t_out = mid
+        else:
+            t_in, q_last = mid, q
+    x = task_state(path, timing, t_out, seg)[1]
+    return {"kind": "unreachable", "t": float(t_out), "x": x.tolist(), "q": q_last.tolist()}

@@ -1,0 +1,119 @@
+"""The `task_trajectory` question type (Work-space trajectory): options, checks, answer schema.
+
+The checks that need the robot (from/to within reach and not singular, a circle's centre
+equidistant from both ends) run before solving: solvers/task_trajectory.py `check_input`,
+called by the pipeline's `check_inputs` (they are input errors, FILE:LINE, exit 2).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from robosolve.load import validators as V
+from robosolve.load.expressions import point_symbol
+from robosolve.questions.schema import BOOL, JOINT_MAP, SCALAR, TEXT, QuestionType, _k
+
+
+def v_path(ql, path, value, q):
+    """`line`, or {circle: {center: [...], normal: [...]}}."""
+    chk = ql.chk
+    if value == "line":
+        return {"kind": "line"}
+    if not isinstance(value, dict) or list(value) != ["circle"] or not isinstance(value["circle"], dict):
+        chk.error(path, "expected `line` or {circle: {center: [...], normal: [...]}}")
+        return None
+    spec = value["circle"]
+    if not chk.mapping(path + ("circle",), spec, ("center", "normal"), required=("center",)):
+        return None
+    out = {"kind": "circle"}
+    for key in ("center", "normal"):
+        if key in spec:
+            v = chk.vector(path + ("circle", key), spec[key], ql.params_ns, length=None)
+            if v is None:
+                return None
+            out[key] = list(v)
+    return out
+
+
+def v_quintic(ql, path, value, q):
+    if value != "quintic":
+        ql.chk.error(path, f"unknown value {value!r} (a trajectory timed by `duration` has shape: quintic; "
+                           "max_velocity and max_acceleration give the trapezoidal law)")
+        return None
+    return value
+
+
+def v_positive(ql, path, value, q):
+    e = ql.chk.expr(path, value, ql.params_ns)
+    v = ql.chk.number_value(e) if e is not None else None
+    if v is not None and not v > 0:
+        ql.chk.error(path, f"must be positive, got {value!r}")
+        return None
+    return e
+
+
+def coordinate_list(q) -> list:
+    raw = q.options.get("coordinates")
+    return list(raw) if raw else [point_symbol(q.point, a) for a in "xyz"]
+
+
+def _check_ends(ql, path, item, q, coords):
+    texts = [str(c) for c in coords]
+    for key in ("from", "to"):
+        given = q.options.get(key)
+        if given is None:
+            continue
+        for text, lhs, _rhs in given:
+            if not any(sp.expand(lhs - c) == 0 for c in coords):
+                ql.chk.error(path + (key, text), f"'{text}' is not one of the coordinates ({', '.join(texts)})"
+                             + V.did_you_mean(text, texts))
+        for c, t in zip(coords, texts):
+            if not any(sp.expand(lhs - c) == 0 for _t, lhs, _r in given):
+                ql.chk.error(path + (key,), f"missing the coordinate {t}" + (
+                    "" if "coordinates" in item else
+                    f" (the coordinates are {', '.join(texts)} by default; give `coordinates` for fewer)"))
+
+
+def _check(ql, path, item, q):
+    chk = ql.chk
+    coords = coordinate_list(q)
+    if ql.joint_names and len(coords) > len(ql.joint_names):
+        chk.error(path + (("coordinates",) if "coordinates" in item else ("type",)),
+                  f"{len(coords)} coordinates for {len(ql.joint_names)} joints: J would be tall "
+                  "(give at most as many coordinates as joints, e.g. `coordinates: [E.y, E.z]`)")
+        return
+    _check_ends(ql, path, item, q, coords)
+    timed = "duration" in item
+    speed = [k for k in ("max_velocity", "max_acceleration") if k in item]
+    if timed and speed:
+        chk.error(path + (speed[0],), "give either `duration` (quintic) or max_velocity and max_acceleration")
+    elif not timed and len(speed) < 2:
+        missing = [k for k in ("max_velocity", "max_acceleration") if k not in item]
+        chk.error(path, "the timing needs " + " and ".join(missing) + " (or a `duration`, quintic)")
+    if "shape" in item and not timed:
+        chk.error(path + ("shape",), "shape: quintic goes with `duration`")
+
+
+TYPE = QuestionType(
+    "task_trajectory", "Work-space trajectory", "§1.2.2",
+    options={"coordinates": V.v_coordinates, "from": V.v_equations, "to": V.v_equations, "path": v_path,
+             "max_velocity": v_positive, "max_acceleration": v_positive, "duration": V.v_duration,
+             "shape": v_quintic, "start": V.v_joint_values},
+    required=("from", "to"),
+    defaults={"path": "line"},
+    answers=(
+        _k("T", SCALAR, "duration of the motion", principal=True, unit="s", symbolic=False),
+        _k("length", SCALAR, "length of the path", principal=True, symbolic=False),
+        _k("start", JOINT_MAP, "the configuration at `from`", angle=True, unit="joint", symbolic=False),
+        _k("end", JOINT_MAP, "the configuration at `to`", angle=True, unit="joint", symbolic=False),
+        _k("max_joint_velocity", JOINT_MAP, "max |q_dot| over [0, T]", principal=True, unit="joint/s", symbolic=False),
+        _k("max_joint_acceleration", JOINT_MAP, "max |q_ddot| over [0, T]", principal=True, unit="joint/s²", symbolic=False),
+        _k("min_singular_value", SCALAR, "smallest singular value of J along the path", symbolic=False),
+        _k("unreachable", BOOL, "the path leaves the workspace", top=True),
+        _k("singular", BOOL, "the path crosses a singular configuration", top=True),
+        _k("reason", TEXT, "where and when the path cannot be followed", top=True),
+    ),
+    figures=(("path", "task_path"), ("joints", "joint_motion")),
+    cost=0.4, unit="dynamics",
+    check=_check, model_checked=True, makes_trajectory=True,
+)

@@ -1,0 +1,202 @@
+"""Work-space trajectories (motion/task_path.py, solvers/task_trajectory.py) against independent
+references: closed-form timing, RTB's numeric IK per sample, finite differences, and an
+independent integration (scipy, textbook 2R dynamics) of the work-space PD law."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from robosolve.motion import task_path as tp
+
+ARM_2R = """robosolve: 1
+name: planar-2r
+parameters: {L1: 1/2, L2: 2/5, m1: 2, m2: 1, g: 9.81}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: b1, frame: "1", mass: m1, point: [0, 0, 0]}
+  - {name: b2, frame: "2", mass: m2, point: [0, 0, 0]}
+questions:
+"""
+
+LINE = """  - type: task_trajectory
+    id: line
+    coordinates: [E.x, E.y]
+    from: {E.x: 0.7, E.y: 0.1}
+    to: {E.x: 0.2, E.y: 0.6}
+    max_velocity: 0.6
+    max_acceleration: 3
+"""
+
+
+def _solve(write_problem, tmp_path, text):
+    f = write_problem(text)
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-m", "robosolve", "solve", str(f), "--out", str(out)],
+                       capture_output=True, text=True)
+    return r, (json.loads((out / "results.json").read_text()) if r.returncode != 2 else None)
+
+
+def test_trapezoidal_and_bang_bang_timing_match_their_closed_forms():
+    t = tp.trapezoidal(2.0, 0.5, 1.0)                # cruise reached: L >= v^2/a
+    assert t.kind == "trapezoidal" and t.T == pytest.approx(2.0 / 0.5 + 0.5 / 1.0)
+    for tt in np.linspace(0, t.T, 37):
+        s, sd, sdd = t.at(tt)
+        ta = 0.5
+        ref = (0.5 * tt ** 2 if tt <= ta else 2.0 - 0.5 * (t.T - tt) ** 2 if tt >= t.T - ta
+               else 0.5 * ta ** 2 + 0.5 * (tt - ta))
+        assert s == pytest.approx(ref, abs=1e-12)
+    b = tp.trapezoidal(0.1, 0.5, 1.0)                # not reached: bang-bang
+    assert b.kind == "bang-bang" and b.T == pytest.approx(2 * math.sqrt(0.1)) and b.at(b.T)[0] == pytest.approx(0.1)
+    q = tp.quintic(1.0, 2.0)
+    assert q.at(2.0)[0] == pytest.approx(1.0) and q.at(1.0)[1] == pytest.approx(15 / 16)
+
+
+def test_circle_needs_an_equidistant_centre_and_goes_the_shorter_way():
+    with pytest.raises(tp.PathError):
+        tp.circle([1, 0], [0, 1], [0.1, 0])
+    p = tp.circle([1, 0], [0, 1], [0, 0])
+    assert p.length == pytest.approx(math.pi / 2)
+    assert np.allclose(p.at(p.length)[0], [0, 1])
+    p2 = tp.circle([1, 0], [0, -1], [0, 0])          # the shorter way: clockwise
+    assert p2.length == pytest.approx(math.pi / 2) and p2.at(p2.length / 2)[0][1] < 0
+
+
+def _arm_2r(L1=0.5, L2=0.4):
+    x = lambda q: np.array([L1 * math.cos(q[0]) + L2 * math.cos(q[0] + q[1]),
+                            L1 * math.sin(q[0]) + L2 * math.sin(q[0] + q[1])])
+    def J(q):
+        s1, c1, s12, c12 = math.sin(q[0]), math.cos(q[0]), math.sin(q[0] + q[1]), math.cos(q[0] + q[1])
+        return np.array([[-L1 * s1 - L2 * s12, -L2 * s12], [L1 * c1 + L2 * c12, L2 * c12]])
+    def h(q, qd):
+        a, b = qd[0], qd[0] + qd[1]
+        return np.array([-L1 * math.cos(q[0]) * a * a - L2 * math.cos(q[0] + q[1]) * b * b,
+                         -L1 * math.sin(q[0]) * a * a - L2 * math.sin(q[0] + q[1]) * b * b])
+    return tp.Arm(x, J, h, [True, True])
+
+
+def test_joint_path_matches_rtb_ikine_per_sample_and_finite_differences():
+    import roboticstoolbox as rtb
+    from spatialmath import SE3
+
+    arm = _arm_2r()
+    path, timing = tp.line([0.7, 0.1], [0.2, 0.6]), tp.trapezoidal(math.hypot(0.5, 0.5), 0.6, 3.0)
+    q0 = tp.newton(arm, path.a, [0.0, 1.0])
+    conv = tp.follow(arm, path, timing, q0, samples=201)
+    assert conv.failure is None
+    robot = rtb.DHRobot([rtb.RevoluteDH(a=0.5), rtb.RevoluteDH(a=0.4)])
+    for k in range(0, conv.t.size, 20):
+        T = SE3(conv.x[0, k], conv.x[1, k], 0)
+        sol = robot.ikine_LM(T, q0=conv.q[:, k] + 0.05, mask=[1, 1, 0, 0, 0, 0], tol=1e-12)
+        assert sol.success and np.allclose(sol.q, conv.q[:, k], atol=1e-7)
+    # q_dot, q_ddot against central differences of the converted path, inside a segment
+    t0, h = 0.6, 1e-4
+    st = [tp.state_at(arm, path, timing, conv, t, 1) for t in (t0 - h, t0, t0 + h)]
+    assert np.allclose((st[2][0] - st[0][0]) / (2 * h), st[1][1], atol=1e-6)
+    assert np.allclose((st[2][1] - st[0][1]) / (2 * h), st[1][2], atol=1e-5)
+
+
+def test_a_line_through_a_singularity_is_an_answer_not_a_crash():
+    arm = _arm_2r(0.5, 0.5)                          # equal links: the base is a singular point
+    path, timing = tp.line([0.5, 0.0], [-0.5, 0.0]), tp.quintic(1.0, 1.0)
+    conv = tp.follow(arm, path, timing, tp.newton(arm, [0.5, 0.0], [-1.0, 2.0]), samples=201)
+    assert conv.failure is not None and conv.failure["kind"] in ("singular", "unreachable")
+
+
+def test_solver_answers_and_pd_matches_an_independent_integration(write_problem, tmp_path):
+    from scipy.integrate import solve_ivp
+
+    law = """  - type: p_control
+    trajectory: line
+    law: task_pd_gravity
+    gains: {E.x: 800, E.y: 800}
+    gains_d: {E.x: 60, E.y: 60}
+"""
+    r, res = _solve(write_problem, tmp_path, ARM_2R + LINE + law)
+    assert r.returncode == 0, r.stderr
+    a = res["answers"]["line"]["numeric"]
+    assert a["length"] == pytest.approx(math.hypot(0.5, 0.5))
+    assert a["T"] == pytest.approx(a["length"] / 0.6 + 0.6 / 3)
+    # independent: textbook 2R with point masses at the link ends, the same law, scipy
+    arm, L1, L2, m1, m2, g = _arm_2r(), 0.5, 0.4, 2.0, 1.0, 9.81
+    path, timing = tp.line([0.7, 0.1], [0.2, 0.6]), tp.trapezoidal(math.hypot(0.5, 0.5), 0.6, 3.0)
+    q0 = np.array([a["start"]["q1"], a["start"]["q2"]])
+
+    def rhs(t, y):
+        q, qd = y[:2], y[2:]
+        c2, s2 = math.cos(q[1]), math.sin(q[1])
+        M = np.array([[(m1 + m2) * L1 ** 2 + m2 * L2 ** 2 + 2 * m2 * L1 * L2 * c2, m2 * L2 ** 2 + m2 * L1 * L2 * c2],
+                      [m2 * L2 ** 2 + m2 * L1 * L2 * c2, m2 * L2 ** 2]])
+        c = np.array([-m2 * L1 * L2 * s2 * (2 * qd[0] * qd[1] + qd[1] ** 2), m2 * L1 * L2 * s2 * qd[0] ** 2])
+        G = np.array([(m1 + m2) * g * L1 * math.cos(q[0]) + m2 * g * L2 * math.cos(q[0] + q[1]),
+                      m2 * g * L2 * math.cos(q[0] + q[1])])
+        _s, xd, vd, _ad = tp.task_state(path, timing, min(t, timing.T))
+        e, ed = xd - arm.x(q), vd - arm.J(q) @ qd
+        tau = arm.J(q).T @ (800 * e + 60 * ed) + G
+        return np.concatenate([qd, np.linalg.solve(M, tau - c - G)])
+
+    ts = np.linspace(0, timing.T, 3001)
+    sol = solve_ivp(rhs, (0, timing.T), np.concatenate([q0, [0, 0]]), t_eval=ts, rtol=1e-11, atol=1e-12,
+                    method="DOP853", max_step=0.01)
+    err = np.array([tp.task_state(path, timing, t)[1] - arm.x(sol.y[:2, k]) for k, t in enumerate(ts)]).T
+    got = res["answers"]["p_control"]["numeric"]
+    for i, c in enumerate(("E.x", "E.y")):
+        assert got["max_error"][c] == pytest.approx(np.max(np.abs(err[i])), rel=2e-3)
+        assert got["final_error"][c] == pytest.approx(err[i, -1], rel=1e-3, abs=1e-9)
+
+
+@pytest.mark.parametrize("edit, where", [
+    (LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 1.7, E.y: 0.1"), "from"),
+    (LINE.replace("    max_velocity: 0.6\n", "    path: {circle: {center: [0.1, 0.1]}}\n    max_velocity: 0.6\n"),
+     "path"),
+    (LINE + "  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {E.x: 1, E.z: 1}, "
+            "gains_d: {E.x: 1, E.y: 1}}\n", "gains.E.z"),
+    (LINE.replace("E.x: 0.2, E.y: 0.6", "E.x: 0.9, E.y: 0.0"), "to"),          # stretched: singular
+    (LINE.replace("coordinates: [E.x, E.y]", "coordinates: [E.x]").replace(", E.y: 0.1", "").replace(", E.y: 0.6", "")
+     + "  - {type: p_control, trajectory: line, law: task_computed_torque, gains: {E.x: 1}, gains_d: {E.x: 1}}\n",
+     "square"),
+    (LINE + "  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {q1: 1, q2: 1}, "
+            "gains_d: {q1: 1, q2: 1}}\n", "per coordinate"),
+], ids=["from-out-of-reach", "centre-not-equidistant", "gain-of-a-missing-coordinate", "to-singular",
+        "computed-torque-wide-J", "joint-gains-for-a-task-law"])
+def test_bad_inputs_exit_2_with_file_and_line(write_problem, tmp_path, edit, where):
+    r, _ = _solve(write_problem, tmp_path, ARM_2R + edit)
+    assert r.returncode == 2, r.stderr
+    assert ".yaml:" in r.stderr and where in r.stderr and "Traceback" not in r.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_an_arc_leaving_the_reach_is_an_unreachable_answer(write_problem, tmp_path):
+    arc = (LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 0.8, E.y: 0.3").replace("E.x: 0.2, E.y: 0.6", "E.x: 0.3, E.y: 0.8")
+           .replace("    max_velocity: 0.6\n", "    path: {circle: {center: [0.3, 0.3]}}\n    max_velocity: 0.6\n"))
+    r, res = _solve(write_problem, tmp_path, ARM_2R + arc)
+    assert r.returncode == 0, r.stderr
+    a = res["answers"]["line"]
+    assert a["unreachable"] is True and "out of the arm's reach" in a["reason"]
+    # the instant where the arc crosses the circle of radius L1 + L2 = 0.9 about the base
+    c, rad = np.array([0.3, 0.3]), 0.5
+    th = [math.atan2(p[1] - c[1], p[0] - c[0]) for p in ((0.8, 0.3), (0.3, 0.8))]
+    ths = np.linspace(th[0], th[1], 200001)
+    pts = c[:, None] + rad * np.vstack([np.cos(ths), np.sin(ths)])
+    k = int(np.argmax(np.hypot(*pts) > 0.9))
+    s_cross = rad * (ths[k] - th[0])
+    timing = tp.trapezoidal(rad * math.pi / 2, 0.6, 3.0)
+    ts = np.linspace(0, timing.T, 200001)
+    t_cross = ts[int(np.argmax([timing.at(t)[0] >= s_cross for t in ts]))]
+    assert a["reason"].startswith("at t = ") and abs(float(a["reason"].split()[3]) - t_cross) < 1e-4
+
+
+def test_a_parameter_without_value_is_an_answer_error_not_an_input_error(write_problem, tmp_path):
+    r, res = _solve(write_problem, tmp_path, ARM_2R.replace("L2: 2/5", "L2: ~") + LINE)
+    assert r.returncode == 1 and "L2" in res["answers"]["line"]["error"]
