@@ -327,7 +327,7 @@ def _verify(res, fk, raw, target, chain):
         if err > FK_TOL * max(1.0, float(np.max(np.abs(target)))):
             res.notes.append(f"a candidate solution was dropped: forward kinematics misses the target by {err:.2e}")
             continue
-        d = {j.name: (wrap_angle(v) if r else float(v)) for j, v, r in zip(chain.joints, qp, rev)}
+        d = {j.name: (wrap_angle(float(v)) if r else float(v)) for j, v, r in zip(chain.joints, qp, rev)}
         if any(_same(d, e, chain.joints) for e in kept):
             continue
         kept.append(d)

@@ -1,0 +1,132 @@
+"""IK of a pose (robosolve.ik.pose) against Robotics Toolbox for Python (test-only reference).
+
+- PUMA 560 at random generic poses: the 8 solutions of kinematic decoupling equal RTB's
+  `ikine_a` for its 8 configurations, each reaching the target to 1e-9 (RTB's `fkine`).
+- UR5: the 8 numeric solutions reach the target to 1e-9 and contain every solution RTB's
+  `ikine_LM` finds from many starts.
+- An unreachable pose is an answer with a reason.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+
+rtb = pytest.importorskip("roboticstoolbox")
+
+from robosolve.core.transforms import dh_standard  # noqa: E402
+from robosolve.ik.engine import IKJoint  # noqa: E402
+from robosolve.ik.numeric import wrap_angle  # noqa: E402
+from robosolve.ik.pose import solve_pose  # noqa: E402
+
+NAMES = [f"q{i}" for i in range(1, 7)]
+
+
+def _factors(robot):
+    qs = sp.symbols("q1:7")
+    return [dh_standard(q + float(L.offset), float(L.d), float(L.a), float(L.alpha))
+            for L, q in zip(robot.links, qs)], [IKJoint(q) for q in qs]
+
+
+def _contains(sols, q, tol):
+    return any(all(abs(wrap_angle(s[n] - float(v))) < tol for n, v in zip(NAMES, q)) for s in sols)
+
+
+def _check_reaches(robot, sols, T):
+    for s in sols:
+        assert np.max(np.abs(robot.fkine([s[n] for n in NAMES]).A - T)) < 1e-9
+
+
+@pytest.mark.parametrize("seed", [1, 7])
+def test_puma560_decoupling_matches_ikine_a(seed):
+    puma = rtb.models.DH.Puma560()
+    F, joints = _factors(puma)
+    rng = np.random.default_rng(seed)
+    q0 = rng.uniform(-2.5, 2.5, 6)
+    q0[4] = rng.choice([-1, 1]) * rng.uniform(0.3, 2.5)      # generic: away from the wrist singularity
+    q0[2] = rng.uniform(-1.0, 1.0)
+    T = puma.fkine(q0).A
+    res = solve_pose(F, joints, T[:3, :3], T[:3, 3])
+    assert res.status == "ok" and res.method == "decoupling"
+    assert len(res.solutions) == 8
+    _check_reaches(puma, res.solutions, T)
+    ref = [puma.ikine_a(puma.fkine(q0), config=c) for c in ("lun", "luf", "ldn", "ldf", "run", "ruf", "rdn", "rdf")]
+    ref = [s.q for s in ref if s.success]
+    assert len(ref) == 8
+    for q in ref:
+        assert _contains(res.solutions, q, 1e-6), q
+    assert res.closed_form and {"q1", "q6"} <= set(res.closed_form[0])
+    names = {str(s) for s in res.closed_form[0]["q1"].free_symbols}
+    assert names <= {"px", "py", "pz", "r11", "r12", "r13", "r21", "r22", "r23", "r31", "r32", "r33"}
+
+
+def test_puma560_closed_form_evaluates_to_the_solutions():
+    puma = rtb.models.DH.Puma560()
+    F, joints = _factors(puma)
+    q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]
+    T = puma.fkine(q0).A
+    res = solve_pose(F, joints, T[:3, :3], T[:3, 3])
+    vals = {sp.Symbol(f"r{i + 1}{j + 1}"): T[i, j] for i in range(3) for j in range(3)}
+    vals.update(dict(zip(sp.symbols("px py pz"), T[:3, 3])))
+    hits = 0
+    for br in res.closed_form:
+        q = {}
+        try:
+            while len(q) < 6:       # each formula may use the joints found before it
+                ready = [n for n in NAMES if n not in q
+                         and {str(x) for x in br[n].free_symbols} <= {str(k) for k in vals} | set(q)]
+                if not ready:
+                    raise ValueError
+                for n in ready:
+                    v = complex(sp.N(br[n].xreplace({**vals, **{sp.Symbol(k): x for k, x in q.items()}})))
+                    if abs(v.imag) > 1e-9:
+                        raise ValueError
+                    q[n] = v.real
+        except (ValueError, TypeError, ZeroDivisionError):
+            continue
+        if np.max(np.abs(puma.fkine([q[n] for n in NAMES]).A - T)) < 1e-8:
+            hits += 1
+            assert _contains(res.solutions, [q[n] for n in NAMES], 1e-6)
+    assert hits >= 8
+
+
+@pytest.mark.parametrize("seed", [3])
+def test_ur5_eight_solutions_against_fkine_and_ikine_lm(seed):
+    from spatialmath import SE3
+
+    ur5 = rtb.models.DH.UR5()
+    F, joints = _factors(ur5)
+    rng = np.random.default_rng(seed)
+    q0 = rng.uniform(-2.5, 2.5, 6)
+    T = ur5.fkine(q0).A
+    res = solve_pose(F, joints, T[:3, :3], T[:3, 3])
+    assert res.status == "ok" and len(res.solutions) == 8
+    _check_reaches(ur5, res.solutions, T)
+    assert _contains(res.solutions, q0, 1e-9)
+    found = 0
+    for k in range(24):
+        s = ur5.ikine_LM(SE3(T), q0=rng.uniform(-np.pi, np.pi, 6), seed=k, tol=1e-12, ilimit=200)
+        if s.success:
+            found += 1
+            assert _contains(res.solutions, s.q, 1e-5), s.q
+    assert found > 0
+
+
+def test_unreachable_pose_is_an_answer():
+    puma = rtb.models.DH.Puma560()
+    F, joints = _factors(puma)
+    res = solve_pose(F, joints, np.eye(3), [3.0, 0.0, 0.5])
+    assert res.status == "unreachable" and res.solutions == [] and "reach" in res.reason
+
+
+def test_limits_reject_and_select():
+    puma = rtb.models.DH.Puma560()
+    F, joints = _factors(puma)
+    joints[0] = IKJoint(joints[0].symbol, True, (0.0, 1.0))
+    q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]
+    T = puma.fkine(q0).A
+    res = solve_pose(F, joints, T[:3, :3], T[:3, 3], select={n: v for n, v in zip(NAMES, q0)})
+    assert 0 < len(res.solutions) < 8 and res.rejected
+    assert all(0 <= s["q1"] <= 1 for s in res.solutions)
+    assert all(abs(res.selected[n] - v) < 1e-9 for n, v in zip(NAMES, q0))
