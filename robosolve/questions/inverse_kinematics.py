@@ -8,7 +8,7 @@ from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MA
 
 TYPE = QuestionType(
     "inverse_kinematics", "Inverse kinematics", "§8 question 6",
-    options={"target": V.v_equations, "velocity": V.v_equations, "select": V.v_select},
+    options={"target": V.v_ik_target, "velocity": V.v_equations, "select": V.v_select},
     required=("target",),
     defaults={"select": "limits"},
     answers=(

@@ -651,7 +651,7 @@ solutions.sort(key=lambda s: tuple(np.round(s, 9)))
 
 def _cell_inverse_kinematics(q, answer, problem):
     target = q.options.get("target") or []
-    if not target or any(not re.fullmatch(r"\w+\.[xyz]", str(name)) or str(name).split(".")[0]
+    if not isinstance(target, list) or not target or any(not re.fullmatch(r"\w+\.[xyz]", str(name)) or str(name).split(".")[0]
                          not in problem.points for name, _, _ in target):
         return None                                  # orientation targets: not rebuilt here
     limits = []

@@ -20,7 +20,9 @@ from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.ik import closed_form as cfm
 from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
 from robosolve.ik.numeric import wrap_angle
+from robosolve.load.pose_target import PoseTarget
 from robosolve.load.problem import Question
+from robosolve.solvers.ik_pose import solve_pose_question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
 
@@ -51,6 +53,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 
     subs = ctx.substitutions({s: v for s, v in question.at.items() if s in ctx.problem.parameters})
     params = {s: v for s, v in subs.items()}
+    if isinstance(opts["target"], PoseTarget):
+        ik_joints, limit_notes = _ik_joints(joints, ctx, params)
+        for n_ in limit_notes:
+            ans.note(n_)
+        return solve_pose_question(question, ctx, ans, ik_joints, params, tex)
     equations, target_syms, shown, values, missing = _target_equations(opts["target"], model, ctx, params)
     ik_joints, limit_notes = _ik_joints(joints, ctx, params)
     for n_ in limit_notes:
