@@ -1,4 +1,4 @@
-"""The pose target of an inverse-kinematics question (spec: the `inverse_kinematics (a pose)` row).
+"""The pose target of an inverse-kinematics question (spec: the row of a pose target).
 
 ``target: {pose: M}`` (4x4, last row 0 0 0 1) or ``target: {position: [x, y, z], R: 3x3 | zyz: [φ, θ, ψ]
 | rpy: [roll, pitch, yaw]}``. A given rotation must be orthonormal with determinant 1 within 1e-3:
@@ -17,6 +17,7 @@ from robosolve.core.transforms import rot_x, rot_y, rot_z
 
 POSE_KEYS = ("pose", "position", "R", "zyz", "rpy")
 ORIENTATION_KEYS = ("R", "zyz", "rpy")
+POSITION = POSE_KEYS[1]      # the key `position` (a word, not the question type)
 ROTATION_TOL = 1e-3
 
 
@@ -44,19 +45,19 @@ def v_pose_target(ql, path, value, q):
             chk.error(path + ("pose",), "a `pose` is the pose of a frame: it cannot go with `point` "
                       "(give `position` and `R`, `zyz` or `rpy` for a point)")
             return None
-        if given or "position" in value:
+        if given or POSITION in value:
             chk.error(path, "the target is given twice: `pose` already holds the position and the "
-                      f"orientation (remove {', '.join('`' + k + '`' for k in given + (['position'] if 'position' in value else []))})")
+                      f"orientation (remove {', '.join('`' + k + '`' for k in given + ([POSITION] if POSITION in value else []))})")
             return None
         return _pose(ql, path + ("pose",), value["pose"])
     if len(given) > 1:
         chk.error(path, f"the orientation is given twice ({' and '.join('`' + k + '`' for k in given)}): keep one")
         return None
-    if not given or "position" not in value:
+    if not given or POSITION not in value:
         missing = "`position`" if given else "`R`, `zyz` or `rpy`"
         chk.error(path, f"a pose target needs `position` and one orientation (`R`, `zyz` or `rpy`): {missing} missing")
         return None
-    p = chk.vector(path + ("position",), value["position"], ql.params_ns, length=3)
+    p = chk.vector(path + (POSITION,), value[POSITION], ql.params_ns, length=3)
     key = given[0]
     if key == "R":
         R = chk.matrix(path + ("R",), value["R"], ql.params_ns, shapes=((3, 3),))

@@ -22,8 +22,8 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
     model = ctx.model
     target = question.options["target"]
     frame = question.frame
-    if question.point_given and not question.frame_given:
-        frame = ctx.problem.points[question.point].frame
+    if question.point_given:
+        frame = model.point_local(question.point)[0]    # the point's orientation is its frame's
     chain = model.chain(frame)
     if not chain:
         raise SolverError("a pose target needs a frame other than 0")
@@ -39,7 +39,7 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
         raise SolverError("the target's R is not a rotation (RᵀR ≠ I or det R ≠ 1 within 1e-3)")
     c = None
     if question.point_given:
-        c = np.array(ctx.numeric(model.point_local(question.point), params), dtype=float).reshape(3)
+        c = np.array(ctx.numeric(model.point_local(question.point)[1], params), dtype=float).reshape(3)
         p = p - R @ c
     q_syms = {j.symbol for j in ik_joints}
     used = [j for j in ik_joints if any(j.symbol in f.free_symbols for f in factors)]

@@ -9,6 +9,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -130,3 +132,114 @@ def test_limits_reject_and_select():
     assert 0 < len(res.solutions) < 8 and res.rejected
     assert all(0 <= s["q1"] <= 1 for s in res.solutions)
     assert all(abs(res.selected[n] - v) < 1e-9 for n, v in zip(NAMES, q0))
+
+
+# -- problem files: the pose target through the loader and the solver -----------------------------
+
+PUMA_YAML = """robosolve: 1
+name: puma-pose
+parameters: {{d1: 0.67183, a2: 0.4318, d3: 0.15005, a3: 0.0203, d4: 0.4318}}
+joints:
+{joints}
+dh:
+  convention: standard
+  rows:
+    - {{theta: q1, d: d1, a: 0, alpha: pi/2}}
+    - {{theta: q2, d: 0, a: a2, alpha: 0}}
+    - {{theta: q3, d: d3, a: a3, alpha: -pi/2}}
+    - {{theta: q4, d: d4, a: 0, alpha: pi/2}}
+    - {{theta: q5, d: 0, a: 0, alpha: -pi/2}}
+    - {{theta: q6, d: 0, a: 0, alpha: 0}}
+points:
+  T: {{frame: "6", at: [0, 0, 0.1]}}
+questions:
+  - {question}
+"""
+
+
+def _yaml(question):
+    joints = "\n".join(f"  - {{name: q{i}, type: revolute}}" for i in range(1, 7))
+    return PUMA_YAML.format(joints=joints, question=question)
+
+
+def _matrix(T):
+    return "[" + ", ".join("[" + ", ".join(repr(float(v)) for v in r) + "]" for r in T) + "]"
+
+
+def _puma_T(q0):
+    return rtb.models.DH.Puma560().fkine(q0).A
+
+
+@pytest.mark.parametrize("target, message", [
+    ("{pose: [[1, 0, 0, 0.5], [0, 1, 0, 0], [0, 0, 1, 0.5], [0, 0, 1, 1]]}", "last row"),
+    ("{pose: [[1, 0.1, 0, 0.5], [0, 1, 0, 0], [0, 0, 1, 0.5], [0, 0, 0, 1]]}", "not a rotation"),
+    ("{pose: [[-1, 0, 0, 0.5], [0, 1, 0, 0], [0, 0, 1, 0.5], [0, 0, 0, 1]]}", "not a rotation"),
+    ("{position: [0.5, 0, 0.5], R: [[1, 0, 0], [0, 1, 0], [0, 0, 1]], rpy: [0, 0, 0]}", "given twice"),
+    ("{position: [0.5, 0, 0.5]}", "missing"),
+    ("{pose: [[1, 0, 0, 0.5], [0, 1, 0, 0], [0, 0, 1, 0.5], [0, 0, 0, 1]], zyz: [0, 0, 0]}", "given twice"),
+])
+def test_bad_pose_targets_are_input_errors(target, message):
+    from robosolve.errors import InputError
+    from robosolve.load.loader import load_problem_text
+
+    with pytest.raises(InputError) as exc:
+        load_problem_text(_yaml(f"{{type: inverse_kinematics, target: {target}}}"), "p.yaml")
+    text = str(exc.value)
+    assert message in text and "p.yaml:" in text
+
+
+def test_pose_with_point_is_an_input_error_exit_2(tmp_path):
+    import subprocess
+    import sys
+
+    f = tmp_path / "p.yaml"
+    f.write_text(_yaml("{type: inverse_kinematics, point: T, target: {pose: "
+                       "[[1, 0, 0, 0.5], [0, 1, 0, 0], [0, 0, 1, 0.5], [0, 0, 0, 1]]}}"))
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-m", "robosolve", "solve", str(f), "-o", str(out)],
+                       capture_output=True, text=True, cwd=str(Path(__file__).resolve().parents[2]))
+    assert r.returncode == 2, r.stderr
+    assert "p.yaml:" in r.stderr + r.stdout and "point" in r.stderr + r.stdout
+    assert not out.exists()
+
+
+def test_rounded_rotation_is_projected_with_a_note():
+    from robosolve.load.loader import load_problem_text
+
+    T = np.round(_puma_T([0.3, -0.5, 0.4, 0.7, -0.9, 1.2]), 4)
+    p = load_problem_text(_yaml(f"{{type: inverse_kinematics, target: {{pose: {_matrix(T)}}}}}"), "p.yaml")
+    tgt = p.questions[0].options["target"]
+    assert tgt.note and "nearest rotation" in tgt.note
+    R = np.array(tgt.R, dtype=float)
+    assert np.max(np.abs(R.T @ R - np.eye(3))) < 1e-12 and np.max(np.abs(R - T[:3, :3])) < 1e-3
+    exact = load_problem_text(_yaml("{type: inverse_kinematics, target: {position: [0.5, 0.1, 0.4], "
+                                    "R: [[sqrt(2)/2, -sqrt(2)/2, 0], [sqrt(2)/2, sqrt(2)/2, 0], [0, 0, 1]]}}"),
+                              "p.yaml").questions[0].options["target"]
+    assert exact.note is None and exact.R[0, 0] == sp.sqrt(2) / 2
+
+
+def test_point_target_with_rpy_through_the_solver():
+    """The point T = (0, 0, 0.1) in frame 6, orientation by roll-pitch-yaw: 8 solutions, each putting T
+    and frame 6's axes where asked (RTB's fkine with the tool offset)."""
+    from spatialmath import SE3
+    from spatialmath.base import tr2rpy
+
+    from robosolve.load.loader import load_problem_text
+    from robosolve.pipeline import solve_problem
+
+    q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]
+    puma = rtb.models.DH.Puma560()
+    T = (puma.fkine(q0) * SE3(0, 0, 0.1)).A
+    rpy = tr2rpy(T[:3, :3], order="zyx")
+    q = (f"{{type: inverse_kinematics, point: T, target: {{position: {list(map(float, T[:3, 3]))}, "
+         f"rpy: {list(map(float, rpy))}}}}}")
+    report = solve_problem(load_problem_text(_yaml(q), "p.yaml"))
+    ans = report.answers[0]
+    assert ans.error is None, ans.error
+    sols = ans.numeric["solutions"]
+    assert len(sols) == 8
+    for s in sols:
+        Ts = (puma.fkine([s[n] for n in NAMES]) * SE3(0, 0, 0.1)).A
+        assert np.max(np.abs(Ts - T)) < 1e-9
+    assert _contains(sols, q0, 1e-9)
+    assert ans.numeric["selected"] == sols[0]
