@@ -35,6 +35,7 @@ FK_TOL = 1e-9
 R_SYMS = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}"))
 P_SYMS = sp.Matrix(sp.symbols("px py pz"))
 W_SYMS = sp.symbols("w_x w_y w_z")
+B_SYMS = sp.symbols("b_11 b_21 b_x b_y")       # ¹M₄'s entries in the planar 3R of the UR family
 
 
 @dataclass
@@ -182,6 +183,8 @@ def solve_pose(factors, joints: list[IKJoint], R, p, select="limits", latex_name
     raw = None
     if wrist is not None:
         raw = _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s)
+    elif (par := find_parallel(chain)) is not None:
+        raw = _three_parallel(res, chain, par, R, p, names, tex, time_limit_s)
     if raw is None:
         raw = _numeric(res, chain, R, p, wrist is None)
     _verify(res, fk, raw, target, chain)
@@ -265,6 +268,156 @@ def _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, derive=True):
     eqs0 = [(sp.sympify(l).subs(last, 0), rhs) for l, rhs in eqs]
     r0 = solve_ik(eqs0, wrist_joints[:-1], vals, closed_form=False, target_symbols=set(vals))
     return [[d[j.name] for j in wrist_joints[:-1]] + [0.0] for d in r0.all_solutions], cf, True
+
+
+# ---------------------------------------------------------------------------
+# three parallel axes (the UR family)
+
+def _axis_in(Mf, q, k, base_inv):
+    """Direction of joint k's axis in the frame whose inverse pose is base_inv (finite differences)."""
+    m0 = np.array(Mf(*q), dtype=float)
+    d = list(q)
+    d[k] += 1e-7
+    dM = (np.array(Mf(*d), dtype=float) - m0) / 1e-7
+    W = dM[:3, :3] @ m0[:3, :3].T
+    a = np.array([W[2, 1], W[0, 2], W[1, 0]])
+    return a / np.linalg.norm(a)
+
+
+def find_parallel(chain: _Chain):
+    """(split, Q): joint 1 in factors[:split], joints 2, 3, 4 with parallel axes along a coordinate
+    axis of frame `split`, turned onto z by the constant rotation Q (4x4); or None."""
+    q = chain.q
+    if len(q) != 6 or not all(j.revolute for j in chain.joints):
+        return None
+    n = len(chain.factors)
+    split = next((s for s in range(1, n) if chain.joints_of(0, s) == {q[0]} and chain.joints_of(s, n) == set(q[1:])),
+                 None)
+    if split is None:
+        return None
+    tail = chain.product(split, n)
+    Mf = sp.lambdify(q[1:], tail, modules=numpy_modules())
+    qv = [0.37, -0.81, 1.23, 0.55, -1.7]
+    axes = [_axis_in(Mf, qv, k, None) for k in (0, 1, 2)]
+    if not all(np.linalg.norm(np.cross(axes[0], a)) < 1e-6 for a in axes[1:]):
+        return None
+    u = axes[0]
+    k = int(np.argmax(np.abs(u)))
+    if abs(abs(u[k]) - 1) > 1e-9:
+        return None
+    sign = 1 if u[k] > 0 else -1
+    from robosolve.core.transforms import rot_x, rot_y
+    Q = {2: sp.eye(4) if sign > 0 else rot_x(sp.pi), 1: rot_x(-sign * sp.pi / 2), 0: rot_y(sign * sp.pi / 2)}[k]
+    return split, Q.T       # Q.T·u = z: rows of Q.T are the new axes
+
+
+def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
+    """The UR way: in frame 1 (axes 2, 3, 4 along z) the z row of ¹M₆ depends on q5, q6 only;
+    with q1 it gives q1, q5, q6, then the planar 3R gives q2, q3, q4."""
+    split, Q = par
+    n = len(chain.factors)
+    head, tail = chain.product(0, split), chain.product(split, n)
+    from robosolve.core.transforms import rigid_inverse
+    Msym = sp.Matrix(sp.BlockMatrix([[R_SYMS, P_SYMS], [sp.zeros(1, 3), sp.ones(1, 1)]]))
+    lhs = (Q * rigid_inverse(head) * Msym).applyfunc(sp.expand)       # of q1 and the target
+    rhs = (Q * tail).applyfunc(sp.expand)                               # of q2..q6
+    q = chain.q
+    zrow = [rhs[2, j].subs({q[1]: 0, q[2]: 0, q[3]: 0}) for j in range(4)]
+    if not _independent_of(rhs, zrow, q):
+        return None
+    vals = {R_SYMS[i, j]: float(R[i, j]) for i in range(3) for j in range(3)}
+    vals.update({P_SYMS[i]: float(p[i]) for i in range(3)})
+    first = [IKJoint(q[k], True, None) for k in (0, 4, 5)]
+    eqs1 = _first_equations(zrow, lhs, q)
+    st1 = solve_ik(eqs1, first, vals, closed_form=True, time_limit_s=time_limit_s,
+                   target_symbols=set(vals), latex_names=names, tex=tex)
+    res.method = "three parallel axes"
+    res.steps.append(_parallel_step(zrow, lhs, split, names))
+    if st1.status == "unreachable":
+        res.status, res.reason = "unreachable", "the pose is beyond the reach or its orientation is not attainable: " + str(st1.reason)
+        return []
+    if st1.status != "ok":
+        res.notes.append("three parallel axes: q1, q5, q6 are not isolated at this pose (a singularity); "
+                         "searched numerically on the 12 pose equations")
+        return None
+    for stp in (st1.closed_form.steps if st1.closed_form is not None else []):
+        res.steps.append(PoseStep("q1, q5, q6: " + stp.title, stp.text, list(stp.equations)))
+    rest = [IKJoint(q[k], True, None) for k in (1, 2, 3)]
+    eqs2, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
+    bf = sp.lambdify([*vals, *(j.symbol for j in first)], planar, modules=numpy_modules()) if planar else None
+    raw, cf2 = [], None
+    for k, sol in enumerate(st1.all_solutions):
+        v2 = dict(vals)
+        v2.update({j.symbol: sol[j.name] for j in first})
+        if planar:
+            v2 = dict(zip(B_SYMS, map(float, bf(*v2.values()))))
+        st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and k == 0, time_limit_s=time_limit_s,
+                       target_symbols=set(v2), latex_names=names, tex=tex)
+        if k == 0 and st2.closed_form is not None:
+            cf2 = st2
+        for d in st2.all_solutions:
+            raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
+                        False))
+    if cf2 is not None:
+        for stp in cf2.closed_form.steps:
+            res.steps.append(PoseStep("q2, q3, q4: " + stp.title, stp.text, list(stp.equations)))
+    if st1.closed_form is not None and cf2 is not None:
+        bsub = dict(zip(B_SYMS, planar))
+        res.closed_form = [{**{str(k): v for k, v in a.items()}, **{str(k): v.xreplace(bsub) for k, v in b.items()}}
+                           for a in st1.closed_form_branches for b in cf2.closed_form_branches]
+    return raw
+
+
+def _planar_equations(chain, split, Q, lhs, rhs, Msym, q):
+    """The planar 3R of q2, q3, q4: ¹M₄ = ¹M₆·(⁴M₆)⁻¹ (x, y rows of the rotation's first column and
+    of the position), when the chain splits after q4; else the first two rows of ¹M₆."""
+    from robosolve.core.transforms import rigid_inverse
+    n = len(chain.factors)
+    s2 = next((k for k in range(split + 1, n) if chain.joints_of(split, k) == set(q[1:4])
+               and chain.joints_of(k, n) == set(q[4:])), None)
+    if s2 is None:
+        return [(sp.expand(rhs[i, j] - lhs[i, j]), 0) for i in (0, 1) for j in range(4)], None
+    mid = (Q * chain.product(split, s2)).applyfunc(sp.expand)
+    target = (lhs * rigid_inverse(chain.product(s2, n))).applyfunc(sp.expand)
+    keys = [(i, j) for j in (0, 3) for i in (0, 1)]
+    return [(mid[i, j], B_SYMS[k]) for k, (i, j) in enumerate(keys)], [target[i, j] for i, j in keys]
+
+
+def _first_equations(zrow, lhs, q):
+    """The z row's four equations, the position one made free of q5, q6 by subtracting a constant
+    combination of the rotation ones (for the UR: p_z - d6·r33), so that q1 comes first."""
+    eqs = [sp.expand(zrow[j] - lhs[2, j]) for j in range(4)]
+    f = sp.lambdify(q[4:], zrow, modules=numpy_modules())
+    samples = [(0.3, 1.1), (-1.2, 0.4), (2.0, -2.2), (0.9, 2.7), (-0.4, -1.5)]
+    rows = np.array([np.broadcast_to(np.array(f(*s), dtype=float), (4,)) for s in samples])
+    A = np.hstack([rows[:, :3], np.ones((len(samples), 1))])
+    lam, *_ = np.linalg.lstsq(A, rows[:, 3], rcond=None)
+    if np.max(np.abs(A @ lam - rows[:, 3])) < 1e-10:
+        lam = [0 if abs(v) < 1e-12 else _exact(float(f"{v:.12g}")) for v in lam[:3]]
+        pos = sp.expand(eqs[3] - sum(l * e for l, e in zip(lam, eqs[:3])))
+        eqs[3] = pos.xreplace({a: 0 for a in pos.atoms(sp.Float) if abs(a) < 1e-12})
+    return [(e, 0) for e in eqs]
+
+
+def _independent_of(rhs, zrow, q) -> bool:
+    f = sp.lambdify(q[1:], [rhs[2, j] - zrow[j] for j in range(4)], modules=numpy_modules())
+    for qs in ((0.3, 1.1, -0.7, 0.4, 2.0), (-1.2, 0.4, 2.0, -2.2, 0.9)):
+        if np.max(np.abs(np.array(f(*qs), dtype=float))) > 1e-10:
+            return False
+    return True
+
+
+def _parallel_step(zrow, lhs, split, names) -> PoseStep:
+    return PoseStep(
+        "Three parallel axes: the row along them",
+        f"The axes of joints 2, 3 and 4 are parallel (the UR family). Written in frame {split} (axes turned so "
+        "that they lie along $z$), ${}^{1}M_{6} = ({}^{0}M_{1})^{-1} M$; rotations about $z$ leave the $z$ row "
+        "unchanged, so the third row of ${}^{1}M_{6}$ depends on $q_5$, $q_6$ only: four equations for "
+        "$q_1$, $q_5$, $q_6$. The first two rows are then a planar 3R problem for $q_2$, $q_3$, $q_4$: "
+        "${}^{1}M_{4} = {}^{1}M_{6}\\,({}^{4}M_{6})^{-1}$ is known, its entries $b_{11}, b_{21}$ (the first "
+        "column of the rotation, the angle $q_2 + q_3 + q_4$) and $b_x, b_y$ (the position) give two "
+        "elbow branches.",
+        [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), ("[({}^{0}M_{1})^{-1} M]_{3}", sp.Matrix([list(lhs[2, :])]))])
 
 
 def _numeric(res, chain, R, p, no_wrist):

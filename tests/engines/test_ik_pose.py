@@ -63,12 +63,14 @@ def test_puma560_decoupling_matches_ikine_a(seed):
     assert names <= {"px", "py", "pz", "r11", "r12", "r13", "r21", "r22", "r23", "r31", "r32", "r33"}
 
 
-def test_puma560_closed_form_evaluates_to_the_solutions():
-    puma = rtb.models.DH.Puma560()
+@pytest.mark.parametrize("model, method", [("Puma560", "decoupling"), ("UR5", "three parallel axes")])
+def test_closed_form_evaluates_to_the_solutions(model, method):
+    puma = getattr(rtb.models.DH, model)()
     F, joints = _factors(puma)
     q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]
     T = puma.fkine(q0).A
     res = solve_pose(F, joints, T[:3, :3], T[:3, 3])
+    assert res.method == method and len(res.solutions) == 8
     vals = {sp.Symbol(f"r{i + 1}{j + 1}"): T[i, j] for i in range(3) for j in range(3)}
     vals.update(dict(zip(sp.symbols("px py pz"), T[:3, 3])))
     hits = 0
