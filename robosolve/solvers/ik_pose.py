@@ -47,6 +47,10 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
     if extra:
         raise SolverError("a pose target is solved with numbers: no value for "
                           + ", ".join(sorted(map(str, extra))))
+    if len(used) > 6:
+        raise SolverError(f"a pose fixes 6 coordinates and this arm moves it with {len(used)} joints: the "
+                          "target is reached along a continuum (self-motion), not at isolated solutions; "
+                          "pose targets are solved for arms of up to 6 joints")
     opts = question.options
     select = opts.get("select", "limits")
     if isinstance(select, dict):
