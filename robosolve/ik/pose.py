@@ -62,6 +62,7 @@ class PoseResult:
     wrist_centre: list[float] | None = None
     centre_in_frame: list[float] | None = None
     joints: list = field(default_factory=list)
+    nearest: dict | None = None             # (the figure's interface: no nearest configuration here)
 
 
 @dataclass
@@ -180,13 +181,13 @@ def solve_pose(factors, joints: list[IKJoint], R, p, select="limits", latex_name
     res = PoseResult()
     names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
     wrist = find_wrist(chain)
-    raw = None
+    raw, par = None, None
     if wrist is not None:
         raw = _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s)
     elif (par := find_parallel(chain)) is not None:
         raw = _three_parallel(res, chain, par, R, p, names, tex, time_limit_s)
     if raw is None:
-        raw = _numeric(res, chain, R, p, wrist is None)
+        raw = _numeric(res, chain, R, p, wrist is None and par is None)
     _verify(res, fk, raw, target, chain)
     _finish(res, select)
     return res
@@ -427,6 +428,7 @@ def _numeric(res, chain, R, p, no_wrist):
     eqs = [(M[i, j], float(target[i, j])) for i in range(3) for j in range(4)]
     r = solve_ik(eqs, [IKJoint(j.symbol, j.revolute, None) for j in chain.joints], {}, closed_form=False)
     res.method = "numeric"
+    res.notes += list(r.notes)
     if no_wrist:
         res.notes.append(_no_wrist_note(chain))
     res.steps.append(PoseStep(

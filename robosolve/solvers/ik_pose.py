@@ -18,7 +18,8 @@ from robosolve.ik.pose import P_SYMS, R_SYMS, solve_pose
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
 
-def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, params, tex) -> Answer:
+def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, params, tex):
+    """Fill `ans`; returns the engine's result (its solutions for the figure)."""
     model = ctx.model
     target = question.options["target"]
     frame = question.frame
@@ -74,13 +75,13 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
         ans.extra["reason"] = res.reason
         ans.numeric["solutions"] = []
         ans.steps.append(Step("Unreachable target", "No solution: " + str(res.reason) + "."))
-        return ans
+        return res
     ans.numeric["selected"] = dict(res.selected)
     ans.steps.append(Step("Selected solution",
                           "Selected: " + ("the first of the sorted solutions inside the joint limits."
                                           if not isinstance(select, dict) else "the solution nearest the given configuration."),
                           equations=[(names[j.symbol], res.selected[j.name]) for j in used]))
-    return ans
+    return res
 
 
 def _with_values(m, params, model):

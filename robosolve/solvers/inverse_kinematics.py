@@ -57,7 +57,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ik_joints, limit_notes = _ik_joints(joints, ctx, params)
         for n_ in limit_notes:
             ans.note(n_)
-        return solve_pose_question(question, ctx, ans, ik_joints, params, tex)
+        res = solve_pose_question(question, ctx, ans, ik_joints, params, tex)
+        figure(ans, ctx, params, res, ik_joints, question)
+        return ans
     equations, target_syms, shown, values, missing = _target_equations(opts["target"], model, ctx, params)
     ik_joints, limit_notes = _ik_joints(joints, ctx, params)
     for n_ in limit_notes:
@@ -93,7 +95,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ans.extra["reason"] = res.reason
         ans.numeric["solutions"] = []
         ans.steps.append(Step("Unreachable target", "No solution: " + (res.reason_tex or "") + "."))
-        _figure(ans, ctx, params, res, ik_joints, question)
+        figure(ans, ctx, params, res, ik_joints, question)
         return ans
 
     how = ("the first of the sorted solutions inside the joint limits" if select_num is None else
@@ -104,7 +106,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                           equations=[(names[j.symbol], res.selected[j.name]) for j in ik_joints]))
     if opts.get("velocity"):
         _velocity(ans, ctx, model, opts["velocity"], params, ik_joints, res, values, tex)
-    _figure(ans, ctx, params, res, ik_joints, question)
+    figure(ans, ctx, params, res, ik_joints, question)
     return ans
 
 
@@ -310,7 +312,7 @@ def _redundant_answer(ans, res, ik_joints, tex):
     return ans
 
 
-def _figure(ans, ctx, params, res, ik_joints, question):
+def figure(ans, ctx, params, res, ik_joints, question):
     sols = res.all_solutions[:12]
     if not sols and res.nearest is None:
         return
@@ -334,7 +336,7 @@ def _figure(ans, ctx, params, res, ik_joints, question):
     point = question.point
     target = None
     coords = {}
-    for text, lhs, rhs in question.options["target"]:
+    for text, lhs, rhs in (question.options["target"] if isinstance(question.options["target"], list) else ()):
         if _is_point_coordinate(lhs):
             pname, axis = lhs.name.split(".")
             try:

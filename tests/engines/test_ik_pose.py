@@ -245,3 +245,17 @@ def test_point_target_with_rpy_through_the_solver():
         assert np.max(np.abs(Ts - T)) < 1e-9
     assert _contains(sols, q0, 1e-9)
     assert ans.numeric["selected"] == sols[0]
+
+
+def test_puma560_wrist_singularity_gives_a_representative_with_a_note():
+    puma = rtb.models.DH.Puma560()
+    F, joints = _factors(puma)
+    q0 = [0.3, -0.5, 0.4, 0.7, 0.0, 1.2]            # q5 = 0: axes 4 and 6 aligned
+    T = puma.fkine(q0).A
+    res = solve_pose(F, joints, T[:3, :3], T[:3, 3])
+    assert res.status == "ok" and res.method == "decoupling"
+    _check_reaches(puma, res.solutions, T)
+    singular = [s for s, f in zip(res.all_solutions, res.wrist_singular) if f]
+    assert len(singular) == 1 and singular[0]["q6"] == 0.0
+    assert abs(wrap_angle(singular[0]["q4"] - (q0[3] + q0[5]))) < 1e-9     # only the sum is fixed
+    assert len(res.solutions) == 7 and any("wrist singularity" in str(n) for n in res.notes)
