@@ -48,7 +48,7 @@ def run_variants(count, jobs, out, scheduler=None) -> float:
 
 def overhead(n, jobs) -> tuple[float, float, float]:
     sys.path.insert(0, str(ROOT))
-    from robosolve.execution import make_task, run_tasks, start_local_cluster
+    from robosolve.run.execution import make_task, run_tasks, start_local_cluster
 
     tasks = [make_task(TINY.format(i=i, b=4 + i % 3, j=4 + i % 4), f"tiny-{i}.yaml") for i in range(n)]
     list(run_tasks(tasks[:jobs], jobs))                 # a first pool, so imports are cached on disk
@@ -66,7 +66,7 @@ def overhead(n, jobs) -> tuple[float, float, float]:
         t_dask = time.perf_counter() - t0
     finally:
         cluster.close()
-    assert all(r["status"] == 0 for r in pool + dask)
+    assert all(r.status == 0 for r in pool + dask)
     return t_pool, t_dask, t_start
 
 

@@ -16,7 +16,7 @@ import time
 
 
 def main(path="problems/exam-2r-full.yaml", rounds=3):
-    from robosolve.pipeline import solve_file
+    from robosolve.run.pipeline import solve_file
     from robosolve.render.plots import draw
 
     report = solve_file(path)

@@ -7,7 +7,8 @@ start-up also ends with exit status 130 (spec §4) instead of a traceback.
 import os
 import sys
 
-from robosolve import interrupts
+from robosolve.errors import ExitStatus
+from robosolve.run import interrupts
 
 
 def main() -> None:
@@ -17,13 +18,13 @@ def main() -> None:
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
         sys.stderr.flush()
-        os._exit(interrupts.EXIT_SIGINT)  # (see cli.main: not the interpreter's SIGINT exit)
+        os._exit(ExitStatus.SIGINT)  # (see cli.main: not the interpreter's SIGINT exit)
     try:
         cli_main()
     except KeyboardInterrupt:   # one that arrives after the CLI's own handling (at exit)
         sys.stderr.write("interrupted\n")
         sys.stderr.flush()
-        os._exit(interrupts.EXIT_SIGINT)
+        os._exit(ExitStatus.SIGINT)
 
 
 if __name__ == "__main__":

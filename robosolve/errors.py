@@ -1,4 +1,4 @@
-"""Every exception robosolve raises on purpose, and the exit statuses.
+"""Every exception robosolve raises on purpose, and the exit statuses (`ExitStatus`).
 
 Only the CLI turns these into messages and exit codes.
 """
@@ -6,10 +6,17 @@ Only the CLI turns these into messages and exit codes.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import IntEnum
 
-EXIT_OK = 0          # every question answered (an unreachable IK target is an answer)
-EXIT_ANSWER_ERROR = 1  # some question answered with `error` (or a golden mismatch)
-EXIT_INPUT = 2       # invalid input or usage
+
+class ExitStatus(IntEnum):
+    """The exit statuses of every command (spec §4), in one place."""
+
+    OK = 0              # every question answered (an unreachable IK target is an answer)
+    ANSWER_ERROR = 1    # some question answered with `error` (or a golden mismatch, a wrong answer)
+    INPUT = 2           # invalid input or usage: nothing written
+    SIGINT = 130        # interrupted (Ctrl-C)
+    SIGTERM = 143       # terminated
 
 
 class RobosolveError(Exception):

@@ -8,7 +8,7 @@ from robosolve.grading.answers import read_answers_text, resolve_answers
 from robosolve.grading.grader import Grader
 from robosolve.grading.reference import Reference
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 
 # A planar 2R arm in the x-y plane, the textbook one: every reference below is written
 # from its closed forms (M, J, det J = L1·L2·sin q2, Fq = −Jᵀ·Fs, the IK by the law of

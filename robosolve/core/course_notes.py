@@ -9,7 +9,7 @@ That file is the single source of the notes:
   (section "Notes on the course summary"), so the link works wherever the report
   is read — on GitHub, in report.html, offline — without depending on where the
   output folder lies relative to the project's docs;
-* `docs/course-notes.md` is generated from it (`python -m robosolve.core.course_notes`)
+* `docs/course-notes.md` is generated from it (`python -m robosolve.core.course_notes docs/course-notes.md`)
   and a test keeps the page in sync.
 
 String helpers over that data: no sympy, cheap to import (one small YAML read).
@@ -89,7 +89,8 @@ def notes_page() -> str:
     return "\n\n".join(out) + "\n"
 
 
-if __name__ == "__main__":      # python -m robosolve.core.course_notes > docs/course-notes.md
+if __name__ == "__main__":      # python -m robosolve.core.course_notes docs/course-notes.md
     import sys
+    from pathlib import Path
 
-    sys.stdout.write(notes_page())
+    Path(sys.argv[1]).write_text(notes_page(), encoding="utf-8")

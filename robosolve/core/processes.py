@@ -19,6 +19,13 @@ import os
 import signal
 
 
+def worker_init() -> None:
+    """Worker processes ignore SIGINT (the parent stops them) and die at once on SIGTERM."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "SIGTERM"):
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
 def usable_cores() -> int:
     """The cores this process may run on."""
     try:
@@ -52,8 +59,6 @@ def pipe():
 
 def child_setup(parent_ends=()) -> None:
     """First thing in a helper: close the parent's pipe ends, set its signals."""
-    from robosolve.interrupts import worker_init
-
     for end in parent_ends:
         end.close()
     worker_init()

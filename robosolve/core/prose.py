@@ -18,7 +18,28 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Num", "Text"]
+__all__ = ["Num", "Text", "name_tex", "name_md"]
+
+# A name from the problem file (a frame, a body, a force) is any string: in LaTeX and in
+# Markdown its special characters are escaped, so that `$`, `\\`, `{`, `_` or `<script>` in a
+# name neither breaks a formula nor becomes markup. Plain names (letters, digits) are unchanged.
+_TEX_SPECIAL = {"\\": "\\backslash{}", "{": "\\{", "}": "\\}", "$": "\\$", "&": "\\&", "#": "\\#",
+                "%": "\\%", "_": "\\_", "^": "\\hat{}", "~": "\\sim{}", " ": "\\ ", "<": "\\lt{}",
+                ">": "\\gt{}"}
+_MD_SPECIAL = set("\\`*_[]<>$~&")          # (a table cell escapes its | itself)
+
+
+def name_tex(name: str, plain_digits: bool = True) -> str:
+    """A name inside a formula, upright (\\mathrm); a frame's number as it is (frame 1)."""
+    if plain_digits and name.isdigit():
+        return name
+    return "\\mathrm{" + "".join(_TEX_SPECIAL.get(c, c) for c in name) + "}"
+
+
+def name_md(name: str) -> str:
+    """A name inside Markdown prose or a table cell: its ASCII punctuation backslash-escaped
+    (CommonMark), so it shows as written."""
+    return "".join("\\" + c if c in _MD_SPECIAL else c for c in name)
 
 
 @dataclass(frozen=True)

@@ -37,6 +37,7 @@ import sympy as sp
 from sympy.simplify.fu import TR8, TR10i
 
 from robosolve.core.timing import time_limit
+from robosolve.core.trigring import pythagorean_reduced
 from robosolve.errors import SymbolicTimeout
 
 __all__ = [
@@ -250,130 +251,6 @@ def _distinct_trig_factors(term) -> bool:
     return len(set(args)) == len(args)
 
 
-def pythagorean_reduced(expr, expanded: bool = False):
-    """expr as a polynomial in sin θ, cos θ of its angles reduced modulo sin²θ + cos²θ = 1,
-    each angle's square eliminated in the direction that leaves fewer operations
-    (sin² -> 1 - cos² or cos² -> 1 - sin²); None when an argument of sin/cos is not a
-    plain symbol after the addition formulas are expanded (sin(θ/2), sin(ω t))."""
-    if expr.atoms(sp.Float):
-        return None     # inexact coefficients: reducing them would add round-off terms
-    built = _trig_ring_fast(expr if expanded else sp.expand(expr))
-    if built is None:
-        built = _trig_ring(expr)
-    if built is None:
-        return None
-    poly, pairs, back = built
-    # one angle at a time: eliminate sin² (lex order s > c) or cos² (the ring with c > s)
-    for s, c in pairs:
-        si, ci = poly.ring.gens.index(s), poly.ring.gens.index(c)
-        if all(m[si] < 2 and m[ci] < 2 for m in poly.keys()):
-            continue            # nothing to eliminate: both normal forms are poly itself
-        options = [poly.rem([s ** 2 + c ** 2 - 1]), _rem_cos_squared(poly, s, c)]
-        exprs = [p.as_expr() for p in options]
-        ops = [sp.count_ops(e) for e in exprs]
-        # fewer operations, then the text (only compared on a tie)
-        pick = 0 if ops[0] < ops[1] or (ops[0] == ops[1] and str(exprs[0]) <= str(exprs[1])) else 1
-        poly = options[pick]
-    return poly.as_expr().xreplace(back)
-
-
-def _angle_generators(angles):
-    """One (s, c) pair of Dummy generators per angle, and the map sin(a) -> s, cos(a) -> c."""
-    pairs = [(sp.Dummy(f"s{k}"), sp.Dummy(f"c{k}")) for k in range(len(angles))]
-    to_ring = {}
-    for a, (s, c) in zip(angles, pairs):
-        to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
-    return pairs, to_ring
-
-
-def _trig_ring(expr):
-    """(ring element, [(s, c) generators per angle], generator -> sin/cos) through sympy's
-    expand_trig and sring (any coefficient domain), or None."""
-    from sympy.polys.rings import sring
-
-    e = sp.expand(sp.expand_trig(expr))
-    args = sorted({a.args[0] for a in e.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
-    if not args or not all(a.is_Symbol for a in args):
-        return None
-    pairs, to_ring = _angle_generators(args)
-    try:
-        ring, poly = sring(sp.expand(e.xreplace(to_ring)), *[g for pair in pairs for g in pair])
-    except Exception:       # not a polynomial (a sine in a denominator): leave it to trigsimp
-        return None
-    gmap = dict(zip(ring.symbols, ring.gens))
-    back = {gmap[v]: k for k, v in to_ring.items()}
-    return poly, [(gmap[s], gmap[c]) for s, c in pairs], {g.as_expr(): f for g, f in back.items()}
-
-
-def _trig_ring_fast(e):
-    """The same ring element built term by term over QQ (the usual chain entry: rational
-    coefficients times powers of symbols, sines and cosines), without expanding the
-    addition formulas of the whole sum; None for anything else (floats, radicals, a symbol
-    in a denominator), which `_trig_ring` handles."""
-    from sympy.polys.domains import QQ
-    from sympy.polys.rings import ring as poly_ring
-
-    terms, others, atoms = [], set(), set()
-    for t in sp.Add.make_args(e):
-        coeff, factors = t.as_coeff_mul()
-        if not coeff.is_Rational:
-            return None
-        parts = []
-        for f in factors:
-            b, x = f.as_base_exp()
-            if not (x.is_Integer and x > 0):
-                return None
-            if isinstance(b, (sp.sin, sp.cos)):
-                atoms.add(b)
-            elif b.is_Symbol:
-                others.add(b)
-            else:
-                return None
-            parts.append((b, int(x)))
-        terms.append((coeff, parts))
-    if not atoms:
-        return None
-    expanded = {a: sp.expand(sp.expand_trig(a)) for a in atoms}
-    angles = sorted({x.args[0] for v in expanded.values() for x in v.atoms(sp.sin, sp.cos)},
-                    key=sp.default_sort_key)
-    if not angles or not all(a.is_Symbol for a in angles):
-        return None
-    pairs, to_ring = _angle_generators(angles)
-    # the other symbols are the coefficient domain (as sring makes it): the key that picks
-    # each angle's elimination counts the operations of that grouped form
-    symbols = [g for pair in pairs for g in pair]
-    domain = QQ.poly_ring(*sorted(others, key=sp.default_sort_key)) if others else QQ
-    ring, *gens = poly_ring(symbols, domain)
-    gmap = dict(zip(symbols, gens))
-    try:
-        value = {a: ring.from_expr(v.xreplace(to_ring)) for a, v in expanded.items()}
-    except Exception:
-        return None
-    value.update({o: ring.ground_new(domain.from_sympy(o)) for o in others})
-    poly = ring.zero
-    for coeff, parts in terms:
-        term = ring(QQ(int(coeff.p), int(coeff.q)))
-        for b, x in parts:
-            term *= value[b] ** x
-        poly += term
-    back = {s: sp.sin(a) for a, (s, _) in zip(angles, pairs)}
-    back.update({c: sp.cos(a) for a, (_, c) in zip(angles, pairs)})
-    return poly, [(gmap[s], gmap[c]) for s, c in pairs], back
-
-
-def _rem_cos_squared(poly, s, c):
-    """poly with cos² -> 1 - sin²: each c^(2k+r) becomes c^r (1 - s²)^k (r = 0, 1), the
-    normal form of degree at most 1 in c."""
-    ring = poly.ring
-    ci = ring.gens.index(c)
-    out = ring.zero
-    for monom, coeff in poly.terms():
-        m = list(monom)
-        k, m[ci] = divmod(m[ci], 2)
-        out += ring({tuple(m): coeff}) * (1 - s ** 2) ** k
-    return out
-
-
 def _has_trig_products(expr) -> bool:
     """True when a product or power of sin/cos is left (something trigsimp may reduce)."""
     for node in sp.preorder_traversal(expr):
@@ -513,9 +390,14 @@ def is_zero(e) -> bool:
     """True when e == 0 is proved (equivalence checks: a - b). A polynomial in sines and
     cosines of symbols with exact coefficients is decided by its normal form modulo
     sin² + cos² = 1 (unique: zero exactly when e is), in milliseconds; anything else by
-    simplify."""
+    simplify (Floats at their own precision: 0.1 - 1/10 is 0). A number is evaluated first
+    (30 digits away from 0: not zero, no simplify); the one fallback, where no proof can be
+    had (equality of constants is undecidable in general): a number simplify does not reduce
+    to 0 whose value is below 1e-50 on 60 digits is taken as zero."""
     e = sp.sympify(e)
-    if e.free_symbols and not e.atoms(sp.Float):
+    if not e.free_symbols:
+        return _number_is_zero(e)
+    if not e.atoms(sp.Float):
         expanded = sp.expand(e)
         if expanded == 0:
             return True
@@ -523,6 +405,19 @@ def is_zero(e) -> bool:
         if reduced is not None:
             return sp.expand(reduced) == 0
     return full(e) == 0
+
+
+def _number_is_zero(e) -> bool:
+    if e.is_Number:
+        return e == 0
+    try:
+        if abs(complex(e.evalf(30))) > 1e-20:
+            return False
+        if full(e) == 0:
+            return True
+        return abs(complex(e.evalf(60))) < 1e-50
+    except (TypeError, ValueError):      # not a number sympy can evaluate (zoo, nan)
+        return False
 
 
 # ---------------------------------------------------------------------------- algebra

@@ -25,7 +25,7 @@ Inputs are plain sympy objects (no dependency on the loader):
 
 From a problem's RobotModel (what solvers use; one derivation per model, cached):
 
-    from robosolve.dynamics.model import dynamics_for, numeric_for
+    from robosolve.dynamics.bridge import dynamics_for, numeric_for
     dyn = dynamics_for(model)            # Dynamics; raises SymbolicTimeout past 90 s
     nd, note = numeric_for(model, subs)  # NumericDynamics from parameter values; falls back
                                          # to the numeric-only path (note says so)

@@ -16,7 +16,7 @@ How it is kept compact (same formulas, other frame and order of operations):
   the body's own pseudo-inertia (constant).
 * Every entry is a polynomial in cos qᵢ, sin qᵢ (and prismatic qᵢ) with the parameters as
   coefficients, kept reduced modulo cos² + sin² = 1 in a sympy sparse polynomial ring
-  (trigpoly.py): exact, canonical, fast; no `trigsimp` in the derivation. The final
+  (core/trigring.py): exact, canonical, fast; no `trigsimp` in the derivation. The final
   entries are shown in the shortest of three equivalent forms (`pretty`).
 * The Lagrange derivatives are taken on M(q) and U(q) directly:
   d/dt ∂ℒ/∂q̇ − ∂ℒ/∂q = M q̈ + c + g with c from the Christoffel symbols of M and g = ∂U/∂q,
@@ -35,7 +35,8 @@ import sympy as sp
 from robosolve.core.matrices import action_matrix
 from robosolve.core.simplify import coefficient
 from robosolve.core.transforms import skew, vex
-from robosolve.dynamics.trigpoly import SympyAlgebra, TrigAlgebra, fourier_terms, product_terms
+from robosolve.core.trigring import TrigAlgebra, fourier_terms, product_terms
+from robosolve.dynamics.sympy_algebra import SympyAlgebra
 from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
 
 __all__ = ["DynamicsEngine"]

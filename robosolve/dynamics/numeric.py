@@ -9,6 +9,7 @@ import numpy as np
 import sympy as sp
 
 from robosolve.core.numpy_code import numpy_modules
+from robosolve.core.symbols import TIME
 from robosolve.dynamics.types import Dynamics
 
 __all__ = ["NumericDynamics", "lambdify_dynamics", "numeric_from_engine", "free_symbols_left"]
@@ -120,7 +121,7 @@ class NumericDynamics:
         return cls.from_symbolic(dyn.mass_matrix, dyn.velocity_terms, dyn.gravity_terms,
                                  dyn.q, dyn.qd, external=dyn.external_forces,
                                  subs=None if subs is None else _sympified(subs),
-                                 time=sp.Symbol("t", real=True))
+                                 time=TIME)
 
     def closed_loop(self, law: str, kp, kd):
         """A fast scalar function qdd(q, qd, e, ed, qdd_d) -> list of floats, or None.

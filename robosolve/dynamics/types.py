@@ -1,6 +1,6 @@
 """The dynamics engine's plain inputs (frames, joints, bodies, loads) and its symbolic result.
 
-No dependency on the rest of robosolve: the model bridge (`dynamics/model.py`) builds
+No dependency on the rest of robosolve: the model bridge (`dynamics/bridge.py`) builds
 these from a `RobotModel`, the engine (`engine.py`) consumes them, `numeric.py` turns a
 `Dynamics` into numbers.
 """

@@ -36,11 +36,9 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
-from robosolve.core.simplify import full
+from robosolve.core.simplify import full, is_zero
 from robosolve.core.transforms import rigid_inverse, skew
-from robosolve.geometry.rotations import (
-    ZERO_TOL, axis_angle_numeric, axis_angle_symbolic, axis_angle_matrix, is_zero,
-)
+from robosolve.geometry.rotations import ZERO_TOL, axis_angle_numeric, axis_angle_symbolic, axis_angle_matrix
 
 __all__ = [
     "HelicalAxis", "displacement_matrix", "express_in_frame",

@@ -35,7 +35,8 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
-from robosolve.core.simplify import exact_geometry
+from robosolve.core.angles import wrap_angle
+from robosolve.core.simplify import exact_geometry, is_zero
 
 __all__ = [
     "SINGULAR_TOL", "ZERO_TOL",
@@ -101,14 +102,6 @@ class EulerAngles:
 # helpers
 
 
-def wrap_angle(a: float) -> float:
-    """Wrap an angle (float) into (-pi, pi]."""
-    a = math.remainder(float(a), 2.0 * math.pi)
-    if a <= -math.pi:
-        a += 2.0 * math.pi
-    return a + 0.0  # no negative zero
-
-
 def _atan2(y: float, x: float) -> float:
     # +0.0 turns -0.0 into +0.0, so atan2(-0.0, -1) gives pi, not -pi.
     a = math.atan2(float(y) + 0.0, float(x) + 0.0)
@@ -158,29 +151,6 @@ def _rot3_symbolic(m) -> sp.Matrix:
 _default_simplify = exact_geometry
 
 
-def is_zero(e) -> bool:
-    """True when e is (identically) zero.
-
-    Without free symbols: decided on 30 significant digits, then confirmed
-    exactly when sympy can.  With free symbols: identically zero after
-    simplification.
-    """
-    e = sp.sympify(e)
-    if e == 0:
-        return False if e.free_symbols else True
-    if e.free_symbols:
-        # identically zero: probe a few deterministic points, then trust them.
-        syms = sorted(e.free_symbols, key=sp.default_sort_key)
-        for k in range(3):
-            pt = {x: sp.Float(0.3 + 0.71 * k + 0.37 * i, 30) for i, x in enumerate(syms)}
-            v = complex(e.evalf(30, subs=pt))
-            if abs(v) > 1e-20:
-                return False
-        return True
-    v = complex(e.evalf(30))
-    return abs(v) < 1e-25
-
-
 def _num(e) -> float:
     return float(sp.N(e, 30))
 
@@ -202,21 +172,6 @@ def _sym_angle(y, x, simplify):
     if y.free_symbols or x.free_symbols:
         return sp.atan2(simplify(y), simplify(x))
     return simplify(sp.atan2(y, x))
-
-
-def _wrap_symbolic(a):
-    """Wrap an exact angle (no free symbols) into (-pi, pi]; leave others alone."""
-    if a.free_symbols:
-        return a
-    if a.atoms(sp.Float):  # inexact input: a float, not "float + pi"
-        return sp.Float(wrap_angle(_num(a)), 15)
-    v = _num(a)
-    k = 0
-    while v - 2 * math.pi * k > math.pi + 1e-15:
-        k += 1
-    while v - 2 * math.pi * k <= -math.pi + 1e-15:
-        k -= 1
-    return a - 2 * sp.pi * k if k else a
 
 
 # --------------------------------------------------------------------------
@@ -356,14 +311,14 @@ def _gimbal_lock_numeric(pivot: float, plus, minus) -> EulerAngles:
 def _gimbal_lock_symbolic(pivot, plus, minus, simplify) -> EulerAngles:
     """`_gimbal_lock_numeric` for a sympy rotation: gamma exact and wrapped to (-pi, pi]."""
     y, x, middle, combination = plus if _positive_unit(pivot) else minus
-    return _locked(_wrap_symbolic(_sym_angle(y, x, simplify)), middle, combination, sp.Integer(0))
+    return _locked(wrap_angle(_sym_angle(y, x, simplify)), middle, combination, sp.Integer(0))
 
 
 def _two_sets_symbolic(s1, s2, exact: bool, factor, validity: str) -> EulerAngles:
     """The two regular solution sets of a sympy rotation: wrapped to (-pi, pi] when exact,
     else kept with the `factor` that must not vanish and where they are valid."""
     if exact:
-        return EulerAngles([[_wrap_symbolic(x) for x in s1], [_wrap_symbolic(x) for x in s2]], False)
+        return EulerAngles([[wrap_angle(x) for x in s1], [wrap_angle(x) for x in s2]], False)
     return EulerAngles([s1, s2], None, None, factor, [validity])
 
 

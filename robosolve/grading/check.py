@@ -23,19 +23,25 @@ def problem_path(sub, override) -> Path:
 def solve_reference(path, rtol=None, atol=None) -> Reference:
     """Load and solve a problem once (InputError when it is not valid input)."""
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
 
     return Reference.from_report(solve_problem(load_problem(path)), rtol=rtol, atol=atol)
 
 
-def check_file(answers, problem=None, rtol=None, atol=None) -> tuple[SubmissionResult, Reference]:
-    """Grade one answers file. Raises InputError (exit 2) for an invalid file or problem."""
+def check_file(answers, problem=None, rtol=None, atol=None, before_solving=None) -> tuple[SubmissionResult, Reference]:
+    """Grade one answers file. Raises InputError (exit 2) for an invalid file or problem.
+
+    `before_solving(inputs)`, when given, is called with the files read (the answers file and
+    its problem) before any work: the caller refuses an output that would overwrite one."""
     sub = read_answers(answers)
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
 
+    path = problem_path(sub, problem)
+    if before_solving is not None:
+        before_solving([Path(answers), Path(path)])
     try:
-        prob = load_problem(problem_path(sub, problem))
+        prob = load_problem(path)
     except InputError as exc:
         raise InputError(list(dict.fromkeys(sub.issues + exc.issues))) from None
     resolve_answers(sub, prob)

@@ -4,7 +4,7 @@ The parent reads every answers file, finds each one's problem (`--problem`, `--v
 or its own `problem:`), solves each distinct problem once, and sends the references to
 worker processes (pickled once per worker, through the pool's initializer); the workers
 grade the submissions. Outputs are written into a temporary folder that replaces DIR at
-the end (`robosolve.outputs`, the output-folder rule of problem-format.md §2), so they are
+the end (`robosolve.run.outputs`, the output-folder rule of problem-format.md §2), so they are
 deterministic and never half-written.
 """
 
@@ -13,16 +13,16 @@ from __future__ import annotations
 import csv
 import io
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
+from robosolve.errors import ExitStatus, InputError
 from robosolve.grading.answers import read_answers, resolve_answers, safe_name
 from robosolve.grading.grader import Grader, invalid_result
 from robosolve.grading.record import (
     GRADES_COLUMNS, SUMMARY_COLUMNS, feedback_markdown, grade_rows, record_json, summary_row,
 )
-from robosolve.interrupts import process_pool
+from robosolve.run.interrupts import process_pool
 
 
 # Earlier outputs removed when DIR is the working directory (written in place): never `*.json`,
@@ -46,12 +46,18 @@ class Job:
     duplicate: bool = False        # a second submission with an earlier one's student id
 
 
-def collect(sources) -> list[Path]:
+def collect(sources, warnings=None) -> list[Path]:
+    """The answers files of `sources` (files, or folders of *.yaml / *.yml); a link in a folder
+    that points nowhere is left out with a warning appended to `warnings`."""
     files = []
     for s in sources:
         p = Path(s)
         if p.is_dir():
-            files += [f for f in p.iterdir() if f.suffix in (".yaml", ".yml") and f.is_file()]
+            found = sorted(f for f in p.iterdir() if f.suffix in (".yaml", ".yml"))
+            files += [f for f in found if f.is_file()]
+            if warnings is not None:
+                warnings += [f"{f}: skipped: a symbolic link to {os.readlink(f)}, which does not exist"
+                             for f in found if f.is_symlink() and not f.exists()]
         elif p.is_file():
             files.append(p)
         else:
@@ -111,8 +117,13 @@ def _problem_for(sub, problem, variants):
 
 def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
     """Read every submission, solve every problem once. Returns (jobs, references)."""
-    from robosolve.grading.check import solve_reference
+    jobs, problems = read_jobs(files, problem, variants_dir)
+    return jobs, solve_jobs(jobs, problems, rtol, atol)
 
+
+def read_jobs(files, problem=None, variants_dir=None):
+    """Read every submission and find its problem (nothing solved yet): (jobs, problems), where
+    `problems` maps each resolved problem file to (its path, the submissions graded against it)."""
     variants = read_variants(Path(variants_dir)) if variants_dir is not None else None
     jobs, problems = [], {}
     common = None                 # with --problem, even an unreadable submission has its problem
@@ -138,6 +149,18 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
         key = str(Path(path).resolve())
         problems.setdefault(key, (path, []))[1].append((i, sub))
         jobs.append(Job(i, str(f), sub.student, key, None))
+    return jobs, problems
+
+
+def input_paths(files, problems) -> list[Path]:
+    """The files `grade` reads: the answers files and their problems."""
+    return [*map(Path, files), *(Path(path) for path, _ in problems.values())]
+
+
+def solve_jobs(jobs, problems, rtol=None, atol=None) -> dict:
+    """Solve each problem once and resolve its submissions' answers: the references."""
+    from robosolve.grading.check import solve_reference
+
     references = {}
     for key, (path, subs) in sorted(problems.items()):
         try:
@@ -151,7 +174,7 @@ def prepare(files, problem=None, variants_dir=None, rtol=None, atol=None):
             except InputError as exc:
                 jobs[i].error = str(exc)
     _mark_duplicates(jobs)
-    return jobs, references
+    return references
 
 
 def _fallback_student(f) -> str:
@@ -176,7 +199,7 @@ _GRADERS: dict = {}
 
 def _init_worker(references, worker: bool = False) -> None:
     if worker:
-        from robosolve.interrupts import worker_init
+        from robosolve.core.processes import worker_init
 
         worker_init()
     _REFERENCES.clear()
@@ -256,16 +279,35 @@ def _titles(ref) -> dict:
     return {q.id: title(q.type) for q in ref.questions}
 
 
-def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None, atol=None,
-              progress_factory=None, report=None) -> int:
-    from robosolve.outputs import check_output_folder, write_output_folder
+@dataclass
+class GradeOutcome:
+    """What `grade` did, for the CLI to print: the jobs (one per submission, in file order),
+    their results, the exit status."""
 
-    files = collect(sources)
-    inputs = list(files) + ([Path(problem)] if problem is not None else [])
+    status: int
+    jobs: list
+    results: list
+    warnings: list = field(default_factory=list)
+
+
+def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None, atol=None,
+              progress_factory=None) -> GradeOutcome:
+    """Grade every submission and write DIR. Raises UsageError / OutputFolderError (exit 2,
+    nothing written); `progress_factory(total)` is a context manager yielding `advance(n)`."""
+    from robosolve.run.outputs import check_output_folder, write_output_folder
+
+    warnings: list = []
+    files = collect(sources, warnings)
+    inputs = [*files, *([Path(problem)] if problem is not None else []),
+              *([Path(variants_dir)] if variants_dir is not None else []),
+              *(Path(s) for s in sources if Path(s).is_dir())]
     check_output_folder(Path(out), inputs)
     if not files:
-        raise UsageError("no answers files found (*.yaml, *.yml)")
-    jobs, references = prepare(files, problem, variants_dir, rtol, atol)
+        raise UsageError("\n".join([*warnings, "no answers files found (*.yaml, *.yml)"]))
+    jobs, problems = read_jobs(files, problem, variants_dir)
+    inputs += input_paths(files, problems)
+    check_output_folder(Path(out), inputs)
+    references = solve_jobs(jobs, problems, rtol, atol)
     if progress_factory is not None:
         with progress_factory(len(jobs)) as advance:
             results = grade_all(jobs, references, n_jobs, advance)
@@ -273,9 +315,8 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
         results = grade_all(jobs, references, n_jobs)
     outputs = {rel: text.encode("utf-8") for rel, text in render(jobs, results, references).items()}
     write_output_folder(Path(out), outputs, inputs, own=OWN_OUTPUTS)
-    if report is not None:
-        report(jobs, results)
-    return EXIT_ANSWER_ERROR if any(j.answers is None for j in jobs) else EXIT_OK
+    status = ExitStatus.ANSWER_ERROR if any(j.answers is None for j in jobs) else ExitStatus.OK
+    return GradeOutcome(status, jobs, results, warnings)
 
 
-__all__ = ["run_grade", "UsageError", "EXIT_INPUT"]
+__all__ = ["run_grade", "UsageError", "GradeOutcome"]

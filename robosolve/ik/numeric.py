@@ -16,21 +16,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from robosolve.core.angles import wrap_angle  # noqa: F401  (the one rule; ik.engine imports it here)
 from robosolve.core.numpy_code import numpy_modules
 
 TWO_PI = 2.0 * math.pi
 RESIDUAL_TOL = 1e-9     # a solution must reproduce the target to this (FK check)
 DEDUPE_TOL = 1e-6       # two solutions closer than this (max norm) are the same
-
-
-def wrap_angle(a: float) -> float:
-    """Wrap into (-pi, pi]; values within 1e-12 of -pi become pi; -0.0 becomes 0.0."""
-    w = math.pi - ((math.pi - a) % TWO_PI)
-    if w <= -math.pi + 1e-12:
-        w = math.pi
-    if abs(w) < 1e-15:
-        w = 0.0
-    return w + 0.0
 
 
 def _clean(v: float) -> float:

@@ -29,7 +29,8 @@ import sympy as sp
 from robosolve.core.numpy_code import numpy_modules
 from robosolve.core.prose import Num, Text
 from robosolve.ik.engine import IKJoint, in_limits, solve_ik
-from robosolve.ik.numeric import DEDUPE_TOL, sort_solutions, wrap_angle
+from robosolve.core.angles import wrap_angle
+from robosolve.ik.numeric import DEDUPE_TOL, sort_solutions
 
 FK_TOL = 1e-9
 R_SYMS = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}"))

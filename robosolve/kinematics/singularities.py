@@ -29,13 +29,12 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from robosolve.core.angles import wrap_angle
 from robosolve.core.simplify import (bounded_full, determinant_factors, factored_determinant, full, is_zero,
-                                     jacobian_entry, rational)
+                                     jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
 
 __all__ = ["Condition", "SingularityResult", "find_singularities", "wrap_angle"]
-
-_TWO_PI = 2 * sp.pi
 
 
 @dataclass(frozen=True)
@@ -72,19 +71,6 @@ class SingularityResult:
 
 # ---------------------------------------------------------------------------
 # angles
-
-def wrap_angle(value):
-    """Bring an exact angle into (−π, π]; expressions with symbols are returned as is."""
-    v = sp.sympify(value)
-    if v.free_symbols:
-        return v
-    try:
-        fv = float(v)
-    except (TypeError, ValueError):
-        return v
-    k = math.ceil((fv - math.pi) / (2 * math.pi) - 1e-12)
-    return rational(v - k * _TWO_PI) if k else v
-
 
 def _wrap_linear(value, joints):
     """θ = (linear combination of joints) + constant: wrap the constant part."""

@@ -9,7 +9,7 @@
 * **Zero blocks in general.** Any square J whose zero pattern splits it into a block
   triangular form is cut the same way (rows/columns permuted, the sign kept).
 * **Small determinants in the trig-polynomial ring.** Each block's entries become
-  polynomials in cᵢ = cos qᵢ, sᵢ = sin qᵢ (robosolve.dynamics.trigpoly); zero tests there are
+  polynomials in cᵢ = cos qᵢ, sᵢ = sin qᵢ (robosolve.core.trigring); zero tests there are
   exact (reduced modulo sᵢ² + cᵢ² = 1); the block's determinant is a ring polynomial,
   factored as a polynomial (factors such as sᵢ² + cᵢ² are 1 and dropped), and each factor
   is turned back into sines and cosines of sums (cos(q2 + q3)) by core.simplify.tidy_products.
@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.simplify import tidy_products
-from robosolve.dynamics.trigpoly import TrigAlgebra
+from robosolve.core.trigring import TrigAlgebra
 
 __all__ = ["RingChain", "StructuredDet", "WristJacobian", "geometric_jacobian_ring", "structured_det",
            "wrist_decoupled_det"]

@@ -10,6 +10,8 @@ import re
 
 import sympy as sp
 
+from robosolve.core.parameters import resolve_parameters
+from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
@@ -460,17 +462,7 @@ class _ProblemBuilder:
     def _values(self, overrides: dict | None = None) -> dict:
         """Numeric values of the parameters that have one (for sanity checks), with `overrides`
         (a question's `at` values of parameters) replacing theirs."""
-        vals, pending = {}, {**self.parameters, **(overrides or {})}
-        for _ in range(len(pending) + 1):
-            for s, e in list(pending.items()):
-                if e is None:
-                    pending.pop(s)
-                    continue
-                v = e.xreplace(vals)
-                if not v.free_symbols:
-                    vals[s] = v
-                    pending.pop(s)
-        return vals
+        return resolve_parameters(self.parameters, overrides)
 
     def _names(self) -> dict:
         names = {s.name: s for s in self.parameters}
@@ -479,7 +471,7 @@ class _ProblemBuilder:
             names[j.dot.name] = j.dot
             names[j.ddot.name] = j.ddot
             names[j.actuator.name] = j.actuator
-        names["t"] = sp.Symbol("t", real=True)
+        names["t"] = TIME
         return names
 
     # -- frames ---------------------------------------------------------

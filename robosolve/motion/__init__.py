@@ -11,5 +11,5 @@ Pure engines on plain sympy/numpy inputs (no loader, no I/O):
 
 The numeric equations of motion they take are
 :class:`robosolve.dynamics.numeric.NumericDynamics` (built by the model bridge,
-:mod:`robosolve.dynamics.model`).
+:mod:`robosolve.dynamics.bridge`).
 """

@@ -31,6 +31,7 @@ from typing import Sequence
 import sympy as sp
 
 from robosolve.core.simplify import collected_radicals
+from robosolve.core.symbols import TIME
 
 __all__ = ["SHAPES", "Segment", "JointMotion", "SyncProfile", "synchronize", "ProfileError"]
 
@@ -274,7 +275,7 @@ def synchronize(
     """
     if shape not in SHAPES:
         raise ProfileError(f"unknown shape {shape!r} (expected one of {', '.join(SHAPES)})")
-    t = sp.Symbol("t") if t is None else t
+    t = TIME if t is None else t
     n = len(names)
     if not (len(start) == len(end) == len(max_acceleration) == n):
         raise ProfileError("start, end and max_acceleration need one value per joint")

@@ -8,6 +8,7 @@ import sympy as sp
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import MATRIX, SCALAR, VECTOR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, robosolve_numbers, text
 
 
 def _needs_robot(item: dict) -> bool:
@@ -49,6 +50,47 @@ def _check(ql, path, item, q):
                       "any non-zero length)")
 
 
+def _pose_source(side, q) -> str:
+    """One end of a displacement: a given matrix, or 0M of the frame at a configuration."""
+    if "matrix" in side:
+        return f"robot.matrix({literal(sp.Matrix(side['matrix']))})"
+    config = {str(k): text(v) for k, v in side["config"].items()}
+    return f"robot.pose({q.frame!r}).subs(robot.configuration({literal(config)}))"
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    o = q.options
+    if "axis" in o:
+        head = [
+            "# from a screw: Q = [R, (I - R) P + h u; 0, 1], R = I + [u] sin(alpha) + [u]^2 (1 - cos(alpha))",
+            f"at = {at_literal(q)}",
+            f"axis = robot.number(robot.vector({literal([text(x) for x in o['axis']])}), at).ravel()",
+            f"through = robot.number(robot.vector({literal([text(x) for x in o.get('through') or [0, 0, 0]])}), at).ravel()",
+            f"alpha_given = robot.number(robot.parse({text(o['angle'])!r}), at)",
+            f"h_given = robot.number(robot.parse({text(o.get('translation') or 0)!r}), at)",
+            "Q = screw_displacement(axis, alpha_given, through, h_given)",
+        ]
+    else:
+        if "matrix" in o["from"] and "matrix" in o["to"] and problem.frames and o.get("frame"):
+            return None                              # Q written in another frame: not rebuilt here
+        head = [
+            "# Q = M_to M_from^-1: every body point P2 = Q P1 (in frame 0)",
+            f"at = {at_literal(q)}",
+            f"M_from = {_pose_source(o['from'], q)}",
+            f"M_to = {_pose_source(o['to'], q)}",
+            "Q = robot.number(M_to * inverse_pose(M_from), at)",
+        ]
+    keys = ["Q", "u", "alpha", "h", "P", "pitch"] + (["L"] if "axis" in o else [])
+    compared = [compare_line(k, k if k != "L" else "screw_matrix(u, P, pitch)") for k in keys if k in answer.numeric]
+    return lines(
+        *head,
+        "u, alpha, h, P, pitch = helical_axis(Q)",
+        robosolve_numbers(answer, keys),
+        *compared,
+    )
+
+
 TYPE = QuestionType(
     "displacement", "Rigid displacement (helical axis)", "§3.1",
     # two forms: from/to (two poses or configurations) or a screw (axis, angle, through,
@@ -70,4 +112,5 @@ TYPE = QuestionType(
     figures=(("helical_axis", "helical_axis"),),
     cost=0.05,
     check=_check, needs_joints=False,
+    notebook_cells=notebook_cell,
 )

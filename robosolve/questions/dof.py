@@ -4,11 +4,25 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import compare_line, lines, robosolve_numbers
 
 
 def _check(ql, path, item, q):
     if q.options.get("space", "planar") == "planar" and "joints_3dof" in item:
         ql.chk.error(path + ("joints_3dof",), "3-DOF joints exist only with space: spatial")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    o = q.options
+    counts = [int(o.get(k, 0)) for k in ("bodies", "joints_1dof", "joints_2dof", "joints_3dof")]
+    planar = o.get("space", "planar") == "planar"
+    return lines(
+        f"dof = mobility({', '.join(map(str, counts))}, planar={planar!r})"
+        f"   # {'Grübler (planar)' if planar else 'Kutzbach (spatial)'}",
+        robosolve_numbers(answer, ["dof"]),
+        compare_line("dof", "dof") if "dof" in answer.numeric else None,
+    )
 
 
 TYPE = QuestionType(
@@ -23,4 +37,5 @@ TYPE = QuestionType(
     ),
     cost=0.01,
     check=_check,
+    notebook_cells=notebook_cell,
 )

@@ -4,8 +4,11 @@ Force, velocity and compliance ellipsoids; its options, checks and answer schema
 
 from __future__ import annotations
 
+import math
+
 from robosolve.load import validators as V
 from robosolve.questions.schema import AXES, JOINT_MAP, M, MATRIX, RECORD, SCALAR, VECTOR, QuestionType, _k
+from robosolve.questions.notebook_code import compare_line, jacobian_lines, lines, literal, text
 
 
 def _ellipse(name: str, what: str, principal: bool) -> AnswerKey:
@@ -29,6 +32,34 @@ def _check(ql, path, item, q):
                   f"expected {len(joints)} values (one per joint), got {len(opts['joint_compliance'])}")
 
 
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    budgets = q.options.get("budgets") or {}
+    kf, kv, ka = (text(budgets.get(k, 1)) for k in ("force", "velocity", "compliance"))
+    kq = q.options.get("joint_compliance")
+    want = {"eigenvalues": sorted(answer.numeric.get("eigenvalues") or [])}
+    for kind in ("force", "velocity", "compliance"):
+        lengths = (answer.numeric.get(kind) or {}).get("lengths")
+        if lengths is not None:                     # None: infinite (a singular direction)
+            want[kind] = sorted((math.inf if x is None else x for x in lengths), reverse=True)
+    if "condition_number" in answer.numeric:            # None: infinite (singular)
+        cond = answer.numeric["condition_number"]
+        want["condition_number"] = math.inf if cond is None else cond
+    kq_arg = "" if not kq else f", Kq=robot.number(robot.vector({literal([text(x) for x in kq])}), at).ravel()"
+    compared = [compare_line(k, f"axes[{k if k != 'eigenvalues' else 'nu'!r}]") for k in want
+                if k != "condition_number" and (k != "compliance" or kq)]
+    if "condition_number" in want:
+        compared.append(compare_line("condition_number", "axes['condition_number']"))
+    return lines(
+        *jacobian_lines(q),
+        "# A = J J^T: force semi-axes K_f / sqrt(nu), velocity K_v sqrt(nu), compliance K_a kappa",
+        f"Kf, Kv, Ka = (robot.number(robot.parse(k), at) for k in {literal([kf, kv, ka])})",
+        f"axes = ellipsoid_axes(Jn, Kf, Kv, Ka{kq_arg})",
+        "robosolve = " + literal(want) + "   # lengths largest first",
+        *compared,
+    )
+
+
 TYPE = QuestionType(
     "ellipsoids", "Force, velocity and compliance ellipsoids", "§8 question 5",
     options={"coordinates": V.v_coordinates, "budgets": V.v_budgets,
@@ -47,4 +78,5 @@ TYPE = QuestionType(
     figures=(("ellipsoids", "ellipsoids"),),
     cost=0.3,
     check=_check, has_jacobian=True,
+    notebook_cells=notebook_cell,
 )

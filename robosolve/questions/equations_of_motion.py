@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.questions.schema import ACTUATOR_MAP, BODY_MAP, EQUATIONS, JOINT_MAP, MATRIX, N, VECTOR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
 
 
 def _has_time(force) -> bool:
@@ -19,6 +22,25 @@ def _check(ql, path, item, q):
         ql.chk.error(path + ("at",), f"the force{'s' if len(timed) > 1 else ''} {', '.join(timed)} "
                      "vary with time t, so the numbers at a configuration would need a time: drop `at` "
                      f"(the symbolic equations keep t), or follow the motion with a {follow} question")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    actuators = [str(j.actuator) for j in problem.joints]
+    return lines(
+        f"at = {at_literal(q)}",
+        "# M, c, g and the external forces' Q at the configuration (numbers along the chain)",
+        "mass, c, grav, Q = robot.dynamics_at(at)",
+        "accelerations = robot.number(sp.Matrix(robot.accelerations), at).ravel()",
+        "if len(robot.joints) <= 2:                # the formulas of a small arm, by Lagrange",
+        "    show(*robot.lagrange(at)[:3])",
+        robosolve_numbers(answer, ["mass_matrix", "velocity_terms", "gravity_terms", "actuators"]),
+        *guarded(answer, ("mass_matrix", compare_line("mass_matrix", "mass")),
+                  ("velocity_terms", compare_line("velocity_terms", "c")),
+                  ("gravity_terms", compare_line("gravity_terms", "grav")),
+                  ("actuators", "# the joint actions tau = M q'' + c + g - Q\n"
+                   + compare_line("actuators", f"dict(zip({actuators!r}, mass @ accelerations + c + grav - Q))"))),
+    )
 
 
 TYPE = QuestionType(
@@ -38,4 +60,5 @@ TYPE = QuestionType(
     ),
     cost=0.7, cost_growth=2.5, unit="dynamics",
     check=_check,
+    notebook_cells=notebook_cell,
 )

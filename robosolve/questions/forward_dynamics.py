@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import EQUATIONS, JOINT_MAP, RECORD, SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, literal, robosolve_numbers, text
 
 
 def _check(ql, path, item, q):
@@ -21,6 +22,34 @@ def _check(ql, path, item, q):
             ql.chk.error(path + ("at", key), f"a forward_dynamics question's `at` may override "
                          f"parameters only: give the starting value of '{key}' in `start` "
                          "(joint values and <joint>_dot rates)")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    laws = {str(k): text(v) for k, v in (q.options.get("actuators") or {}).items()}
+    actuators = {str(j.actuator) for j in problem.joints}
+    if any(a not in actuators for a in laws):
+        return None
+    start = q.options.get("start") or {}
+    names = [j.name for j in problem.joints]
+    q0 = [text(start.get(n, 0)) for n in names]
+    v0 = [text(start.get(f"{n}_dot", 0)) for n in names]
+    keys = ["final", "final_velocity", "max", "min"]
+    return lines(
+        f"at = {at_literal(q)}",
+        "# M(q) q'' + c + g = tau + Q with the actuator laws, integrated by Dormand-Prince 5(4)",
+        f"laws = {literal(laws)}",
+        "numbers = lambda texts: [robot.number(robot.parse(x), at) for x in texts]",
+        f"duration = robot.number(robot.parse({text(q.options['duration'])!r}), at)",
+        f"times, qs, rates = forward_run(robot, laws, numbers({literal(q0)}), numbers({literal(v0)}), duration, at)",
+        robosolve_numbers(answer, keys),
+        "low, high = extremes(times, qs, rates)",
+        *guarded(answer, ("final", compare_line("final", f"dict(zip({names!r}, qs[-1]))", rtol=1e-6)),
+                  ("final_velocity", compare_line("final_velocity", f"dict(zip({names!r}, rates[-1]))", rtol=1e-6)),
+                  ("max", compare_line("max", f"dict(zip({names!r}, high))", rtol=1e-6)),
+                  ("min", compare_line("min", f"dict(zip({names!r}, low))", rtol=1e-6))),
+        "plot_joints(times, qs, " + literal(names) + ")",
+    )
 
 
 TYPE = QuestionType(
@@ -46,4 +75,5 @@ TYPE = QuestionType(
     figures=(("joint_<name>", "forward_dynamics"),),
     cost=0.2, cost_growth=2.5, unit="dynamics",
     check=_check, integrates=True, time_use=(1, "a forward_dynamics run"), time_laws="actuators",
+    notebook_cells=notebook_cell,
 )

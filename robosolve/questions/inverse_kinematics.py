@@ -2,8 +2,51 @@
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.load import validators as V
 from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MAP_SET, TEXT, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, text
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    target = q.options.get("target") or []
+    if not isinstance(target, list) or not target:
+        return None                                  # a pose target: robosolve's numbers (fallback cell)
+    limits = []
+    for j in problem.joints:
+        lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-10, 10))
+        limits.append([text(lo), text(hi)])
+    residual = [f"({text(lhs)}) - ({text(rhs)})" for _, lhs, rhs in target]
+    names = [j.name for j in problem.joints]
+    want = {"solutions": sorted(answer.numeric.get("solutions") or [], key=lambda s: tuple(s.values()))}
+    code = [
+        f"at = {at_literal(q)}",
+        "# Newton iterations (least-squares steps) from a grid of starts, kept within the joint limits",
+        f"task = robot.vector({literal([text(lhs) for _, lhs, _ in target])})",
+        f"residual = (task - robot.vector({literal([text(rhs) for _, _, rhs in target])})).subs(robot.fixed(at))",
+        f"limits = [[robot.number(robot.parse(x), at) for x in pair] for pair in {literal(limits)}]",
+        f"solutions = newton_solutions(residual, robot.joints, limits, {literal([j.kind == 'revolute' for j in problem.joints])})",
+        "# (at a workspace boundary a solution is a double root: Newton then finds it to ~1e-7 only)",
+        f"compare('solutions', [dict(zip({names!r}, s)) for s in solutions], robosolve['solutions'], atol=1e-6)",
+    ]
+    velocity = q.options.get("velocity")
+    if velocity and "q_dot" in answer.numeric and answer.numeric.get("selected"):
+        want["selected"] = answer.numeric["selected"]
+        want["q_dot"] = answer.numeric["q_dot"]
+        code += [
+            "# velocity IK at the solution robosolve selected: J(q) q' = v",
+            "selected = robosolve['selected']",
+            "if solutions:",
+            "    selected = dict(zip(" + repr(names) + ", min(solutions, key=lambda s: np.linalg.norm(s - list(selected.values())))))",
+            f"v = robot.number(robot.vector({literal([text(v) for _, _, v in velocity])}), at).ravel()",
+            f"rates_of = robot.vector({literal([text(lhs) for _, lhs, _ in velocity])})",
+            "Jq = robot.number(rates_of.jacobian(robot.joints), {**at, **{k: repr(float(x)) for k, x in selected.items()}})",
+            "q_dot = np.linalg.lstsq(Jq, v, rcond=None)[0]",
+            compare_line("q_dot", f"dict(zip({names!r}, q_dot))"),
+        ]
+    return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
 
 
 TYPE = QuestionType(
@@ -24,4 +67,5 @@ TYPE = QuestionType(
     figures=(("solutions", "ik_solutions"),),
     cost=0.8,
     reaches=True,
+    notebook_cells=notebook_cell,
 )

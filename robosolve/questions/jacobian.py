@@ -6,11 +6,31 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP_SET, MATRIX, MATRIX_MAP, N, R, SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, jacobian_lines, lines, robosolve_numbers
 
 
 def _check(ql, path, item, q):
     if q.options.get("geometric") and "coordinates" in item:
         ql.chk.error(path + ("geometric",), "geometric: true cannot be combined with coordinates")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    if q.options.get("geometric"):
+        head = [f"at = {at_literal(q)}",
+                "# geometric: the point's linear velocity over the angular velocity, column by joint",
+                f"J = robot.geometric_jacobian({q.point!r})",
+                "Jn = robot.number(J, at)"]
+    else:
+        head = jacobian_lines(q)
+    return lines(
+        *head,
+        "show(J)",
+        robosolve_numbers(answer, ["J", "det", "manipulability"]),
+        *guarded(answer, ("J", compare_line("J", "Jn")),
+                  ("det", compare_line("det", "np.linalg.det(Jn)")),
+                  ("manipulability", compare_line("manipulability", "np.prod(np.linalg.svd(Jn, compute_uv=False))"))),
+    )
 
 
 TYPE = QuestionType(
@@ -29,4 +49,5 @@ TYPE = QuestionType(
     ),
     cost=0.5, cost_growth=2,
     check=_check, has_jacobian=True,
+    notebook_cells=notebook_cell,
 )

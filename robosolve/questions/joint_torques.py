@@ -6,6 +6,26 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import ACTUATOR_MAP, ACTUATOR_RECORDS, SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    pq = question_by_id(problem, q.options["profile"])
+    if "actuators" not in answer.numeric:
+        return None
+    want = answer.numeric["actuators"]
+    return lines(
+        "# the profile followed (its profile question)",
+        *profile_lines(pq, problem),
+        f"at = {at_literal(q)}",
+        "# tau(t) = M(q) q'' + c(q, q') + g(q) - Q along the profile; the signed peak of each actuator",
+        "peaks, t_peaks = torque_peaks(robot, profile, at)",
+        "robosolve = " + literal({"peak": [v["peak"] for v in want.values()],
+                                  "t_peak": [v["t_peak"] for v in want.values()]}),
+        compare_line("peak", "peaks"),
+        compare_line("t_peak", "t_peaks", rtol=1e-5),
+    )
 
 
 TYPE = QuestionType(
@@ -22,4 +42,5 @@ TYPE = QuestionType(
     figures=(("torques", "joint_torques"),),
     cost=0.4, cost_growth=2.5, unit="dynamics",
     uses_profile=True, time_use=(3, "a joint_torques profile"),
+    notebook_cells=notebook_cell,
 )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP, SCALAR, QuestionType, _k
+from robosolve.questions.notebook_code import compare_line, guarded, lines, profile_lines, robosolve_numbers
 
 
 def _check(ql, path, item, q):
@@ -21,6 +22,21 @@ def _check(ql, path, item, q):
                           + (f" (= {value:g})" if not v.is_number else ""))
 
 
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    names = [j.name for j in problem.joints]
+    keys = ["durations", "T", "accelerations", "velocities"]
+    return lines(
+        *profile_lines(q, problem),
+        "# each joint alone needs its own time; all end together at T, the largest",
+        robosolve_numbers(answer, keys),
+        *guarded(answer, ("durations", compare_line("durations", f"dict(zip({names!r}, profile.durations))")),
+                  ("T", compare_line("T", "profile.T")),
+                  ("accelerations", compare_line("accelerations", f"dict(zip({names!r}, profile.accelerations))")),
+                  ("velocities", compare_line("velocities", f"dict(zip({names!r}, profile.velocities))"))),
+    )
+
+
 TYPE = QuestionType(
     "motion_profile", "Motion profile", "§8 question 7",
     options={"from": V.v_joint_values, "to": V.v_joint_values, "max_acceleration": V.v_joint_values,
@@ -36,4 +52,5 @@ TYPE = QuestionType(
     figures=(("profile", "motion_profile"),),
     cost=0.1, unit="dynamics",
     check=_check, makes_profile=True,
+    notebook_cells=notebook_cell,
 )

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.load import validators as V
 from robosolve.questions.schema import BOOL, RECORD, SCALAR, VECTOR, VECTOR_SET, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal
 
 
 def _needs_robot(item: dict) -> bool:
@@ -13,6 +16,28 @@ def _needs_robot(item: dict) -> bool:
 def _check(ql, path, item, q):
     if "matrix" in item and "frame" in item:
         ql.chk.error(path, "give either matrix or frame (with at), not both")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    if q.options.get("matrix") is not None:
+        source = f"robot.matrix({literal(sp.Matrix(q.options['matrix']))})"
+    else:
+        source = f"robot.pose({q.frame!r})"
+    n = answer.numeric
+    want = {"zyz": (n.get("zyz") or {}).get("solutions"), "rpy": (n.get("rpy") or {}).get("solutions"),
+            "axis": (n.get("axis_angle") or {}).get("axis"), "angle": (n.get("axis_angle") or {}).get("angle"),
+            "quaternion": n.get("quaternion")}
+    want = {k: v for k, v in want.items() if v is not None}
+    calls = {"zyz": "euler_zyz(R)", "rpy": "euler_rpy(R)", "axis": "axis_angle(R)[1]", "angle": "axis_angle(R)[0]",
+             "quaternion": "quaternion(R)"}
+    return lines(
+        f"at = {at_literal(q)}",
+        f"R = robot.number({source}, at)[:3, :3]",
+        "# ZYZ: R = Rz(phi) Ry(theta) Rz(psi); RPY: R = Rz(yaw) Ry(pitch) Rx(roll)",
+        "robosolve = " + literal(want),
+        *[compare_line(k, calls[k]) for k in want],
+    )
 
 
 TYPE = QuestionType(
@@ -35,4 +60,5 @@ TYPE = QuestionType(
     ),
     cost=0.1,
     check=_check, needs_joints=False,
+    notebook_cells=notebook_cell,
 )

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id, robosolve_numbers, text
 
 
 def _check(ql, path, item, q):
@@ -12,6 +13,35 @@ def _check(ql, path, item, q):
         ql.chk.error(path, f"law {law} needs gains_d")
     if law == "p" and "gains_d" in item:
         ql.chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    o = q.options
+    if "profile" not in o and o.get("trajectory") is not None:
+        return None                                  # a work-space reference: not rebuilt here
+    pq = question_by_id(problem, o["profile"])
+    if "max_error" not in answer.numeric:
+        return None
+    names = [j.name for j in problem.joints]
+
+    def gains(key):
+        return f"numbers({literal([text(o[key][n]) for n in names])})" if key in o else "None"
+
+    duration = f"robot.number(robot.parse({text(o['duration'])!r}), at)" if "duration" in o else "None"
+    return lines(
+        "# the reference followed (its profile question)",
+        *profile_lines(pq, problem),
+        f"at = {at_literal(q)}",
+        f"law = {o.get('law', 'p')!r}",
+        f"kp, kd, start = {gains('gains')}, {gains('gains_d')}, {gains('start')}",
+        f"max_error, t_max_error, final_error, times, errors = simulate_control(robot, profile, law, kp, kd, "
+        f"start, {duration}, at)",
+        robosolve_numbers(answer, ["max_error", "t_max_error", "final_error"]),
+        compare_line("max_error", f"dict(zip({names!r}, max_error))", rtol=1e-4),
+        f"compare('final_error', dict(zip({names!r}, final_error)), robosolve['final_error'], rtol=1e-3, atol=1e-7)",
+        "plot_errors(times, errors, " + literal(names) + ", law)",
+    )
 
 
 TYPE = QuestionType(
@@ -32,4 +62,5 @@ TYPE = QuestionType(
     figures=(("tracking", "control_tracking"), ("effort", "control_effort")),
     cost=1.3, unit="dynamics",
     check=_check, integrates=True, uses_profile=True, time_use=(2, "a p_control simulation"),
+    notebook_cells=notebook_cell,
 )

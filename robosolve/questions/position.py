@@ -3,6 +3,20 @@
 from __future__ import annotations
 
 from robosolve.questions.schema import MATRIX, MATRIX_LIST, VECTOR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    return lines(
+        f"at = {at_literal(q)}",
+        f"M = robot.pose({q.frame!r})",
+        f"P = robot.point0({q.point!r})",
+        "show(M, P)",
+        robosolve_numbers(answer, ["M", "position"]),
+        *guarded(answer, ("M", compare_line("M", "robot.number(M, at)")),
+                  ("position", compare_line("position", "robot.number(P, at).ravel()"))),
+    )
 
 
 TYPE = QuestionType(
@@ -20,4 +34,5 @@ TYPE = QuestionType(
     ),
     figures=(("robot", "robot"),),
     cost=0.1,
+    notebook_cells=notebook_cell,
 )

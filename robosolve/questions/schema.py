@@ -125,8 +125,9 @@ class QuestionType:
     # may use t
     time_use: tuple = ()
     time_laws: str = ""
-    # Filled later (issue 21 / 23): the paper statement of a question, and the notebook cells
-    # of a question (render/notebook.py); None until the type provides them.
+    # The paper statement of a question (issue 23: None until the type provides it), and the
+    # builder of its notebook cell, notebook_cell(question, answer, problem) -> Python source
+    # or None (questions/notebook_code.py; render/notebook.py calls it).
     statement: Callable | None = None
     notebook_cells: Callable | None = None
 

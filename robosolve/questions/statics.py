@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, jacobian_lines, lines, literal, robosolve_numbers, text
 
 
 def _check(ql, path, item, q):
@@ -22,6 +23,29 @@ def _check(ql, path, item, q):
             chk.error(path + ("weight",), "weight: true needs bodies (masses)")
 
 
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    force, torque, weight = q.options.get("force"), q.options.get("torque"), q.options.get("weight")
+    if weight and force is None and torque is None:
+        return lines(
+            f"at = {at_literal(q)}",
+            "# the bodies' own weight: Fq = -sum J_G^T m g (J_G the Jacobian of a centre of mass)",
+            "Fq = robot.weight_forces(at)",
+            "show(Fq)",
+            robosolve_numbers(answer, ["Fq"]),
+            compare_line("Fq", "robot.number(Fq, at).ravel()") if "Fq" in answer.numeric else None,
+        )
+    if force is None or torque is not None or weight:
+        return None
+    return lines(
+        *jacobian_lines(q),
+        f"F = robot.number(robot.vector({literal([text(x) for x in force])}), at).ravel()",
+        "Fq = -Jn.T @ F          # what the joints exert to balance F",
+        robosolve_numbers(answer, ["Fq"]),
+        compare_line("Fq", "Fq") if "Fq" in answer.numeric else None,
+    )
+
+
 TYPE = QuestionType(
     "statics", "Statics", "§8 question 4",
     options={"force": V.v_exprs, "torque": V.v_vector3, "weight": V.v_bool, "coordinates": V.v_coordinates},
@@ -33,4 +57,5 @@ TYPE = QuestionType(
     ),
     cost=0.2,
     check=_check, has_jacobian=True,
+    notebook_cells=notebook_cell,
 )

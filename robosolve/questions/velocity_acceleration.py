@@ -4,7 +4,25 @@ Velocity and acceleration; its options, checks and answer schema.
 
 from __future__ import annotations
 
+import sympy as sp
+
 from robosolve.questions.schema import MATRIX, VECTOR, QuestionType, _k
+from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
+
+
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    return lines(
+        f"at = {at_literal(q)}",
+        "# W = M' M^-1 and H = M'' M^-1 of 0M (in frame 0); a point's velocity W P, acceleration H P",
+        f"W, H = robot.velocity_matrices({q.frame!r})",
+        f"P = sp.Matrix([*robot.point0({q.point!r}), 1])",
+        robosolve_numbers(answer, ["W", "H", "velocity", "acceleration"]),
+        *guarded(answer, ("W", compare_line("W", "robot.number(W, at)")),
+                  ("H", compare_line("H", "robot.number(H, at)")),
+                  ("velocity", compare_line("velocity", "robot.number(W * P, at).ravel()[:3]")),
+                  ("acceleration", compare_line("acceleration", "robot.number(H * P, at).ravel()[:3]"))),
+    )
 
 
 TYPE = QuestionType(
@@ -21,4 +39,5 @@ TYPE = QuestionType(
         _k("H_aux", MATRIX, "H in the auxiliary frame", shape=(4, 4)),
     ),
     cost=0.8, cost_growth=2,
+    notebook_cells=notebook_cell,
 )

@@ -50,8 +50,17 @@ def parse_formats(text: str | None) -> tuple[str, ...]:
             near = difflib.get_close_matches(n, list(FORMATS), n=1)
             hint = f" (did you mean '{near[0]}'?)" if near else ""
             raise ValueError(f"--format: unknown format '{n}'{hint}; choose from {', '.join(FORMATS)}")
-        for module in FORMATS[n].needs:
-            if importlib.util.find_spec(module) is None:
-                raise ValueError(f"--format {n} needs the optional package {module}: "
-                                 f"pip install 'robosolve[{FORMATS[n].extra}]'")
-    return tuple(dict.fromkeys(names))
+    names = tuple(dict.fromkeys(names))
+    missing = {n: [m for m in FORMATS[n].needs if importlib.util.find_spec(m) is None] for n in names}
+    missing = {n: ms for n, ms in missing.items() if ms}
+    if missing:
+        raise ValueError(missing_extras_message(missing))
+    return names
+
+
+def missing_extras_message(missing: dict) -> str:
+    """Everything the asked formats lack, in one message, with both ways to install it."""
+    needs = " and ".join(f"--format {n} needs {' and '.join(ms)}" for n, ms in missing.items())
+    extras = ",".join(FORMATS[n].extra for n in missing)
+    return (f"{needs} (optional packages): pip install 'robosolve[{extras}]' "
+            f"(from a clone of robosolve: pip install '.[{extras}]')")

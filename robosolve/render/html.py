@@ -38,7 +38,8 @@ def _converter():
     try:
         from latex2mathml.converter import convert
     except ImportError:                     # pragma: no cover - depends on the environment
-        raise HtmlUnavailable("report.html needs latex2mathml: pip install 'robosolve[html]'") from None
+        raise HtmlUnavailable("report.html needs latex2mathml: pip install 'robosolve[html]' "
+                              "(from a clone of robosolve: pip install '.[html]')") from None
     return convert
 
 

@@ -6,10 +6,12 @@ LaTeX uses only what GitHub's math renderer supports: `$...$` inline and
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import sympy as sp
 
 from robosolve.questions.registry import title as question_title
-from robosolve.core.prose import Num, Text
+from robosolve.core.prose import Num, Text, name_md
 from robosolve.render.compact import CompactTrig, display_lines
 from robosolve.render.configuration import configuration_text, overrides_by_parameter
 from robosolve.render.numbers import report_number, text
@@ -108,11 +110,11 @@ def render_data(problem, model, tex: Tex) -> list[str]:
                 "explicit matrix" if f.kind == "matrix" else f"${factors[0][0]}$ ({f.kind})")
             if f.kind == "pose":
                 pose = f"${pose}$"
-            rows.append((name, f.parent, pose))
+            rows.append((name_md(name), name_md(f.parent), pose))
         out += ["### Frames", "Each pose is applied in the current (moving) frame, left to right.",
                 render_table(("frame", "parent", "pose in parent"), rows)]
     if problem.points:
-        rows = [(p.name, p.frame, f"${tex(list(p.at))}$" + (" (default: origin of the last frame)"
+        rows = [(p.name, name_md(p.frame), f"${tex(list(p.at))}$" + (" (default: origin of the last frame)"
                                                               if p.implicit else ""))
                 for p in problem.points.values()]
         out += ["### Points", render_table(("point", "frame", "coordinates in its frame"), rows)]
@@ -130,14 +132,14 @@ def render_data(problem, model, tex: Tex) -> list[str]:
                 dist = f"centre of mass ${tex(list(d['com']))}$, inertia ${tex(d['inertia'])}$"
             else:
                 dist = f"pseudo-inertia ${tex(d['J'])}$"
-            rows.append((b.name, b.frame, f"${tex(b.mass)}$", dist))
+            rows.append((name_md(b.name), name_md(b.frame), f"${tex(b.mass)}$", dist))
         out += ["### Bodies", render_table(("body", "frame", "mass", "distribution"), rows)]
     if problem.forces:
         rows = []
         for f in problem.forces:
-            rows.append((f.name, f.frame, f"${tex(list(f.at))}$",
+            rows.append((name_md(f.name), name_md(f.frame), f"${tex(list(f.at))}$",
                          f"${tex(list(f.force))}$" if f.force is not None else "—",
-                         f"${tex(list(f.torque))}$" if f.torque is not None else "—", f.in_frame))
+                         f"${tex(list(f.torque))}$" if f.torque is not None else "—", name_md(f.in_frame)))
         out += ["### External forces",
                 render_table(("name", "acts on frame", "at (in its frame)", "force", "torque",
                               "components in frame"), rows)]
@@ -221,27 +223,47 @@ def render_answer(index: int, answer, figure_paths: list[str], tex: Tex,
     return out
 
 
-def render_report(report, figure_paths: dict) -> str:
+@dataclass(frozen=True)
+class ReportSections:
+    """report.md in its parts: the head (title, description, conventions, notation, data), each
+    answer's blocks (by answer id, in report order) and the course notes; report.md is their
+    blocks joined by blank lines (the notebook interleaves its code cells between them)."""
+
+    head: list
+    answers: list            # [(answer id, [block, ...])]
+    notes: list
+
+    def blocks(self) -> list:
+        return self.head + [b for _, blocks in self.answers for b in blocks] + self.notes
+
+
+def report_sections(report, figure_paths: dict) -> ReportSections:
     problem, model = report.problem, report.model
     names = model.symbol_latex if model is not None else {}
     tex = Tex(names, CompactTrig(problem))
-    out = [f"# {problem.title or problem.name}"]
+    head = [f"# {problem.title or problem.name}"]
     if problem.description:
-        out.append(problem.description.strip())
-    out.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
-               "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
-    notation_at = len(out)
-    out += render_data(problem, model, tex)
+        head.append(problem.description.strip())
+    head.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
+                "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
+    notation_at = len(head)
+    head += render_data(problem, model, tex)
     questions = {q.id: q for q in problem.questions}
+    answers = []
     for i, answer in enumerate(report.answers, 1):
         q = questions.get(answer.id)
         config = configuration_text(q, problem, tex) if q is not None else None
-        out += render_answer(i, answer, figure_paths.get(answer.id, []), tex, config)
-    out += render_course_notes(out)
-    notation = tex.compact.definitions("\n".join(out), names)
+        answers.append((answer.id, render_answer(i, answer, figure_paths.get(answer.id, []), tex, config)))
+    body = head + [b for _, blocks in answers for b in blocks]
+    notes = render_course_notes(body)
+    notation = tex.compact.definitions("\n".join(body + notes), names)
     if notation:                # defined once, before the data and answers that use it
-        out.insert(notation_at, notation)
-    return "\n\n".join(out) + "\n"
+        head.insert(notation_at, notation)
+    return ReportSections(head, answers, notes)
+
+
+def render_report(report, figure_paths: dict) -> str:
+    return "\n\n".join(report_sections(report, figure_paths).blocks()) + "\n"
 
 
 def render_course_notes(blocks: list[str]) -> list[str]:

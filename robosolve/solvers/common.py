@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import name_tex
 from robosolve.core.simplify import exact_geometry
 from robosolve.errors import SymbolicTimeout
 from robosolve.solvers.base import Answer, MissingValues, SolveContext
 
 
 def frame_tex(name: str) -> str:
-    return name if name.isdigit() else f"\\mathrm{{{name}}}"
+    return name_tex(name)
 
 
 def m_name(i: str, j: str, letter: str = "M") -> str:

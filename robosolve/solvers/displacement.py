@@ -25,6 +25,7 @@ from robosolve.geometry.helical import (
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, geometry_matrix, m_name
+from robosolve.core.prose import name_md
 
 CASE_TEXT = {
     "general": "$0 < \\alpha < \\pi$: $\\sin\\alpha > 0$, so the axis comes from the skew-symmetric part, "
@@ -59,7 +60,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         "Displacement matrix",
         f"{where} Every body point moves as ${{}}^0P_2 = Q_0\\,{{}}^0P_1$ (" + note_link("displacement-matrix") + "), so "
         "$Q_0 = {}^0M_2\\,{}^0M_1^{-1}$."
-        + (f" In frame {expressed}: $Q_{{{f}}} = {m_name('0', expressed)}^{{-1}}\\,Q_0\\,{m_name('0', expressed)}$ "
+        + (f" In frame {name_md(expressed)}: $Q_{{{f}}} = {m_name('0', expressed)}^{{-1}}\\,Q_0\\,{m_name('0', expressed)}$ "
            "(item 24)." if m0k is not None else ""),
         equations=[("{}^0M_1", m01), ("{}^0M_2", m02), (f"Q_{{{f}}}", q)],
     )]
@@ -126,7 +127,7 @@ def _poses(question, ctx):
             subs = {j.symbol: o["config"][j.name] for j in model.joints if j.name in o["config"]}
             return model.M0(frame).xreplace(subs)
 
-        where = (f"The body is frame {frame}: its poses ${{}}^0M_1$, ${{}}^0M_2$ are "
+        where = (f"The body is frame {name_md(frame)}: its poses ${{}}^0M_1$, ${{}}^0M_2$ are "
                  f"${m_name('0', frame)}$ at the two configurations.")
         return pose(src), pose(dst), where, "0", None
     where = "The two poses are given."

@@ -13,7 +13,7 @@ import sympy as sp
 from robosolve.core.prose import Num, Text
 from robosolve.core.course_notes import note_link
 from robosolve.kinematics.ellipsoids_math import ellipsoids, exact_values, joint_rates
-from robosolve.kinematics.task import limited, position_axes, task_space
+from robosolve.solvers.task_space import limited, position_axes, task_space
 from robosolve.solvers.base import (
     Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note)
 

@@ -12,11 +12,12 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.course_notes import note_link
-from robosolve.dynamics.model import numeric_for
+from robosolve.dynamics.bridge import numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 from robosolve.solvers.common import frame_tex, m_name
+from robosolve.core.prose import name_tex
 
 # Largest expression (count_ops) written out in a report step; bigger ones are named only.
 SHOW_OPS = 400
@@ -104,10 +105,10 @@ def _steps_inertia(ans, model, eng):
     big = eng.n > BIG_JOINTS
     for b in eng.bodies:
         fb = frame_tex(b.frame)
-        step.equations.append((f"{{}}^{{{fb}}}J_{{\\mathrm{{{b.name}}}}}", b.J))
+        step.equations.append((f"{{}}^{{{fb}}}J_{{{name_tex(b.name, False)}}}", b.J))
         if big:
             continue
-        step.equations.append((f"{{}}^{{0}}J_{{\\mathrm{{{b.name}}}}} = {m_name('0', b.frame)}\\,"
+        step.equations.append((f"{{}}^{{0}}J_{{{name_tex(b.name, False)}}} = {m_name('0', b.frame)}\\,"
                                f"{{}}^{{{fb}}}J\\,{m_name('0', b.frame)}^T", _show(eng.J0(b))))
     if big:
         step.text += (" With more than four joints ${}^{0}J$ is long and is not written out: "
@@ -148,7 +149,7 @@ def _steps_energy(ans, model, eng, dyn):
         "keeps every product short.",
     )
     for b in eng.bodies:
-        kin.equations.append((f"T_{{\\mathrm{{{b.name}}}}}", _show(dyn.kinetic_energy[b.name])))
+        kin.equations.append((f"T_{{{name_tex(b.name, False)}}}", _show(dyn.kinetic_energy[b.name])))
     ans.steps.append(kin)
     pot = Step(
         "Gravity matrix and potential energy",
@@ -157,7 +158,7 @@ def _steps_energy(ans, model, eng, dyn):
         equations=[("{}^{0}H_g", eng.hg())],
     )
     for b in eng.bodies:
-        pot.equations.append((f"U_{{\\mathrm{{{b.name}}}}}", _show(dyn.potential_energy[b.name])))
+        pot.equations.append((f"U_{{{name_tex(b.name, False)}}}", _show(dyn.potential_energy[b.name])))
     ans.steps.append(pot)
     t_total = sp.Add(*dyn.kinetic_energy.values())
     u_total = sp.Add(*dyn.potential_energy.values())
@@ -191,7 +192,7 @@ def _steps_actions(ans, model, eng, dyn):
             step.equations.append((f"\\Phi_{{\\text{{actuator }}{i + 1}}}\\;(\\text{{in frame "
                                    f"{eng.joint_frame(i)}}})", eng.actuator_action(i)))
         for load in eng.loads:
-            step.equations.append((f"{{}}^{{{frame_tex(load.frame)}}}\\Phi_{{\\mathrm{{{load.name}}}}}",
+            step.equations.append((f"{{}}^{{{frame_tex(load.frame)}}}\\Phi_{{{name_tex(load.name, False)}}}",
                                    eng.load_in_body(load)))
     else:
         for link, phi in eng.link_actions0().items():

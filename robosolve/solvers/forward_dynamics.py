@@ -16,9 +16,10 @@ import sympy as sp
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
 from robosolve.core.prose import Num, Text
+from robosolve.core.symbols import TIME
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
-T = sp.Symbol("t", real=True)
+T = TIME
 # The run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio); 10 digits keep it,
 # more would be integration noise.
 ANSWER_DIGITS = 10

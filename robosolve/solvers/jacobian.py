@@ -15,11 +15,11 @@ import math
 import sympy as sp
 
 from robosolve.core.numpy_code import numpy_modules
-from robosolve.core.prose import Num, Text
+from robosolve.core.prose import Num, Text, name_md, name_tex
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
-from robosolve.kinematics.task import (
+from robosolve.solvers.task_space import (
     joint_kinds, joint_l0, limited, task_space, tidy_limited)
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
@@ -100,7 +100,7 @@ def _geometric_steps(ans, question, ctx, ts):
     ans.steps.append(Step(
         "Geometric Jacobian",
         f"Column $i$ holds the velocity of point {point} and the angular velocity of frame "
-        f"{frame} produced by a unit rate of joint $i$: $v_i = [u_i]\\,{{}}^{{0}}{point} + t_i$ "
+        f"{name_md(frame)} produced by a unit rate of joint $i$: $v_i = [u_i]\\,{{}}^{{0}}{point} + t_i$ "
         "(the first three rows of $^{0}L_i$ times the homogeneous point), $\\omega_i = u_i$.",
         equations=[(f"{{}}^{{0}}{point}", model.point0(point)),
                    ("J = \\begin{bmatrix} J_P \\\\ J_\\omega \\end{bmatrix}", ts.J)],
@@ -207,7 +207,7 @@ def _structured_det_steps(ans, question, ctx, ts):
                 eqs += [("\\det J_{11}", d11), ("\\det J_{22}", d22)]
             ans.steps.append(Step(
                 "Decoupling at the wrist",
-                f"The axes of the last three joints meet at the origin W of frame {wrist.frame} "
+                f"The axes of the last three joints meet at the origin W of frame {name_md(wrist.frame)} "
                 "(a spherical wrist). Taking the velocity at W instead of at "
                 f"{question.point}, $v_W = v_{{{question.point}}} + \\omega \\times (W - {question.point})$, "
                 "multiplies J by a shear of determinant 1, and the wrist joints do not move W, so "
@@ -304,8 +304,8 @@ def _com_steps(ans, ctx):
         c0 = model.com0(b)
         jg = tidy_limited(ctx, c0.jacobian(model.q), ctx.step_seconds)
         out[b.name] = jg
-        eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
-        eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))
+        eqs.append((f"{{}}^{{0}}G_{{{name_tex(b.name, False)}}}", c0))
+        eqs.append((f"J_{{G,{name_tex(b.name, False)}}}", jg))
     ans.steps.append(Step(
         "Centre-of-mass Jacobians",
         "The centre of mass of each body, $c = J[1{:}3,4]/J[4,4]$ from its pseudo-inertia, moved "
@@ -362,7 +362,7 @@ def _numeric(ans, question, ctx, J, com):
         try:
             ans.numeric["com_jacobians"] = {k: ctx.numeric(v, subs) for k, v in com.items()}
             for k, v in ans.numeric["com_jacobians"].items():
-                eqs.append((f"J_{{G,\\mathrm{{{k}}}}}", v))
+                eqs.append((f"J_{{G,{name_tex(k, False)}}}", v))
         except MissingValues as exc:
             from robosolve.solvers.base import missing_note
 

@@ -13,6 +13,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.prose import Num, Text
+from robosolve.core.symbols import TIME
 from robosolve.errors import SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
@@ -76,8 +77,9 @@ def _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines) -> None:
     if tau is not None and prof.T.is_number and prof.T != 0:
         try:
             with ctx.time_limit(ctx.budgets.closed_form_seconds):
-                # a force varying with time uses the loader's t: the profile's own t replaces it
-                timed = [sp.sympify(e).xreplace({sp.Symbol("t", real=True): prof.t}) for e in tau]
+                # a force varying with time uses the loader's t (core.symbols.TIME), which is the
+                # profile's time unless the profile was built with its own
+                timed = [sp.sympify(e).xreplace({TIME: prof.t}) for e in tau]
                 # the dynamics stay symbolic (spec: symbolic answers keep every parameter); the
                 # profile's timing is numeric when its data are; the numbers go in `numeric`
                 pieces, pw = closed_form_pieces(prof, timed, qs, qds, qdds)

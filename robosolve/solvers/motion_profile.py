@@ -11,12 +11,13 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.prose import Num, Text
+from robosolve.core.symbols import TIME
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
 from robosolve.motion.profiles import ProfileError, SyncProfile, synchronize
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
 
-T_SYMBOL = sp.Symbol("t")
+T_SYMBOL = TIME
 SAMPLES = 401
 
 

@@ -9,6 +9,7 @@ from robosolve.load.problem import Question
 from robosolve.model.numeric import NumericChain
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, m_name, robot_drawing, symbolic_within_budget
+from robosolve.core.prose import name_md
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
@@ -51,7 +52,7 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
         product = " \\, ".join(m_name(model.frames[f].parent, f) for f in model.chain(frame))
         ans.steps.append(Step(
             "Chain product",
-            f"The pose of frame {frame} in frame 0 is the product along the chain "
+            f"The pose of frame {name_md(frame)} in frame 0 is the product along the chain "
             "(trigonometric products collected).",
             equations=[(f"{m_name('0', frame)} = {product}", model.M0(frame))],
         ))
@@ -61,7 +62,7 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     p0 = model.point0(point)
     ans.steps.append(Step(
         f"Position of point {point}",
-        f"Point {point} is fixed in frame {pframe} at ${sp.latex(tuple(pat))}$; in frame 0, "
+        f"Point {point} is fixed in frame {name_md(pframe)} at ${sp.latex(tuple(pat))}$; in frame 0, "
         f"with homogeneous coordinates:",
         equations=[(f"{{}}^{{0}}{point} = {m_name('0', pframe)} \\, {{}}^{{{frame_tex(pframe)}}}{point}",
                     p0)],

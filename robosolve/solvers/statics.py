@@ -16,8 +16,9 @@ import sympy as sp
 from robosolve.core.course_notes import note_link
 from robosolve.core.simplify import is_zero
 from robosolve.kinematics.statics_math import balance_force, balance_weight, balance_wrench
-from robosolve.kinematics.task import limited, task_space, tidy_limited
+from robosolve.solvers.task_space import limited, task_space, tidy_limited
 from robosolve.solvers.base import Answer, SolveContext, Step
+from robosolve.core.prose import name_tex
 
 
 def _actuator_tex(model):
@@ -125,8 +126,8 @@ def _weight_part(ctx: SolveContext, ans: Answer) -> sp.Matrix:
         jg = tidy_limited(ctx, c0.jacobian(q), ctx.step_seconds)
         jgs.append(jg)
         masses.append(b.mass)
-        eqs.append((f"{{}}^{{0}}G_{{\\mathrm{{{b.name}}}}}", c0))
-        eqs.append((f"J_{{G,\\mathrm{{{b.name}}}}}", jg))
+        eqs.append((f"{{}}^{{0}}G_{{{name_tex(b.name, False)}}}", c0))
+        eqs.append((f"J_{{G,{name_tex(b.name, False)}}}", jg))
     part = tidy_limited(ctx, balance_weight(jgs, masses, g), ctx.step_seconds)
     ans.steps.append(Step(
         "Weight of the bodies",

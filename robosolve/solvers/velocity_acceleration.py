@@ -18,6 +18,7 @@ from robosolve.load.problem import Question
 from robosolve.model.numeric import NumericChain, rigid_inverse
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, m_name, rel_name, symbolic_within_budget
+from robosolve.core.prose import name_md
 
 
 def _composition_step(title, text, model, chain, letter, relative, absolute, composed) -> Step:
@@ -166,8 +167,8 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
                    (f"{{}}^{{a}}H_{{0,{frame_tex(frame)}}}", h_aux)],
     ))
     if pframe != frame:
-        ans.note(f"point {point} is fixed in frame {pframe}: its velocity and acceleration use the motion "
-                 f"of frame {pframe}; W_aux and H_aux are those of frame {frame}")
+        ans.note(f"point {point} is fixed in frame {name_md(pframe)}: its velocity and acceleration use the "
+                 f"motion of frame {name_md(pframe)}; W_aux and H_aux are those of frame {name_md(frame)}")
     ans.steps.append(Step(
         f"Velocity and acceleration of {point}",
         "Read from the last columns of ${}^{a}W$ and ${}^{a}H$; the angular velocity "

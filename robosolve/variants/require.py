@@ -26,6 +26,7 @@ import math
 import numpy as np
 import sympy as sp
 
+from robosolve.core.parameters import resolve_parameters
 from robosolve.core.simplify import full
 from robosolve.errors import InputError, InputIssue
 
@@ -64,27 +65,6 @@ class Condition:
             if progress is not None:
                 progress()
         return out
-
-
-def resolve_parameters(problem, varied: set, overrides: dict | None = None) -> dict:
-    """Every parameter symbol -> its value as an expression of the varied symbols only.
-
-    `overrides` (a question's `at`) replace parameters, varied or not. Parameters that stay
-    symbolic (null, or depending on a null) are left out."""
-    overrides = {s: v for s, v in (overrides or {}).items() if s in problem.parameters}
-    raw = {**problem.parameters, **overrides}
-    known = {s: s for s in varied if s not in overrides}
-    pending = {s: e for s, e in raw.items() if s not in known and e is not None}
-    params = set(raw)
-    progressed = True
-    while pending and progressed:
-        progressed = False
-        for s, e in list(pending.items()):
-            if (e.free_symbols & params) <= set(known):
-                known[s] = e.xreplace(known)
-                pending.pop(s)
-                progressed = True
-    return known
 
 
 class RequirementChecker:
@@ -175,7 +155,7 @@ class RequirementChecker:
         names = self.problem.names
         swap = {s: names[s.name] for s in (r.lhs - r.rhs).free_symbols if s.name in names}
         d = (r.lhs - r.rhs).xreplace(swap)
-        d = d.xreplace(resolve_parameters(self.problem, self.varied))
+        d = d.xreplace(resolve_parameters(self.problem.parameters, varied=self.varied))
         self._only_varied([d])
         rel = self._relevant([d])
         syms = [self.symbols[i] for i in rel]
@@ -200,13 +180,13 @@ class RequirementChecker:
     def _at_values(self, q) -> tuple[dict, dict]:
         """(parameters resolved with the question's overrides, joint values of its `at`)."""
         overrides = {s: v for s, v in q.at.items() if s in self.problem.parameters}
-        params = resolve_parameters(self.problem, self.varied, overrides)
+        params = resolve_parameters(self.problem.parameters, overrides, self.varied)
         joints = {s: v.xreplace(params) for s, v in q.at.items() if s not in self.problem.parameters}
         return params, joints
 
     def _nonsingular(self, r) -> Condition:
         from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian
-        from robosolve.kinematics.task import joint_l0
+        from robosolve.solvers.task_space import joint_l0
 
         q = self._question(r.question)
         model = self.model

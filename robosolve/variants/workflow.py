@@ -13,16 +13,15 @@ from __future__ import annotations
 
 import csv
 import io
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
 
-from robosolve.errors import EXIT_INPUT, EXIT_OK, InputError, InputIssue
-from robosolve.execution import make_task, run_tasks
+from robosolve.errors import ExitStatus, InputError, InputIssue
+from robosolve.run.execution import make_task, run_tasks
 
-# what a variants folder holds, for the working directory written in place (robosolve.outputs)
+# what a variants folder holds, for the working directory written in place (robosolve.run.outputs)
 OWN_FILES = ("variants.csv", "*/problem.yaml", "*/report.md", "*/report.html", "*/report.ipynb",
              "*/results.json", "*/figures/*.png")
 
@@ -159,9 +158,9 @@ def variants_csv(plan: Plan) -> bytes:
 
 def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=None, progress=None,
         inputs=()):
-    """Load (and solve) every variant, then write DIR as one output folder (robosolve.outputs).
+    """Load (and solve) every variant, then write DIR as one output folder (robosolve.run.outputs).
     Returns (status, results in variant order)."""
-    from robosolve.outputs import write_output_folder
+    from robosolve.run.outputs import write_output_folder
 
     tasks = [make_task(v.text, f"{out}/{v.folder}/problem.yaml", formats, solve) for v in plan.variants]
     results = [None] * len(tasks)
@@ -171,15 +170,16 @@ def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=No
         results[i] = res
         v = plan.variants[i]
         files[f"{v.folder}/problem.yaml"] = v.text.encode("utf-8")
-        for rel, data in (res.pop("files") or {}).items():
+        for rel, data in res.files.items():
             files[f"{v.folder}/{rel}"] = data
+        res.files = {}            # the bytes are in `files` now
         if step:
             step()
-    bad = [(v, r) for v, r in zip(plan.variants, results) if r["status"] == EXIT_INPUT]
+    bad = [(v, r) for v, r in zip(plan.variants, results) if r.status == ExitStatus.INPUT]
     if bad:
         raise VariantInvalid([_invalid_variant_message(plan, bad)])
     write_output_folder(out, dict(sorted(files.items())), inputs=inputs, own=OWN_FILES)
-    status = max([r["status"] for r in results] + [EXIT_OK])
+    status = max([r.status for r in results] + [ExitStatus.OK])
     return status, results
 
 
@@ -193,7 +193,7 @@ def _invalid_variant_message(plan: Plan, bad: list) -> str:
 
     variant, result = bad[0]
     drawn = ", ".join(f"{p.name} = {sp.sstr(variant.values[p.name])}" for p in plan.spec.parameters)
-    first = result["messages"][0] if result["messages"] else "it does not load"
+    first = result.messages[0] if result.messages else "it does not load"
     where = re.match(r"^.*?problem\.yaml:(\d+): ", first)
     what = first[where.end():] if where else first
     at = f" (line {where.group(1)} of its problem.yaml)" if where else ""
@@ -213,84 +213,10 @@ class VariantInvalid(Exception):
 
 def check_out(out: Path, inputs=()) -> str | None:
     """Why DIR cannot be the output folder (problem-format.md §2), or None. Touches nothing."""
-    from robosolve.outputs import OutputFolderError, check_output_folder
+    from robosolve.run.outputs import OutputFolderError, check_output_folder
 
     try:
         check_output_folder(out, inputs)
     except OutputFolderError as exc:
         return str(exc)
     return None
-
-
-# ---------------------------------------------------------------------------
-# the command (printing lives here so that cli.py stays a few lines)
-
-class Steps:
-    """Progress bars on standard error: `task(description, total)` returns an advance()."""
-
-    def __init__(self, progress):
-        self.progress = progress
-
-    def task(self, description, total):
-        tid = self.progress.add_task(description, total=total or None)
-        return lambda: self.progress.advance(tid)
-
-
-def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, formats: tuple,
-            jobs: int, scheduler) -> int:
-    from rich.console import Console
-    from rich.progress import Progress
-
-    from robosolve.execution import SchedulerError
-    from robosolve.outputs import OutputFolderError
-    from robosolve.variants.naming import count_ids, read_roster
-
-    console = Console(stderr=True)
-
-    def say(text):
-        # plain lines: an editor can jump to FILE:LINE (rich would wrap them)
-        sys.stderr.write(text + "\n")
-
-    inputs = [problem] + ([roster] if roster is not None else [])
-    reason = check_out(out, inputs)
-    if reason:
-        say(reason)
-        return EXIT_INPUT
-    try:
-        ids = [(i, "") for i in count_ids(count)] if roster is None else read_roster(roster)
-        with Progress(console=console, transient=True) as bar:
-            plan = plan_variants(problem, ids, seed, Steps(bar))
-            status, results = run(plan, out, formats, solve, jobs, scheduler, Steps(bar), inputs)
-    except InputError as exc:
-        say(str(exc))
-        return EXIT_INPUT
-    except SchedulerError as exc:
-        say(str(exc))
-        return EXIT_INPUT
-    except OutputFolderError as exc:
-        say(str(exc))
-        return EXIT_INPUT
-    except VariantInvalid as exc:
-        say("\n".join(exc.messages))
-        return EXIT_INPUT
-    summary(console, plan, results, solve)
-    say(f"{len(plan.variants)} variants of {plan.problem.name} (seed {seed}) -> {out}")
-    return status
-
-
-def summary(console, plan, results, solved: bool):
-    from rich.table import Table
-
-    from robosolve.errors import EXIT_ANSWER_ERROR
-
-    table = Table(title=f"robosolve variants of {plan.problem.name}")
-    for col in ("variant", "student", "answered" if solved else "questions", "status"):
-        table.add_column(col)
-    for v, r in zip(plan.variants, results):
-        label = {EXIT_OK: "ok", EXIT_ANSWER_ERROR: "errors", EXIT_INPUT: "invalid"}[r["status"]]
-        answered = f"{r['answered']}/{r['total']}" if solved else str(r["total"])
-        table.add_row(v.folder, v.student or "—", answered, label if solved else "valid")
-    console.print(table)
-    for r in results:
-        for m in r["messages"]:
-            sys.stderr.write(m + "\n")

@@ -5,7 +5,7 @@ Every `import` of every module is read from the AST (function-level imports incl
 * each module belongs to a declared layer (a new package must be declared here and in
   docs/architecture.md);
 * a module imports only its own layer or lower ones: load -> model -> engines -> solvers
-  -> render -> pipeline/batch -> cli, with errors/core below everything and the
+  -> render -> run/grading/variants -> cli, with errors/core below everything and the
   question types (questions/) beside the loader;
 * the engines (kinematics, ik, dynamics, motion, geometry) are pure math: besides each
   other they import only core and errors (no question, no context, no model);
@@ -21,7 +21,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "robosolve"
 
 # layer rank of each top-level part of the package
 LAYERS = {
-    "robosolve": 0, "errors": 0, "interrupts": 0, "core": 0,
+    "robosolve": 0, "errors": 0, "core": 0,
     # the question types sit with the loader: a type module names its option validators
     # (load/validators.py) and the loader reads the registry
     "load": 1, "questions": 1,
@@ -29,7 +29,7 @@ LAYERS = {
     "kinematics": 3, "ik": 3, "dynamics": 3, "motion": 3, "geometry": 3,
     "solvers": 4,
     "render": 5,
-    "pipeline": 6, "outputs": 6, "batch": 6, "grading": 6, "variants": 6, "execution": 6, "split_solve": 6,
+    "run": 6, "grading": 6, "variants": 6,
     "cli": 7, "__main__": 7,
 }
 ENGINES = {"kinematics", "ik", "dynamics", "motion", "geometry"}
@@ -172,7 +172,7 @@ def test_the_checks_can_fail(tmp_path):
     assert _cycles(graph) == [["robosolve.errors", "robosolve.solvers.base"]]
     fake = {"a": [("b", 1)], "b": [("c", 2)], "c": [("a", 3)], "d": [("a", 1)]}
     assert _cycles(fake) == [["a", "b", "c"]]
-    func_level = [e for e in GRAPH["robosolve.pipeline"] if e[0] == "robosolve.model"]
+    func_level = [e for e in GRAPH["robosolve.run.pipeline"] if e[0] == "robosolve.model"]
     assert func_level, "the function-level import of robosolve.model in pipeline.py is seen"
 
 

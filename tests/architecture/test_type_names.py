@@ -25,9 +25,6 @@ PACKAGE = Path(__file__).resolve().parents[2] / "robosolve"
 ALLOWED = {
     # the registry lists its type modules by name
     "robosolve/questions/registry.py",
-    # issue 21: the notebook's per-type table of cell builders stays until its owner moves
-    # the cells into the type modules (`QuestionType.notebook_cells`); remove then
-    "robosolve/render/notebook.py",
 }
 
 

@@ -24,7 +24,7 @@ runner = CliRunner()
 
 @pytest.fixture(scope="module")
 def scheduler():
-    from robosolve.execution import start_local_cluster
+    from robosolve.run.execution import start_local_cluster
 
     cluster = start_local_cluster(2)
     try:
@@ -69,7 +69,7 @@ def test_variants_on_dask_equal_the_local_pool(scheduler, tmp_path):
 def test_an_unreachable_scheduler_is_a_usage_error(tmp_path, monkeypatch):
     from tests.workflows.test_variants import problem_file
 
-    monkeypatch.setattr("robosolve.execution.CONNECT_TIMEOUT", "1s")    # nothing listens there
+    monkeypatch.setattr("robosolve.run.execution.CONNECT_TIMEOUT", "1s")    # nothing listens there
     p = problem_file(tmp_path)
     r = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve",
                             "--scheduler", "tcp://127.0.0.1:9"])

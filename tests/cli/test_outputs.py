@@ -16,9 +16,9 @@ import pytest
 from typer.testing import CliRunner
 
 from conftest import MINI, PROBLEMS, ROOT
-from robosolve import interrupts
+from robosolve.run import interrupts
 from robosolve.cli import app
-from robosolve.outputs import MARK, OutputFolderError, check_output_folder, write_output_folder
+from robosolve.run.outputs import MARK, OutputFolderError, check_output_folder, write_output_folder
 
 runner = CliRunner()
 
@@ -201,7 +201,7 @@ def test_write_output_folder_api(tmp_path, monkeypatch):
     with pytest.raises(OutputFolderError):
         check_output_folder(tmp_path / "g" / "foreign")
     # a replaced folder may not hold the problem file being read
-    with pytest.raises(OutputFolderError, match="problem file"):
+    with pytest.raises(OutputFolderError, match="robosolve reads"):
         check_output_folder(target, inputs=[target / "c.txt"])
     # an interrupt that library code swallowed: nothing is written after it
     monkeypatch.setattr(interrupts, "_received", [signal.SIGINT])

@@ -11,7 +11,7 @@ import sympy as sp
 
 rtb = pytest.importorskip("roboticstoolbox")
 
-from robosolve.dynamics.model import numeric_for  # noqa: E402
+from robosolve.dynamics.bridge import numeric_for  # noqa: E402
 from robosolve.load.loader import load_problem  # noqa: E402
 from robosolve.model import RobotModel  # noqa: E402
 from robosolve.solvers.base import SolveContext  # noqa: E402

@@ -19,7 +19,7 @@ rtb = pytest.importorskip("roboticstoolbox")
 
 from robosolve.core.transforms import dh_standard  # noqa: E402
 from robosolve.ik.engine import IKJoint  # noqa: E402
-from robosolve.ik.numeric import wrap_angle  # noqa: E402
+from robosolve.core.angles import wrap_angle  # noqa: E402
 from robosolve.ik.pose import solve_pose  # noqa: E402
 
 NAMES = [f"q{i}" for i in range(1, 7)]
@@ -227,7 +227,7 @@ def test_point_target_with_rpy_through_the_solver():
     from spatialmath.base import tr2rpy
 
     from robosolve.load.loader import load_problem_text
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
 
     q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]
     puma = rtb.models.DH.Puma560()

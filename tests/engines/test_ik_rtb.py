@@ -117,7 +117,7 @@ def test_spherical_wrist_closed_form_from_three_of_six_equations():
 def test_puma560_through_the_solver_position_and_tool_vectors():
     """A PUMA 560 problem file: E, A = E + z6, N = E + x6 as 9 consistent equations -> 8 solutions."""
     from robosolve.load.loader import load_problem_text
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
 
     puma = rtb.models.DH.Puma560()
     q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]

@@ -10,7 +10,7 @@ from robosolve.core.transforms import rigid_inverse
 from robosolve.load.loader import load_problem, load_problem_text
 from robosolve.model import RobotModel
 from robosolve.model.numeric import NumericChain
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 
 
 @pytest.fixture(scope="module")

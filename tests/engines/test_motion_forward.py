@@ -14,14 +14,15 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from robosolve.core.symbols import TIME
 from robosolve.load.loader import load_problem_text
 from robosolve.model import RobotModel
-from robosolve.dynamics.model import dynamics_for
+from robosolve.dynamics.bridge import dynamics_for
 from robosolve.motion.forward import RunTooLong, compile_plant, integrate
 
 pin = pytest.importorskip("pinocchio")
 
-T_SYM = sp.Symbol("t", real=True)
+T_SYM = TIME   # the loader's time symbol
 
 ONE_LINK = """
 robosolve: 1

@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from robosolve.core.symbols import TIME
 from robosolve.motion.profiles import ProfileError, synchronize
 
-t = sp.Symbol("t")
+t = TIME    # the profiles' time (a real symbol)
 
 
 def _eval(expr, times):

@@ -12,7 +12,7 @@ from scipy.optimize import brentq
 
 from robosolve.kinematics.structured_det import structured_det
 from robosolve.load.loader import load_problem
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 
 rtb = pytest.importorskip("roboticstoolbox")
 

@@ -12,7 +12,7 @@ import pytest
 
 from robosolve.errors import InputError
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 
 FLOAT_POSE = """\
 robosolve: 1

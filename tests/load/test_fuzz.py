@@ -71,7 +71,7 @@ for line in sys.stdin:
         problem = load_problem(path)
         out["status"] = "valid"
         if mode == "solve":
-            from robosolve.pipeline import solve_problem
+            from robosolve.run.pipeline import solve_problem
             from robosolve.render.markdown import render_report
             from robosolve.render.results_json import render_results_json
             report = solve_problem(problem)

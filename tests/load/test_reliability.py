@@ -228,7 +228,7 @@ def test_every_body_without_mass_under_p_control_is_an_input_error(write_problem
 def test_symbolic_step_over_the_node_budget_is_skipped_deterministically():
     import sympy as sp
 
-    from robosolve.kinematics.task import limited
+    from robosolve.solvers.task_space import limited
     from robosolve.solvers.base import Budgets
 
     class Ctx:
@@ -250,7 +250,7 @@ def test_question_budget_cannot_be_swallowed(write_problem, monkeypatch):
     import robosolve.solvers.position as position
     from robosolve.errors import SymbolicTimeout
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
     from robosolve.solvers.base import Budgets
 
     def stubborn(question, ctx):

@@ -15,7 +15,7 @@ import pytest
 
 from robosolve.core.prose import Num, Text
 from robosolve.load.loader import load_problem
-from robosolve.pipeline import render_files, solve_problem
+from robosolve.run.pipeline import render_files, solve_problem
 from robosolve.render.drawing import BackgroundFigures, InlineFigures, figure_drawer
 from robosolve.solvers.base import FigureSpec
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from robosolve.core.course_notes import NOTES, notes_page
-from robosolve.pipeline import solve_file
+from robosolve.run.pipeline import solve_file
 from robosolve.render.markdown import render_report
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -21,7 +21,7 @@ FORBIDDEN = re.compile(r"errata", re.IGNORECASE)
 
 def test_course_notes_page_is_generated_from_the_notes():
     page = (ROOT / "docs" / "course-notes.md").read_text(encoding="utf-8")
-    assert page == notes_page(), "regenerate: python -m robosolve.core.course_notes > docs/course-notes.md"
+    assert page == notes_page(), "regenerate: python -m robosolve.core.course_notes docs/course-notes.md"
 
 
 def test_no_report_doc_or_solver_cites_a_document_outside_the_project():

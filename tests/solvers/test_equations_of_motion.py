@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from robosolve.pipeline import solve_file
+from robosolve.run.pipeline import solve_file
 
 from conftest import PROBLEMS
 
@@ -99,7 +99,7 @@ def test_numeric_only_fallback():
     """When the symbolic derivation is cut short (a budget no derivation meets), M, c, g
     and the actuators come from the numeric-only path, with a note."""
     from robosolve.load.loader import load_problem
-    from robosolve.pipeline import solve_problem
+    from robosolve.run.pipeline import solve_problem
     from robosolve.solvers.base import Budgets
 
     report = solve_problem(load_problem(PROBLEMS / "rp-vertical-arm.yaml"),

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 from support.lagrange_fd import FiniteDifferenceLagrange
 
 rtb = pytest.importorskip("roboticstoolbox")

@@ -14,7 +14,7 @@ from scipy.optimize import brentq
 
 from robosolve.errors import InputError
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 
 ARM = """
 robosolve: 1

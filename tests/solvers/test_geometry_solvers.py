@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from robosolve.pipeline import solve_file
+from robosolve.run.pipeline import solve_file
 from robosolve.render.results_json import results_document
 
 PROBLEM = Path(__file__).resolve().parents[2] / "problems" / "rigid-displacements.yaml"

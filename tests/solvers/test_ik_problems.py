@@ -21,7 +21,7 @@ from robosolve.ik.engine import IKJoint, solve_ik
 from robosolve.ik.numeric import wrap_angle
 from robosolve.load.loader import load_problem
 from robosolve.model import RobotModel
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 from robosolve.solvers.base import SolveContext
 
 PROBLEMS = sorted((Path(__file__).resolve().parents[2] / "problems").glob("*.yaml"))

@@ -6,7 +6,7 @@ import math
 from pathlib import Path
 
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 from robosolve.render.results_json import results_document
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -10,7 +10,7 @@ import pytest
 import sympy as sp
 
 from robosolve.load.loader import load_problem, load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 from robosolve.render.results_json import answer_record
 
 S5 = math.sqrt(5)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 from robosolve.solvers.base import Budgets
 
 ARM = """
@@ -71,7 +71,7 @@ def test_joint_torques_peaks_by_hand():
     # the closed forms hold the arm after T: gravity of the final pose and the force
     import sympy as sp
     pw = a.symbolic["profiles"]["C1"]
-    t = sp.Symbol("t")
+    from robosolve.core.symbols import TIME as t
     # final pose: link 1 vertical (no gravity moment), link 2 at pi/6 from horizontal; F stays
     # perpendicular to link 2, so its moment about joint 1 is F (L1 cos(theta2) + L2/2)
     hold = 9.81 * 0.4 * 2.5 * math.cos(math.pi / 6) + 5 * (0.5 * math.cos(-math.pi / 3) + 0.2)
@@ -171,7 +171,7 @@ def test_two_routes_scara_prismatic_three_joints_symbolic_vs_numeric_only():
 
 
 def test_figures_are_drawn(tmp_path):
-    from robosolve.pipeline import write_outputs
+    from robosolve.run.pipeline import write_outputs
 
     report = solve_problem(load_problem_text(ARM % ("5", PROFILE + """  - {type: joint_torques}
   - {type: p_control, law: pd, gains: {theta1: 300, theta2: 300}, gains_d: {theta1: 20, theta2: 20}}

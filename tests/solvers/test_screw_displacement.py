@@ -11,7 +11,7 @@ from scipy.linalg import expm
 
 from robosolve.errors import InputError
 from robosolve.load.loader import load_problem_text
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 
 HEAD = "robosolve: 1\nname: s\nparameters: {a: 2, k: ~}\nquestions:\n"
 

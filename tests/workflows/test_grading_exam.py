@@ -15,7 +15,7 @@ from robosolve.grading.answers import read_answers, resolve_answers
 from robosolve.grading.grader import Grader
 from robosolve.grading.reference import Reference
 from robosolve.load.loader import load_problem
-from robosolve.pipeline import solve_problem
+from robosolve.run.pipeline import solve_problem
 from tests._grading import key
 
 from conftest import PROBLEMS

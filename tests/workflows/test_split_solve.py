@@ -16,10 +16,10 @@ from types import SimpleNamespace
 import pytest
 
 from robosolve.load.loader import load_problem
-from robosolve.pipeline import _FileClock, render_files, solve_problem
+from robosolve.run.pipeline import _FileClock, render_files, solve_problem
 from robosolve.questions.registry import QUESTION_TYPES
 from robosolve.solvers.base import Answer
-from robosolve.split_solve import MIN_SPLIT_COST, QuestionHelper, plan, question_cost
+from robosolve.run.split_solve import MIN_SPLIT_COST, QuestionHelper, plan, question_cost
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -109,7 +109,7 @@ def test_a_split_solve_writes_the_same_files(whole_files):
 
 
 def test_a_question_the_helper_does_not_send_is_solved_by_the_parent(monkeypatch, whole_files):
-    import robosolve.split_solve as split_solve
+    import robosolve.run.split_solve as split_solve
 
     monkeypatch.setattr(split_solve, "_unpickled", lambda data: None)     # every answer lost
     problem = load_problem(PROBLEM)
@@ -128,7 +128,7 @@ def test_no_helper_beside_another_thread(monkeypatch):
 
 def test_a_unit_is_solved_again_whole():
     """A joint_torques answer lost on the way needs its motion profile solved in the parent too."""
-    from robosolve.split_solve import to_solve_again
+    from robosolve.run.split_solve import to_solve_again
 
     qs = _questions("position", "motion_profile", "joint_torques", "jacobian", "inverse_kinematics")
     assert to_solve_again(qs, {0, 1, 3, 4}) == [1, 2]

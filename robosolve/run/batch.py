@@ -11,9 +11,10 @@ import difflib
 import glob
 import json
 import os
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
+from robosolve.errors import ExitStatus, InputError
 
 GOLDEN_FILES = ("report.md", "results.json")
 FLOAT_RTOL = 1e-9
@@ -32,7 +33,7 @@ def collect(source: str) -> list[Path]:
 def solve_one(path: str, formats=("md",)) -> dict:
     """Load, solve, render one problem file in this process: a summary and the files
     (relative path -> bytes); never raises on bad input. Writes nothing."""
-    from robosolve.execution import make_task, read_error, solve_task
+    from robosolve.run.execution import make_task, read_error, solve_task
 
     try:
         text = Path(path).read_bytes().decode("utf-8")
@@ -64,7 +65,7 @@ def declared_names(files) -> dict[str, str | None]:
 
 def refusals(names: dict, out, golden, update) -> list[str]:
     """Why the batch must not start (duplicate names, output folders robosolve does not own)."""
-    from robosolve.outputs import OutputFolderError, check_collection, check_output_folder
+    from robosolve.run.outputs import OutputFolderError, check_collection, check_output_folder
 
     by_name: dict[str, list[str]] = {}
     for f, n in names.items():
@@ -86,9 +87,9 @@ def refusals(names: dict, out, golden, update) -> list[str]:
 
 
 def _results(files, jobs, formats=("md",), scheduler=None):
-    """Yield each file's summary as it is solved, on the chosen back-end (robosolve.execution:
+    """Yield each file's summary as it is solved, on the chosen back-end (robosolve.run.execution:
     this process, the warm process pool, or Dask); an interrupt stops the workers at once."""
-    from robosolve.execution import make_task, read_error, run_tasks
+    from robosolve.run.execution import make_task, read_error, run_tasks
 
     tasks = []
     for f in files:
@@ -97,95 +98,88 @@ def _results(files, jobs, formats=("md",), scheduler=None):
         except (OSError, UnicodeDecodeError) as exc:
             yield read_error(str(f), exc)
     for _, r in run_tasks(tasks, jobs, scheduler):
-        r.pop("version", None)
         yield r
 
 
-def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), scheduler=None) -> int:
-    import sys
+@dataclass
+class BatchOutcome:
+    """What `batch` did, for the CLI to print: refusals (nothing done), one summary per file,
+    write errors, and the golden check's differences (lines, in file order)."""
 
-    from rich.console import Console
-    from rich.table import Table
+    status: int
+    refused: list = field(default_factory=list)
+    results: list = field(default_factory=list)
+    write_errors: list = field(default_factory=list)
+    diff_lines: list = field(default_factory=list)
+    solved: int = 0
+    orphans: list = field(default_factory=list)    # golden folders no file checked makes
 
-    from robosolve.execution import SchedulerError
+
+def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), scheduler=None,
+        progress=None) -> BatchOutcome:
+    """Solve every file on the chosen back-end and write (or compare) each result.
+    `progress(total)` is a context manager yielding `advance()` (the CLI's bar), or None."""
+    from robosolve.run.execution import SchedulerError
 
     if golden is not None and "md" not in formats:     # golden folders hold report.md
         formats = ("md", *formats)
-
-    console = Console(stderr=True)
     jobs = jobs or os.cpu_count() or 1
     names = declared_names(files)
     refused = refusals(names, out, golden, update)
     if refused:
-        for m in refused:
-            sys.stderr.write(m + "\n")
-        return EXIT_INPUT
+        return BatchOutcome(ExitStatus.INPUT, refused=refused)
     try:
         results, diffs, write_errors = _solve_and_write(files, names, out, jobs, golden, update, formats,
-                                                        scheduler, console)
+                                                        scheduler, progress)
     except SchedulerError as exc:
-        sys.stderr.write(f"{exc}\n")
-        return EXIT_INPUT
-
-    results.sort(key=lambda r: r["file"])
-    solved = [r["name"] for r in results if r["name"]]
-    status = max([r["status"] for r in results] + [EXIT_OK])
-    table = Table(title="robosolve batch")
-    for col in ("file", "problem", "answered", "status"):
-        table.add_column(col)
-    for r in results:
-        label = {EXIT_OK: "ok", EXIT_ANSWER_ERROR: "errors", EXIT_INPUT: "invalid"}[r["status"]]
-        table.add_row(r["file"], r["name"] or "—", f"{r['answered']}/{r['total']}", label)
-    console.print(table)
-    # plain writes, one line each: an editor can jump to FILE:LINE (rich would wrap them)
-    for r in results:
-        for m in r["messages"]:
-            sys.stderr.write(m + "\n")
-    for m in write_errors:
-        sys.stderr.write(m + "\n")
+        return BatchOutcome(ExitStatus.INPUT, refused=[str(exc)])
+    results.sort(key=lambda r: r.file)
+    solved = len([r for r in results if r.name])
+    status = max([r.status for r in results] + [ExitStatus.OK])
     if write_errors:
-        status = max(status, EXIT_INPUT)
-    if golden is not None and update:
-        sys.stderr.write(f"golden folder {golden} updated ({len(solved) - len(write_errors)} problems)\n")
-    elif golden is not None:
-        lines = [line for f in sorted(diffs) for line in diffs[f]]
-        for line in lines:
-            print(line)
-        if lines:
-            status = max(status, EXIT_ANSWER_ERROR)
-            sys.stderr.write("golden check: differences found (rerun with --update to accept them)\n")
-        else:
-            sys.stderr.write(f"golden check: {len(solved)} problems identical\n")
-    return status
+        status = max(status, ExitStatus.INPUT)
+    lines = [line for f in sorted(diffs) for line in diffs[f]]
+    if lines:
+        status = max(status, ExitStatus.ANSWER_ERROR)
+    known = {r.name for r in results if r.name} | {n for n in names.values() if n}
+    return BatchOutcome(status, results=results, write_errors=write_errors, diff_lines=lines, solved=solved,
+                        orphans=orphan_goldens(golden, known) if golden is not None else [])
 
 
-def _solve_and_write(files, names, out, jobs, golden, update, formats, scheduler, console):
+def orphan_goldens(golden, names) -> list[Path]:
+    """Golden folders (holding report.md or results.json) that none of `names` makes: their
+    problem was removed or renamed, or is not among the files checked."""
+    root = Path(golden)
+    if not root.is_dir():
+        return []
+    return [d for d in sorted(root.iterdir()) if d.is_dir() and d.name not in names
+            and any((d / g).is_file() for g in GOLDEN_FILES)]
+
+
+def _solve_and_write(files, names, out, jobs, golden, update, formats, scheduler, progress):
     """Solve every file and write (or compare) each result as it arrives."""
-    from rich.progress import Progress
-
-    from robosolve.outputs import OutputFolderError, write_output_folder
+    from robosolve.run.outputs import OutputFolderError, write_output_folder
 
     results, diffs, write_errors = [], {}, []
     with contextlib.ExitStack() as stack:
-        progress = stack.enter_context(Progress(console=console, transient=True))
-        task = progress.add_task("solving", total=len(files))
+        advance = stack.enter_context(progress(len(files))) if progress else (lambda: None)
         for r in stack.enter_context(contextlib.closing(_results(files, jobs, formats, scheduler))):
-            out_files = r.pop("files")
-            if r["name"] and golden is None:
+            out_files, r.files = r.files, {}
+            if r.name and golden is None:
                 try:
-                    write_output_folder(Path(out) / r["name"], out_files, inputs=list(names))
-                except (OutputFolderError, OSError) as exc:
+                    write_output_folder(Path(out) / r.name, out_files, inputs=list(names))
+                except OutputFolderError as exc:
                     write_errors.append(str(exc))
-            elif r["name"] and update:
+            elif r.name and update:
                 try:
-                    write_output_folder(Path(golden) / r["name"], {g: out_files[g] for g in GOLDEN_FILES},
+                    write_output_folder(Path(golden) / r.name, {g: out_files[g] for g in GOLDEN_FILES},
                                         inputs=list(names), legacy=GOLDEN_FILES)
-                except (OutputFolderError, OSError) as exc:
+                except OutputFolderError as exc:
                     write_errors.append(str(exc))
-            elif r["name"]:
-                diffs[r["file"]] = compare_files(out_files, Path(golden), r["name"])
+            elif r.name:
+                diffs[r.file] = compare_files(out_files, Path(golden), r.name)
             results.append(r)
-            progress.advance(task)
+            advance()
     return results, diffs, write_errors
 
 

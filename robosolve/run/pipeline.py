@@ -2,7 +2,7 @@
 
 `solve_file` returns a `Report` and writes nothing; `render_files` turns it into
 bytes (relative path -> content) and `write_outputs` hands them to
-`robosolve.outputs.write_output_folder`, the only writer of output folders (ownership
+`robosolve.run.outputs.write_output_folder`, the only writer of output folders (ownership
 mark, atomic swap, umask, interrupts held back while it writes).
 """
 
@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_OK, SolverError, SymbolicTimeout
+from robosolve.errors import ExitStatus, SolverError, SymbolicTimeout
 from robosolve.load.loader import load_problem
 from robosolve.load.problem import Problem
 
@@ -24,7 +24,7 @@ class Report:
 
     @property
     def exit_status(self) -> int:
-        return EXIT_ANSWER_ERROR if any(a.error is not None for a in self.answers) else EXIT_OK
+        return ExitStatus.ANSWER_ERROR if any(a.error is not None for a in self.answers) else ExitStatus.OK
 
 
 def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = False) -> Report:
@@ -32,7 +32,7 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
     question (`question_seconds`) and the whole file (`file_seconds`). Each answer's figures
     are handed to `figures` (robosolve.render.drawing) as soon as it is known. With `split`
     (the `solve` command, two cores or more), a forked helper solves some of the questions
-    meanwhile (robosolve.split_solve): the same answers."""
+    meanwhile (robosolve.run.split_solve): the same answers."""
     from robosolve.model import RobotModel
     from robosolve.solvers.base import Answer, Budgets, SolveContext
 
@@ -74,7 +74,7 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
     finally:
         helper.close()
     if len(answers) < len(questions):    # the helper did not send some back: solved here
-        from robosolve.split_solve import to_solve_again
+        from robosolve.run.split_solve import to_solve_again
 
         for i in to_solve_again(questions, answers):
             add(i, answer_for(i))
@@ -115,7 +115,7 @@ def _question_helper(problem, model, answer_for, clock, split: bool):
     """A QuestionHelper for the questions `split_solve.plan` gives it (with `split`, on two cores
     or more), else one that owns no question."""
     from robosolve.core.processes import usable_cores
-    from robosolve.split_solve import QuestionHelper, plan
+    from robosolve.run.split_solve import QuestionHelper, plan
 
     indices = plan(problem.questions, len(problem.joints)) if split and usable_cores() >= 2 else None
     if not indices:
@@ -187,18 +187,43 @@ def render_files(report: Report, formats=("md",), figures=None) -> dict[str, byt
     return files
 
 
-def write_outputs(report: Report, out_dir, inputs=(), formats=("md",), figures=None) -> Path:
-    """Write the report as the output folder `out_dir` (robosolve.outputs: ownership, atomic swap).
+def write_outputs(report: Report, out_dir, formats=("md",), inputs=(), figures=None) -> Path:
+    """Write the report as the output folder `out_dir` in the `formats` asked for (`--format`;
+    robosolve.run.outputs: ownership, atomic swap).
 
-    Raises robosolve.outputs.OutputFolderError, with nothing touched, when the folder is not
+    Raises robosolve.run.outputs.OutputFolderError, with nothing touched, when the folder is not
     robosolve's; `inputs` are the problem files read (a replaced folder must not hold them).
     """
-    from robosolve.outputs import write_output_folder
+    from robosolve.run.outputs import write_output_folder
 
     return write_output_folder(out_dir, render_files(report, formats, figures), inputs=inputs)
 
 
-def render_outputs(report: Report, folder, formats=("md",), inputs=(), figures=None) -> Path:
-    """The output folder of one report in the `formats` asked for (`--format`): what the
-    `solve`, `batch` and `variants` commands call; same rules as write_outputs."""
-    return write_outputs(report, folder, inputs=inputs, formats=formats, figures=figures)
+@dataclass
+class FileResult:
+    """One problem file solved (or only loaded): what every command reports about it, and its
+    output files as bytes (relative path -> bytes; the caller writes them)."""
+
+    file: str
+    name: str | None = None
+    status: int = ExitStatus.OK
+    answered: int = 0
+    total: int = 0
+    messages: list = field(default_factory=list)
+    files: dict = field(default_factory=dict)
+    version: str | None = None
+
+    @classmethod
+    def unreadable(cls, file, message: str) -> "FileResult":
+        return cls(str(file), status=ExitStatus.INPUT, messages=[message])
+
+
+def solve_loaded(problem: Problem, formats=("md",), figures=None, split: bool = False) -> FileResult:
+    """The one "solve one file": solve a loaded problem, render its files, count its answers."""
+    import robosolve
+
+    report = solve_problem(problem, figures=figures, split=split)
+    failed = [f"{problem.file}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
+    return FileResult(str(problem.file), problem.name, report.exit_status, len(report.answers) - len(failed),
+                      len(report.answers), failed, render_files(report, tuple(formats), figures),
+                      robosolve.__version__)

@@ -36,7 +36,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 from robosolve.errors import RobosolveError
-from robosolve.interrupts import raise_if_interrupted
+from robosolve.run.interrupts import raise_if_interrupted
 
 MARK = ".robosolve"
 # Files robosolve itself writes into an output folder: in the working directory (written in
@@ -72,6 +72,30 @@ def _inside(child: Path, parent: Path) -> bool:
         return False
 
 
+def _same(a: Path, b: Path) -> bool:
+    try:
+        return a.resolve() == b.resolve()
+    except OSError:
+        return False
+
+
+def check_output_file(path, inputs: Iterable = ()) -> None:
+    """Raise OutputFolderError unless robosolve may (re)write the single file `path`
+    (`check --json FILE`): not a folder, not inside a file, not one of the `inputs` it reads."""
+    if str(path) == "":
+        raise OutputFolderError("the output file name is empty")
+    path = Path(path)
+    if path.is_dir():
+        raise OutputFolderError(f"{path}: is a folder; give a file name (robosolve writes one JSON file)")
+    blocker = _first_non_folder(path.parent)
+    if blocker is not None:
+        raise OutputFolderError(f"{path}: {blocker} is a file, not a folder; give another file name")
+    for f in inputs:
+        if _same(path, Path(f)) or (path.exists() and Path(f).exists() and os.path.samefile(path, f)):
+            raise OutputFolderError(f"{path}: is {f}, a file robosolve reads; writing there would "
+                                    "overwrite it, and robosolve has touched nothing. Give another file name")
+
+
 def _first_non_folder(path: Path) -> Path | None:
     """The first existing ancestor-or-self of `path` that is not a folder, if any."""
     for p in [*reversed(path.parents), path]:
@@ -104,6 +128,12 @@ def check_output_folder(path, inputs: Iterable = (), legacy: Iterable[str] = ())
         what = "this is a file" if blocker == path else f"is inside {blocker}, which is a file"
         raise OutputFolderError(f"{path}: {what}; robosolve writes a folder there. "
                                 "Give --out a new folder name")
+    inputs = [Path(f) for f in inputs]
+    for f in inputs:
+        if f.is_dir() and _inside(path, f):
+            what = "is the folder" if _same(path, f) else "is inside the folder"
+            raise OutputFolderError(f"{path}: {what} {f}, which robosolve reads; it has touched nothing. "
+                                    "Give --out a folder outside it")
     if not path.exists():
         return
     cwd = _is_cwd(path)
@@ -112,9 +142,9 @@ def check_output_folder(path, inputs: Iterable = (), legacy: Iterable[str] = ())
                                 "Give --out a new folder name")
     if not cwd:
         for f in inputs:
-            if _inside(Path(f), path):
-                raise OutputFolderError(f"{path}: holds the problem file {f}, which replacing the folder "
-                                        "would delete. Give --out a new folder name")
+            if _inside(f, path):
+                raise OutputFolderError(f"{path}: holds {f}, which robosolve reads and replacing the folder "
+                                        "would delete; robosolve has touched nothing. Give --out a new folder name")
     try:
         entries = os.listdir(path)
     except OSError as exc:
@@ -231,10 +261,57 @@ def write_output_folder(path, files: Mapping[str, bytes], inputs: Iterable = (),
     path = Path(path)
     inputs, legacy = list(inputs), list(legacy)
     check_output_folder(path, inputs, legacy)
+    try:
+        with _new_parents_removed_on_error(path):
+            return _write_folder(path, files, inputs, legacy, tuple(own))
+    except OSError as exc:   # a full disk, a read-only place: nothing was replaced
+        raise OutputFolderError(write_error_text(path, exc)) from None
+
+
+def write_error_text(path, exc: OSError) -> str:
+    """The one message of a failed write (a full disk, no permission): the path and the reason."""
+    return f"{path}: cannot write the outputs ({exc.strerror or exc})"
+
+
+@contextlib.contextmanager
+def _new_parents_removed_on_error(path: Path):
+    """Folders created on the way to `path` are removed again (when empty) if the write fails."""
+    missing = [p for p in [*reversed(path.absolute().parents), path.absolute()][:-1] if not p.exists()]
+    try:
+        yield
+    except BaseException:
+        for p in reversed(missing):
+            with contextlib.suppress(OSError):
+                p.rmdir()
+        raise
+
+
+def write_file(path, data: bytes, inputs: Iterable = ()) -> None:
+    """Write one file atomically (a temporary file beside it, renamed over it), after
+    `check_output_file`; a failed write raises OutputFolderError and leaves nothing behind."""
+    path = Path(path)
+    check_output_file(path, inputs)
+    try:
+        with _new_parents_removed_on_error(path):
+            path.parent.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_name(f".{path.name}.{_TMP_TAG}-{os.getpid()}-{secrets.token_hex(4)}")
+            with signals_deferred():
+                try:
+                    raise_if_interrupted()
+                    tmp.write_bytes(data)
+                    os.chmod(tmp, 0o666 & ~_umask())
+                    os.replace(tmp, path)
+                finally:
+                    _remove(tmp)
+    except OSError as exc:
+        raise OutputFolderError(f"{path}: cannot write the file ({exc.strerror or exc})") from None
+
+
+def _write_folder(path: Path, files, inputs, legacy, own) -> Path:
     mask = _umask()
     mode_dir, mode_file = 0o777 & ~mask, 0o666 & ~mask
     if path.exists() and _is_cwd(path):
-        _write_in_place(path.resolve(), files, mode_file, mode_dir, tuple(own))
+        _write_in_place(path.resolve(), files, mode_file, mode_dir, own, inputs)
         return path
     parent = path.resolve().parent if path.exists() else path.absolute().parent
     parent.mkdir(parents=True, exist_ok=True)
@@ -274,13 +351,20 @@ def _swap_in(tmp: Path, real: Path) -> None:
 
 
 def _write_in_place(folder: Path, files: Mapping[str, bytes], mode_file: int, mode_dir: int,
-                    own: tuple[str, ...]) -> None:
+                    own: tuple[str, ...], inputs=()) -> None:
     """The working directory cannot be swapped: write each file atomically, then prune."""
     rels = {_safe_rel(r).as_posix(): data for r, data in files.items()}
     with signals_deferred(), _locked(folder):
         raise_if_interrupted()
         check_output_folder(folder)
         earlier = [p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file()]
+        pruned = [r for r in earlier if r not in rels and any(fnmatch.fnmatchcase(r, g) for g in own)]
+        for rel in [*rels, *pruned]:
+            for f in inputs:
+                if _same(folder / rel, Path(f)):
+                    raise OutputFolderError(f"{folder / rel}: is {f}, a file robosolve reads; writing "
+                                            "there would overwrite it, and robosolve has touched nothing. "
+                                            "Give --out a new folder name")
         for rel, data in {**rels, MARK: b""}.items():
             target = folder / rel
             target.parent.mkdir(parents=True, exist_ok=True, mode=mode_dir)

@@ -3,7 +3,7 @@
 One interface for `batch` and `variants`: ``run_tasks(tasks, jobs, scheduler)`` yields
 ``(index, result)`` as each task finishes. A task is a plain dict (the problem's YAML text
 and what to produce), so it travels to a process or a remote Dask worker as is; a result
-carries the output files as bytes (relative path -> bytes) and the client writes them, so
+(a `FileResult`) carries the output files as bytes (relative path -> bytes) and the client writes them, so
 the files are the same bytes whichever back-end solved them.
 
 - local pool: workers import robosolve once (the initializer), tasks are submitted longest
@@ -20,7 +20,7 @@ from __future__ import annotations
 import os
 import re
 
-from robosolve.errors import EXIT_ANSWER_ERROR, EXIT_INPUT, EXIT_OK, InputError
+from robosolve.errors import ExitStatus, InputError
 
 DASK_HINT = 'Dask is not installed: pip install "robosolve[dask]"'
 SCHEDULER_RE = re.compile(r"^(local|(tcp|tls|ws|wss|inproc)://\S+)$")
@@ -37,49 +37,43 @@ def make_task(text: str, file: str, formats=("md",), solve: bool = True) -> dict
     return {"text": text, "file": file, "formats": tuple(formats), "solve": solve}
 
 
-def solve_task(task: dict) -> dict:
-    """Load (and solve and render) one problem from its YAML text; never raises on bad input.
-    Writes nothing: the files come back as bytes."""
+def solve_task(task: dict):
+    """Load (and solve and render) one problem from its YAML text: a `FileResult`; never raises
+    on bad input. Writes nothing: the files come back as bytes."""
     import robosolve
     from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import FileResult, solve_loaded
 
     file = task["file"]
-    base = {"file": file, "name": None, "answered": 0, "total": 0, "messages": [],
-            "files": {}, "version": robosolve.__version__}
     try:
         problem = load_problem_text(task["text"], file)
     except InputError as exc:
-        return {**base, "status": EXIT_INPUT, "messages": [str(i) for i in exc.issues]}
-    base["name"] = problem.name
-    base["total"] = len(problem.questions)
+        return FileResult(file, status=ExitStatus.INPUT, messages=[str(i) for i in exc.issues],
+                          version=robosolve.__version__)
     if not task.get("solve", True):
-        return {**base, "status": EXIT_OK}
-    from robosolve.pipeline import render_files, solve_problem
-
-    report = solve_problem(problem)
-    failed = [f"{file}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
-    return {**base, "status": report.exit_status, "answered": len(report.answers) - len(failed),
-            "messages": failed, "files": render_files(report, tuple(task.get("formats", ("md",))))}
+        return FileResult(file, problem.name, total=len(problem.questions), version=robosolve.__version__)
+    return solve_loaded(problem, tuple(task.get("formats", ("md",))))
 
 
-def read_error(path, exc: BaseException) -> dict:
-    """The summary row of a problem file that cannot be read."""
+def read_error(path, exc: BaseException):
+    """The summary of a problem file that cannot be read."""
+    from robosolve.run.pipeline import FileResult
+
     why = ("the file is not UTF-8 text" if isinstance(exc, UnicodeDecodeError)
            else f"cannot read the file: {getattr(exc, 'strerror', None) or exc}")
-    return {"file": str(path), "name": None, "status": EXIT_INPUT, "answered": 0, "total": 0,
-            "messages": [f"{path}:1: {why}"], "files": {}, "version": None}
+    return FileResult.unreadable(path, f"{path}:1: {why}")
 
 
 def warm_worker() -> None:
-    """Pool initializer: the parent handles SIGINT (robosolve.interrupts), and the imports are
+    """Pool initializer: the parent handles SIGINT (robosolve.run.interrupts), and the imports are
     paid once per worker, not once per task."""
-    from robosolve.interrupts import worker_init
+    from robosolve.core.processes import worker_init
 
     worker_init()
     import matplotlib
 
     matplotlib.use("Agg")
-    import robosolve.pipeline  # noqa: F401
+    import robosolve.run.pipeline  # noqa: F401
     import robosolve.solvers  # noqa: F401
 
 
@@ -95,10 +89,11 @@ def estimate(task: dict) -> int:
     return questions * (1 + joints) ** 2 * dynamic
 
 
-def crash_result(task: dict, exc: BaseException) -> dict:
-    return {"file": task["file"], "name": None, "status": EXIT_ANSWER_ERROR, "answered": 0, "total": 0,
-            "messages": [f"{task['file']}: the worker failed ({type(exc).__name__}: {exc})"], "files": {},
-            "version": None}
+def crash_result(task: dict, exc: BaseException):
+    from robosolve.run.pipeline import FileResult
+
+    return FileResult(task["file"], status=ExitStatus.ANSWER_ERROR,
+                      messages=[f"{task['file']}: the worker failed ({type(exc).__name__}: {exc})"])
 
 
 # ---------------------------------------------------------------------------
@@ -138,7 +133,7 @@ def run_tasks(tasks: list, jobs: int = 0, scheduler: str | None = None):
 def _run_pool(tasks, order, jobs):
     from concurrent.futures import as_completed
 
-    from robosolve.interrupts import process_pool
+    from robosolve.run.interrupts import process_pool
 
     with process_pool(max_workers=min(jobs, len(tasks)), initializer=warm_worker) as pool:
         futures = {pool.submit(solve_task, tasks[i]): i for i in order}

@@ -1,26 +1,43 @@
-"""Polynomials in cᵢ = cos qᵢ, sᵢ = sin qᵢ (and prismatic qᵢ), reduced modulo sᵢ² + cᵢ² = 1.
+"""The one trig-polynomial ring of robosolve: polynomials in sᵢ = sin θᵢ, cᵢ = cos θᵢ (and
+polynomial symbols), reduced modulo sᵢ² + cᵢ² = 1.
 
-This is the engine's fast algebra: every entry of a pose, L matrix or energy of a serial
-robot is such a polynomial, with coefficients in the parameters. sympy's sparse polynomial
-rings multiply and differentiate these in microseconds, and the reduction sᵢ² → 1 − cᵢ²
-(a division by the Gröbner basis {sᵢ² + cᵢ² − 1}) gives a canonical form, so every
-cancellation that `trigsimp` would find through cos² + sin² = 1 happens at once, for free.
+Every entry of a pose, L matrix or energy of a serial robot is such a polynomial, with
+coefficients in the parameters. sympy's sparse polynomial rings multiply and differentiate
+these in microseconds, and the reduction (a division by the Gröbner basis {sᵢ² + cᵢ² − 1})
+gives a canonical form, so every cancellation that `trigsimp` would find through
+cos² + sin² = 1 happens at once. Two ways in, one algebra:
 
-`TrigAlgebra.from_inputs` returns None when an input uses a joint in a way that is not a
-polynomial in cos qᵢ, sin qᵢ, qᵢ (e.g. sin(qᵢ/2)); the engine then falls back to sympy
-expressions with small-piece `trigsimp`.
+* `TrigAlgebra`: the ring over a robot's joints (the dynamics engine, the structured
+  determinant): built once from all inputs (`from_inputs`, None when a joint is used in a way
+  that is not a polynomial in cos qᵢ, sin qᵢ, qᵢ, e.g. sin(qᵢ/2)), then products, derivatives,
+  inverses of poses, all reduced (sin² → 1 − cos²); `fourier_terms` / `product_terms` read an
+  element back as sines and cosines of sums of angles;
+* `pythagorean_reduced(expr)`: one expression's normal form, over the angles found in it
+  (core/simplify.py's chain entries and `is_zero`), each angle eliminated in the direction
+  that leaves fewer operations.
+
+Both reduce with `pythagorean_basis` (sin² eliminated) or `eliminate_cos_squared`.
+Nothing here calls a simplifier (core/simplify.py owns the policy and imports this module).
 """
 
 from __future__ import annotations
 
 import sympy as sp
+from sympy.polys.domains import QQ
+from sympy.polys.rings import ring as poly_ring
 from sympy.polys.rings import sring
 
-from robosolve.core.simplify import small_trig
+__all__ = ["TrigAlgebra", "eliminate_cos_squared", "fourier_dict", "fourier_terms",
+           "product_terms", "pythagorean_basis", "pythagorean_reduced"]
 
-__all__ = ["TrigAlgebra"]
+
+def pythagorean_basis(pairs) -> list:
+    """sᵢ² + cᵢ² − 1 for each (s, c) pair of ring generators: dividing by it (`p.rem(basis)`,
+    lex order with s before c) eliminates sin² (sin² -> 1 - cos²)."""
+    return [s ** 2 + c ** 2 - 1 for s, c in pairs]
 
 
+# ---------------------------------------------------------------------- the robot's ring
 class TrigAlgebra:
     def __init__(self, ring, q, trig, poly, elements, half):
         self.ring = ring
@@ -30,7 +47,7 @@ class TrigAlgebra:
         self.poly = poly  # joint index -> q ring generator
         self.zero = ring.zero
         self.one = ring.one
-        self._basis = [s ** 2 + c ** 2 - 1 for s, c in trig.values()]
+        self._basis = pythagorean_basis(trig.values())
         self._back = {}
         syms = dict(zip(ring.gens, ring.symbols))
         for i, (s, c) in trig.items():
@@ -168,42 +185,124 @@ class TrigAlgebra:
         return sp.Matrix([[self.to_expr(x) for x in row] for row in m])
 
 
-class SympyAlgebra:
-    """The same interface on plain sympy expressions (fallback, small-piece trigsimp)."""
-
-    zero = sp.S.Zero
-    one = sp.S.One
-    half = sp.S.Half
-
-    def __init__(self, q, exprs, simplify=True):
-        self.q = list(q)
-        self.elements = [sp.sympify(e) for e in exprs]
-        self._simp = small_trig if simplify else (lambda e: e)
-
-    def element(self, k):
-        return self.elements[k]
-
-    def from_expr(self, expr):
-        return sp.sympify(expr)
-
-    def reduce(self, p):
-        return self._simp(p)
-
-    def diff(self, p, i):
-        return self._simp(sp.diff(p, self.q[i]))
-
-    def depends(self, p, i) -> bool:
-        return sp.sympify(p).has(self.q[i])
-
-    def to_expr(self, p):
-        return p
-
-    def to_matrix(self, m):
-        return sp.Matrix(m)
+# ---------------------------------------------------------------------- one expression
+def pythagorean_reduced(expr, expanded: bool = False):
+    """expr as a polynomial in sin θ, cos θ of its angles reduced modulo sin²θ + cos²θ = 1,
+    each angle's square eliminated in the direction that leaves fewer operations
+    (sin² -> 1 - cos² or cos² -> 1 - sin²); None when an argument of sin/cos is not a
+    plain symbol after the addition formulas are expanded (sin(θ/2), sin(ω t))."""
+    if expr.atoms(sp.Float):
+        return None     # inexact coefficients: reducing them would add round-off terms
+    built = _trig_ring_fast(expr if expanded else sp.expand(expr))
+    if built is None:
+        built = _trig_ring(expr)
+    if built is None:
+        return None
+    poly, pairs, back = built
+    # one angle at a time: eliminate sin² (lex order s > c) or cos² (the ring with c > s)
+    for s, c in pairs:
+        si, ci = poly.ring.gens.index(s), poly.ring.gens.index(c)
+        if all(m[si] < 2 and m[ci] < 2 for m in poly.keys()):
+            continue            # nothing to eliminate: both normal forms are poly itself
+        options = [poly.rem(pythagorean_basis([(s, c)])), eliminate_cos_squared(poly, s, c)]
+        exprs = [p.as_expr() for p in options]
+        ops = [sp.count_ops(e) for e in exprs]
+        # fewer operations, then the text (only compared on a tie)
+        pick = 0 if ops[0] < ops[1] or (ops[0] == ops[1] and str(exprs[0]) <= str(exprs[1])) else 1
+        poly = options[pick]
+    return poly.as_expr().xreplace(back)
 
 
-for _name in ("matmul", "rigid_inverse", "mdiff", "madd", "zeros", "eye"):
-    setattr(SympyAlgebra, _name, getattr(TrigAlgebra, _name))
+def _angle_generators(angles):
+    """One (s, c) pair of Dummy generators per angle, and the map sin(a) -> s, cos(a) -> c."""
+    pairs = [(sp.Dummy(f"s{k}"), sp.Dummy(f"c{k}")) for k in range(len(angles))]
+    to_ring = {}
+    for a, (s, c) in zip(angles, pairs):
+        to_ring[sp.sin(a)], to_ring[sp.cos(a)] = s, c
+    return pairs, to_ring
+
+
+def _trig_ring(expr):
+    """(ring element, [(s, c) generators per angle], generator -> sin/cos) through sympy's
+    expand_trig and sring (any coefficient domain), or None."""
+    e = sp.expand(sp.expand_trig(expr))
+    args = sorted({a.args[0] for a in e.atoms(sp.sin, sp.cos)}, key=sp.default_sort_key)
+    if not args or not all(a.is_Symbol for a in args):
+        return None
+    pairs, to_ring = _angle_generators(args)
+    try:
+        ring, poly = sring(sp.expand(e.xreplace(to_ring)), *[g for pair in pairs for g in pair])
+    except Exception:       # not a polynomial (a sine in a denominator): leave it to trigsimp
+        return None
+    gmap = dict(zip(ring.symbols, ring.gens))
+    back = {gmap[v]: k for k, v in to_ring.items()}
+    return poly, [(gmap[s], gmap[c]) for s, c in pairs], {g.as_expr(): f for g, f in back.items()}
+
+
+def _trig_ring_fast(e):
+    """The same ring element built term by term over QQ (the usual chain entry: rational
+    coefficients times powers of symbols, sines and cosines), without expanding the
+    addition formulas of the whole sum; None for anything else (floats, radicals, a symbol
+    in a denominator), which `_trig_ring` handles."""
+    terms, others, atoms = [], set(), set()
+    for t in sp.Add.make_args(e):
+        coeff, factors = t.as_coeff_mul()
+        if not coeff.is_Rational:
+            return None
+        parts = []
+        for f in factors:
+            b, x = f.as_base_exp()
+            if not (x.is_Integer and x > 0):
+                return None
+            if isinstance(b, (sp.sin, sp.cos)):
+                atoms.add(b)
+            elif b.is_Symbol:
+                others.add(b)
+            else:
+                return None
+            parts.append((b, int(x)))
+        terms.append((coeff, parts))
+    if not atoms:
+        return None
+    expanded = {a: sp.expand(sp.expand_trig(a)) for a in atoms}
+    angles = sorted({x.args[0] for v in expanded.values() for x in v.atoms(sp.sin, sp.cos)},
+                    key=sp.default_sort_key)
+    if not angles or not all(a.is_Symbol for a in angles):
+        return None
+    pairs, to_ring = _angle_generators(angles)
+    # the other symbols are the coefficient domain (as sring makes it): the key that picks
+    # each angle's elimination counts the operations of that grouped form
+    symbols = [g for pair in pairs for g in pair]
+    domain = QQ.poly_ring(*sorted(others, key=sp.default_sort_key)) if others else QQ
+    ring, *gens = poly_ring(symbols, domain)
+    gmap = dict(zip(symbols, gens))
+    try:
+        value = {a: ring.from_expr(v.xreplace(to_ring)) for a, v in expanded.items()}
+    except Exception:
+        return None
+    value.update({o: ring.ground_new(domain.from_sympy(o)) for o in others})
+    poly = ring.zero
+    for coeff, parts in terms:
+        term = ring(QQ(int(coeff.p), int(coeff.q)))
+        for b, x in parts:
+            term *= value[b] ** x
+        poly += term
+    back = {s: sp.sin(a) for a, (s, _) in zip(angles, pairs)}
+    back.update({c: sp.cos(a) for a, (_, c) in zip(angles, pairs)})
+    return poly, [(gmap[s], gmap[c]) for s, c in pairs], back
+
+
+def eliminate_cos_squared(poly, s, c):
+    """poly with cos² -> 1 - sin²: each c^(2k+r) becomes c^r (1 - s²)^k (r = 0, 1), the
+    normal form of degree at most 1 in c."""
+    ring = poly.ring
+    ci = ring.gens.index(c)
+    out = ring.zero
+    for monom, coeff in poly.terms():
+        m = list(monom)
+        k, m[ci] = divmod(m[ci], 2)
+        out += ring({tuple(m): coeff}) * (1 - s ** 2) ** k
+    return out
 
 
 # ---------------------------------------------------------------------- Fourier form

@@ -3,7 +3,7 @@
 `install()` (called by the CLI's entry point) makes SIGINT raise KeyboardInterrupt and SIGTERM
 raise SystemExit, so every `finally` runs and no temporary folder is left; it also records
 that the signal came, so an interrupt swallowed by a library's `except:` still ends the run
-with 130 and nothing is written after it (`robosolve.outputs` calls `raise_if_interrupted`).
+with 130 and nothing is written after it (`robosolve.run.outputs` calls `raise_if_interrupted`).
 """
 
 from __future__ import annotations
@@ -12,8 +12,7 @@ import signal
 import sys
 from contextlib import contextmanager
 
-EXIT_SIGINT = 130
-EXIT_SIGTERM = 143
+from robosolve.errors import ExitStatus
 
 _received: list[int] = []
 
@@ -25,7 +24,7 @@ def _on_sigint(signum, frame):
 
 def _on_sigterm(signum, frame):
     _received.append(signum)
-    raise SystemExit(EXIT_SIGTERM)
+    raise SystemExit(ExitStatus.SIGTERM)
 
 
 def _on_unraisable(unraisable) -> None:
@@ -49,23 +48,16 @@ def received() -> int | None:
     """The exit status owed to a signal received so far (130 or 143), or None."""
     if not _received:
         return None
-    return EXIT_SIGINT if signal.SIGINT in _received else EXIT_SIGTERM
+    return ExitStatus.SIGINT if signal.SIGINT in _received else ExitStatus.SIGTERM
 
 
 def raise_if_interrupted() -> None:
     """Re-raise an interrupt that some library code caught and ignored."""
     status = received()
-    if status == EXIT_SIGINT:
+    if status == ExitStatus.SIGINT:
         raise KeyboardInterrupt
     if status is not None:
         raise SystemExit(status)
-
-
-def worker_init() -> None:
-    """Worker processes ignore SIGINT (the parent stops them) and die at once on SIGTERM."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if hasattr(signal, "SIGTERM"):
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 @contextmanager

@@ -1,0 +1,84 @@
+"""`robosolve batch`: many problem files in parallel, and the golden check."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from robosolve.cli.common import (
+    STATUS_LABEL, check_scheduler, console, err, format_option, formats as parse_formats, jobs_option, out,
+    progress_bars, scheduler_option,
+)
+from robosolve.errors import ExitStatus
+
+
+def batch(
+    source: str = typer.Argument(..., help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
+    jobs: int = jobs_option(),
+    check: Optional[Path] = typer.Option(
+        None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
+    update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
+    format: Optional[str] = format_option(),
+    scheduler: Optional[str] = scheduler_option(),
+) -> None:
+    """Solve many problem files in parallel; optionally compare with golden outputs."""
+    from robosolve.run import batch as batch_mod
+
+    formats = parse_formats(format)
+
+    files = batch_mod.collect(source)
+    if not files:
+        err(f"{source}: no problem files found")
+        raise typer.Exit(ExitStatus.INPUT)
+    if update and check is None:
+        err("--update goes with --check GOLDEN_DIR")
+        raise typer.Exit(ExitStatus.INPUT)
+    if check is None and out is None:
+        err("give --out DIR (or --check GOLDEN_DIR)")
+        raise typer.Exit(ExitStatus.INPUT)
+    check_scheduler(scheduler)
+    con = console()
+    outcome = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, formats=formats,
+                            scheduler=scheduler, progress=progress_bars("solving", con))
+    show(outcome, check, update, con)
+    raise typer.Exit(outcome.status)
+
+
+def show(outcome, golden, update, con) -> None:
+    """The summary table, every message (plain lines: an editor jumps to FILE:LINE), the golden check."""
+    from rich.table import Table
+
+    for m in outcome.refused:
+        err(m)
+    if outcome.refused:
+        return
+    table = Table(title="robosolve batch")
+    for col in ("file", "problem", "answered", "status"):
+        table.add_column(col)
+    for r in outcome.results:
+        table.add_row(r.file, r.name or "—", f"{r.answered}/{r.total}", STATUS_LABEL[r.status])
+    con.print(table)
+    for r in outcome.results:
+        for m in r.messages:
+            err(m)
+    for m in outcome.write_errors:
+        err(m)
+    for d in outcome.orphans:
+        err(f"golden check: {d}: no problem file checked has the name '{d.name}' (was its problem "
+            "removed or renamed? delete the folder, or check it with its problem file)")
+    if golden is not None and update:
+        err(f"golden folder {golden} updated ({problems(outcome.solved - len(outcome.write_errors))})")
+    elif golden is not None:
+        for line in outcome.diff_lines:
+            out(line)
+        if outcome.diff_lines:
+            err("golden check: differences found (rerun with --update to accept them)")
+        else:
+            err(f"golden check: {problems(outcome.solved)} identical")
+
+
+def problems(n: int) -> str:
+    return f"{n} problem" + ("" if n == 1 else "s")

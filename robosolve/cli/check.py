@@ -1,0 +1,79 @@
+"""`robosolve check`: one student's answers against robosolve's solution (docs/grading.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from robosolve.cli.common import console, err, problem_option, tolerance_option, write_stdout
+from robosolve.errors import ExitStatus, InputError
+
+VERDICT_STYLE = {"correct": "green", "incorrect": "red", "missing": "yellow", "invalid": "magenta",
+                 "no_reference": "dim"}
+
+
+def check(
+    answers: Path = typer.Argument(..., help="An answers file (YAML, grading.md)."),
+    problem: Optional[Path] = problem_option("Problem file (default: the answers file's `problem:`)."),
+    json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
+    rtol: Optional[float] = tolerance_option("--rtol", "Relative", "0.005"),
+    atol: Optional[float] = tolerance_option("--atol", "Absolute", "1e-6"),
+) -> None:
+    """Check a student's answers against robosolve's solution: a verdict per key, and what is wrong."""
+    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol))
+
+
+def result_table(result, title: str):
+    from rich.markup import escape
+    from rich.table import Table
+
+    table = Table(title=title, show_lines=False)
+    table.add_column("question", no_wrap=True)
+    table.add_column("key", no_wrap=True)
+    table.add_column("verdict", no_wrap=True)
+    table.add_column("what is wrong", overflow="fold", ratio=1)
+    for q in result.questions:
+        for key, r in q.keys.items():
+            label = key if key in q.graded else f"{key} (not graded)"
+            what = (f"[{r.diagnosis}] " if r.diagnosis else "") + r.feedback
+            style = VERDICT_STYLE.get(r.verdict, "")
+            table.add_row(q.id, label, f"[{style}]{r.verdict}[/{style}]" if style else r.verdict,
+                          escape(what))
+    return table
+
+
+def run_check(answers: Path, problem: Path | None, json_out: str | None,
+              rtol: float | None, atol: float | None) -> int:
+    from robosolve.grading.check import check_file
+    from robosolve.grading.record import number_text, percent_text, record_json
+    from robosolve.run.outputs import OutputFolderError, check_output_file, write_file
+
+    read: list = []          # the answers file and its problem: --json must not overwrite them
+
+    def guard(inputs):
+        read.extend(inputs)
+        if json_out not in (None, "-"):
+            check_output_file(json_out, inputs)
+
+    try:
+        result, _ = check_file(answers, problem, rtol=rtol, atol=atol, before_solving=guard)
+    except (InputError, OutputFolderError) as exc:
+        err(str(exc))
+        return ExitStatus.INPUT
+    to_stdout = json_out == "-"
+    con = console(stderr=to_stdout)
+    con.print(result_table(result, f"{answers} — {result.student} — {result.problem}"))
+    con.print(f"score {number_text(result.score)} / {number_text(result.max_score)} "
+              f"({percent_text(result.score, result.max_score)} %)", markup=False, highlight=False)
+    text = record_json(result)
+    if to_stdout:
+        write_stdout(text)
+    elif json_out:
+        try:
+            write_file(Path(json_out), text.encode("utf-8"), read)
+        except OutputFolderError as exc:
+            err(str(exc))
+            return ExitStatus.INPUT
+    return ExitStatus.OK if result.all_correct else ExitStatus.ANSWER_ERROR

@@ -1,0 +1,26 @@
+"""`robosolve validate`: check problem files without solving them."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import List
+
+import typer
+
+from robosolve.cli.common import err, out
+from robosolve.errors import ExitStatus, InputError
+
+
+def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).")) -> None:
+    """Check problem files without solving them (exit 2 on any problem)."""
+    from robosolve.load.loader import load_problem
+
+    status = ExitStatus.OK
+    for f in files:
+        try:
+            p = load_problem(f)
+            out(f"{f}: ok ({len(p.questions)} questions)")
+        except InputError as exc:
+            err(str(exc))
+            status = ExitStatus.INPUT
+    raise typer.Exit(status)

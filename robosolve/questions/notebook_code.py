@@ -1,0 +1,101 @@
+"""What the type modules' notebook cells share (`QuestionType.notebook_cells`, report.ipynb).
+
+A type's cell builder `(question, answer, problem) -> str | None` returns the Python source of
+the cell that recomputes the answer with the notebook's runtime (robosolve/render/notebook_runtime.py,
+whose names the cell uses: `robot`, `compare`, `Profile`, ...), or None for an option layout it
+does not rebuild (the notebook then shows robosolve's numbers and says so). Every value from
+the problem reaches the source through `literal` (Python literals: repr), never as code.
+"""
+
+from __future__ import annotations
+
+import math
+
+import sympy as sp
+
+__all__ = ["text", "literal", "at_literal", "robosolve_numbers", "lines", "compare_line", "guarded",
+           "coordinates", "jacobian_lines", "profile_lines", "question_by_id"]
+
+def text(expr) -> str:
+    """A sympy value as the text the runtime parses (`Robot.parse`): sympy's own printing, the
+    point coordinates P.x written P_x."""
+    expr = sp.sympify(expr)
+    rep = {s: sp.Symbol(s.name.replace(".", "_")) for s in expr.free_symbols if "." in s.name}
+    return str(expr.xreplace(rep)) if rep else str(expr)
+
+
+def literal(value) -> str:
+    """Python source of plain data: numbers, strings, None, booleans, lists, mappings; a sympy
+    value becomes its text (a string), a float that is not finite float('inf') / float('nan')."""
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{literal(k)}: {literal(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(literal(v) for v in value) + "]"
+    if value is None or isinstance(value, (bool, str, int)):
+        return repr(value)
+    if isinstance(value, float) or hasattr(value, "dtype"):
+        value = float(value)
+        return repr(value) if math.isfinite(value) else f"float({repr(value)!r})"
+    if isinstance(value, sp.MatrixBase):
+        return literal([[text(x) for x in value.row(i)] for i in range(value.rows)])
+    return repr(text(value))
+
+
+def at_literal(question) -> str:
+    """The question's configuration `at` as {name: text}."""
+    return literal({s.name: text(v) for s, v in question.at.items()})
+
+
+def robosolve_numbers(answer, keys) -> str:
+    """robosolve's numbers of the answer (the keys it has), as one literal assignment."""
+    return "robosolve = " + literal({k: answer.numeric[k] for k in keys if k in answer.numeric})
+
+
+def lines(*parts) -> str:
+    return "\n".join(p for p in parts if p is not None)
+
+
+def compare_line(key, expr, *, want=None, rtol=None) -> str:
+    tol = "" if rtol is None else f", rtol={rtol!r}"
+    return f"compare({key!r}, {expr}, robosolve[{key!r}]{want or ''}{tol})"
+
+
+def guarded(answer, *calls) -> list[str]:
+    """compare(...) lines, each only when robosolve answered that key."""
+    return [c for key, c in calls if key in answer.numeric]
+
+
+def coordinates(q) -> str:
+    coords = q.options.get("coordinates")
+    if coords:
+        return literal([text(c) for c in coords])
+    return literal([f"{q.point}_{axis}" for axis in "xyz"])
+
+
+def jacobian_lines(q) -> list[str]:
+    return [f"at = {at_literal(q)}",
+            f"J = robot.jacobian({coordinates(q)})",
+            "Jn = robot.number(J, at)"]
+
+
+def profile_lines(pq, problem) -> list[str] | None:
+    """`profile = Profile(...)`: the profile question `pq`'s motion, numerically."""
+    o = pq.options
+    shape = o.get("shape", "bang-bang")
+    names = [j.name for j in problem.joints]
+
+    def values(key):
+        m = o.get(key) or {}
+        return [text(m.get(n, 0)) for n in names]
+
+    vel = f", max_velocity=numbers({literal(values('max_velocity'))})" if shape == "trapezoidal" else ""
+    return [f"at = {at_literal(pq)}",
+            "numbers = lambda texts: [robot.number(robot.parse(x), at) for x in texts]",
+            f"profile = Profile(numbers({literal(values('from'))}), numbers({literal(values('to'))}), "
+            f"numbers({literal(values('max_acceleration'))}), shape={shape!r}{vel})"]
+
+
+def question_by_id(problem, qid):
+    """The question of the problem with the id `qid` (a profile a question refers to)."""
+    return next(x for x in problem.questions if x.id == qid)
+

@@ -1,0 +1,786 @@
+"""The runtime of report.ipynb: the course's computations in sympy, numpy and matplotlib alone.
+
+robosolve copies this module's source into the first code cell of every notebook it writes
+(robosolve/render/notebook.py, with `inspect.getsource`), so a notebook runs anywhere with only
+sympy, numpy and matplotlib installed: this module imports nothing else, and in particular
+nothing of robosolve. The tests import it in-process and compare it with robosolve's engines
+(tests/render/test_notebook_runtime.py).
+
+* `Robot`: the problem's data (parameters, joints, frames, points, bodies, forces, gravity) given
+  as text expressions, so that a reader changes a number and re-runs; the chain products
+  (0M of a frame, points in frame 0), W and H, Jacobians, Lagrange's equations of motion from
+  the bodies' pseudo-inertia matrices, the weight's generalized forces, numeric dynamics.
+* `Profile`: the synchronized bang-bang, trapezoidal and quintic profiles, numerically.
+* `torque_peaks`, `simulate_control`, `forward_run`: the actuators along a profile, the closed
+  loop, and the motion under given actuator laws, integrated by an adaptive Dormand-Prince 5(4).
+* geometry (axis-angle, helical axis, Euler angles, screws), `newton_solutions` (IK), ellipsoid
+  semi-axes, and `compare`, which prints a recomputed value beside robosolve's.
+"""
+
+import numpy as np
+import sympy as sp
+
+np.set_printoptions(precision=6, suppress=True)
+
+
+# -- elementary motions -------------------------------------------------------------------
+
+def Rx(a):
+    return sp.Matrix([[1, 0, 0, 0], [0, sp.cos(a), -sp.sin(a), 0], [0, sp.sin(a), sp.cos(a), 0], [0, 0, 0, 1]])
+
+
+def Ry(a):
+    return sp.Matrix([[sp.cos(a), 0, sp.sin(a), 0], [0, 1, 0, 0], [-sp.sin(a), 0, sp.cos(a), 0], [0, 0, 0, 1]])
+
+
+def Rz(a):
+    return sp.Matrix([[sp.cos(a), -sp.sin(a), 0, 0], [sp.sin(a), sp.cos(a), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def Tx(d):
+    return sp.Matrix([[1, 0, 0, d], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def Ty(d):
+    return sp.Matrix([[1, 0, 0, 0], [0, 1, 0, d], [0, 0, 1, 0], [0, 0, 0, 1]])
+
+
+def Tz(d):
+    return sp.Matrix([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, d], [0, 0, 0, 1]])
+
+
+MOTIONS = {"Rx": Rx, "Ry": Ry, "Rz": Rz, "Tx": Tx, "Ty": Ty, "Tz": Tz}
+
+
+def dh(theta, d, a, alpha):
+    """Standard Denavit-Hartenberg: Rz(theta) Tz(d) Tx(a) Rx(alpha)."""
+    return Rz(theta) * Tz(d) * Tx(a) * Rx(alpha)
+
+
+def mdh(alpha, a, theta, d):
+    """Modified Denavit-Hartenberg: Rx(alpha) Tx(a) Rz(theta) Tz(d)."""
+    return Rx(alpha) * Tx(a) * Rz(theta) * Tz(d)
+
+
+def inverse_pose(M):
+    """[R, t; 0, 1]^-1 = [R^T, -R^T t; 0, 1]."""
+    R, p = M[:3, :3], M[:3, 3]
+    out = sp.eye(4)
+    out[:3, :3], out[:3, 3] = R.T, -R.T * p
+    return out
+
+
+def vex(S):
+    """The vector w of a skew-symmetric [w]."""
+    return sp.Matrix([S[2, 1], S[0, 2], S[1, 0]])
+
+
+# -- the robot ------------------------------------------------------------------------------
+
+class Robot:
+    """The problem's data, every value a text expression over the problem's names.
+
+    parameters: {name: value text, or None when not given};  joints: [(name, kind, actuator)];
+    frames: {name: (parent, pose)}, pose = [(motion, text), ...] (elementary motions in
+    order), ("dh", [theta, d, a, alpha]), ("mdh", [alpha, a, theta, d]) or ("matrix", rows);
+    points: {name: (frame, [x, y, z])};  gravity: [gx, gy, gz] in frame 0;
+    bodies: {name: (frame, pseudo-inertia J as 4 rows, in that frame)};
+    forces: {name: (frame, point [x, y, z] in it, force or None, torque or None, components' frame)}.
+    """
+
+    def __init__(self, parameters, joints, frames, points=None, gravity=("0", "0", "-g"),
+                 bodies=None, forces=None):
+        self.t = sp.Symbol("t", real=True)
+        self.names = {"t": self.t}
+        for name in parameters:
+            self.names[name] = sp.Symbol(name, real=True)
+        self.joints, self.rates, self.accelerations, self.actuators, self.kinds = [], [], [], [], []
+        self.names_of_joints = [name for name, _, _ in joints]
+        for name, kind, actuator in joints:
+            for suffix, into in (("", self.joints), ("_dot", self.rates), ("_ddot", self.accelerations)):
+                symbol = sp.Symbol(name + suffix, real=True)
+                self.names[name + suffix] = symbol
+                into.append(symbol)
+            self.actuators.append(actuator)
+            self.kinds.append(kind)
+            self.names[actuator] = sp.Symbol(actuator, real=True)
+        self.parameters = {self.names[k]: (None if v is None else self.parse(v)) for k, v in parameters.items()}
+        self.frames = {name: (parent, self._local_pose(pose)) for name, (parent, pose) in frames.items()}
+        self._poses = {"0": sp.eye(4)}
+        self.points = {name: (frame, self.vector(at)) for name, (frame, at) in (points or {}).items()}
+        for name in self.points:                  # P.x, P.y, P.z of a point: P_x, P_y, P_z
+            x, y, z = self.point0(name)
+            self.names.update({name + "_x": x, name + "_y": y, name + "_z": z})
+        self.gravity = sp.zeros(3, 1) if gravity is None else self.vector(gravity)
+        self.bodies = {name: (frame, self.matrix(J)) for name, (frame, J) in (bodies or {}).items()}
+        self.forces = {name: (frame, self.vector(at), None if f is None else self.vector(f),
+                              None if tau is None else self.vector(tau), in_frame)
+                       for name, (frame, at, f, tau, in_frame) in (forces or {}).items()}
+
+    # -- values
+    def parse(self, text):
+        """A text expression over the problem's names (sympy's own syntax)."""
+        return sp.sympify(text, locals=self.names)
+
+    def vector(self, texts):
+        return sp.Matrix([self.parse(x) for x in texts])
+
+    def matrix(self, rows):
+        return sp.Matrix([[self.parse(x) for x in row] for row in rows])
+
+    def configuration(self, at):
+        """{symbol: value} of a question's `at` ({name: text})."""
+        return {self.names[k]: self.parse(v) for k, v in (at or {}).items()}
+
+    def values(self, at=None):
+        """Parameters (with the question's overrides) and the `at` values, resolved to numbers
+        where they can be."""
+        given = {s: v for s, v in self.parameters.items() if v is not None}
+        given.update(self.configuration(at))
+        out = dict(given)
+        for _ in range(len(given) + 1):
+            out = {s: sp.sympify(v).subs(out) for s, v in given.items()}
+        return out
+
+    def fixed(self, at=None):
+        """The values of everything but the joints, their rates and accelerations."""
+        moving = set(self.joints) | set(self.rates) | set(self.accelerations)
+        return {s: v for s, v in self.values(at).items() if s not in moving}
+
+    def number(self, expr, at=None):
+        """A sympy object evaluated to floats at the data and `at`."""
+        v = sp.N(sp.sympify(expr).subs(self.values(at)))
+        return np.array(v.tolist(), dtype=float) if hasattr(v, "tolist") else float(v)
+
+    # -- the chain
+    def _local_pose(self, pose):
+        kind, args = (pose[0], pose[1]) if pose and isinstance(pose[0], str) and pose[0] in ("dh", "mdh", "matrix") \
+            else ("motions", pose)
+        if kind == "dh":
+            return dh(*[self.parse(x) for x in args])
+        if kind == "mdh":
+            return mdh(*[self.parse(x) for x in args])
+        if kind == "matrix":
+            return self.matrix(args)
+        out = sp.eye(4)
+        for motion, text in args:
+            out = out * MOTIONS[motion](self.parse(text))
+        return out
+
+    def pose(self, frame):
+        """0M of `frame`: the product of the poses along the chain, from the base."""
+        if frame not in self._poses:
+            parent, local = self.frames[frame]
+            self._poses[frame] = self.pose(parent) * local
+        return self._poses[frame]
+
+    def point0(self, name):
+        """Coordinates in frame 0 of a named point."""
+        frame, at = self.points[name]
+        return (self.pose(frame) * sp.Matrix([*at, 1]))[:3, :]
+
+    def time_derivative(self, expr):
+        """d/dt of an expression in the joints and rates (q' = rate, rate' = acceleration)."""
+        out = sp.zeros(*expr.shape) if hasattr(expr, "shape") else sp.Integer(0)
+        for q, qd, qdd in zip(self.joints, self.rates, self.accelerations):
+            out += sp.diff(expr, q) * qd + sp.diff(expr, qd) * qdd
+        return out
+
+    def velocity_matrices(self, frame):
+        """W = M' M^-1 and H = M'' M^-1 of 0M_frame (in frame 0)."""
+        M = self.pose(frame)
+        dM = self.time_derivative(M)
+        inv = inverse_pose(M)
+        return dM * inv, self.time_derivative(dM) * inv
+
+    def jacobian(self, coordinates):
+        """The analytic Jacobian of coordinates (text expressions) in the joints."""
+        return self.vector(coordinates).jacobian(self.joints)
+
+    def angular_jacobian(self, frame):
+        """J_w: the columns vex(d0M/dq_j 0M^-1)."""
+        M = self.pose(frame)
+        inv = inverse_pose(M)
+        return sp.Matrix.hstack(*[vex((M.diff(q) * inv)[:3, :3]) for q in self.joints])
+
+    def geometric_jacobian(self, point):
+        """[J_v; J_w]: the point's velocity d0P/dq over the angular velocity of its frame."""
+        return self.point0(point).jacobian(self.joints).col_join(self.angular_jacobian(self.points[point][0]))
+
+    # -- statics and dynamics
+    def weight_forces(self, at=None):
+        """Fq = -sum J_G^T m g: what the joints exert to hold the bodies' weight."""
+        fixed = self.fixed(at)
+        out = sp.zeros(len(self.joints), 1)
+        for frame, J in self.bodies.values():
+            mG = (self.pose(frame) * J[:, 3])[:3, :]              # m G in frame 0
+            out -= mG.jacobian(self.joints).T * self.gravity
+        return out.subs(fixed)
+
+    def external_forces(self, at=None):
+        """The generalized forces Q of the external forces (J_P^T F + J_w^T tau)."""
+        fixed = self.fixed(at)
+        Q = sp.zeros(len(self.joints), 1)
+        for frame, point, force, torque, in_frame in self.forces.values():
+            R = self.pose(in_frame)[:3, :3]
+            if force is not None:
+                P = (self.pose(frame) * sp.Matrix([*point, 1]))[:3, :]
+                Q += P.jacobian(self.joints).T * R * force
+            if torque is not None:
+                Q += self.angular_jacobian(frame).T * R * torque
+        return Q.subs(fixed)
+
+    def lagrange(self, at=None):
+        """M(q), c(q, q'), g(q) and the external forces' Q, by Lagrange: T = 1/2 sum tr(dM J dM^T)
+        over the bodies (J the pseudo-inertia, dM = d(0M_i)/dt), U = -sum m g.G, so that
+        M q'' + c + g = tau + Q. Parameters are fixed from the data and `at`."""
+        fixed = self.fixed(at)
+        n = len(self.joints)
+        T, U = sp.Integer(0), sp.Integer(0)
+        for frame, J in self.bodies.values():
+            M = self.pose(frame).subs(fixed)
+            J = J.subs(fixed)
+            dM = self.time_derivative(M)
+            T += (dM * J * dM.T).trace() / 2
+            U -= (self.gravity.subs(fixed).T * (M * J[:, 3])[:3, :])[0]
+        mass = sp.Matrix(n, n, lambda i, j: sp.expand(T.diff(self.rates[i], self.rates[j])))
+        grav = sp.Matrix([U.diff(q) for q in self.joints])
+        momenta = sp.Matrix([T.diff(r) for r in self.rates])
+        c = momenta.jacobian(self.joints) * sp.Matrix(self.rates) - sp.Matrix([T.diff(q) for q in self.joints])
+        return mass, sp.expand(c), grav, self.external_forces(at)
+
+    def _chain_at(self, at):
+        """Per frame, at the numbers of `at`: 0M, its derivatives D[i] = d0M/dq_i and
+        D2[i][k] = d2 0M/dq_i dq_k (numpy), by the product rule along the chain."""
+        subs = self.values(at)
+        n = len(self.joints)
+        zero = np.zeros((4, 4))
+
+        def num(m):
+            return np.array(sp.N(m.subs(subs)).tolist(), dtype=float)
+
+        chain = {"0": (np.eye(4), [zero] * n, [[zero] * n for _ in range(n)])}
+
+        def of(frame):
+            if frame not in chain:
+                parent, local = self.frames[frame]
+                P, DP, D2P = of(parent)
+                used = [i for i, q in enumerate(self.joints) if local.has(q)]
+                L = num(local)
+                DL = [num(local.diff(self.joints[i])) if i in used else zero for i in range(n)]
+                D2L = [[num(local.diff(self.joints[i], self.joints[k])) if i in used and k in used else zero
+                        for k in range(n)] for i in range(n)]
+                D = [DP[i] @ L + P @ DL[i] for i in range(n)]
+                D2 = [[D2P[i][k] @ L + DP[i] @ DL[k] + DP[k] @ DL[i] + P @ D2L[i][k] for k in range(n)]
+                      for i in range(n)]
+                chain[frame] = (P @ L, D, D2)
+            return chain[frame]
+
+        return of, subs
+
+    def dynamics_at(self, at):
+        """M, c, g and Q as numbers at the configuration `at` (joints, rates), without a symbolic
+        derivation (a six-joint arm in seconds): M_ik = sum tr(D_i J D_k^T), c from the
+        derivatives of M (Christoffel), g_i = -sum g.(D_i J e4), Q from the forces' Jacobians."""
+        of, subs = self._chain_at(at)
+        n = len(self.joints)
+        rates = np.array([float(sp.N(sp.sympify(r).subs(subs))) for r in self.rates])
+        gravity = np.array(sp.N(self.gravity.subs(subs)).tolist(), dtype=float).ravel()
+        mass, dmass, grav = np.zeros((n, n)), np.zeros((n, n, n)), np.zeros(n)
+        for frame, J in self.bodies.values():
+            J = np.array(sp.N(J.subs(subs)).tolist(), dtype=float)
+            _, D, D2 = of(frame)
+            for i in range(n):
+                grav[i] -= gravity @ (D[i] @ J[:, 3])[:3]
+                for k in range(n):
+                    mass[i, k] += np.trace(D[i] @ J @ D[k].T)
+                    for m in range(n):              # d M_ik / d q_m
+                        dmass[i, k, m] += np.trace(D2[i][m] @ J @ D[k].T + D[i] @ J @ D2[k][m].T)
+        c = np.array([sum((dmass[i, j, k] - dmass[j, k, i] / 2) * rates[j] * rates[k]
+                          for j in range(n) for k in range(n)) for i in range(n)])
+        Q = np.zeros(n)
+        for frame, point, force, torque, in_frame in self.forces.values():
+            M, D, _ = of(frame)
+            R = of(in_frame)[0][:3, :3]
+            for i in range(n):
+                if force is not None:
+                    F = np.array(sp.N(force.subs(subs)).tolist(), dtype=float).ravel()
+                    p = np.array(sp.N(sp.Matrix([*point, 1]).subs(subs)).tolist(), dtype=float).ravel()
+                    Q[i] += (D[i] @ p)[:3] @ (R @ F)
+                if torque is not None:
+                    tau = np.array(sp.N(torque.subs(subs)).tolist(), dtype=float).ravel()
+                    S = D[i][:3, :3] @ M[:3, :3].T
+                    Q[i] += np.array([S[2, 1], S[0, 2], S[1, 0]]) @ (R @ tau)
+        return mass, c, grav, Q
+
+    def joint_actions(self, at=None):
+        """tau = M q'' + c + g - Q: what the actuators exert at the configuration `at`."""
+        mass, c, grav, Q = self.lagrange(at)
+        return mass * sp.Matrix(self.accelerations) + c + grav - Q
+
+    def numeric_dynamics(self, at=None, laws=None):
+        """numpy functions of (t, q, q'): "mass" M, "c", "g", "Q" and "rest" = tau + Q - c - g
+        with tau the actuator `laws` (text expressions; without laws, tau = 0)."""
+        mass, c, grav, Q = self.lagrange(at)
+        fixed = self.fixed(at)
+        tau = sp.Matrix([self.parse((laws or {}).get(a, "0")) for a in self.actuators]).subs(fixed)
+        args = [self.t, self.joints, self.rates]
+        parts = {"mass": mass, "c": c, "g": grav, "Q": Q, "rest": tau + Q - c - grav}
+        return {k: _numeric(sp.lambdify(args, v, "numpy"), k != "mass") for k, v in parts.items()}
+
+
+def _numeric(f, column):
+    """A lambdified matrix function returning a float array (a column as a vector)."""
+    def call(t, q, qd):
+        out = np.asarray(f(t, q, qd), dtype=float)
+        return out.ravel() if column else out
+    return call
+
+
+# -- showing --------------------------------------------------------------------------------------
+
+def show(*exprs, max_ops=400):
+    """Display sympy objects (in Jupyter, as formulas), simplified when they are small."""
+    try:
+        from IPython.display import display
+    except ImportError:                            # outside Jupyter
+        display = print
+    for e in exprs:
+        display(sp.simplify(e) if sp.count_ops(e) <= max_ops else e)
+
+
+def _axes(count, title, ylabel):
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 3.2), constrained_layout=True)
+    ax.set_title(title)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel(ylabel)
+    ax.grid(True, alpha=0.3)
+    return plt, ax
+
+
+def plot_joints(times, qs, names):
+    """Each joint against time (a forward-dynamics run)."""
+    plt, ax = _axes(len(names), "joint values against time (recomputed)", "q (rad or m)")
+    for i, name in enumerate(names):
+        ax.plot(times, qs[:, i], label=name)
+    ax.legend()
+    plt.show()
+
+
+def plot_errors(times, errors, names, law):
+    """The tracking error e = q_d - q of each joint against time (a closed loop)."""
+    plt, ax = _axes(len(names), f"{law} control: tracking error (recomputed)", "e (rad or m)")
+    for i, name in enumerate(names):
+        ax.plot(times, errors[:, i], label=name)
+    ax.legend()
+    plt.show()
+
+
+# -- comparing with robosolve's numbers -------------------------------------------------------
+
+def _leaves(value):
+    if isinstance(value, dict):
+        return [x for v in value.values() for x in _leaves(v)]
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [x for v in value for x in _leaves(v)]
+    if value is None or isinstance(value, (bool, str)):
+        return []
+    return [float(value)]
+
+
+def agrees(got, want, rtol=1e-6, atol=1e-9):
+    """Whether two numbers, or two nested lists / mappings of numbers, are the same values."""
+    a, b = _leaves(got), _leaves(want)
+    return len(a) == len(b) and bool(np.allclose(a, b, rtol=rtol, atol=atol, equal_nan=True))
+
+
+def compare(name, got, want, rtol=1e-6, atol=1e-9):
+    """Print a recomputed value and robosolve's (which hold for the data as robosolve read them:
+    after a change, they differ)."""
+    verdict = "agrees with robosolve" if agrees(got, want, rtol, atol) else "DIFFERS from robosolve's"
+    print(f"recomputed {name} = {_plain(got)}\n    robosolve: {_plain(want)}   ({verdict})")
+
+
+def _plain(value):
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, (float, np.floating)):
+        return round(float(value), 10) + 0.0
+    return value
+
+
+# -- geometry ---------------------------------------------------------------------------------
+
+def skew(u):
+    return np.array([[0, -u[2], u[1]], [u[2], 0, -u[0]], [-u[1], u[0], 0]])
+
+
+def canonical(u):
+    """Of +u and -u, the one whose first non-zero component is positive."""
+    first = next(x for x in u if abs(x) > 1e-9)
+    return u if first > 0 else -u
+
+
+def axis_angle(R):
+    """alpha in [0, pi] and the unit axis u (None for the identity); near pi from R's symmetric part."""
+    v = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]]) / 2
+    alpha = np.arctan2(np.linalg.norm(v), (np.trace(R) - 1) / 2)
+    if alpha < 1e-9:
+        return 0.0, None
+    if np.pi - alpha < 1e-6:
+        w, V = np.linalg.eigh((R + R.T) / 2)
+        return alpha, canonical(V[:, np.argmax(w)])
+    return alpha, v / np.linalg.norm(v)
+
+
+def helical_axis(Q):
+    """u, alpha, h, P (nearest the origin) and the pitch of a displacement Q = [R, dT; 0, 1]."""
+    R, dT = Q[:3, :3], Q[:3, 3]
+    alpha, u = axis_angle(R)
+    if u is None:                                  # pure translation (or the identity)
+        h = np.linalg.norm(dT)
+        return (dT / h if h > 1e-12 else None), 0.0, h, None, None
+    h = u @ dT
+    A = np.vstack([np.eye(3) - R, u])              # (I - R) P = dT - h u and P.u = 0
+    P = np.linalg.lstsq(A, np.append(dT - h * u, 0), rcond=None)[0]
+    return u, alpha, h, P, h / alpha
+
+
+def screw_displacement(axis, alpha, through, h):
+    """Q = [R, (I - R) P + h u; 0, 1], R = I + [u] sin(alpha) + [u]^2 (1 - cos(alpha))."""
+    u = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    K = skew(u)
+    R = np.eye(3) + K * np.sin(alpha) + K @ K * (1 - np.cos(alpha))
+    Q = np.eye(4)
+    Q[:3, :3], Q[:3, 3] = R, (np.eye(3) - R) @ np.asarray(through, dtype=float) + h * u
+    return Q
+
+
+def screw_matrix(u, P, pitch):
+    """L = [[u], P x u + pitch u; 0, 0] (for a pure translation, L = [0, u; 0, 0])."""
+    L = np.zeros((4, 4))
+    if P is None:
+        L[:3, 3] = np.zeros(3) if u is None else u
+    else:
+        L[:3, :3], L[:3, 3] = skew(u), np.cross(P, u) + pitch * u
+    return L
+
+
+def wrap(a):
+    """An angle in (-pi, pi]."""
+    a = (a + np.pi) % (2 * np.pi) - np.pi
+    return np.pi if abs(a + np.pi) < 1e-12 else a
+
+
+def euler_zyz(R):
+    """R = Rz(phi) Ry(theta) Rz(psi): both solutions, or one (psi = 0) when theta is 0 or pi."""
+    theta = np.arctan2(np.hypot(R[0, 2], R[1, 2]), R[2, 2])
+    if abs(np.sin(theta)) > 1e-9:
+        phi, psi = np.arctan2(R[1, 2], R[0, 2]), np.arctan2(R[2, 1], -R[2, 0])
+        return [[wrap(phi), theta, wrap(psi)], [wrap(phi + np.pi), -theta, wrap(psi + np.pi)]]
+    phi = np.arctan2(R[1, 0], R[0, 0]) if R[2, 2] > 0 else np.arctan2(-R[1, 0], -R[0, 0])
+    return [[wrap(phi), theta, 0.0]]
+
+
+def euler_rpy(R):
+    """R = Rz(yaw) Ry(pitch) Rx(roll) as [roll, pitch, yaw]: both solutions, or one (yaw = 0)."""
+    pitch = np.arctan2(-R[2, 0], np.hypot(R[0, 0], R[1, 0]))
+    if abs(np.cos(pitch)) > 1e-9:
+        roll, yaw = np.arctan2(R[2, 1], R[2, 2]), np.arctan2(R[1, 0], R[0, 0])
+        return [[roll, pitch, yaw], [wrap(roll + np.pi), wrap(np.pi - pitch), wrap(yaw + np.pi)]]
+    return [[np.arctan2(R[0, 1], R[1, 1]) * np.sign(pitch), pitch, 0.0]]
+
+
+def quaternion(R):
+    """(w, x, y, z) = (cos(alpha/2), sin(alpha/2) u)."""
+    alpha, u = axis_angle(R)
+    return [np.cos(alpha / 2)] + ([0.0] * 3 if u is None else list(np.sin(alpha / 2) * u))
+
+
+# -- inverse kinematics -----------------------------------------------------------------------
+
+def newton_solutions(residual, joints, limits, revolute, starts=200):
+    """Every solution of residual(q) = 0 within the joint limits, by Newton (least-squares) steps
+    from a grid of starts; revolute joints wrapped into (-pi, pi]."""
+    f = sp.lambdify([joints], residual, "numpy")
+    jac = sp.lambdify([joints], residual.jacobian(joints), "numpy")
+    limits, revolute = np.asarray(limits, dtype=float), np.asarray(revolute, dtype=bool)
+    per_joint = max(2, int(round(starts ** (1 / len(joints)))))
+    grid = np.meshgrid(*[np.linspace(lo, hi, per_joint + 2)[1:-1] for lo, hi in limits])
+    solutions = []
+    for start in np.stack([g.ravel() for g in grid], axis=1):
+        x = start.astype(float)
+        for _ in range(100):                       # until the step vanishes (linear at a double root)
+            step = np.linalg.lstsq(np.asarray(jac(x), dtype=float), np.asarray(f(x), dtype=float).ravel(),
+                                   rcond=None)[0]
+            x = x - step
+            if np.linalg.norm(step) < 1e-14 * max(1.0, np.linalg.norm(x)):
+                break
+        x = np.where(revolute, [wrap(v) for v in x], x)
+        ok = np.linalg.norm(np.asarray(f(x), dtype=float)) < 1e-9
+        inside = np.all((x >= limits[:, 0] - 1e-6) & (x <= limits[:, 1] + 1e-6))
+        if ok and inside and not any(np.allclose(x, s, atol=1e-5) for s in solutions):
+            solutions.append(x)
+    return sorted(solutions, key=lambda s: tuple(np.round(s, 9)))
+
+
+# -- ellipsoids ---------------------------------------------------------------------------------
+
+def ellipsoid_axes(J, Kf=1.0, Kv=1.0, Ka=1.0, Kq=None):
+    """Semi-axes (largest first) of the force (Kf / sqrt(nu)), velocity (Kv sqrt(nu)) and
+    compliance (Ka kappa) ellipsoids, nu the eigenvalues of J J^T, kappa those of J Kq J^T;
+    and the condition number max nu / min nu."""
+    J = np.asarray(J, dtype=float)
+    nu = np.linalg.eigvalsh(J @ J.T)
+    nu = np.where(np.abs(nu) < 1e-12 * max(1.0, np.abs(nu).max()), 0.0, nu)
+    with np.errstate(divide="ignore"):
+        force = np.sort(Kf / np.sqrt(nu))[::-1]
+    out = {"nu": nu, "force": force, "velocity": np.sort(Kv * np.sqrt(nu))[::-1],
+           "condition_number": nu.max() / nu.min() if nu.min() > 0 else float("inf")}
+    if Kq is not None:
+        out["compliance"] = np.sort(Ka * np.linalg.eigvalsh(J @ np.diag(Kq) @ J.T))[::-1]
+    return out
+
+
+# -- motion profiles ------------------------------------------------------------------------------
+
+class Profile:
+    """Synchronized rest-to-rest profiles (bang-bang, trapezoidal, quintic), numerically.
+
+    Each joint alone at its limits needs its own time; all end together at the largest, T:
+    bang-bang joints rescale their acceleration (a = 4|D|/T^2), trapezoidal ones keep it and
+    lower their cruise velocity, quintic ones report their peak acceleration 10|D|/(sqrt(3) T^2).
+    """
+
+    def __init__(self, start, end, max_acceleration, shape="bang-bang", max_velocity=None):
+        self.shape = shape
+        self.start, self.end = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
+        self.delta = self.end - self.start
+        D, a = np.abs(self.delta), np.asarray(max_acceleration, dtype=float)
+        if shape == "bang-bang":
+            own = np.sqrt(4 * D / a)
+        elif shape == "quintic":
+            own = np.sqrt(10 * D / (np.sqrt(3) * a))
+        else:
+            v = np.asarray(max_velocity, dtype=float)
+            own = np.where(D >= v ** 2 / a, D / v + v / a, np.sqrt(4 * D / a))
+        self.durations = own
+        self.T = float(own.max())
+        T = self.T
+        if shape == "bang-bang":
+            self.accelerations = 4 * D / T ** 2
+        elif shape == "quintic":
+            self.accelerations = 10 * D / (np.sqrt(3) * T ** 2)
+        else:
+            self.accelerations = np.where(D > 0, a, 0.0)
+            self.velocities = np.where(D > 0, (a * T - np.sqrt(np.maximum(a ** 2 * T ** 2 - 4 * a * D, 0))) / 2, 0.0)
+        self.breaks = self._breaks()
+
+    def _breaks(self):
+        if self.shape == "bang-bang":
+            inner = [self.T / 2]
+        elif self.shape == "quintic":
+            inner = []
+        else:
+            inner = [float(x) for v, a in zip(self.velocities, self.accelerations) if a > 0
+                     for x in (v / a, self.T - v / a)]
+        return sorted({0.0, self.T, *[x for x in inner if 0 < x < self.T]})
+
+    def evaluate(self, t):
+        """(q, q', q'') at time t (the start before 0, the end after T)."""
+        t = min(max(float(t), 0.0), self.T)
+        sign, T = np.sign(self.delta), self.T
+        if self.shape == "quintic":
+            s = t / T
+            shape = np.array([10 * s ** 3 - 15 * s ** 4 + 6 * s ** 5, (30 * s ** 2 - 60 * s ** 3 + 30 * s ** 4) / T,
+                              (60 * s - 180 * s ** 2 + 120 * s ** 3) / T ** 2])
+            return self.start + self.delta * shape[0], self.delta * shape[1], self.delta * shape[2]
+        a = self.accelerations
+        ramp = T / 2 * np.ones_like(a) if self.shape == "bang-bang" else \
+            np.divide(self.velocities, a, out=np.zeros_like(a), where=a > 0)
+        vmax = a * ramp
+        up, down = np.minimum(t, ramp), np.maximum(t - (T - ramp), 0.0)
+        cruise = np.clip(t - ramp, 0.0, T - 2 * ramp)
+        q = a * up ** 2 / 2 + vmax * cruise + vmax * down - a * down ** 2 / 2
+        qd = np.where(t < ramp, a * t, np.where(t >= T - ramp, vmax - a * down, vmax))
+        qdd = np.where(t < ramp, a, np.where(t >= T - ramp, -a, 0.0))   # right-sided at a switch
+        if t >= T:
+            qd, qdd = np.zeros_like(a), np.zeros_like(a)
+        return self.start + sign * q, sign * qd, sign * qdd
+
+
+# -- integration ------------------------------------------------------------------------------------
+
+_DP = ([], [1 / 5], [3 / 40, 9 / 40], [44 / 45, -56 / 15, 32 / 9],
+       [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729],
+       [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656],
+       [35 / 384, 0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84])
+_DP_C = [0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1, 1]
+_DP_E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+
+
+def integrate(rhs, t0, t1, y0, rtol=1e-10, atol=1e-12, max_step=None, max_steps=2_000_000):
+    """y' = rhs(t, y) from t0 to t1 by Dormand-Prince 5(4) with step control: (times, states)."""
+    t, y = float(t0), np.asarray(y0, dtype=float)
+    h = min((t1 - t0) / 100, max_step or np.inf)
+    times, states = [t], [y]
+    k = [None] * 7
+    for _ in range(max_steps):
+        if t >= t1 - 1e-15 * max(1.0, abs(t1)):
+            break
+        h = min(h, t1 - t)
+        k[0] = np.asarray(rhs(t, y), dtype=float)
+        for i in range(1, 7):
+            k[i] = np.asarray(rhs(t + _DP_C[i] * h, y + h * sum(c * kk for c, kk in zip(_DP[i], k))), dtype=float)
+        new = y + h * sum(c * kk for c, kk in zip(_DP[6], k))
+        err = h * sum(c * kk for c, kk in zip(_DP_E, k))
+        scale = atol + rtol * np.maximum(np.abs(y), np.abs(new))
+        ratio = np.sqrt(np.mean((err / scale) ** 2))
+        if ratio <= 1:
+            t, y = t + h, new
+            times.append(t)
+            states.append(y)
+        h *= min(5.0, max(0.2, 0.9 * (ratio + 1e-300) ** -0.2))
+        if max_step:
+            h = min(h, max_step)
+    else:
+        raise RuntimeError(f"the integration needs more than {max_steps} steps")
+    return np.array(times), np.array(states)
+
+
+# -- along a profile: the actuators, the closed loop ----------------------------------------------
+
+def torque_peaks(robot, profile, at=None, samples=4000):
+    """The signed peak (value of largest magnitude) of each actuator along the profile, and when:
+    tau = M q'' + c + g - Q sampled on each interval (both sides of every switching instant) and
+    refined by golden-section search around the largest samples."""
+    f = robot.numeric_dynamics(at)
+    n = len(robot.joints)
+
+    def tau(time, _=None):
+        q, qd, qdd = profile.evaluate(time)
+        return f["mass"](time, q, qd) @ qdd + f["c"](time, q, qd) + f["g"](time, q, qd) - f["Q"](time, q, qd)
+
+    peaks, when = np.zeros(n), np.zeros(n)
+    for a, b in zip(profile.breaks[:-1], profile.breaks[1:]):
+        grid = np.linspace(a + 1e-12, b - 1e-12, max(3, samples // max(1, len(profile.breaks) - 1)))
+        values = np.array([tau(x, None) for x in grid])
+        for i in range(n):
+            k = int(np.argmax(np.abs(values[:, i])))
+            lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
+            x, v = _golden_max(lambda s: abs(tau(s, None)[i]), lo, hi)
+            v = tau(x, None)[i]
+            if abs(values[k, i]) >= abs(v):
+                x, v = grid[k], values[k, i]
+            if abs(v) > abs(peaks[i]) + 1e-12 * max(1.0, abs(v)):
+                peaks[i], when[i] = v, x
+    return peaks, when
+
+
+def _golden_max(f, lo, hi, steps=80):
+    g = (np.sqrt(5) - 1) / 2
+    a, b = lo, hi
+    c, d = b - g * (b - a), a + g * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(steps):
+        if fc > fd:
+            b, d, fd = d, c, fc
+            c = b - g * (b - a)
+            fc = f(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + g * (b - a)
+            fd = f(d)
+    x = (a + b) / 2
+    return x, f(x)
+
+
+def control_torque(law, kp, kd, e, ed, qdd_desired, m, c, g):
+    """p: Kp e;  pd: + Kd e';  pd_gravity: + g(q);  computed_torque: M (q''_d + Kd e' + Kp e) + c + g."""
+    if law == "p":
+        return kp * e
+    if law == "pd":
+        return kp * e + kd * ed
+    if law == "pd_gravity":
+        return kp * e + kd * ed + g
+    return m @ (qdd_desired + kd * ed + kp * e) + c + g
+
+
+def simulate_control(robot, profile, law, kp, kd=None, start=None, duration=None, at=None, rtol=1e-10):
+    """The closed loop M q'' + c + g = tau + Q from `start` at rest (default the profile's start),
+    integrated in error coordinates (e = q_d - q, e'), restarted at each switching instant:
+    (max |e| per joint, when, e at the end, times, errors)."""
+    f = robot.numeric_dynamics(at)
+    n = len(robot.joints)
+    kp = np.asarray(kp, dtype=float)
+    kd = np.zeros(n) if kd is None else np.asarray(kd, dtype=float)
+    duration = profile.T if duration is None else float(duration)
+    start = profile.start if start is None else np.asarray(start, dtype=float)
+
+    def rhs(time, y):
+        q_d, qd_d, qdd_d = profile.evaluate(time)
+        e, ed = y[:n], y[n:]
+        q, qd = q_d - e, qd_d - ed
+        m, c, g = f["mass"](time, q, qd), f["c"](time, q, qd), f["g"](time, q, qd)
+        tau = control_torque(law, kp, kd, e, ed, qdd_d, m, c, g)
+        return np.concatenate([ed, qdd_d - np.linalg.solve(m, tau + f["Q"](time, q, qd) - c - g)])
+
+    cuts = sorted({0.0, duration, *[b for b in profile.breaks if 0 < b < duration]})
+    y = np.concatenate([profile.evaluate(0.0)[0] - start, np.zeros(n)])
+    times, states = [np.array([0.0])], [y[None, :]]
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        tt, yy = integrate(rhs, a, b, y, rtol=rtol, atol=1e-13, max_step=(b - a) / 200)
+        times.append(tt[1:])
+        states.append(yy[1:])
+        y = yy[-1]
+    times, states = np.concatenate(times), np.concatenate(states)
+    errors = states[:, :n]
+    k = np.argmax(np.abs(errors), axis=0)
+    return np.abs(errors[k, range(n)]), times[k], errors[-1], times, errors
+
+
+def forward_run(robot, laws, start, start_rates, duration, at=None, rtol=1e-10):
+    """The motion under the actuator `laws` ({actuator: text in t, the joints and rates}) from
+    (start, start_rates): (times, joint values, rates)."""
+    f = robot.numeric_dynamics(at, laws)
+    n = len(robot.joints)
+
+    def rhs(time, y):
+        q, qd = y[:n], y[n:]
+        return np.concatenate([qd, np.linalg.solve(f["mass"](time, q, qd), f["rest"](time, q, qd))])
+
+    y0 = np.concatenate([np.asarray(start, dtype=float), np.asarray(start_rates, dtype=float)])
+    times, states = integrate(rhs, 0.0, float(duration), y0, rtol=rtol, atol=1e-12, max_step=float(duration) / 400)
+    return times, states[:, :n], states[:, n:]
+
+
+def extremes(times, qs, rates):
+    """The smallest and largest value of each joint over a run: the samples, and between two
+    samples where the rate changes sign, the stationary point of the cubic Hermite interpolant."""
+    low, high = qs.min(axis=0).copy(), qs.max(axis=0).copy()
+    for i in range(qs.shape[1]):
+        q, v = qs[:, i], rates[:, i]
+        for k in np.nonzero(np.sign(v[:-1]) * np.sign(v[1:]) < 0)[0]:
+            h = times[k + 1] - times[k]
+            p = np.polynomial.Polynomial([q[k], h * v[k], 3 * (q[k + 1] - q[k]) - h * (2 * v[k] + v[k + 1]),
+                                          2 * (q[k] - q[k + 1]) + h * (v[k] + v[k + 1])])
+            for s in p.deriv().roots():
+                if abs(s.imag) < 1e-12 and 0 <= s.real <= 1:
+                    value = p(s.real)
+                    low[i], high[i] = min(low[i], value), max(high[i], value)
+    return low, high
+
+
+# -- mobility -----------------------------------------------------------------------------------------
+
+def mobility(bodies, joints_1dof=0, joints_2dof=0, joints_3dof=0, planar=True):
+    """Grübler (planar): 3 (m - 1) - 2 c1 - c2;  Kutzbach (spatial): 6 (m - 1) - 5 c1 - 4 c2 - 3 c3."""
+    if planar:
+        return 3 * (bodies - 1) - 2 * joints_1dof - joints_2dof
+    return 6 * (bodies - 1) - 5 * joints_1dof - 4 * joints_2dof - 3 * joints_3dof

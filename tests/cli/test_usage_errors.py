@@ -1,0 +1,72 @@
+"""Command-line values the problem file would refuse are refused on the command line too, and
+what a command leaves out it says (issue 22)."""
+
+from __future__ import annotations
+
+import pytest
+from typer.testing import CliRunner
+
+from robosolve.cli import app
+from tests._grading import dedent
+from tests.workflows.test_grading_grade import ALICE, PROBLEM
+
+runner = CliRunner()
+
+
+@pytest.mark.parametrize("command", ["check", "grade"])
+@pytest.mark.parametrize("flag,value", [("--rtol", "-1"), ("--rtol", "nan"), ("--atol", "-1"),
+                                        ("--atol", "inf"), ("--rtol", "-inf")])
+def test_bad_tolerances_are_usage_errors(tmp_path, command, flag, value):
+    (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    (tmp_path / "subs").mkdir()
+    sub = tmp_path / "subs" / "alice.yaml"
+    sub.write_text(dedent(ALICE), encoding="utf-8")
+    args = [command, str(sub), flag, value] + (["--out", str(tmp_path / "o")] if command == "grade" else [])
+    r = runner.invoke(app, args)
+    assert r.exit_code == 2, r.output
+    assert "expected a number >= 0" in r.output and flag in r.output
+    assert not (tmp_path / "o").exists()
+
+
+def test_good_tolerances_pass_the_option_check():
+    from robosolve.cli.common import _tolerance
+
+    assert _tolerance(None) is None and _tolerance(0.0) == 0.0 and _tolerance(0.01) == 0.01
+
+
+def test_a_dangling_link_in_a_submissions_folder_is_said(tmp_path):
+    (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "alice.yaml").write_text(dedent(ALICE), encoding="utf-8")
+    (subs / "bob.yaml").symlink_to(tmp_path / "gone" / "bob.yaml")
+    r = runner.invoke(app, ["grade", str(subs), "--out", str(tmp_path / "o"), "--jobs", "1"])
+    assert r.exit_code == 0, r.output
+    assert f"{subs / 'bob.yaml'}: skipped: a symbolic link to" in r.output
+    assert "does not exist" in r.output
+
+
+def test_only_dangling_links_is_a_usage_error_that_names_them(tmp_path):
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "bob.yaml").symlink_to(tmp_path / "gone.yaml")
+    r = runner.invoke(app, ["grade", str(subs), "--out", str(tmp_path / "o")])
+    assert r.exit_code == 2
+    assert "bob.yaml: skipped" in r.output and "no answers files found" in r.output
+
+
+def test_missing_extras_are_said_at_once_with_both_install_forms(monkeypatch, tmp_path):
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: None if name in ("latex2mathml", "nbformat") else real(name, *a))
+    (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    r = runner.invoke(app, ["solve", str(tmp_path / "p.yaml"), "--format", "md,html,ipynb",
+                            "--out", str(tmp_path / "o")])
+    assert r.exit_code == 2
+    lines = [ln for ln in r.output.splitlines() if ln.strip()]
+    assert len(lines) == 1, r.output                               # one message, not one per extra
+    assert "latex2mathml" in lines[0] and "nbformat" in lines[0]
+    assert "pip install 'robosolve[html,notebook]'" in lines[0] and "pip install '.[html,notebook]'" in lines[0]
+    assert not (tmp_path / "o").exists()

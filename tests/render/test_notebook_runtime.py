@@ -1,0 +1,257 @@
+"""The notebook's runtime (robosolve/render/notebook_runtime.py), in-process, against robosolve's
+engines: chain products, W and H, Jacobians, the equations of motion, profiles, torques along a
+profile, the closed loop and a forward-dynamics run, rotations and screws."""
+
+import ast
+import inspect
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from robosolve.load.loader import load_problem
+from robosolve.model.chain import RobotModel
+from robosolve.render import notebook_runtime as rt
+from robosolve.render.notebook import data_cell
+from robosolve.questions.notebook_code import literal
+
+from conftest import PROBLEMS
+
+ROBOTS = ["exam-2r-full", "scara-payload-dynamics", "one-link-eom", "polar-rrp"]
+
+
+def _setup(name):
+    """(problem, RobotModel, runtime Robot built by the notebook's own data cell, parameter values)."""
+    problem = load_problem(PROBLEMS / f"{name}.yaml")
+    namespace = dict(vars(rt))
+    exec(data_cell(problem), namespace)             # the notebook's data cell, as the kernel runs it
+    values = {}
+    for _ in range(len(problem.parameters) + 1):
+        values = {s: sp.sympify(v).subs(values) for s, v in problem.parameters.items() if v is not None}
+    return problem, RobotModel(problem), namespace["robot"], values
+
+
+def _state(problem, rng):
+    out = {}
+    for j in problem.joints:
+        out[j.symbol], out[j.dot], out[j.ddot] = (sp.Float(x) for x in rng.uniform(-1.2, 1.2, 3))
+    return out
+
+
+def _robot_subs(robot, state):
+    """The same state on the runtime's symbols (matched by name)."""
+    return {robot.names[s.name]: v for s, v in state.items()}
+
+
+def _n(expr, subs):
+    return np.array(sp.N(sp.Matrix(expr).subs(subs)).tolist(), dtype=float)
+
+
+def test_the_runtime_imports_only_sympy_numpy_and_matplotlib():
+    tree = ast.parse(inspect.getsource(rt))
+    modules = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+    modules |= {n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+    assert modules <= {"numpy", "sympy", "matplotlib", "IPython"}, modules
+    calls = {n.func.id for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
+    assert not calls & {"open", "exec", "eval", "__import__"}
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_chain_products_points_and_velocity_matrices_match_the_model(name):
+    problem, model, robot, values = _setup(name)
+    rng = np.random.default_rng(3)
+    for _ in range(2):
+        state = _state(problem, rng)
+        mine = {**_robot_subs(robot, values), **_robot_subs(robot, state)}
+        theirs = {**values, **state}
+        for frame in problem.frames:
+            assert _n(robot.pose(frame), mine) == pytest.approx(_n(model.M0(frame), theirs), abs=1e-12)
+            W, H = robot.velocity_matrices(frame)
+            assert _n(W, mine) == pytest.approx(_n(model.W0(frame), theirs), abs=1e-10)
+            assert _n(H, mine) == pytest.approx(_n(model.H0(frame), theirs), abs=1e-10)
+        for point in problem.points:
+            assert _n(robot.point0(point), mine) == pytest.approx(_n(model.point0(point), theirs), abs=1e-12)
+        J = robot.jacobian(["E_x", "E_y", "E_z"])
+        assert _n(J, mine) == pytest.approx(_n(model.point0("E").jacobian(model.q), theirs), abs=1e-12)
+
+
+@pytest.mark.parametrize("name", ["exam-2r-full", "scara-payload-dynamics", "one-link-eom"])
+def test_lagrange_matches_the_dynamics_engine(name):
+    from robosolve.dynamics.model import dynamics_for
+
+    problem, model, robot, values = _setup(name)
+    dyn = dynamics_for(model)
+    mass, c, grav, Q = robot.lagrange()
+    rng = np.random.default_rng(5)
+    for _ in range(2):
+        state = _state(problem, rng)
+        mine = {**_robot_subs(robot, values), **_robot_subs(robot, state)}
+        theirs = {**values, **state}
+        for a, b in ((mass, dyn.mass_matrix), (c, dyn.velocity_terms), (grav, dyn.gravity_terms),
+                     (Q, dyn.external_forces)):
+            assert _n(a, mine) == pytest.approx(_n(b, theirs), abs=1e-9)
+        # the weight's generalized forces are the gravity terms g(q)
+        assert _n(robot.weight_forces(), mine) == pytest.approx(_n(dyn.gravity_terms, theirs), abs=1e-9)
+
+
+@pytest.mark.parametrize("shape", ["bang-bang", "trapezoidal", "quintic"])
+def test_profiles_match_the_motion_engine(shape):
+    from robosolve.motion.profiles import synchronize
+
+    start, end, acc, vel = [0.0, 1.0, -0.5], [1.5, 0.2, -0.5], [2.0, 1.0, 3.0], [1.0, 0.5, 1.0]
+    ref = synchronize(["a", "b", "c"], [sp.Float(x) for x in start], [sp.Float(x) for x in end],
+                      [sp.Float(x) for x in acc], shape=shape,
+                      max_velocity=[sp.Float(x) for x in vel] if shape == "trapezoidal" else None,
+                      t=sp.Symbol("t"))
+    mine = rt.Profile(start, end, acc, shape=shape, max_velocity=vel)
+    assert mine.T == pytest.approx(float(ref.T), rel=1e-12)
+    assert mine.durations == pytest.approx([float(j.own_time) for j in ref.joints], rel=1e-12)
+    assert mine.accelerations == pytest.approx([float(j.acceleration) for j in ref.joints], rel=1e-12)
+    plan = ref.numeric_plan()
+    times = np.linspace(0, mine.T, 37)
+    q, qd, qdd = plan.evaluate(times)
+    for k, time in enumerate(times[1:-1], 1):
+        got = mine.evaluate(time)
+        assert got[0] == pytest.approx(q[:, k], abs=1e-12)
+        assert got[1] == pytest.approx(qd[:, k], abs=1e-12)
+        assert got[2] == pytest.approx(qdd[:, k], abs=1e-12)
+
+
+def _exam_profile_and_dynamics():
+    from robosolve.dynamics.model import simulation_dynamics
+    from robosolve.motion.profiles import synchronize
+
+    problem, model, robot, values = _setup("exam-2r-full")
+    pq = next(q for q in problem.questions if q.type == "motion_profile")
+    names = [j.name for j in problem.joints]
+    start = [sp.sympify(pq.options["from"][n]).subs(values) for n in names]
+    end = [sp.sympify(pq.options["to"][n]).subs(values) for n in names]
+    acc = [sp.sympify(pq.options["max_acceleration"][n]).subs(values) for n in names]
+    ref = synchronize(names, start, end, acc, t=sp.Symbol("t"))
+    mine = rt.Profile([float(x) for x in start], [float(x) for x in end], [float(x) for x in acc])
+    fast, _ = simulation_dynamics(model, values)
+    return problem, robot, ref, mine, fast
+
+
+def test_torque_peaks_match_the_torque_engine():
+    from robosolve.motion.torques import torques_along
+
+    problem, robot, ref, mine, fast = _exam_profile_and_dynamics()
+    want = torques_along(ref, fast, [str(j.actuator) for j in problem.joints])
+    peaks, when = rt.torque_peaks(robot, mine)
+    assert peaks == pytest.approx(want.peaks, rel=1e-8)
+    assert when == pytest.approx(want.t_peaks, abs=1e-6)
+
+
+@pytest.mark.parametrize("law, kp, kd", [("p", [400.0, 300.0], None), ("pd_gravity", [200.0, 100.0], [20.0, 10.0]),
+                                          ("computed_torque", [100.0, 100.0], [20.0, 20.0])])
+def test_closed_loop_matches_the_control_engine(law, kp, kd):
+    from robosolve.motion.control import simulate
+
+    problem, robot, ref, mine, fast = _exam_profile_and_dynamics()
+    want = simulate(fast, ref.numeric_plan(), law, kp, kd, start=[0.05, -0.02])
+    max_error, t_max, final, _, _ = rt.simulate_control(robot, mine, law, kp, kd, start=[0.05, -0.02])
+    assert max_error == pytest.approx(want.max_error, rel=1e-5, abs=1e-9)
+    assert final == pytest.approx(want.final_error, rel=1e-4, abs=1e-8)
+
+
+def test_a_forward_run_matches_the_solver():
+    from robosolve.run.pipeline import solve_problem
+
+    problem, model, robot, values = _setup("pendulum-runs")
+    report = solve_problem(problem)
+    names = [j.name for j in problem.joints]
+    for q, answer in zip(problem.questions, report.answers):
+        if q.type != "forward_dynamics":
+            continue
+        laws = {str(k): str(v) for k, v in (q.options.get("actuators") or {}).items()}
+        at = {s.name: str(v) for s, v in q.at.items()}
+        here = {s: sp.sympify(v).subs(values) for s, v in {**values, **q.at}.items()}
+        start = q.options.get("start") or {}
+        q0 = [float(sp.sympify(start.get(n, 0)).subs(here)) for n in names]
+        v0 = [float(sp.sympify(start.get(f"{n}_dot", 0)).subs(here)) for n in names]
+        duration = float(sp.sympify(q.options["duration"]).subs(here))
+        times, qs, rates = rt.forward_run(robot, laws, q0, v0, duration, at)
+        low, high = rt.extremes(times, qs, rates)
+        want = answer.numeric
+        assert qs[-1] == pytest.approx(list(want["final"].values()), rel=1e-6, abs=1e-8)
+        assert rates[-1] == pytest.approx(list(want["final_velocity"].values()), rel=1e-6, abs=1e-8)
+        assert low == pytest.approx(list(want["min"].values()), rel=1e-7, abs=1e-8)
+        assert high == pytest.approx(list(want["max"].values()), rel=1e-7, abs=1e-8)
+
+
+def test_rotations_and_screws_match_the_geometry_engines():
+    from robosolve.geometry.helical import normalise_screw  # noqa: F401  (the engine exists)
+    from robosolve.geometry.rotations import axis_angle_numeric, quaternion_numeric
+
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        a, b, c = rng.uniform(-3, 3, 3)
+        R = np.array(sp.N(rt.Rz(a) * rt.Ry(b) * rt.Rx(c)).tolist(), dtype=float)[:3, :3]
+        want = axis_angle_numeric(R)
+        alpha, u = rt.axis_angle(R)
+        assert alpha == pytest.approx(float(want.angle), abs=1e-12)
+        assert u == pytest.approx([float(x) for x in want.axis], abs=1e-9)
+        assert rt.quaternion(R) == pytest.approx(quaternion_numeric(R), abs=1e-12)
+        for roll, pitch, yaw in rt.euler_rpy(R):
+            back = np.array(sp.N(rt.Rz(yaw) * rt.Ry(pitch) * rt.Rx(roll)).tolist(), dtype=float)[:3, :3]
+            assert back == pytest.approx(R, abs=1e-12)
+        for phi, theta, psi in rt.euler_zyz(R):
+            back = np.array(sp.N(rt.Rz(phi) * rt.Ry(theta) * rt.Rz(psi)).tolist(), dtype=float)[:3, :3]
+            assert back == pytest.approx(R, abs=1e-12)
+        axis, angle, through, h = rng.normal(size=3), rng.uniform(0.1, 3), rng.normal(size=3), rng.normal()
+        Q = rt.screw_displacement(axis, angle, through, h)
+        u, alpha, h2, P, pitch = rt.helical_axis(Q)
+        L = rt.screw_matrix(u, P, pitch)
+        import scipy.linalg
+
+        assert scipy.linalg.expm(alpha * L) == pytest.approx(Q, abs=1e-10)
+
+
+def test_compare_says_whether_the_numbers_agree(capsys):
+    rt.compare("x", {"a": 1.0, "b": [2.0, 3.0]}, {"a": 1.0 + 1e-9, "b": [2.0, 3.0]})
+    rt.compare("y", [1.0, 2.0], [1.0, 2.1])
+    rt.compare("z", [1.0, 2.0], [1.0])
+    out = capsys.readouterr().out
+    assert out.count("agrees with robosolve") == 1 and out.count("DIFFERS") == 2
+
+
+@pytest.mark.parametrize("value", ['b": open("X","w").write("x"), "c', "arm \"A\"", "$\\{_<script>x",
+                                   math.inf, -math.inf, 1e-300, [1, {"k": None}], True, "a\nb", "\u00e9\u2019"])
+def test_literals_are_python_literals_of_the_same_value(value):
+    source = literal(value)
+    if isinstance(value, float) and not math.isfinite(value):
+        assert eval(source, {"__builtins__": {"float": float}}) == value   # float('inf'), nothing else
+    else:
+        assert ast.literal_eval(source) == value
+    assert literal(float("nan")) == "float('nan')"
+
+
+@pytest.mark.parametrize("name", ["exam-2r-full", "scara-payload-dynamics", "one-link-eom"])
+def test_numeric_equations_of_motion_match_the_symbolic_ones(name):
+    problem, model, robot, values = _setup(name)
+    mass, c, grav, Q = robot.lagrange()
+    rng = np.random.default_rng(7)
+    state = _state(problem, rng)
+    at = {s.name: str(v) for s, v in state.items()}
+    got = robot.dynamics_at(at)
+    mine = {**_robot_subs(robot, values), **_robot_subs(robot, state)}
+    for a, b in zip(got, (mass, c, grav, Q)):
+        assert a == pytest.approx(_n(b, mine).reshape(a.shape), abs=1e-9)
+
+
+def test_numeric_equations_of_motion_of_the_puma_match_the_golden_report():
+    """Six joints: the numeric chain answers in seconds where a symbolic Lagrange would take minutes."""
+    import json
+
+    from conftest import ROOT
+
+    problem, _, robot, _ = _setup("puma560-dynamics")
+    q = problem.questions[0]
+    mass, c, grav, _ = robot.dynamics_at({s.name: str(v) for s, v in q.at.items()})
+    want = json.loads((ROOT / "tests" / "golden" / "puma560-dynamics" / "results.json").read_text())
+    want = want["answers"][q.id]["numeric"]
+    assert mass == pytest.approx(np.array(want["mass_matrix"]), abs=1e-9)
+    assert c == pytest.approx(want["velocity_terms"], abs=1e-9)
+    assert grav == pytest.approx(want["gravity_terms"], abs=1e-9)
