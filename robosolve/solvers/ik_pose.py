@@ -77,6 +77,8 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
         ans.steps.append(Step("Unreachable target", "No solution: " + str(res.reason) + "."))
         return res
     ans.numeric["selected"] = dict(res.selected)
+    if opts.get("velocity"):
+        ans.note("`velocity` is not used with a pose target: q_dot is given for coordinate targets only")
     ans.steps.append(Step("Selected solution",
                           "Selected: " + ("the first of the sorted solutions inside the joint limits."
                                           if not isinstance(select, dict) else "the solution nearest the given configuration."),
