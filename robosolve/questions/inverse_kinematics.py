@@ -12,8 +12,10 @@ from robosolve.questions.notebook_code import at_literal, compare_line, lines, l
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
     target = q.options.get("target") or []
-    if not isinstance(target, list) or not target:
-        return None                                  # a pose target: robosolve's numbers (fallback cell)
+    if not isinstance(target, list):
+        return _pose_cell(q, answer, problem, target)
+    if not target:
+        return None
     limits = []
     for j in problem.joints:
         lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-10, 10))
@@ -47,6 +49,28 @@ def notebook_cell(q, answer, problem):
             compare_line("q_dot", f"dict(zip({names!r}, q_dot))"),
         ]
     return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
+
+
+def _pose_cell(q, answer, problem, target):
+    """A pose target: each of robosolve's solutions checked by the direct kinematics (a search
+    over six joints is too long for a notebook cell)."""
+    names = [j.name for j in problem.joints]
+    frame = problem.points[q.point].frame if q.point_given else q.frame
+    want = {"solutions": answer.numeric.get("solutions") or []}
+    R = [[text(target.R[i, k]) for k in range(3)] for i in range(3)]
+    p = [text(v) for v in target.p]
+    where = (f"(robot.pose({frame!r})[:3, :3].row_join(robot.point0({q.point!r})))" if q.point_given
+             else f"robot.pose({frame!r})[:3, :]")
+    return lines(
+        f"at = {at_literal(q)}",
+        f"target = robot.number(robot.matrix({literal(R)}).row_join(robot.vector({literal(p)})), at)",
+        "robosolve = " + literal(want),
+        "# every solution robosolve lists, put through the direct kinematics: it must reach the pose",
+        f"fk = {where}",
+        "reached = [s for s in robosolve['solutions']",
+        f"           if np.max(np.abs(robot.number(fk, {{**at, **{{k: repr(float(v)) for k, v in s.items()}}}}) - target)) < 1e-9]",
+        f"compare('solutions', [{{k: s[k] for k in {names!r}}} for s in reached], robosolve['solutions'])",
+    )
 
 
 TYPE = QuestionType(
