@@ -347,7 +347,7 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     rest = [IKJoint(q[k], True, None) for k in (1, 2, 3)]
     eqs2, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
     bf = sp.lambdify([*vals, *(j.symbol for j in first)], planar, modules=numpy_modules()) if planar else None
-    raw, cf2 = [], None
+    raw, cf2, reasons = [], None, []
     for k, sol in enumerate(st1.all_solutions):
         v2 = dict(vals)
         v2.update({j.symbol: sol[j.name] for j in first})
@@ -357,9 +357,15 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
                        target_symbols=set(v2), latex_names=names, tex=tex)
         if k == 0 and st2.closed_form is not None:
             cf2 = st2
+        if st2.status == "unreachable" and st2.reason:
+            reasons.append(str(st2.reason))
         for d in st2.all_solutions:
             raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
                         False))
+    if not raw:
+        res.status = "unreachable"
+        res.reason = ("the pose is beyond the reach: for every value of q1, q5, q6 the planar arm of joints "
+                      "2, 3, 4 cannot reach the point it must" + (" (" + reasons[0] + ")" if reasons else ""))
     if cf2 is not None:
         for stp in cf2.closed_form.steps:
             res.steps.append(PoseStep("q2, q3, q4: " + stp.title, stp.text, list(stp.equations)))

@@ -259,3 +259,10 @@ def test_puma560_wrist_singularity_gives_a_representative_with_a_note():
     assert len(singular) == 1 and singular[0]["q6"] == 0.0
     assert abs(wrap_angle(singular[0]["q4"] - (q0[3] + q0[5]))) < 1e-9     # only the sum is fixed
     assert len(res.solutions) == 7 and any("wrist singularity" in str(n) for n in res.notes)
+
+
+def test_ur5_unreachable_pose_is_an_answer():
+    ur5 = rtb.models.DH.UR5()
+    F, joints = _factors(ur5)
+    res = solve_pose(F, joints, np.eye(3), [2.5, 0.0, 0.3])
+    assert res.status == "unreachable" and res.solutions == [] and "reach" in res.reason
