@@ -4,10 +4,10 @@
 defines one typer command, registered here in the order `--help` lists them.
 """
 
-from robosolve.cli import batch, check, grade, solve, validate, variants
+from robosolve.cli import batch, check, grade, paper, solve, validate, variants
 from robosolve.cli.common import app, main
 
-for _command in (solve.solve, validate.validate, batch.batch, variants.variants, check.check, grade.grade):
+for _command in (solve.solve, validate.validate, batch.batch, variants.variants, paper.paper, check.check, grade.grade):
     app.command()(_command)
 
 __all__ = ["app", "main"]

@@ -20,9 +20,24 @@ def check(
     json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
     rtol: Optional[float] = tolerance_option("--rtol", "Relative", "0.005"),
     atol: Optional[float] = tolerance_option("--atol", "Absolute", "1e-6"),
+    echo: bool = typer.Option(False, "--echo", help="First print how each given value was read."),
+    no_expected: bool = typer.Option(False, "--no-expected",
+                                     help="Verdicts and diagnoses only: never print an expected value."),
 ) -> None:
     """Check a student's answers against robosolve's solution: a verdict per key, and what is wrong."""
-    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol))
+    raise typer.Exit(run_check(answers, problem, json_out, rtol, atol, echo=echo, reveal=not no_expected))
+
+
+def echo_table(lines):
+    from rich.markup import escape
+    from rich.table import Table
+
+    table = Table(title="your answers, as robosolve read them")
+    for col in ("question", "key", "read as"):
+        table.add_column(col, overflow="fold", no_wrap=col != "read as")
+    for qid, key, text in lines:
+        table.add_row(qid, key, escape(text))
+    return table
 
 
 def result_table(result, title: str):
@@ -45,8 +60,8 @@ def result_table(result, title: str):
 
 
 def run_check(answers: Path, problem: Path | None, json_out: str | None,
-              rtol: float | None, atol: float | None) -> int:
-    from robosolve.grading.check import check_file
+              rtol: float | None, atol: float | None, echo: bool = False, reveal: bool = True) -> int:
+    from robosolve.grading.check import check_file, read_back
     from robosolve.grading.record import number_text, percent_text, record_json
     from robosolve.run.outputs import OutputFolderError, check_output_file, write_file
 
@@ -58,7 +73,12 @@ def run_check(answers: Path, problem: Path | None, json_out: str | None,
             check_output_file(json_out, inputs)
 
     try:
-        result, _ = check_file(answers, problem, rtol=rtol, atol=atol, before_solving=guard)
+        def on_read(sub, prob):
+            if echo:
+                console(stderr=json_out == "-").print(echo_table(read_back(sub, prob)))
+
+        result, _ = check_file(answers, problem, rtol=rtol, atol=atol, before_solving=guard,
+                               reveal=reveal, on_read=on_read)
     except (InputError, OutputFolderError) as exc:
         err(str(exc))
         return ExitStatus.INPUT

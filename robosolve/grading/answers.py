@@ -118,6 +118,8 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
         s = data["student"]
         if isinstance(s, (str, int)) and not isinstance(s, bool) and str(s).strip():
             student = str(s).strip()
+        elif s is None or s == "":
+            pass                  # a template's blank: the file name (papers.md)
         else:
             issues.error(("student",), f"expected the student's id, got {type_name(s)}")
     raw = {}

@@ -28,11 +28,14 @@ def solve_reference(path, rtol=None, atol=None) -> Reference:
     return Reference.from_report(solve_problem(load_problem(path)), rtol=rtol, atol=atol)
 
 
-def check_file(answers, problem=None, rtol=None, atol=None, before_solving=None) -> tuple[SubmissionResult, Reference]:
+def check_file(answers, problem=None, rtol=None, atol=None, before_solving=None, reveal: bool = True,
+               on_read=None) -> tuple[SubmissionResult, Reference]:
     """Grade one answers file. Raises InputError (exit 2) for an invalid file or problem.
 
     `before_solving(inputs)`, when given, is called with the files read (the answers file and
-    its problem) before any work: the caller refuses an output that would overwrite one."""
+    its problem) before any work: the caller refuses an output that would overwrite one.
+    `reveal`: False hides every expected value from the feedback (`--no-expected`);
+    `on_read(submission, problem)`: called once the answers are placed (`--echo`)."""
     sub = read_answers(answers)
     from robosolve.load.loader import load_problem
     from robosolve.run.pipeline import solve_problem
@@ -45,5 +48,34 @@ def check_file(answers, problem=None, rtol=None, atol=None, before_solving=None)
     except InputError as exc:
         raise InputError(list(dict.fromkeys(sub.issues + exc.issues))) from None
     resolve_answers(sub, prob)
+    if on_read is not None:
+        on_read(sub, prob)
     ref = Reference.from_report(solve_problem(prob), rtol=rtol, atol=atol)
-    return Grader(ref).grade(sub.student, sub.answers), ref
+    return Grader(ref, reveal=reveal).grade(sub.student, sub.answers), ref
+
+
+def read_back(sub, problem) -> list[tuple[str, str, str]]:
+    """(question, key, how the value was read) for every key the submission gives (`--echo`):
+    the value as robosolve understood it, or why it cannot be read."""
+    from robosolve.grading.grader import show
+    from robosolve.grading.values import Reader, ValueProblem, blanks
+    from robosolve.load.expressions import Namespace
+    from robosolve.questions.registry import question_type
+
+    reader = Reader(Namespace(problem.names, problem.points.keys(), what="name"))
+    types = {q.id: question_type(q.type) for q in problem.questions}
+    out = []
+    for qid, keys in sub.answers.items():
+        for key, given in keys.items():
+            ak = types[qid].key(key)
+            if given.problem or ak is None:
+                out.append((qid, key, given.problem or "unknown key"))
+                continue
+            if blanks(given.value):
+                out.append((qid, key, "not filled in (~)"))
+                continue
+            try:
+                out.append((qid, key, show(reader.read(ak, given.value))))
+            except ValueProblem as exc:
+                out.append((qid, key, f"cannot be read: {exc}"))
+    return out

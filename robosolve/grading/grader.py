@@ -20,7 +20,7 @@ from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
 from robosolve.grading.points import evaluate, sample, single_point
 from robosolve.grading.reference import Reference, lookup
-from robosolve.grading.values import Equation, Reader, ValueProblem, free_symbols, substitute
+from robosolve.grading.values import Equation, Reader, ValueProblem, blanks, free_symbols, substitute
 from robosolve.questions import registry as R
 from robosolve.questions.registry import question_type
 
@@ -131,8 +131,9 @@ def _at(tree, path):
 class Grader:
     """Grades submissions of one problem (caches the expected values it evaluates)."""
 
-    def __init__(self, reference: Reference, tolerance=None):
+    def __init__(self, reference: Reference, tolerance=None, reveal: bool = True):
         self.ref = reference
+        self.reveal = reveal      # False: no expected value in any feedback (--no-expected)
         self.tol = tolerance or reference.tolerance
         self.ns = reference.namespace
         self.reader = Reader(self.ns)
@@ -157,9 +158,17 @@ class Grader:
         sym, num = self._reference(qref, ak, key)
         if sym is None and num is None:
             return KeyResult(NO_REFERENCE, feedback=f"the reference answer has no {key}")
+
+        def expected():
+            return f"expected {self.symbol(qref, ak)} = {show(num if num is not None else sym)}"
+
         if given is None:
-            expected = num if num is not None else sym
-            return KeyResult(MISSING, feedback=f"not given; expected {self.symbol(qref, ak)} = {show(expected)}")
+            return KeyResult(MISSING, feedback=self._reveal("not given", expected))
+        holes = blanks(given.value, num if num is not None else sym)
+        if holes:                 # a template's `~` left: not given yet (papers.md)
+            shown = ", ".join(holes[:6]) + (f" (and {len(holes) - 6} more)" if len(holes) > 6 else "")
+            what = "not filled in (still ~)" if _all_blank(given.value) else f"not filled in: {shown} still ~"
+            return KeyResult(MISSING, feedback=self._reveal(what, expected))
         try:
             g = self.reader.read(ak, given.value)
         except ValueProblem as exc:
@@ -168,6 +177,13 @@ class Grader:
             return self._compare(qref, ak, key, g, sym, num)
         except ValueProblem as exc:
             return KeyResult(INVALID, diagnosis="wrong_shape" if exc.wrong_shape else "", feedback=str(exc))
+
+    def _reveal(self, text: str, expected: str) -> str:
+        """Feedback with the expected value, unless the grader hides it (`--no-expected`)."""
+        if not self.reveal:
+            return text
+        return f"{text}; {expected() if callable(expected) else expected}" if text else (
+            expected() if callable(expected) else expected)
 
     def _reference(self, qref, ak, key):
         if ak.top:
@@ -226,12 +242,15 @@ class Grader:
             params = self._names(substituted)
             text = D.sentence(diagnosis, ak, symbol=symbol, frame=qref.frame, outcome=outcome, params=params)
             verdict = INVALID if diagnosis == "wrong_shape" else INCORRECT
-            return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}")
-        return KeyResult(INCORRECT, compared, "", self._wrong_entries(outcome, g, e) + expected_text)
+            return KeyResult(verdict, compared, diagnosis, self._reveal(text, expected_text))
+        wrong = self._wrong_entries(outcome, g, e)
+        if not self.reveal:
+            return KeyResult(INCORRECT, compared, "", wrong.removesuffix(" In full: ").rstrip("; ") or "wrong")
+        return KeyResult(INCORRECT, compared, "", wrong + expected_text)
 
     def _wrong_entries(self, outcome, g, e) -> str:
         if outcome.where:
-            parts = [f"{label} is {show(_at(g, p))}; expected {show(_at(e, p))}"
+            parts = [f"{label} is {show(_at(g, p))}" + (f"; expected {show(_at(e, p))}" if self.reveal else "")
                      for label, p in zip(outcome.wrong, outcome.where)][:3]
             more = len(outcome.where) - len(parts)
             return "; ".join(parts) + (f" (and {more} more)" if more > 0 else "") + ". In full: "
@@ -262,7 +281,8 @@ class Grader:
 
         pairs = _pairs(g, e)
         if pairs is None:
-            return KeyResult(INCORRECT, "symbolic", "", f"expected {self.symbol(qref, ak)} = {show(e)}")
+            return KeyResult(INCORRECT, "symbolic", "", self._reveal("", f"expected {self.symbol(qref, ak)} = {show(e)}")
+                             or "not equal")
         try:
             with time_limit(2.0):
                 same = all(is_zero(a - b) for a, b in pairs)
@@ -270,8 +290,8 @@ class Grader:
             same = False
         if same:
             return KeyResult(CORRECT, "symbolic")
-        return KeyResult(INCORRECT, "symbolic", "",
-                         f"could not be confirmed equal; expected {self.symbol(qref, ak)} = {show(e)}")
+        return KeyResult(INCORRECT, "symbolic", "", self._reveal(
+            "could not be confirmed equal", f"expected {self.symbol(qref, ak)} = {show(e)}"))
 
     # -- one submission -----------------------------------------------------
     def grade(self, student: str, answers: dict, notes=()) -> SubmissionResult:
@@ -317,6 +337,15 @@ def _gather(qt, key, given: dict):
             from robosolve.grading.answers import Given
             return Given(key, {k: v.value for k, v in parts.items()}, first.path[:-1], first.line)
     return None
+
+
+def _all_blank(value) -> bool:
+    """Every entry of a given value is still `~` (an untouched template key)."""
+    if isinstance(value, dict):
+        return all(_all_blank(v) for v in value.values())
+    if isinstance(value, list):
+        return all(_all_blank(v) for v in value)
+    return value is None
 
 
 def _schema_order(qt, given: dict) -> list:

@@ -34,6 +34,7 @@ class Equation:
 
 
 MAP_KINDS = (R.JOINT_MAP, R.ACTUATOR_MAP, R.BODY_MAP)
+ARRAY_KINDS = (R.VECTOR, R.MATRIX, R.VECTOR_SET, R.AXES)
 SET_KINDS = (R.JOINT_MAP_SET, R.VECTOR_SET)
 
 
@@ -103,6 +104,8 @@ class Reader:
     # -- by kind ----------------------------------------------------------
     def read(self, ak, value, where=""):
         kind = ak.kind
+        if isinstance(value, str) and value.strip().startswith("[") and kind in ARRAY_KINDS:
+            value = self.array_text(ak, value, where)
         if kind == R.SCALAR:
             return self.scalar(value, where)
         if kind == R.VECTOR:
@@ -144,6 +147,20 @@ class Reader:
         if kind == R.TEXT:
             return None if value is None else str(value)
         raise ValueProblem(f"answers of kind {kind} cannot be checked")
+
+    def array_text(self, ak, value, where=""):
+        """A matrix or vector typed as one string (MATLAB or Python notation)."""
+        from robosolve.grading.typed import ArrayTextError, parse_array
+
+        try:
+            out = parse_array(value)
+        except ArrayTextError as exc:
+            raise ValueProblem(f"{_label(where)}cannot read {value!r} as a matrix or vector: {exc}") from None
+        if ak.kind == R.VECTOR and out and all(isinstance(r, list) and len(r) == 1 for r in out):
+            out = [r[0] for r in out]             # a column [a; b; c]
+        if ak.kind == R.MATRIX and out and not isinstance(out[0], list):
+            out = [out]                           # one row
+        return out
 
     def _list(self, value, where):
         if not isinstance(value, (list, tuple)):
@@ -196,3 +213,41 @@ def free_symbols(tree) -> set:
 def substitute(tree, subs: dict):
     """The tree with `subs` put in (exact), e.g. the parameters' values."""
     return map_leaves(tree, lambda e: e.xreplace(subs))
+
+
+def blanks(value, expected=(), where: str = "") -> list[str]:
+    """The entries of a given value still holding `~` (null), named as the grader names them:
+    a key with one left is `missing` (papers.md), never `invalid`. An entry whose `expected`
+    value (the same layout; `()` when unknown) is itself null (an infinite length) is no blank."""
+    if value is None:
+        return [] if expected is None else [where or "the value"]
+    out: list[str] = []
+
+    def sub(k):
+        try:
+            return expected[k]
+        except (KeyError, IndexError, TypeError):
+            return ()
+
+    if isinstance(value, dict):
+        for k, v in value.items():
+            out += blanks(v, sub(k), f"{where}.{k}" if where else str(k))
+    elif isinstance(value, list):
+        matrix = value and all(isinstance(r, list) for r in value) and all(
+            not isinstance(x, (list, dict)) for r in value for x in r)
+        lead = where + " " if where else ""
+        for i, v in enumerate(value):
+            if matrix:
+                row = sub(i)
+                out += [f"{lead}entry ({i + 1}, {j + 1})" for j, x in enumerate(v)
+                        if x is None and _entry(row, j) is not None]
+            else:
+                out += blanks(v, sub(i), f"{lead}entry {i + 1}")
+    return out
+
+
+def _entry(row, j):
+    try:
+        return row[j]
+    except (KeyError, IndexError, TypeError):
+        return ()

@@ -44,7 +44,7 @@ def _time_refused() -> str:
 
 TIME_REFUSED = _time_refused()
 TOP_KEYS = ("robosolve", "name", "title", "description", "parameters", "joints", "frames",
-            "dh", "points", "gravity", "bodies", "forces", "questions", "grading", "variants")
+            "dh", "points", "gravity", "bodies", "forces", "questions", "grading", "variants", "paper")
 POSE_OPS = ("Tx", "Ty", "Tz", "Rx", "Ry", "Rz")
 DH_KEYS = ("theta", "d", "a", "alpha")
 MDH_KEYS = ("alpha", "a", "theta", "d")
@@ -288,6 +288,8 @@ class _ProblemBuilder:
         # validated like every key, then ignored by `solve` (load/variants.py, variants.md)
         from robosolve.load.variants import load_variants
         self.problem.variants = load_variants(self, data.get("variants"))
+        from robosolve.load.paper import load_paper
+        self.problem.paper_at = load_paper(self, data.get("paper"))
         return self.problem
 
     def _grading(self, value) -> dict:

@@ -89,6 +89,7 @@ class Question:
     frame_given: bool = False
     marks: object = 1                               # weight when graded (sympy Rational or Float)
     grade: tuple = ()                               # graded answer keys (dotted); () = principal
+    text: str | None = None                         # the teacher's wording on the paper (papers.md)
 
 
 @dataclass
@@ -110,6 +111,7 @@ class Problem:
     has_robot: bool = True
     grading: dict = field(default_factory=dict)   # {"rtol": float, "atol": float} when given
     variants: object = None          # robosolve.load.variants.VariantSpec, or None
+    paper_at: dict = field(default_factory=dict)  # `paper: {at}`: the drawing's joint values (papers.md)
 
     @property
     def last_frame(self) -> str:

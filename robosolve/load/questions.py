@@ -98,6 +98,9 @@ class _QuestionLoader:
             q.marks = self.marks(path + ("marks",), item["marks"])
         if "grade" in item:
             q.grade = self.grade_keys(path + ("grade",), item["grade"], qt)
+        if "text" in item:
+            from robosolve.load.paper import question_text
+            q.text = question_text(self.chk, path + ("text",), item["text"], self.b.parameters)
         for key, validator in schema.items():
             if key in item:
                 v = validator(self, path + (key,), item[key], q)

@@ -49,6 +49,32 @@ def _check(ql, path, item, q):
             chk.error(path + ("axis",), "the zero vector has no direction (give the axis direction, "
                       "any non-zero length)")
 
+def _pose(v, say) -> str:
+    if isinstance(v, dict) and "config" in v:
+        return "the configuration " + say.joint_values(v["config"])
+    if isinstance(v, dict) and "matrix" in v:
+        return "the pose " + say.math(v["matrix"])
+    if isinstance(v, dict) and "frame" in v:
+        return f"frame {v['frame']}"
+    return say.math(v)
+
+
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from from/to or the screw."""
+    o = q.options
+    if "axis" in o:
+        text = (f"A screw displacement turns by {say.value(o['angle'])} rad about the axis of direction "
+                f"{say.math(list(o['axis']))}")
+        if "through" in o:
+            text += f" through the point {say.math(list(o['through']))}"
+        if "translation" in o:
+            text += f" and translates by {say.value(o['translation'])} along it"
+        return text + ". Give its displacement matrix $Q$ and the matrix $L$ of the screw."
+    return (f"The rigid displacement takes {_pose(o['from'], say)} to {_pose(o['to'], say)}"
+            + (f" ({say.frame(q)})" if q.frame_given else "")
+            + ". Give its helical axis: the unit vector $u$, the angle $\\alpha \\in [0, \\pi]$, the "
+            "translation $h$ along the axis and the point $P$ of the axis nearest the origin.")
+
 
 def _pose_source(side, q) -> str:
     """One end of a displacement: a given matrix, or 0M of the frame at a configuration."""
@@ -93,6 +119,7 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "displacement", "Rigid displacement (helical axis)", "§3.1",
+    statement=_statement,
     # two forms: from/to (two poses or configurations) or a screw (axis, angle, through,
     # translation); "from/to or a screw" is checked by `_check`
     options={"from": V.v_pose_or_config, "to": V.v_pose_or_config, "axis": V.v_vector3_params,
@@ -100,9 +127,9 @@ TYPE = QuestionType(
     needs_robot=_needs_robot,
     answers=(
         _k("u", VECTOR, "unit vector of the helical axis", principal=True, shape=(3,)),
-        _k("alpha", SCALAR, "rotation angle in [0, π]", principal=True, angle=True),
-        _k("h", SCALAR, "translation along the axis", principal=True),
-        _k("P", VECTOR, "the axis point nearest the origin", principal=True, shape=(3,)),
+        _k("alpha", SCALAR, "rotation angle in [0, π]", principal=True, unit="rad", angle=True),
+        _k("h", SCALAR, "translation along the axis", principal=True, unit="m"),
+        _k("P", VECTOR, "the axis point nearest the origin", principal=True, unit="m", shape=(3,)),
         _k("Q", MATRIX, "the displacement matrix", shape=(4, 4), pose=True,
            hints=(("inverse", "this is the displacement back, from `to` to `from`"),)),
         _k("pitch", SCALAR, "h / α"),

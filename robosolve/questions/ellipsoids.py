@@ -31,6 +31,23 @@ def _check(ql, path, item, q):
         chk.error(path + ("joint_compliance",),
                   f"expected {len(joints)} values (one per joint), got {len(opts['joint_compliance'])}")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the coordinates, budgets, compliance, velocity, `at`."""
+    o, at = q.options, say.at(q)
+    coords = (f"the coordinates {say.coordinates(o['coordinates'])}" if o.get("coordinates")
+              else f"the coordinates of {say.point(q)} in frame 0")
+    text = (f"For {coords}" + (f", {at}" if at else "") + ", compute the force and the velocity "
+            "ellipsoids (semi-axis lengths, longest first) and the condition number of $A = J J^T$")
+    budgets = o.get("budgets")
+    if budgets:
+        text += "; the budgets are " + ", ".join(f"{k} {say.value(v)}" for k, v in budgets.items())
+    if "joint_compliance" in o:
+        text += f"; the joint compliances are {say.math(list(o['joint_compliance']))}"
+    if "velocity" in o:
+        text += (f"; also the joint rates giving the velocity {say.math(list(o['velocity']))} "
+                 "of the coordinates")
+    return text + "."
+
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
@@ -62,6 +79,7 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "ellipsoids", "Force, velocity and compliance ellipsoids", "§8 question 5",
+    statement=_statement,
     options={"coordinates": V.v_coordinates, "budgets": V.v_budgets,
              "joint_compliance": V.v_exprs, "velocity": V.v_exprs},
     required=("at",),

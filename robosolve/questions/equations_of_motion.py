@@ -23,6 +23,14 @@ def _check(ql, path, item, q):
                      "vary with time t, so the numbers at a configuration would need a time: drop `at` "
                      f"(the symbolic equations keep t), or follow the motion with a {follow} question")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the bodies, forces and `at` of the data."""
+    at = say.at(q)
+    return ("With the bodies, forces and gravity of the data, derive the equations of motion "
+            "$M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = Q$: the mass matrix $M(q)$, the velocity terms "
+            "$c(q, \\dot q)$, the gravity terms $g(q)$ and the generalized forces $Q$ (actuators plus "
+            "external forces)" + (f"; give the numbers {at}" if at else "") + ".")
+
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
@@ -45,14 +53,15 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "equations_of_motion", "Equations of motion", "§8 question 8",
+    statement=_statement,
     options={},
     needs_dynamics=True,
     answers=(
         _k("mass_matrix", MATRIX, "M(q)", principal=True, shape=(N, N), notation="M(q)"),
-        _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, shape=(N,)),
-        _k("gravity_terms", VECTOR, "g(q)", principal=True, shape=(N,)),
+        _k("velocity_terms", VECTOR, "c(q, q̇)", principal=True, unit="effort", shape=(N,)),
+        _k("gravity_terms", VECTOR, "g(q)", principal=True, unit="effort", shape=(N,)),
         _k("generalized_forces", JOINT_MAP, "actuator plus external forces, per joint",
-           principal=True),
+           principal=True, unit="effort"),
         _k("equations", EQUATIONS, "one equation per joint", numeric=False),
         _k("kinetic_energy", BODY_MAP, "T per body and total"),
         _k("potential_energy", BODY_MAP, "U per body and total"),

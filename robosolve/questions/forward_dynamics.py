@@ -23,6 +23,17 @@ def _check(ql, path, item, q):
                          f"parameters only: give the starting value of '{key}' in `start` "
                          "(joint values and <joint>_dot rates)")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the start state, actuator laws and duration."""
+    o = q.options
+    start = o.get("start")
+    text = ("Starting " + (f"from {say.joint_values(start)}" if start else "at rest at zero")
+            + (f", with the actuators {say.joint_values(o['actuators'])}" if o.get("actuators")
+               else ", with no actuator action")
+            + f", the robot moves for {say.value(o['duration'])} s under the bodies, forces and "
+            "gravity of the data.")
+    return text + " Give each joint's value at the end, and its largest and smallest values over the run."
+
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
@@ -54,16 +65,17 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "forward_dynamics", "Forward dynamics (the motion under given actuators)", "§6.5",
+    statement=_statement,
     options={"start": V.v_start_state, "actuators": V.v_actuator_laws, "duration": V.v_duration},
     required=("duration",),
     needs_dynamics=True,
     answers=(
         # the run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio): 10 digits
-        _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, symbolic=False,
+        _k("final", JOINT_MAP, "joint values at the end (unwrapped)", principal=True, unit="joint", symbolic=False,
            digits=10),
-        _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True,
+        _k("max", JOINT_MAP, "largest value of each joint over the run", principal=True, unit="joint",
            symbolic=False, digits=10),
-        _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True,
+        _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True, unit="joint",
            symbolic=False, digits=10),
         _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False, digits=10),
         _k("energy", RECORD, "total energy T + U", symbolic=False, fields=(

@@ -50,6 +50,26 @@ def notebook_cell(q, answer, problem):
         ]
     return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the target, the velocity and the selection."""
+    o = q.options
+    if not isinstance(o["target"], list):       # a pose target (load/pose_target.py)
+        t = o["target"]
+        where = f"the point {q.point}" if q.point_given else f"frame {q.frame}"
+        return (f"Find every configuration ({say.joints()}) within the joint limits that puts {where} at the "
+                f"position ${say.tex(t.p)}$ with the orientation $R = {say.tex(t.R)}$ (none, if the pose "
+                "cannot be reached).")
+    target = ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in o["target"])
+    text = (f"Find every configuration ({say.joints()}) within the joint limits that puts {target}"
+            " (none, if the target cannot be reached)")
+    if "velocity" in o:
+        wanted = ", ".join(f"$\\dot{{{say.tex(lhs)}}} = {say.tex(rhs)}$" for _, lhs, rhs in o["velocity"])
+        select = o.get("select")
+        which = (f"the solution nearest to {say.joint_values(select)}" if isinstance(select, dict)
+                 else "the selected solution")
+        text += f"; at {which}, the joint rates giving {wanted}"
+    return text + "."
+
 
 def _pose_cell(q, answer, problem, target):
     """A pose target: each of robosolve's solutions checked by the direct kinematics (a search
@@ -75,13 +95,14 @@ def _pose_cell(q, answer, problem, target):
 
 TYPE = QuestionType(
     "inverse_kinematics", "Inverse kinematics", "§8 question 6",
+    statement=_statement,
     options={"target": V.v_ik_target, "velocity": V.v_equations, "select": V.v_select},
     required=("target",),
     defaults={"select": "limits"},
     answers=(
         _k("solutions", JOINT_MAP_SET, "every solution within the limits, sorted",
-           principal=True, angle=True, unordered=True, symbolic=False),
-        _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True,
+           principal=True, unit="joint", angle=True, unordered=True, symbolic=False),
+        _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True, unit="joint/s",
            symbolic=False),
         _k("selected", JOINT_MAP, "the selected solution", angle=True, symbolic=False),
         _k("closed_form", JOINT_MAP_LIST, "closed-form solution branches", numeric=False),
@@ -89,6 +110,7 @@ TYPE = QuestionType(
         _k("reason", TEXT, "why there is no solution", top=True),
     ),
     figures=(("solutions", "ik_solutions"),),
+    paper_keys=lambda options, joints: ("solutions",) + (("q_dot",) if "velocity" in options else ()),
     cost=0.8,
     reaches=True,
     notebook_cells=notebook_cell,

@@ -14,6 +14,29 @@ def _check(ql, path, item, q):
         ql.chk.error(path + ("geometric",), "geometric: true cannot be combined with coordinates")
 
 
+def _paper_keys(options: dict, joints: int) -> tuple:
+    """J and its singularities, with det J when J is square, else the manipulability."""
+    rows = 6 if options.get("geometric") else len(options.get("coordinates") or ()) or 3
+    return ("J", "det" if rows == joints else "manipulability", "singularities")
+
+
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the coordinates, `geometric`, `bodies` and `at`."""
+    o, at = q.options, say.at(q)
+    if o.get("geometric"):
+        what = (f"the geometric Jacobian of {say.point(q)} and {say.frame(q)} (linear velocity of the "
+                "point above the angular velocity of the frame, both in frame 0)")
+    elif o.get("coordinates"):
+        what = f"the Jacobian of the coordinates {say.coordinates(o['coordinates'])}"
+    else:
+        what = f"the Jacobian of the coordinates of {say.point(q)} in frame 0 (x, y, z)"
+    text = (f"Compute {what} with respect to the joint variables ({say.joints()}); give its "
+            "determinant (square J) or its manipulability, and the singular configurations")
+    if o.get("bodies"):
+        text += "; also the Jacobians of the bodies' centres of mass"
+    return text + (f"; give the numbers {at}" if at else "") + "."
+
+
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
     if q.options.get("geometric"):
@@ -35,6 +58,7 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "jacobian", "Jacobian and singular configurations", "§8 question 3",
+    statement=_statement,
     options={"coordinates": V.v_coordinates, "geometric": V.v_bool, "bodies": V.v_bool},
     defaults={"geometric": False, "bodies": False},
     answers=(
@@ -44,9 +68,10 @@ TYPE = QuestionType(
         _k("det", SCALAR, "det J (square J)", principal=True),
         _k("manipulability", SCALAR, "product of the singular values (J not square)", principal=True),
         _k("singularities", JOINT_MAP_SET, "conditions joint -> value making J lose rank",
-           principal=True, angle=True, unordered=True, by_value=True),
+           principal=True, unit="joint", angle=True, unordered=True, by_value=True),
         _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N)),
     ),
+    paper_keys=_paper_keys,
     cost=0.5, cost_growth=2,
     check=_check, has_jacobian=True,
     notebook_cells=notebook_cell,

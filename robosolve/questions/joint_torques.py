@@ -27,9 +27,16 @@ def notebook_cell(q, answer, problem):
         compare_line("t_peak", "t_peaks", rtol=1e-5),
     )
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the profile it follows."""
+    return (f"Along the motion of {say.question_number(q.options['profile'])}, with the bodies, "
+            "forces and gravity of the data, compute the actuator actions; give each actuator's "
+            "signed peak (the value of largest magnitude) and the time of that peak.")
+
 
 TYPE = QuestionType(
     "joint_torques", "Actuator torques along the profile", "§8 question 9",
+    statement=_statement,
     options={"profile": V.v_profile_ref},
     needs_dynamics=True,
     answers=(

@@ -21,6 +21,18 @@ def _check(ql, path, item, q):
                 chk.error(path + (key, name), f"must be positive, got {item[key][name]!r}"
                           + (f" (= {value:g})" if not v.is_number else ""))
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the start, goal, limits and shape."""
+    o = q.options
+    shape = o.get("shape", "bang-bang")
+    text = (f"The joints move from {say.joint_values(o['from'])} to {say.joint_values(o['to'])}, "
+            f"synchronized, each with a {shape} profile and the maximum accelerations "
+            f"{say.per_joint(o['max_acceleration'], 'joint/s²')}")
+    if "max_velocity" in o:
+        text += f" and maximum velocities {say.per_joint(o['max_velocity'], 'joint/s')}"
+    return (text + ". Compute the duration of each joint alone at its limits, the synchronized "
+            "duration $T$, and the accelerations the joints use to finish together.")
+
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
@@ -39,14 +51,15 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "motion_profile", "Motion profile", "§8 question 7",
+    statement=_statement,
     options={"from": V.v_joint_values, "to": V.v_joint_values, "max_acceleration": V.v_joint_values,
              "shape": V.v_shape, "max_velocity": V.v_joint_values},
     required=("from", "to", "max_acceleration"),
     defaults={"shape": "bang-bang"},
     answers=(
-        _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True),
-        _k("T", SCALAR, "the synchronized duration", principal=True),
-        _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True),
+        _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True, unit="s"),
+        _k("T", SCALAR, "the synchronized duration", principal=True, unit="s"),
+        _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True, unit="joint/s²"),
         _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", numeric=False),
     ),
     figures=(("profile", "motion_profile"),),

@@ -17,6 +17,16 @@ def _check(ql, path, item, q):
     if "matrix" in item and "frame" in item:
         ql.chk.error(path, "give either matrix or frame (with at), not both")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the matrix or the frame at `at`."""
+    if "matrix" in q.options:
+        what = f"the rotation matrix $R = $ {say.math(q.options['matrix'])}"
+    else:
+        at = say.at(q)
+        what = f"the orientation of {say.frame(q)} in frame 0" + (f" {at}" if at else "")
+    return (f"For {what}, give the ZYZ Euler angles, the roll-pitch-yaw angles (every solution, and "
+            "whether it is singular), the axis and angle, and the unit quaternion.")
+
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
@@ -42,14 +52,15 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "orientation", "Orientation representations", "§5.6",
+    statement=_statement,
     options={"matrix": V.v_rotation_matrix},
     needs_robot=_needs_robot,
     answers=(
-        _k("zyz", RECORD, "R = Rz(φ)·Ry(θ)·Rz(ψ)", principal=True, fields=(
+        _k("zyz", RECORD, "R = Rz(φ)·Ry(θ)·Rz(ψ)", principal=True, unit="rad", fields=(
             _k("solutions", VECTOR_SET, "[φ, θ, ψ] solution sets", shape=(3,), angle=True,
                unordered=True),
             _k("singular", BOOL, "at a singularity"))),
-        _k("rpy", RECORD, "R = Rz(yaw)·Ry(pitch)·Rx(roll)", principal=True, fields=(
+        _k("rpy", RECORD, "R = Rz(yaw)·Ry(pitch)·Rx(roll)", principal=True, unit="rad", fields=(
             _k("solutions", VECTOR_SET, "[roll, pitch, yaw] solution sets", shape=(3,), angle=True,
                unordered=True),
             _k("singular", BOOL, "at a singularity"))),

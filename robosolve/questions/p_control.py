@@ -14,6 +14,23 @@ def _check(ql, path, item, q):
     if law == "p" and "gains_d" in item:
         ql.chk.error(path + ("gains_d",), "gains_d goes with law pd, pd_gravity or computed_torque")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the profile, law, gains, start and duration."""
+    o = q.options
+    laws = {"p": "a proportional", "pd": "a PD", "pd_gravity": "a PD with gravity compensation",
+            "computed_torque": "a computed-torque"}
+    text = (f"The robot follows the motion of {say.question_number(o['profile'])} under "
+            f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller with the gains "
+            f"$K_p$ {say.per_joint(o['gains'])}")
+    if "gains_d" in o:
+        text += f" and $K_d$ {say.per_joint(o['gains_d'])}"
+    if "start" in o:
+        text += f", starting from {say.joint_values(o['start'])}"
+    if "duration" in o:
+        text += f", for {say.value(o['duration'])} s"
+    return (text + ". Simulate the closed loop; give, for each joint, the largest tracking error "
+            "$|e|$ over the run and the signed error at the end.")
+
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
@@ -46,6 +63,7 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "p_control", "Closed-loop control", "§8 question 10",
+    statement=_statement,
     options={"profile": V.v_profile_ref, "gains": V.v_joint_values, "law": V.v_law,
              "gains_d": V.v_joint_values, "start": V.v_joint_values, "duration": V.v_expr},
     required=("gains",),
@@ -53,9 +71,9 @@ TYPE = QuestionType(
     needs_dynamics=True,
     answers=(
         # the simulation is accurate to ~1e-6 relative: 6 digits, the same on every machine
-        _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, symbolic=False,
+        _k("max_error", JOINT_MAP, "max |e| over the run", principal=True, unit="joint", symbolic=False,
            digits=6),
-        _k("final_error", JOINT_MAP, "signed e at the end", principal=True, symbolic=False,
+        _k("final_error", JOINT_MAP, "signed e at the end", principal=True, unit="joint", symbolic=False,
            digits=6),
         _k("t_max_error", JOINT_MAP, "time of the largest |e|", symbolic=False, digits=6),
     ),

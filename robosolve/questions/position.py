@@ -18,18 +18,26 @@ def notebook_cell(q, answer, problem):
                   ("position", compare_line("position", "robot.number(P, at).ravel()"))),
     )
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the question's point, frame and `at`."""
+    at = say.at(q)
+    return (f"Compute the pose ${{}}^{{0}}M_{{{q.frame}}}$ of {say.frame(q)} in frame 0 as a function of the "
+            f"joint variables ({say.joints()}), and the coordinates of {say.point(q)} in frame 0"
+            + (f"; give the numbers {at}" if at else "") + ".")
+
 
 TYPE = QuestionType(
     "position", "Position (direct kinematics)", "§8 question 1",
+    statement=_statement,
     options={},
     answers=(
-        _k("M", MATRIX, "pose ⁰Mₖ of the frame in frame 0", principal=True, shape=(4, 4),
+        _k("M", MATRIX, "pose ⁰Mₖ of the frame in frame 0", principal=True, unit="m", shape=(4, 4),
            pose=True, notation="⁰M{sub}", hints=(
                ("transposed", "the columns of R are the axes of frame {frame} in frame 0, and the "
                               "last column is the origin of frame {frame} in frame 0"),
                ("inverse", "that is the pose of frame 0 in frame {frame}; {symbol} gives frame "
                            "{frame} in frame 0 ({symbol} = ⁰M₁·¹M₂·…)"))),
-        _k("position", VECTOR, "the point in frame 0", principal=True, shape=(3,)),
+        _k("position", VECTOR, "the point in frame 0", principal=True, unit="m", shape=(3,)),
         _k("chain", MATRIX_LIST, "ⁱ⁻¹Mᵢ of each frame in its parent, from frame 1 on"),
     ),
     figures=(("robot", "robot"),),

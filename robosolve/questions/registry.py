@@ -43,7 +43,7 @@ def _collect() -> dict[str, QuestionType]:
 QUESTION_TYPES: dict[str, QuestionType] = _collect()
 
 # Keys every question may have, whatever its type (problem-format.md "Questions").
-COMMON_KEYS = ("type", "id", "at", "point", "frame", "marks", "grade")
+COMMON_KEYS = ("type", "id", "at", "point", "frame", "marks", "grade", "text")
 
 
 def question_type(name: str) -> QuestionType:

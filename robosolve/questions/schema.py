@@ -72,6 +72,9 @@ class AnswerKey:
     notation: str = ""            # the course's symbol in feedback ("{sub}": the question's frame
                                   #   as a subscript); hints may use {frame} and {symbol}
     hints: tuple = ()             # (diagnosis, sentence in the course's words) pairs
+    # -- for papers and answers templates (papers.md) --
+    unit: str = ""                # SI unit of the values; "joint" (rad or m by the joint's kind),
+                                  #   "joint/s", "joint/s²", "effort" (N·m or N), "" none
 
     @property
     def symbol(self) -> str:
@@ -130,6 +133,10 @@ class QuestionType:
     # or None (questions/notebook_code.py; render/notebook.py calls it).
     statement: Callable | None = None
     notebook_cells: Callable | None = None
+    # The principal keys a question's answer will have, known before solving (papers.md, the
+    # answers template): paper_keys(options, joints) with the parsed options and the number of
+    # joints; None: ``principal_keys_for(options)``
+    paper_keys: Callable | None = None
 
     def split_cost(self, joints: int) -> float:
         """The `cost` of one question of this type on a robot with `joints` joints."""
@@ -162,6 +169,12 @@ class QuestionType:
         if self.principal_for is not None and options is not None:
             return tuple(self.principal_for(options))
         return self.principal_keys
+
+    def template_keys(self, options: dict, joints: int) -> tuple:
+        """The principal keys of a question known before solving (papers.md)."""
+        if self.paper_keys is not None:
+            return tuple(self.paper_keys(options, joints))
+        return self.principal_keys_for(options)
 
     @property
     def principal_keys(self) -> tuple:

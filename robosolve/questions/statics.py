@@ -22,6 +22,21 @@ def _check(ql, path, item, q):
         if not ql.b.problem.bodies:
             chk.error(path + ("weight",), "weight: true needs bodies (masses)")
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the load, its coordinates and `at`."""
+    o, at = q.options, say.at(q)
+    coords = (f"the coordinates {say.coordinates(o['coordinates'])}" if o.get("coordinates")
+              else f"the coordinates of {say.point(q)} in frame 0")
+    loads = []
+    if "force" in o:
+        loads.append(f"the force $F_s = $ {say.math(list(o['force']))} applied along {coords}")
+    if "torque" in o:
+        loads.append(f"the torque {say.math(list(o['torque']))} on {say.frame(q)}")
+    if o.get("weight"):
+        loads.append("the weight of the bodies (gravity of the data)")
+    return ("Compute the joint forces $F_q$ (one per joint) that balance " + " and ".join(loads)
+            + (f", {at}" if at else "") + ".")
+
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
@@ -48,10 +63,11 @@ def notebook_cell(q, answer, problem):
 
 TYPE = QuestionType(
     "statics", "Statics", "§8 question 4",
+    statement=_statement,
     options={"force": V.v_exprs, "torque": V.v_vector3, "weight": V.v_bool, "coordinates": V.v_coordinates},
     defaults={"weight": False},
     answers=(
-        _k("Fq", JOINT_MAP, "joint forces balancing the load, Fq = −Jᵀ·Fs", principal=True,
+        _k("Fq", JOINT_MAP, "joint forces balancing the load, Fq = −Jᵀ·Fs", principal=True, unit="effort",
            hints=(("negated", "Fq = −Jᵀ·Fs is what the joints exert to balance the load; "
                               "+Jᵀ·Fs is the load's own action on the joints"),)),
     ),

@@ -24,14 +24,22 @@ def notebook_cell(q, answer, problem):
                   ("acceleration", compare_line("acceleration", "robot.number(H * P, at).ravel()[:3]"))),
     )
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the question's point, frame and `at`."""
+    at = say.at(q)
+    return (f"Compute the velocity and the acceleration of {say.point(q)} in frame 0 and the angular "
+            f"velocity of {say.frame(q)} in frame 0" + (f", {at}" if at else "")
+            + " (symbolic in the joint variables and their rates, or the numbers of this configuration).")
+
 
 TYPE = QuestionType(
     "velocity_acceleration", "Velocity and acceleration", "§8 question 2",
+    statement=_statement,
     options={},
     answers=(
-        _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, shape=(3,)),
-        _k("acceleration", VECTOR, "acceleration of the point in frame 0", principal=True, shape=(3,)),
-        _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, shape=(3,)),
+        _k("velocity", VECTOR, "velocity of the point in frame 0", principal=True, unit="m/s", shape=(3,)),
+        _k("acceleration", VECTOR, "acceleration of the point in frame 0", principal=True, unit="m/s²", shape=(3,)),
+        _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, unit="rad/s", shape=(3,)),
         _k("angular_acceleration", VECTOR, "ω̇ of the frame in frame 0", shape=(3,)),
         _k("W", MATRIX, "W₀ₖ = Ṁ M⁻¹, expressed in frame 0", shape=(4, 4)),
         _k("H", MATRIX, "H₀ₖ = M̈ M⁻¹ = Ẇ + W², expressed in frame 0", shape=(4, 4)),

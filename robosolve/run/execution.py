@@ -33,8 +33,20 @@ class SchedulerError(Exception):
 # ---------------------------------------------------------------------------
 # the task (runs in a worker)
 
-def make_task(text: str, file: str, formats=("md",), solve: bool = True) -> dict:
-    return {"text": text, "file": file, "formats": tuple(formats), "solve": solve}
+def make_task(text: str, file: str, formats=("md",), solve: bool = True, paper: dict | None = None) -> dict:
+    """`paper`: {"student", "variant"} to add the student's paper and answers template
+    (papers.md) to the files, solved or not."""
+    return {"text": text, "file": file, "formats": tuple(formats), "solve": solve, "paper": paper}
+
+
+def _paper(task: dict, problem) -> dict:
+    if not task.get("paper"):
+        return {}
+    from robosolve.papers.workflow import paper_files
+
+    formats = tuple(f for f in task.get("formats", ("md",)) if f == "html")
+    return paper_files(problem, "problem.yaml", task["paper"].get("student", ""),
+                       task["paper"].get("variant"), ("md",) + formats)
 
 
 def solve_task(task: dict):
@@ -51,8 +63,11 @@ def solve_task(task: dict):
         return FileResult(file, status=ExitStatus.INPUT, messages=[str(i) for i in exc.issues],
                           version=robosolve.__version__)
     if not task.get("solve", True):
-        return FileResult(file, problem.name, total=len(problem.questions), version=robosolve.__version__)
-    return solve_loaded(problem, tuple(task.get("formats", ("md",))))
+        return FileResult(file, problem.name, total=len(problem.questions), version=robosolve.__version__,
+                          files=_paper(task, problem))
+    result = solve_loaded(problem, tuple(task.get("formats", ("md",))))
+    result.files.update(_paper(task, problem))
+    return result
 
 
 def read_error(path, exc: BaseException):

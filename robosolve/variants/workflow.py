@@ -23,7 +23,8 @@ from robosolve.run.execution import make_task, run_tasks
 
 # what a variants folder holds, for the working directory written in place (robosolve.run.outputs)
 OWN_FILES = ("variants.csv", "*/problem.yaml", "*/report.md", "*/report.html", "*/report.ipynb",
-             "*/results.json", "*/figures/*.png")
+             "*/results.json", "*/figures/*.png", "*/paper.md", "*/paper.html", "*/answers.yaml",
+             "papers.html")
 
 
 @dataclass
@@ -162,7 +163,8 @@ def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=No
     Returns (status, results in variant order)."""
     from robosolve.run.outputs import write_output_folder
 
-    tasks = [make_task(v.text, f"{out}/{v.folder}/problem.yaml", formats, solve) for v in plan.variants]
+    tasks = [make_task(v.text, f"{out}/{v.folder}/problem.yaml", formats, solve,
+                       paper={"student": v.student, "variant": v.folder}) for v in plan.variants]
     results = [None] * len(tasks)
     files = {"variants.csv": variants_csv(plan)}
     step = progress.task("solving" if solve else "checking the variants", len(tasks)) if progress else None
@@ -178,6 +180,12 @@ def run(plan: Plan, out: Path, formats=("md",), solve=True, jobs=0, scheduler=No
     bad = [(v, r) for v, r in zip(plan.variants, results) if r.status == ExitStatus.INPUT]
     if bad:
         raise VariantInvalid([_invalid_variant_message(plan, bad)])
+    if "html" in formats:             # the whole class, one paper per printed page (papers.md)
+        from robosolve.papers.workflow import papers_html
+
+        pages = [(v.folder, files[f"{v.folder}/paper.html"]) for v in plan.variants
+                 if f"{v.folder}/paper.html" in files]
+        files["papers.html"] = papers_html(pages, f"{plan.problem.title or plan.problem.name}: papers")
     write_output_folder(out, dict(sorted(files.items())), inputs=inputs, own=OWN_FILES)
     status = max([r.status for r in results] + [ExitStatus.OK])
     return status, results

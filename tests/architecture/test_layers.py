@@ -29,7 +29,7 @@ LAYERS = {
     "kinematics": 3, "ik": 3, "dynamics": 3, "motion": 3, "geometry": 3,
     "solvers": 4,
     "render": 5,
-    "run": 6, "grading": 6, "variants": 6,
+    "run": 6, "grading": 6, "variants": 6, "papers": 6,
     "cli": 7, "__main__": 7,
 }
 ENGINES = {"kinematics", "ik", "dynamics", "motion", "geometry"}

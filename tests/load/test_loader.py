@@ -50,7 +50,7 @@ def test_unknown_top_key_with_did_you_mean():
     out = issues(GOOD + "jionts: []\n")
     assert out == ["f.yaml:12: jionts: unknown key 'jionts' (did you mean 'joints'?) (expected one of: "
                    "robosolve, name, title, description, parameters, joints, frames, dh, points, gravity, "
-                   "bodies, forces, questions, grading, variants)"]
+                   "bodies, forces, questions, grading, variants, paper)"]
 
 
 def test_undeclared_name_in_expression_with_did_you_mean():

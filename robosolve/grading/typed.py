@@ -1,0 +1,80 @@
+"""Matrices and vectors typed as one string (papers.md "What students may write"):
+MATLAB `"[1 0; 0 1]"`, `"[1, 0; 0, 1]"`, Python `"[[1, 0], [0, 1]]"`, `"[0.43, 0.65, 0]"`.
+
+The text becomes the nested lists of strings a YAML answer would hold; each entry is then
+read as an expression like any other (`^` for powers, `deg(…)`).
+"""
+
+from __future__ import annotations
+
+OPERATORS = "+-*/^"
+
+
+class ArrayTextError(ValueError):
+    """The text is not a matrix or vector in MATLAB or Python notation."""
+
+
+def _split(text: str, sep: str) -> list[str]:
+    """`text` split at `sep` outside brackets and parentheses."""
+    parts, depth, cur = [], 0, ""
+    for ch in text:
+        if ch in "([":
+            depth += 1
+        elif ch in ")]":
+            depth -= 1
+            if depth < 0:
+                raise ArrayTextError("unbalanced brackets")
+        if ch == sep and depth == 0:
+            parts.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    if depth != 0:
+        raise ArrayTextError("unbalanced brackets")
+    parts.append(cur)
+    return parts
+
+
+def _words(row: str) -> list[str]:
+    """A MATLAB row without commas: entries separated by spaces, `1 - 2` one entry, `1 -2` two."""
+    out: list[str] = []
+    for token in _split(row.strip(), " "):
+        if not token:
+            continue
+        joins = out and (out[-1][-1] in OPERATORS + "(" or token[0] in "*/^)"
+                         or (token in ("+", "-")))
+        if joins:
+            out[-1] = f"{out[-1]} {token}"
+        else:
+            out.append(token)
+    return out
+
+
+def _row(row: str) -> list[str]:
+    cells = _split(row, ",")
+    if len(cells) == 1:
+        cells = _words(row)
+    cells = [c.strip() for c in cells]
+    if not cells or any(not c for c in cells):
+        raise ArrayTextError("an empty entry")
+    return cells
+
+
+def parse_array(text: str):
+    """'[1 0; 0 1]' -> [['1', '0'], ['0', '1']]; '[1, 2, 3]' -> ['1', '2', '3'];
+    '[[1, 0], [0, 1]]' -> [['1', '0'], ['0', '1']]."""
+    t = text.strip()
+    if not (t.startswith("[") and t.endswith("]")):
+        raise ArrayTextError("a matrix or vector is written in brackets: [1 0; 0 1] or [[1, 0], [0, 1]]")
+    inner = t[1:-1].strip()
+    if not inner:
+        return []
+    if inner.startswith("["):                     # Python: a list of lists
+        items = [i.strip() for i in _split(inner, ",")]
+        if not all(i.startswith("[") and i.endswith("]") for i in items):
+            raise ArrayTextError("mixed rows and entries")
+        return [parse_array(i) for i in items]
+    rows = [r for r in _split(inner, ";")]
+    if len(rows) == 1:
+        return _row(rows[0])
+    return [_row(r) for r in rows]

@@ -1,0 +1,119 @@
+"""answers.yaml: the answers template of a paper (papers.md "The answers template").
+
+Every graded key of every question, in the paper's order, each under a comment saying what
+it is, its layout, whether it may be symbolic, and its unit; `~` (null) in the answer's
+shape. Nothing in it comes from the solution: it is the same bytes with or without solving.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+from robosolve.papers.keys import graded_keys, placeholder, shape
+from robosolve.questions import registry as R
+from robosolve.questions.registry import title as question_title
+
+PLAIN_KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_.]*$")
+
+
+def flow(value) -> str:
+    """A placeholder tree in YAML flow style: ~, [~, ~], {theta1: ~}."""
+    if value is None:
+        return "~"
+    if isinstance(value, list):
+        return "[" + ", ".join(flow(v) for v in value) + "]"
+    if isinstance(value, dict):
+        return "{" + ", ".join(f"{yaml_key(k)}: {flow(v)}" for k, v in value.items()) + "}"
+    return json.dumps(value)
+
+
+def yaml_key(key: str) -> str:
+    return key if PLAIN_KEY.fullmatch(key) and key not in ("y", "n", "yes", "no", "on", "off",
+                                                            "true", "false", "null") else json.dumps(key)
+
+
+def marks_text(marks) -> str:
+    text = str(marks)
+    return f"{text} mark" + ("" if text == "1" else "s")
+
+
+def unit_text(unit: str, problem) -> str:
+    """The unit of a key, the joint-dependent ones ("joint", "effort") told by the joints' kinds."""
+    kinds = {j.kind for j in problem.joints}
+    if unit.startswith("joint"):
+        rest = unit[len("joint"):]
+        names = {"revolute": "rad" + rest, "prismatic": "m" + rest}
+    elif unit == "effort":
+        names = {"revolute": "N·m", "prismatic": "N"}
+    else:
+        return unit
+    if len(kinds) == 1:
+        return names[next(iter(kinds))]
+    return f"{names['revolute']} (revolute joints) or {names['prismatic']} (prismatic)"
+
+
+def layout_text(ak, question, problem) -> str:
+    """How the answer is laid out, in words."""
+    kind = ak.kind
+    dims = shape(ak, question, problem)
+    joints = ", ".join(j.name for j in problem.joints)
+    if kind == R.MATRIX and len(dims) == 2:
+        return f"{dims[0]}×{dims[1]} matrix, a list of rows"
+    if kind == R.VECTOR and len(dims) == 1:
+        return f"a list of {dims[0]} values"
+    if kind == R.JOINT_MAP:
+        return f"one value per joint ({joints})"
+    if kind == R.ACTUATOR_MAP:
+        return "one value per actuator (" + ", ".join(str(j.actuator) for j in problem.joints) + ")"
+    if kind == R.ACTUATOR_RECORDS:
+        return ("per actuator (" + ", ".join(str(j.actuator) for j in problem.joints) + "): "
+                + ", ".join(f"{f.name} ({f.doc})" for f in ak.fields))
+    if kind == R.JOINT_MAP_SET:
+        element = "{" + ", ".join(f"{j.name}: …" for j in problem.joints) + "}"
+        return f"a set, a list of {element} in any order ([] when there is none)"
+    if kind == R.VECTOR_SET:
+        n = dims[0] if dims else 3
+        return f"a set, a list of [{', '.join(['…'] * n)}] in any order ([] when there is none)"
+    if kind == R.RECORD:
+        return "fields " + "; ".join(f"{f.name}: {f.doc} ({layout_text(f, question, problem)})"
+                                     for f in ak.fields)
+    if kind == R.BOOL:
+        return "true or false"
+    if kind == R.AXES:
+        return "a list of vectors, longest first"
+    return "a number or an expression"
+
+
+def form_text(ak) -> str:
+    if ak.symbolic and ak.numeric:
+        return "symbolic or numeric"
+    return "numeric" if ak.numeric else "symbolic"
+
+
+def key_comment(ak, question, problem) -> str:
+    parts = [ak.doc, layout_text(ak, question, problem), form_text(ak)]
+    unit = unit_text(ak.unit, problem)
+    if unit:
+        parts.append(unit)
+    return "; ".join(p for p in parts if p)
+
+
+def render_template(problem, problem_path: str, student: str = "", name: str | None = None) -> str:
+    """answers.yaml of `problem`; `problem_path`: the problem file relative to the template."""
+    lines = [f"# Answers for {name or problem.name} — fill in every ~ (null); keep the layout.",
+             "# A value is a number or an expression in the problem's names, e.g. \"L1*cos(theta1)\";",
+             "# a matrix may also be one string such as \"[1 0; 0 1]\", and ^ means a power.",
+             "robosolve-answers: 1",
+             f"problem: {json.dumps(problem_path)}",
+             f"student: {json.dumps(student)}",
+             "answers:"]
+    for i, q in enumerate(problem.questions, 1):
+        keys = graded_keys(q, problem)
+        if not keys:
+            continue
+        lines.append(f"  {yaml_key(q.id)}:  # {i}. {question_title(q.type)}, {marks_text(q.marks)}")
+        for gk in keys:
+            lines.append(f"    # {gk.key} — {key_comment(gk.answer_key, q, problem)}")
+            lines.append(f"    {yaml_key(gk.key)}: {flow(placeholder(gk.answer_key, q, problem))}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,230 @@
+"""The robot of an exam paper, drawn like a textbook figure (papers.md "The drawing").
+
+Data (papers/drawing.py): frames [{name, label, origin, axes}], links, points [{name, at}],
+joints [{label, at, revolute}], forces [{label, at, direction, kind}], gravity (a unit
+vector or None), plane (the two axes of frame 0 the robot moves in, or None: 3-D).
+2-D: the in-plane axes of each frame as arrows labelled x₁, y₁; an axis normal to the
+page as ⊙ (towards the reader) or ⊗ (away). Frames sharing an origin get longer axes, so
+that their labels do not overlap.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from robosolve.render.plots import fixed_layout, one_3d_box, save, subplots
+from robosolve.render.plots.robot import extent
+
+AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
+AXIS_NAMES = ("x", "y", "z")
+LINK = "0.3"
+FORCE = "tab:purple"
+NAMES = "xyz"
+
+
+def _scales(frames, size, base=0.16):
+    """Axis length of each frame: longer for each earlier frame at (nearly) the same origin."""
+    out, seen = [], []
+    for f in frames:
+        o = np.array(f["origin"], dtype=float)
+        k = sum(1 for p in seen if np.linalg.norm(p - o) < 0.05 * size)
+        out.append(base * size * (1 + 0.6 * k))
+        seen.append(o)
+    return out
+
+
+def _shared(frames, size):
+    """For each frame, how many earlier frames share its origin."""
+    out, seen = [], []
+    for f in frames:
+        o = np.array(f["origin"], dtype=float)
+        out.append(sum(1 for p in seen if np.linalg.norm(p - o) < 0.05 * size))
+        seen.append(o)
+    return out
+
+
+def _points_2d(d, h, v):
+    pts = [[0.0, 0.0]]
+    for link in d["links"]:
+        pts += [[p[h], p[v]] for p in link]
+    pts += [[p["at"][h], p["at"][v]] for p in d["points"]]
+    return np.array(pts, dtype=float)
+
+
+def _draw_2d(ax, d, size):
+    h, v = d["plane"]
+    normal = 3 - h - v
+    for link in d["links"]:
+        a = np.array(link, dtype=float)
+        ax.plot(a[:, h], a[:, v], "-", color=LINK, lw=4, solid_capstyle="round", zorder=2)
+    for j in d["joints"]:
+        x, y = j["at"][h], j["at"][v]
+        ax.plot([x], [y], "o" if j["revolute"] else "s", ms=9, mfc="white", mec=LINK, mew=2, zorder=3)
+        ax.annotate(j["label"], (x, y), xytext=(-14, 10), textcoords="offset points", fontsize=12,
+                    color="0.1", ha="right", zorder=6)
+    for f, s, k in zip(d["frames"], _scales(d["frames"], size), _shared(d["frames"], size)):
+        o = np.array(f["origin"], dtype=float)
+        for c, axis in enumerate(f["axes"]):
+            a = np.array(axis, dtype=float)
+            label = f"${AXIS_NAMES[c]}_{{{f['label']}}}$"
+            if abs(a[normal]) > 0.9:          # normal to the page: ⊙ / ⊗
+                towards = a[normal] > 0 if (h, v) != (0, 2) else a[normal] < 0
+                ax.plot([o[h]], [o[v]], "o", ms=7, mfc="white", mec=AXIS_COLOURS[c], mew=1.2, zorder=4)
+                ax.plot([o[h]], [o[v]], "." if towards else "x", ms=5 if towards else 4,
+                        color=AXIS_COLOURS[c], zorder=5)
+                ax.annotate(label, (o[h], o[v]), xytext=(6 + 16 * k, -15), textcoords="offset points",
+                            fontsize=10, color=AXIS_COLOURS[c])
+                continue
+            tip = o + a * s
+            ax.annotate("", xy=(tip[h], tip[v]), xytext=(o[h], o[v]),
+                        arrowprops=dict(arrowstyle="-|>", color=AXIS_COLOURS[c], lw=1.3), zorder=4)
+            ax.annotate(label, (tip[h], tip[v]), xytext=(3, 3), textcoords="offset points",
+                        fontsize=10, color=AXIS_COLOURS[c])
+    for p in d["points"]:
+        x, y = p["at"][h], p["at"][v]
+        ax.plot([x], [y], "s", ms=6, color="tab:orange", zorder=5)
+        ax.annotate(p["name"], (x, y), xytext=(7, 5), textcoords="offset points", fontsize=12,
+                    color="tab:orange", weight="bold")
+    for f in d["forces"]:
+        o, u = np.array(f["at"]), np.array(f["direction"]) * 0.3 * size
+        ax.annotate("", xy=(o[h] + u[h], o[v] + u[v]), xytext=(o[h], o[v]),
+                    arrowprops=dict(arrowstyle="-|>", color=FORCE, lw=2.2), zorder=6)
+        ax.annotate(f["label"], (o[h] + u[h], o[v] + u[v]), xytext=(5, -5), textcoords="offset points",
+                    fontsize=12, color=FORCE)
+    ax.set_xlabel(f"{NAMES[h]}₀ [m]")
+    ax.set_ylabel(f"{NAMES[v]}₀ [m]")
+    ax.grid(True, color="0.92", lw=0.6)
+
+
+def _frame_limits(ax, d, size, box):
+    """Limits around the drawing with equal scales on both axes of the `box` (inches)."""
+    h, v = d["plane"]
+    pts = _points_2d(d, h, v)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    pad = 0.35 * size
+    lo, hi = lo - pad, hi + pad
+    span = hi - lo
+    per_inch = max(span[0] / box[0], span[1] / box[1])
+    centre = (lo + hi) / 2
+    ax.set_xlim(centre[0] - per_inch * box[0] / 2, centre[0] + per_inch * box[0] / 2)
+    ax.set_ylim(centre[1] - per_inch * box[1] / 2, centre[1] + per_inch * box[1] / 2)
+
+
+def _gravity_2d(fig, d):
+    g = d.get("gravity")
+    if g is None:
+        return
+    h, v = d["plane"]
+    gh, gv = g[h], g[v]
+    if abs(gh) + abs(gv) < 1e-9:
+        fig.text(0.93, 0.78, "g ⊥ page", fontsize=10, ha="right")
+        return
+    ax = fig.add_axes([0.86, 0.68, 0.08, 0.12])
+    ax.set_axis_off()
+    ax.set_xlim(-1, 1)
+    ax.set_ylim(-1, 1)
+    n = np.hypot(gh, gv)
+    ax.annotate("", xy=(0.8 * gh / n, 0.8 * gv / n), xytext=(-0.8 * gh / n, -0.8 * gv / n),
+                arrowprops=dict(arrowstyle="-|>", color="0.15", lw=2))
+    ax.text(0.25, 0.0, "$g$", fontsize=13)
+
+
+def _draw_3d(ax, d, size) -> list:
+    """The robot in 3-D; returns its labels [(xyz, text, colour, size, weight)], placed later
+    by `_place_labels` (once the view is fixed) so that they do not overlap."""
+    labels = []
+    for link in d["links"]:
+        a = np.array(link, dtype=float)
+        ax.plot(a[:, 0], a[:, 1], a[:, 2], "-", color=LINK, lw=4)
+    for j in d["joints"]:
+        x, y, z = j["at"]
+        ax.scatter([x], [y], [z], s=50, facecolors="white", edgecolors=LINK, linewidths=2,
+                   depthshade=False, marker="o" if j["revolute"] else "s")
+        labels.append((j["at"], j["label"], "0.1", 12, "normal"))
+    for f, s in zip(d["frames"], _scales(d["frames"], size, 0.1)):
+        o = np.array(f["origin"], dtype=float)
+        for c, axis in enumerate(f["axes"]):
+            tip = o + np.array(axis, dtype=float) * s
+            ax.plot([o[0], tip[0]], [o[1], tip[1]], [o[2], tip[2]], color=AXIS_COLOURS[c], lw=1.4)
+            labels.append((tip, f"${AXIS_NAMES[c]}_{{{f['label']}}}$", AXIS_COLOURS[c], 9, "normal"))
+    for p in d["points"]:
+        ax.scatter(*[[x] for x in p["at"]], s=30, color="tab:orange", marker="s", depthshade=False)
+        labels.append((p["at"], p["name"], "tab:orange", 12, "bold"))
+    for f in d["forces"]:
+        o, u = np.array(f["at"]), np.array(f["direction"]) * 0.3 * size
+        ax.quiver(*o, *u, color=FORCE, lw=2, arrow_length_ratio=0.25)
+        labels.append((o + u, f["label"], FORCE, 12, "normal"))
+    g = d.get("gravity")
+    if g is not None:
+        a = np.array([1.0, 1.0, 1.0]) * 0.45 * size
+        ax.quiver(*a, *(np.array(g) * 0.3 * size), color="0.15", lw=2, arrow_length_ratio=0.3)
+        labels.append((a + np.array(g) * 0.3 * size, "$g$", "0.15", 12, "normal"))
+    return labels
+
+
+# offsets (points) tried in turn for a label, nearest first
+OFFSETS = [(4, 3), (4, -11), (-12, 3), (-12, -11), (4, 13), (-12, 13), (14, -3), (-22, -3),
+           (4, -21), (-12, -21), (4, 23), (18, 9), (-26, 9), (18, -15), (-26, -15)]
+
+
+def _width(text: str, points: float) -> float:
+    shown = text.replace("\\mathrm", "").replace("$", "").replace("{", "").replace("}", "")
+    shown = shown.replace("\\", "").replace("_", "")
+    shown = shown.replace("theta", "θ")
+    return max(len(shown), 1) * points * 0.6
+
+
+def _place_labels(ax, labels) -> None:
+    """Each label at the first offset from its anchor where it overlaps no label placed before."""
+    from mpl_toolkits.mplot3d import proj3d
+
+    m = ax.get_proj()
+    boxes = []
+    for xyz, text, colour, points, weight in labels:
+        x2, y2, _ = proj3d.proj_transform(*[float(v) for v in xyz], m)
+        px, py = ax.transData.transform((x2, y2)) * 72 / ax.figure.dpi      # in points
+        w, h = _width(text, points), points * 1.1
+        for dx, dy in OFFSETS:
+            box = (px + dx, py + dy, px + dx + w, py + dy + h)
+            if not any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3] for b in boxes):
+                break
+        else:
+            dx, dy = OFFSETS[0]
+            box = (px + dx, py + dy, px + dx + w, py + dy + h)
+        boxes.append(box)
+        ax.annotate(text, (x2, y2), xytext=(dx, dy), textcoords="offset points", fontsize=points,
+                    color=colour, weight=weight, annotation_clip=False, zorder=20,
+                    bbox=dict(boxstyle="square,pad=0.05", fc="white", ec="none", alpha=0.75))
+
+
+def _equal_3d(ax, d, size):
+    pts = [[0.0, 0.0, 0.0]] + [p for link in d["links"] for p in link] + [p["at"] for p in d["points"]]
+    a = np.array(pts, dtype=float)
+    centre = (a.max(axis=0) + a.min(axis=0)) / 2
+    half = max(size / 2 * 1.3, 1e-3)
+    for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
+        setter(c - half, c + half)
+    ax.set_box_aspect((1, 1, 1))
+    ax.set_xlabel("x₀ [m]")
+    ax.set_ylabel("y₀ [m]")
+    ax.set_zlabel("z₀ [m]")
+
+
+def draw(spec, path):
+    d = spec.data
+    size = extent([d])
+    if d.get("plane"):
+        fig, ax = subplots(figsize=(6.4, 5.6))
+        fixed_layout(fig, left=0.8, right=0.25, top=0.95, bottom=0.6)
+        _draw_2d(ax, d, size)
+        _frame_limits(ax, d, size, (6.4 - 0.8 - 0.25, 5.6 - 0.95 - 0.6))
+        _gravity_2d(fig, d)
+        ax.set_title(spec.title, fontsize=11)
+    else:
+        fig, ax = one_3d_box(6.4, 6.2)
+        labels = _draw_3d(ax, d, size)
+        _equal_3d(ax, d, size)
+        ax.view_init(elev=22, azim=-55)
+        _place_labels(ax, labels)
+        fig.suptitle(spec.title, fontsize=11)
+    save(fig, path)

@@ -1,0 +1,94 @@
+"""The answers template round trip over every bundled problem (papers.md "The answers template"):
+blank -> every graded key `missing` (exit 1, never 2); filled from the golden results.json ->
+every graded key `correct`. The reference is rebuilt from the golden results.json (no solve)."""
+
+from __future__ import annotations
+
+import json
+from types import SimpleNamespace
+
+import pytest
+import sympy as sp
+import yaml
+
+from conftest import PROBLEMS, ROOT
+from robosolve.grading.answers import read_answers_text, resolve_answers
+from robosolve.grading.grader import Grader
+from robosolve.grading.reference import Reference, lookup
+from robosolve.load.loader import load_problem
+from robosolve.papers.keys import graded_keys
+from robosolve.papers.template import render_template
+
+FILES = sorted(PROBLEMS.glob("*.yaml"))
+
+
+def _sym(tree, names):
+    if isinstance(tree, dict):
+        return {k: _sym(v, names) for k, v in tree.items()}
+    if isinstance(tree, list):
+        return [_sym(v, names) for v in tree]
+    if isinstance(tree, str):
+        try:
+            return sp.sympify(tree, locals=names)
+        except (sp.SympifyError, AttributeError, TypeError, SyntaxError):
+            return tree
+    return tree
+
+
+def golden_reference(problem) -> tuple[Reference, dict]:
+    results = json.loads((ROOT / "tests" / "golden" / problem.name / "results.json").read_text())["answers"]
+    answers = []
+    for q in problem.questions:
+        r = results[q.id]
+        extra = {k: v for k, v in r.items() if k not in ("type", "symbolic", "numeric", "figures", "notes", "error")}
+        answers.append(SimpleNamespace(id=q.id, error=r.get("error"), symbolic=_sym(r.get("symbolic", {}), problem.names),
+                                       numeric=r.get("numeric", {}), extra=extra))
+    return Reference.from_report(SimpleNamespace(problem=problem, answers=answers)), results
+
+
+def _grade(problem, ref, text):
+    sub = resolve_answers(read_answers_text(text, "answers.yaml"), problem)
+    return Grader(ref).grade(sub.student, sub.answers)
+
+
+def _filled(problem, results) -> dict:
+    data = {}
+    for q in problem.questions:
+        r = results[q.id]
+        data[q.id] = {}
+        for gk in graded_keys(q, problem):
+            value = r.get(gk.key) if gk.answer_key.top else lookup(r.get("numeric", {}), gk.key)
+            if value is None:
+                value = lookup(r.get("symbolic", {}), gk.key)
+            data[q.id][gk.key] = value
+    return data
+
+
+@pytest.mark.parametrize("file", FILES, ids=[f.stem for f in FILES])
+def test_template_round_trip(file):
+    problem = load_problem(file)
+    ref, results = golden_reference(problem)
+    text = render_template(problem, "problem.yaml")
+    # the template's keys are the graded keys of the reference, in order, and the keys the
+    # reference lacks at these values (a singular configuration: no condition number)
+    for q, qref in zip(problem.questions, ref.questions):
+        keys = tuple(g.key for g in graded_keys(q, problem))
+        assert tuple(k for k in keys if qref.has(k) or qref.error) == qref.graded_keys(), q.id
+    blank = _grade(problem, ref, text)
+    assert not blank.all_correct
+    for qr in blank.questions:
+        for key in qr.graded:
+            assert qr.keys[key].verdict in ("missing", "no_reference"), (qr.id, key, qr.keys[key])
+            if qr.keys[key].verdict == "missing":
+                assert "still ~" in qr.keys[key].feedback
+    data = yaml.safe_load(text)
+    filled = _filled(problem, results)
+    for qid, keys in data["answers"].items():
+        for key in keys:
+            if filled[qid][key] is not None:
+                keys[key] = filled[qid][key]
+    result = _grade(problem, ref, yaml.safe_dump(data, allow_unicode=True))
+    bad = [(qr.id, k, qr.keys[k]) for qr in result.questions for k in qr.graded
+           if qr.keys[k].verdict != "correct"]
+    assert not bad
+    assert result.all_correct

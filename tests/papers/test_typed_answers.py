@@ -1,0 +1,91 @@
+"""Answers the way people type them (papers.md "What students may write"): matrices and
+vectors as MATLAB or Python strings, `^` for powers; `check --echo`, `check --no-expected`."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+from typer.testing import CliRunner
+
+from robosolve.cli import app
+from robosolve.grading.typed import ArrayTextError, parse_array
+
+runner = CliRunner()
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("[1 0; 0 1]", [["1", "0"], ["0", "1"]]),
+    ("[1, 0; 0, 1]", [["1", "0"], ["0", "1"]]),
+    ("[[1, 0], [0, 1]]", [["1", "0"], ["0", "1"]]),
+    ("[0.43, 0.65, 0]", ["0.43", "0.65", "0"]),
+    ("[1 -2]", ["1", "-2"]),
+    ("[1 - 2]", ["1 - 2"]),
+    ("[cos(a + b) -sin(a + b); L1^2 deg(30)]", [["cos(a + b)", "-sin(a + b)"], ["L1^2", "deg(30)"]]),
+    ("[a * b, c]", ["a * b", "c"]),
+    ("[]", []),
+])
+def test_parse_array(text, expected):
+    assert parse_array(text) == expected
+
+
+@pytest.mark.parametrize("text", ["[1, 2", "[1, , 2]", "[[1, 2], 3]", "1 2", "[(1, 2]"])
+def test_parse_array_refuses(text):
+    with pytest.raises(ArrayTextError):
+        parse_array(text)
+
+
+ARM = """\
+robosolve: 1
+name: arm
+parameters: {L1: 1/2, L2: 2/5}
+joints:
+  - {name: theta1, type: revolute}
+  - {name: theta2, type: revolute}
+frames:
+  "1": {pose: "Rz(theta1) Tx(L1)"}
+  "2": {pose: "Rz(theta2) Tx(L2)"}
+questions:
+  - {type: position, at: {theta1: 0, theta2: pi/2}}
+"""
+
+
+def _answers(tmp_path, m, position):
+    (tmp_path / "arm.yaml").write_text(ARM)
+    f = tmp_path / "a.yaml"
+    f.write_text("robosolve-answers: 1\nproblem: arm.yaml\nstudent: s1\nanswers:\n  position:\n"
+                 f"    M: {json.dumps(m)}\n    position: {json.dumps(position)}\n")
+    return f
+
+
+M_MATLAB = ("[cos(theta1 + theta2) -sin(theta1 + theta2) 0 L1*cos(theta1) + L2*cos(theta1 + theta2); "
+            "sin(theta1 + theta2) cos(theta1 + theta2) 0 L1*sin(theta1) + L2*sin(theta1 + theta2); "
+            "0 0 1 0; 0 0 0 1]")
+
+
+def test_typed_matrix_and_powers_are_graded(tmp_path):
+    f = _answers(tmp_path, M_MATLAB, "[0.5, 0.4, 0]")
+    r = runner.invoke(app, ["check", str(f), "--json", "-"])
+    assert r.exit_code == 0, r.output
+    f = _answers(tmp_path, [[0, -1, 0, "2^(-1)"], [1, 0, 0, "0.4"], [0, 0, 1, 0], [0, 0, 0, 1]], "[0.5; 0.4; 0]")
+    r = runner.invoke(app, ["check", str(f), "--json", "-"])
+    assert r.exit_code == 0, r.output
+
+
+def test_echo_and_no_expected(tmp_path):
+    f = _answers(tmp_path, "[1 0; 0 1]", "[0.5, 0.41, 0]")
+    r = runner.invoke(app, ["check", str(f), "--echo", "--no-expected"])
+    assert r.exit_code == 1
+    out = r.output
+    assert "read them" in out and out.index("read them") < out.index("verdict")
+    assert "[[1, 0], [0, 1]]" in out and "[0.5, 0.41, 0]" in out
+    assert "wrong_shape" in out
+    verdicts = out.split("verdict", 1)[1]
+    assert not re.search(r"expected \S+ =|; expected", verdicts)
+    assert not re.search(r"\b0\.4\b", verdicts)
+    r = runner.invoke(app, ["check", str(f), "--no-expected", "--json", str(tmp_path / "r.json")])
+    record = (tmp_path / "r.json").read_text()
+    assert "entry 2 is 0.41" in record and not re.search(r"expected \S+ =|; expected", record)
+    r = runner.invoke(app, ["check", str(f), "--json", str(tmp_path / "r2.json")])
+    assert "expected position = [0.5, 0.4, 0]" in (tmp_path / "r2.json").read_text()
