@@ -119,6 +119,15 @@ def v_equations(ql, path, value, q):
     return out if len(out) == len(value) else None
 
 
+def v_ik_target(ql, path, value, q):
+    """An inverse-kinematics target: equations on coordinates, or a pose (load/pose_target.py)."""
+    from robosolve.load.pose_target import is_pose_target, v_pose_target
+
+    if is_pose_target(value):
+        return v_pose_target(ql, path, value, q)
+    return v_equations(ql, path, value, q)
+
+
 def v_joint_values(ql, path, value, q, require_all=True):
     chk = ql.chk
     if not isinstance(value, dict):

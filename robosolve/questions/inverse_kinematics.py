@@ -12,6 +12,8 @@ from robosolve.questions.notebook_code import at_literal, compare_line, lines, l
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
     target = q.options.get("target") or []
+    if not isinstance(target, list):
+        return _pose_cell(q, answer, problem, target)
     if not target:
         return None
     limits = []
@@ -51,6 +53,12 @@ def notebook_cell(q, answer, problem):
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the target, the velocity and the selection."""
     o = q.options
+    if not isinstance(o["target"], list):       # a pose target (load/pose_target.py)
+        t = o["target"]
+        where = f"the point {q.point}" if q.point_given else f"frame {q.frame}"
+        return (f"Find every configuration ({say.joints()}) within the joint limits that puts {where} at the "
+                f"position ${say.tex(t.p)}$ with the orientation $R = {say.tex(t.R)}$ (none, if the pose "
+                "cannot be reached).")
     target = ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in o["target"])
     text = (f"Find every configuration ({say.joints()}) within the joint limits that puts {target}"
             " (none, if the target cannot be reached)")
@@ -79,10 +87,32 @@ def _check(ql, path, item, q):
                          f"its `at` may override parameters only, not '{key}'{hint}")
 
 
+def _pose_cell(q, answer, problem, target):
+    """A pose target: each of robosolve's solutions checked by the direct kinematics (a search
+    over six joints is too long for a notebook cell)."""
+    names = [j.name for j in problem.joints]
+    frame = problem.points[q.point].frame if q.point_given else q.frame
+    want = {"solutions": answer.numeric.get("solutions") or []}
+    R = [[text(target.R[i, k]) for k in range(3)] for i in range(3)]
+    p = [text(v) for v in target.p]
+    where = (f"(robot.pose({frame!r})[:3, :3].row_join(robot.point0({q.point!r})))" if q.point_given
+             else f"robot.pose({frame!r})[:3, :]")
+    return lines(
+        f"at = {at_literal(q)}",
+        f"target = robot.number(robot.matrix({literal(R)}).row_join(robot.vector({literal(p)})), at)",
+        "robosolve = " + literal(want),
+        "# every solution robosolve lists, put through the direct kinematics: it must reach the pose",
+        f"fk = {where}",
+        "reached = [s for s in robosolve['solutions']",
+        f"           if np.max(np.abs(robot.number(fk, {{**at, **{{k: repr(float(v)) for k, v in s.items()}}}}) - target)) < 1e-9]",
+        f"compare('solutions', [{{k: s[k] for k in {names!r}}} for s in reached], robosolve['solutions'])",
+    )
+
+
 TYPE = QuestionType(
     "inverse_kinematics", "Inverse kinematics", "§8 question 6",
     statement=_statement,
-    options={"target": V.v_equations, "velocity": V.v_equations, "select": V.v_select},
+    options={"target": V.v_ik_target, "velocity": V.v_equations, "select": V.v_select},
     required=("target",),
     defaults={"select": "limits"},
     answers=(

@@ -20,7 +20,9 @@ from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.ik import closed_form as cfm
 from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
 from robosolve.ik.numeric import wrap_angle
+from robosolve.load.pose_target import PoseTarget
 from robosolve.load.problem import Question
+from robosolve.solvers.ik_pose import solve_pose_question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
 
@@ -51,6 +53,13 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 
     subs = ctx.substitutions({s: v for s, v in question.at.items() if s in ctx.problem.parameters})
     params = {s: v for s, v in subs.items()}
+    if isinstance(opts["target"], PoseTarget):
+        ik_joints, limit_notes = _ik_joints(joints, ctx, params)
+        for n_ in limit_notes:
+            ans.note(n_)
+        res = solve_pose_question(question, ctx, ans, ik_joints, params, tex)
+        figure(ans, ctx, params, res, ik_joints, question)
+        return ans
     equations, target_syms, shown, values, missing = _target_equations(opts["target"], model, ctx, params)
     ik_joints, limit_notes = _ik_joints(joints, ctx, params)
     for n_ in limit_notes:
@@ -86,7 +95,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         ans.extra["reason"] = res.reason
         ans.numeric["solutions"] = []
         ans.steps.append(Step("Unreachable target", "No solution: " + (res.reason_tex or "") + "."))
-        _figure(ans, ctx, params, res, ik_joints, question)
+        figure(ans, ctx, params, res, ik_joints, question)
         return ans
 
     how = ("the first of the sorted solutions inside the joint limits" if select_num is None else
@@ -97,7 +106,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
                           equations=[(names[j.symbol], res.selected[j.name]) for j in ik_joints]))
     if opts.get("velocity"):
         _velocity(ans, ctx, model, opts["velocity"], params, ik_joints, res, values, tex)
-    _figure(ans, ctx, params, res, ik_joints, question)
+    figure(ans, ctx, params, res, ik_joints, question)
     return ans
 
 
@@ -306,7 +315,7 @@ def _redundant_answer(ans, res, ik_joints, tex):
     return ans
 
 
-def _figure(ans, ctx, params, res, ik_joints, question):
+def figure(ans, ctx, params, res, ik_joints, question):
     sols = res.all_solutions[:12]
     if not sols and res.nearest is None:
         return
@@ -330,7 +339,7 @@ def _figure(ans, ctx, params, res, ik_joints, question):
     point = question.point
     target = None
     coords = {}
-    for text, lhs, rhs in question.options["target"]:
+    for text, lhs, rhs in (question.options["target"] if isinstance(question.options["target"], list) else ()):
         if _is_point_coordinate(lhs):
             pname, axis = lhs.name.split(".")
             try:

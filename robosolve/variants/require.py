@@ -222,6 +222,8 @@ class RequirementChecker:
         from robosolve.ik.numeric import NumericSystem, solve_all
 
         q = self._question(r.question)
+        if not isinstance(q.options["target"], list):
+            raise _Unusable("cannot be checked: `reachable` works with coordinate targets, not a pose")
         model = self.model
         params, _ = self._at_values(q)
         qs = list(model.q)

@@ -1,0 +1,565 @@
+"""Inverse kinematics of a pose: every configuration putting a frame at a given ⁰M.
+
+`solve_pose` takes the chain from frame 0 to the target frame as its local 4x4 matrices
+(plain sympy, every parameter already a number, only joint symbols left), the joints and the
+target rotation R and position p of the frame. The course's way first:
+
+- **kinematic decoupling** when the last three joints form a spherical wrist (their axes meet
+  at one point, the wrist centre, fixed in the target frame at ``c``): the wrist centre
+  ``w = p + R·c`` depends on the first three joints only, which `solve_ik` finds (closed form
+  when the elimination works); then ³R₆ = (⁰R₃)ᵀ·R gives the wrist's three angles (ZYZ-like,
+  two branches, a continuum at the wrist singularity where one representative is kept);
+- otherwise every solution of the 12 pose equations (counted as 6) by the deterministic
+  multi-start search of `robosolve.ik.numeric`.
+
+Every solution is polished by Newton on the 12 equations and kept only when the forward
+kinematics reproduce the target to 1e-9. The result has the solutions inside the limits
+(sorted, angles wrapped into (−π, π]), the rejected ones, the selection, the closed form in the
+target's symbols r11…r33, px, py, pz, the derivation steps, and for an unreachable pose the reason.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+
+from robosolve.core.numpy_code import numpy_modules
+from robosolve.core.prose import Num, Text
+from robosolve.ik.engine import IKJoint, in_limits, solve_ik
+from robosolve.core.angles import wrap_angle
+from robosolve.ik.numeric import DEDUPE_TOL, sort_solutions
+
+FK_TOL = 1e-9
+R_SYMS = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}"))
+P_SYMS = sp.Matrix(sp.symbols("px py pz"))
+W_SYMS = sp.symbols("w_x w_y w_z")
+B_SYMS = sp.symbols("b_11 b_21 b_x b_y")       # ¹M₄'s entries in the planar 3R of the UR family
+
+
+@dataclass
+class PoseStep:
+    title: str
+    text: object
+    equations: list = field(default_factory=list)
+
+
+@dataclass
+class PoseResult:
+    status: str = "ok"                      # ok | unreachable
+    method: str = "numeric"                 # decoupling | numeric
+    solutions: list[dict] = field(default_factory=list)
+    all_solutions: list[dict] = field(default_factory=list)
+    rejected: list[tuple[dict, list]] = field(default_factory=list)
+    wrist_singular: list[bool] = field(default_factory=list)   # per entry of all_solutions
+    selected: dict | None = None
+    selected_index: int | None = None
+    closed_form: list[dict] | None = None   # joint name -> expression in r11..r33, px, py, pz
+    steps: list[PoseStep] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    reason: str | None = None
+    wrist_centre: list[float] | None = None
+    centre_in_frame: list[float] | None = None
+    joints: list = field(default_factory=list)
+    nearest: dict | None = None             # (the figure's interface: no nearest configuration here)
+
+
+@dataclass
+class _Chain:
+    factors: list
+    joints: list
+    q: list
+
+    def product(self, lo, hi):
+        m = sp.eye(4)
+        for f in self.factors[lo:hi]:
+            m = m * f
+        return m
+
+    def joints_of(self, lo, hi):
+        s = set()
+        for f in self.factors[lo:hi]:
+            s |= f.free_symbols
+        return s & set(self.q)
+
+
+# ---------------------------------------------------------------------------
+# forward kinematics and Newton on the 12 equations
+
+class _FK:
+    def __init__(self, chain: _Chain):
+        M = chain.product(0, len(chain.factors))
+        entries = [M[i, j] for i in range(3) for j in range(4)]
+        self.f = sp.lambdify(chain.q, entries, modules=numpy_modules(), cse=True)
+        self.jac = sp.lambdify(chain.q, list(sp.Matrix(entries).jacobian(chain.q)),
+                               modules=numpy_modules(), cse=True)
+        self.n = len(chain.q)
+
+    def residual(self, q, target):
+        return np.array(self.f(*q), dtype=float) - target
+
+    def polish(self, q, target, iters=30):
+        q = np.array(q, dtype=float)
+        best, best_q = np.inf, q.copy()
+        for _ in range(iters):
+            r = self.residual(q, target)
+            nr = float(np.max(np.abs(r)))
+            if nr < best:
+                best, best_q = nr, q.copy()
+            if nr < 1e-15:
+                break
+            J = np.array(self.jac(*q), dtype=float).reshape(12, self.n)
+            step = np.linalg.lstsq(J, -r, rcond=1e-13)[0]
+            if not np.all(np.isfinite(step)) or np.max(np.abs(step)) < 1e-17:
+                break
+            q = q + step
+        return best_q, best
+
+
+# ---------------------------------------------------------------------------
+# the spherical wrist
+
+def find_wrist(chain: _Chain):
+    """(split, c_t, c_s): the first three joints in factors[:split], the last three after it,
+    and a point c_t of the target frame (c_s in frame `split`) that they do not move; or None."""
+    q = chain.q
+    if len(q) != 6 or not all(j.revolute for j in chain.joints):
+        return None
+    split = next((s for s in range(1, len(chain.factors))
+                  if chain.joints_of(0, s) == set(q[:3]) and chain.joints_of(s, len(chain.factors)) == set(q[3:])),
+                 None)
+    if split is None:
+        return None
+    tail = chain.product(split, len(chain.factors))
+    f = sp.lambdify(q[3:], [tail[i, j] for i in range(3) for j in range(4)], modules=numpy_modules())
+    rows, rhs = [], []
+    for k, qs in enumerate(((0.3, 1.1, -0.7), (-1.2, 0.4, 2.0), (2.2, -1.9, 0.6), (0.9, 2.7, -2.4))):
+        m = np.array(f(*qs), dtype=float).reshape(3, 4)
+        rows.append(np.hstack([m[:, :3], -np.eye(3)]))
+        rhs.append(-m[:, 3])
+    A, b = np.vstack(rows), np.concatenate(rhs)
+    if np.linalg.matrix_rank(A, tol=1e-9) < 6:
+        return None
+    x = np.linalg.lstsq(A, b, rcond=None)[0]
+    if np.max(np.abs(A @ x - b)) > 1e-10:
+        return None
+    x = [0.0 if abs(v) < 1e-12 else float(f"{v:.12g}") for v in x]
+    return split, x[:3], x[3:]
+
+
+def _exact(v: float):
+    return sp.Integer(int(round(v))) if abs(v - round(v)) < 1e-15 else sp.Float(v, 15)
+
+
+def _wrist_centre_symbols(c_t):
+    """w = p + R·c in the target's symbols."""
+    c = sp.Matrix([_exact(v) for v in c_t])
+    return list(P_SYMS + R_SYMS * c)
+
+
+def _chop(m):
+    """cos(pi/2) = 6e-17 from a float twist, 1.0 for 1: the structure shows again."""
+    reps = {}
+    for f in m.atoms(sp.Float):
+        r = round(float(f))
+        if abs(float(f) - r) < 1e-12:
+            reps[f] = sp.Integer(r)
+    return m.xreplace(reps).applyfunc(sp.expand) if reps else m
+
+
+# ---------------------------------------------------------------------------
+# the solver
+
+def solve_pose(factors, joints: list[IKJoint], R, p, select="limits", latex_names=None, tex=None,
+               time_limit_s: float | None = 20.0) -> PoseResult:
+    """Every configuration of `joints` with the chain's last frame at (R, p). See the module docstring."""
+    chain = _Chain([_chop(sp.Matrix(f)) for f in factors], list(joints), [j.symbol for j in joints])
+    R, p = np.asarray(R, dtype=float), np.asarray(p, dtype=float)
+    target = np.hstack([R, p[:, None]]).reshape(12)
+    fk = _FK(chain)
+    res = PoseResult()
+    names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
+    wrist = find_wrist(chain)
+    raw, par = None, None
+    if wrist is not None:
+        raw = _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s)
+    elif (par := find_parallel(chain)) is not None:
+        raw = _three_parallel(res, chain, par, R, p, names, tex, time_limit_s)
+    if raw is None:
+        raw = _numeric(res, chain, R, p, wrist is None and par is None)
+    _verify(res, fk, raw, target, chain)
+    _finish(res, select)
+    return res
+
+
+def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
+    """Arm from the wrist centre, wrist from ³R₆; raw solutions (lists), or None to fall back."""
+    split, c_t, c_s = wrist
+    w = p + R @ np.array(c_t)
+    res.method, res.wrist_centre, res.centre_in_frame = "decoupling", [float(v) for v in w], list(c_t)
+    head = chain.product(0, split)
+    W = list(head * sp.Matrix([*c_s, 1]))[:3]
+    arm_joints = [IKJoint(j.symbol, True, None) for j in chain.joints[:3]]
+    arm = solve_ik([(sp.expand(W[k]), W_SYMS[k]) for k in range(3)], arm_joints,
+                   dict(zip(W_SYMS, map(float, w))), closed_form=True, time_limit_s=time_limit_s,
+                   target_symbols=W_SYMS, latex_names=names, tex=tex)
+    wc = _wrist_centre_symbols(c_t)
+    res.steps.append(_centre_step(c_t, wc, w, split, names, chain))
+    if arm.status == "unreachable":
+        res.status = "unreachable"
+        res.reason = "the wrist centre is beyond the reach of the arm: " + str(arm.reason)
+        return []
+    if arm.status != "ok":
+        res.notes.append("the first three joints do not have isolated solutions for this wrist centre: "
+                         "searched numerically on the 12 pose equations")
+        return None
+    arm_cf = _arm_closed_form(res, arm, wc, names)
+    R3 = head[:3, :3]
+    tail = chain.product(split, len(chain.factors))[:3, :3]
+    wrist_joints = [IKJoint(j.symbol, True, None) for j in chain.joints[3:]]
+    A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{i + 1}{j + 1}"))
+    raw, wrist_cf, singular_seen = [], None, False
+    R3f = sp.lambdify(chain.q[:3], R3, modules=numpy_modules())
+    for sol in arm.all_solutions:
+        q123 = [sol[j.name] for j in arm_joints]
+        a = np.array(R3f(*q123), dtype=float).T @ R
+        ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, wrist_cf is None)
+        singular_seen |= singular
+        if cf is not None and wrist_cf is None:
+            wrist_cf = cf
+        raw += [(q123 + list(wq), singular) for wq in ws]
+    res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen))
+    if wrist_cf is not None and arm_cf is not None:
+        sub = {A[i, j]: (R3.T * R_SYMS)[i, j] for i in range(3) for j in range(3)}
+        res.closed_form = [{**a_b, **{k: v.xreplace(sub) for k, v in w_b.items()}}
+                           for a_b in arm_cf for w_b in wrist_cf]
+    if not raw and res.status == "ok":
+        res.status = "unreachable"
+        res.reason = "the orientation is not attainable: the wrist cannot give ³R₆ = (⁰R₃)ᵀ·R"
+    return raw
+
+
+def _arm_closed_form(res, arm, wc, names):
+    if arm.closed_form is None:
+        res.notes.append("the first three joints: " + (arm.closed_form_note or "no closed form")
+                         + "; solved numerically")
+        return None
+    sub = dict(zip(W_SYMS, wc))
+    for st in arm.closed_form.steps:
+        res.steps.append(PoseStep("Arm: " + st.title, st.text, list(st.equations)))
+    return [{str(k): v.xreplace(sub) for k, v in b.items()} for b in arm.closed_form_branches]
+
+
+def _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, derive=True):
+    """The wrist's solutions for ³R₆ = a (numbers): (list of [q4, q5, q6], closed form, singular)."""
+    vals = {A[i, j]: float(a[i, j]) for i in range(3) for j in range(3)}
+    eqs = [(tail[i, j], A[i, j]) for i in range(3) for j in range(3)]
+    r = solve_ik(eqs, wrist_joints, vals, closed_form=derive, time_limit_s=time_limit_s,
+                 target_symbols=set(vals), latex_names=names, tex=tex)
+    cf = None
+    if r.closed_form is not None:
+        cf = [{str(k): v for k, v in b.items()} for b in r.closed_form_branches]
+    if r.status == "ok":
+        return [[d[j.name] for j in wrist_joints] for d in r.all_solutions], cf, False
+    if r.status == "unreachable":
+        return [], cf, False
+    # the wrist singularity: a continuum; the representative with the last angle 0
+    last = wrist_joints[-1].symbol
+    eqs0 = [(sp.sympify(l).subs(last, 0), rhs) for l, rhs in eqs]
+    r0 = solve_ik(eqs0, wrist_joints[:-1], vals, closed_form=False, target_symbols=set(vals))
+    return [[d[j.name] for j in wrist_joints[:-1]] + [0.0] for d in r0.all_solutions], cf, True
+
+
+# ---------------------------------------------------------------------------
+# three parallel axes (the UR family)
+
+def _axis_in(Mf, q, k, base_inv):
+    """Direction of joint k's axis in the frame whose inverse pose is base_inv (finite differences)."""
+    m0 = np.array(Mf(*q), dtype=float)
+    d = list(q)
+    d[k] += 1e-7
+    dM = (np.array(Mf(*d), dtype=float) - m0) / 1e-7
+    W = dM[:3, :3] @ m0[:3, :3].T
+    a = np.array([W[2, 1], W[0, 2], W[1, 0]])
+    return a / np.linalg.norm(a)
+
+
+def find_parallel(chain: _Chain):
+    """(split, Q): joint 1 in factors[:split], joints 2, 3, 4 with parallel axes along a coordinate
+    axis of frame `split`, turned onto z by the constant rotation Q (4x4); or None."""
+    q = chain.q
+    if len(q) != 6 or not all(j.revolute for j in chain.joints):
+        return None
+    n = len(chain.factors)
+    split = next((s for s in range(1, n) if chain.joints_of(0, s) == {q[0]} and chain.joints_of(s, n) == set(q[1:])),
+                 None)
+    if split is None:
+        return None
+    tail = chain.product(split, n)
+    Mf = sp.lambdify(q[1:], tail, modules=numpy_modules())
+    qv = [0.37, -0.81, 1.23, 0.55, -1.7]
+    axes = [_axis_in(Mf, qv, k, None) for k in (0, 1, 2)]
+    if not all(np.linalg.norm(np.cross(axes[0], a)) < 1e-6 for a in axes[1:]):
+        return None
+    u = axes[0]
+    k = int(np.argmax(np.abs(u)))
+    if abs(abs(u[k]) - 1) > 1e-9:
+        return None
+    sign = 1 if u[k] > 0 else -1
+    from robosolve.core.transforms import rot_x, rot_y
+    Q = {2: sp.eye(4) if sign > 0 else rot_x(sp.pi), 1: rot_x(-sign * sp.pi / 2), 0: rot_y(sign * sp.pi / 2)}[k]
+    return split, Q.T       # Q.T·u = z: rows of Q.T are the new axes
+
+
+def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
+    """The UR way: in frame 1 (axes 2, 3, 4 along z) the z row of ¹M₆ depends on q5, q6 only;
+    with q1 it gives q1, q5, q6, then the planar 3R gives q2, q3, q4."""
+    split, Q = par
+    n = len(chain.factors)
+    head, tail = chain.product(0, split), chain.product(split, n)
+    from robosolve.core.transforms import rigid_inverse
+    Msym = sp.Matrix(sp.BlockMatrix([[R_SYMS, P_SYMS], [sp.zeros(1, 3), sp.ones(1, 1)]]))
+    lhs = (Q * rigid_inverse(head) * Msym).applyfunc(sp.expand)       # of q1 and the target
+    rhs = (Q * tail).applyfunc(sp.expand)                               # of q2..q6
+    q = chain.q
+    zrow = [rhs[2, j].subs({q[1]: 0, q[2]: 0, q[3]: 0}) for j in range(4)]
+    if not _independent_of(rhs, zrow, q):
+        return None
+    vals = {R_SYMS[i, j]: float(R[i, j]) for i in range(3) for j in range(3)}
+    vals.update({P_SYMS[i]: float(p[i]) for i in range(3)})
+    first = [IKJoint(q[k], True, None) for k in (0, 4, 5)]
+    eqs1 = _first_equations(zrow, lhs, q)
+    st1 = solve_ik(eqs1, first, vals, closed_form=True, time_limit_s=time_limit_s,
+                   target_symbols=set(vals), latex_names=names, tex=tex)
+    res.method = "three parallel axes"
+    res.steps.append(_parallel_step(zrow, lhs, split, names))
+    if st1.status == "unreachable":
+        res.status, res.reason = "unreachable", "the pose is beyond the reach or its orientation is not attainable: " + str(st1.reason)
+        return []
+    if st1.status != "ok":
+        res.notes.append("three parallel axes: q1, q5, q6 are not isolated at this pose (a singularity); "
+                         "searched numerically on the 12 pose equations")
+        return None
+    for stp in (st1.closed_form.steps if st1.closed_form is not None else []):
+        res.steps.append(PoseStep("q1, q5, q6: " + stp.title, stp.text, list(stp.equations)))
+    rest = [IKJoint(q[k], True, None) for k in (1, 2, 3)]
+    eqs2, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
+    bf = sp.lambdify([*vals, *(j.symbol for j in first)], planar, modules=numpy_modules()) if planar else None
+    raw, cf2, reasons = [], None, []
+    for k, sol in enumerate(st1.all_solutions):
+        v2 = dict(vals)
+        v2.update({j.symbol: sol[j.name] for j in first})
+        if planar:
+            v2 = dict(zip(B_SYMS, map(float, bf(*v2.values()))))
+        st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and k == 0, time_limit_s=time_limit_s,
+                       target_symbols=set(v2), latex_names=names, tex=tex)
+        if k == 0 and st2.closed_form is not None:
+            cf2 = st2
+        if st2.status == "unreachable" and st2.reason:
+            reasons.append(str(st2.reason))
+        for d in st2.all_solutions:
+            raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
+                        False))
+    if not raw:
+        res.status = "unreachable"
+        res.reason = ("the pose is beyond the reach: for every value of q1, q5, q6 the planar arm of joints "
+                      "2, 3, 4 cannot reach the point it must" + (" (" + reasons[0] + ")" if reasons else ""))
+    if cf2 is not None:
+        for stp in cf2.closed_form.steps:
+            res.steps.append(PoseStep("q2, q3, q4: " + stp.title, stp.text, list(stp.equations)))
+    if st1.closed_form is not None and cf2 is not None:
+        bsub = dict(zip(B_SYMS, planar))
+        res.closed_form = [{**{str(k): v for k, v in a.items()}, **{str(k): v.xreplace(bsub) for k, v in b.items()}}
+                           for a in st1.closed_form_branches for b in cf2.closed_form_branches]
+    return raw
+
+
+def _planar_equations(chain, split, Q, lhs, rhs, Msym, q):
+    """The planar 3R of q2, q3, q4: ¹M₄ = ¹M₆·(⁴M₆)⁻¹ (x, y rows of the rotation's first column and
+    of the position), when the chain splits after q4; else the first two rows of ¹M₆."""
+    from robosolve.core.transforms import rigid_inverse
+    n = len(chain.factors)
+    s2 = next((k for k in range(split + 1, n) if chain.joints_of(split, k) == set(q[1:4])
+               and chain.joints_of(k, n) == set(q[4:])), None)
+    if s2 is None:
+        return [(sp.expand(rhs[i, j] - lhs[i, j]), 0) for i in (0, 1) for j in range(4)], None
+    mid = (Q * chain.product(split, s2)).applyfunc(sp.expand)
+    target = (lhs * rigid_inverse(chain.product(s2, n))).applyfunc(sp.expand)
+    keys = [(i, j) for j in (0, 3) for i in (0, 1)]
+    return [(mid[i, j], B_SYMS[k]) for k, (i, j) in enumerate(keys)], [target[i, j] for i, j in keys]
+
+
+def _first_equations(zrow, lhs, q):
+    """The z row's four equations, the position one made free of q5, q6 by subtracting a constant
+    combination of the rotation ones (for the UR: p_z - d6·r33), so that q1 comes first."""
+    eqs = [sp.expand(zrow[j] - lhs[2, j]) for j in range(4)]
+    f = sp.lambdify(q[4:], zrow, modules=numpy_modules())
+    samples = [(0.3, 1.1), (-1.2, 0.4), (2.0, -2.2), (0.9, 2.7), (-0.4, -1.5)]
+    rows = np.array([np.broadcast_to(np.array(f(*s), dtype=float), (4,)) for s in samples])
+    A = np.hstack([rows[:, :3], np.ones((len(samples), 1))])
+    lam, *_ = np.linalg.lstsq(A, rows[:, 3], rcond=None)
+    if np.max(np.abs(A @ lam - rows[:, 3])) < 1e-10:
+        lam = [0 if abs(v) < 1e-12 else _exact(float(f"{v:.12g}")) for v in lam[:3]]
+        pos = sp.expand(eqs[3] - sum(l * e for l, e in zip(lam, eqs[:3])))
+        eqs[3] = pos.xreplace({a: 0 for a in pos.atoms(sp.Float) if abs(a) < 1e-12})
+    return [(e, 0) for e in eqs]
+
+
+def _independent_of(rhs, zrow, q) -> bool:
+    f = sp.lambdify(q[1:], [rhs[2, j] - zrow[j] for j in range(4)], modules=numpy_modules())
+    for qs in ((0.3, 1.1, -0.7, 0.4, 2.0), (-1.2, 0.4, 2.0, -2.2, 0.9)):
+        if np.max(np.abs(np.array(f(*qs), dtype=float))) > 1e-10:
+            return False
+    return True
+
+
+def _parallel_step(zrow, lhs, split, names) -> PoseStep:
+    return PoseStep(
+        "Three parallel axes: the row along them",
+        f"The axes of joints 2, 3 and 4 are parallel (the UR family). Written in frame {split} (axes turned so "
+        "that they lie along $z$), ${}^{1}M_{6} = ({}^{0}M_{1})^{-1} M$; rotations about $z$ leave the $z$ row "
+        "unchanged, so the third row of ${}^{1}M_{6}$ depends on $q_5$, $q_6$ only: four equations for "
+        "$q_1$, $q_5$, $q_6$. The first two rows are then a planar 3R problem for $q_2$, $q_3$, $q_4$: "
+        "${}^{1}M_{4} = {}^{1}M_{6}\\,({}^{4}M_{6})^{-1}$ is known, its entries $b_{11}, b_{21}$ (the first "
+        "column of the rotation, the angle $q_2 + q_3 + q_4$) and $b_x, b_y$ (the position) give two "
+        "elbow branches.",
+        [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), ("[({}^{0}M_{1})^{-1} M]_{3}", sp.Matrix([list(lhs[2, :])]))])
+
+
+def _numeric(res, chain, R, p, no_wrist):
+    """Every solution of the 12 pose equations by the multi-start search."""
+    M = chain.product(0, len(chain.factors))
+    target = np.hstack([R, p[:, None]])
+    eqs = [(M[i, j], float(target[i, j])) for i in range(3) for j in range(4)]
+    r = solve_ik(eqs, [IKJoint(j.symbol, j.revolute, None) for j in chain.joints], {}, closed_form=False)
+    res.method = "numeric"
+    res.notes += list(r.notes)
+    if no_wrist:
+        res.notes.append(_no_wrist_note(chain))
+    res.steps.append(PoseStep(
+        "Numeric solution",
+        "The 12 equations ⁰M(q) = M (nine of the rotation, three of the position; six independent) "
+        "are solved by a deterministic multi-start Newton search over every joint's range."))
+    if r.status == "unreachable" or not r.all_solutions:
+        res.status = "unreachable"
+        res.reason = _numeric_reason(r)
+        return []
+    return [([d[j.name] for j in chain.joints], False) for d in r.all_solutions]
+
+
+def _no_wrist_note(chain) -> str:
+    if len(chain.q) == 6 and parallel_axes(chain):
+        return ("three parallel axes (the UR family): no spherical wrist to decouple; the solutions are "
+                "found numerically from the 12 pose equations")
+    return "no spherical wrist: the solutions are found numerically from the 12 pose equations"
+
+
+def parallel_axes(chain) -> bool:
+    """Joints 2, 3, 4 with parallel axes (at a generic configuration)."""
+    qv = [0.37, -0.81, 1.23, 0.55, -1.7, 0.9]
+    axes, M = [], sp.eye(4)
+    for f in chain.factors:
+        M = M * f
+    q = chain.q
+    Mf = sp.lambdify(q, M, modules=numpy_modules())
+    base = np.array(Mf(*qv), dtype=float)
+    for k in (1, 2, 3):
+        d = list(qv)
+        d[k] += 1e-6
+        dM = (np.array(Mf(*d), dtype=float) - base) / 1e-6
+        W = dM[:3, :3] @ base[:3, :3].T
+        axes.append(np.array([W[2, 1], W[0, 2], W[1, 0]]))
+    axes = [a / np.linalg.norm(a) for a in axes]
+    return all(np.linalg.norm(np.cross(axes[0], a)) < 1e-4 for a in axes[1:])
+
+
+def _numeric_reason(r) -> str:
+    if r.reason:
+        return "the pose is beyond the reach or its orientation is not attainable: " + str(r.reason)
+    return "the pose is beyond the reach or its orientation is not attainable (no configuration found)"
+
+
+def _verify(res, fk, raw, target, chain):
+    rev = [j.revolute for j in chain.joints]
+    kept, flags = [], []
+    for q, singular in raw:
+        qp, err = fk.polish(q, target)
+        if err > FK_TOL * max(1.0, float(np.max(np.abs(target)))):
+            res.notes.append(f"a candidate solution was dropped: forward kinematics misses the target by {err:.2e}")
+            continue
+        d = {j.name: (wrap_angle(float(v)) if r else float(v)) for j, v, r in zip(chain.joints, qp, rev)}
+        if any(_same(d, e, chain.joints) for e in kept):
+            continue
+        kept.append(d)
+        flags.append(singular)
+    order = sort_solutions(list(range(len(kept))), get=lambda i: [kept[i][j.name] for j in chain.joints])
+    res.all_solutions = [kept[i] for i in order]
+    res.wrist_singular = [flags[i] for i in order]
+    res.joints = chain.joints
+    if any(flags):
+        res.notes.append("wrist singularity: the wrist's first and last axes are aligned, only their sum "
+                         "(or difference) is determined; the representative with the last wrist angle 0 is given")
+
+
+def _same(a, b, joints, tol=DEDUPE_TOL):
+    return all(abs(wrap_angle(a[j.name] - b[j.name]) if j.revolute else a[j.name] - b[j.name]) < tol
+               for j in joints)
+
+
+def _finish(res: PoseResult, select):
+    joints = res.joints
+    for d in res.all_solutions:
+        broken = in_limits(d, joints)
+        if broken:
+            res.rejected.append((d, broken))
+        else:
+            res.solutions.append(d)
+    if res.status == "ok" and not res.solutions:
+        res.status = "unreachable"
+        if res.rejected:
+            res.reason = "every solution breaks a joint limit: " + str(
+                Text.join("; ", [Text.join(", ", b) for _, b in res.rejected]))
+        else:
+            res.reason = res.reason or "the pose is beyond the reach or its orientation is not attainable"
+    if not res.solutions:
+        return
+    if isinstance(select, dict):
+        tgt = {j.name: float(select.get(j.name, 0.0)) for j in joints}
+        def dist(d):
+            return math.sqrt(sum((wrap_angle(d[j.name] - tgt[j.name]) if j.revolute else d[j.name] - tgt[j.name]) ** 2
+                                 for j in joints))
+        res.selected_index = min(range(len(res.solutions)), key=lambda i: (dist(res.solutions[i]), i))
+    else:
+        res.selected_index = 0
+    res.selected = res.solutions[res.selected_index]
+
+
+# ---------------------------------------------------------------------------
+# steps
+
+def _centre_step(c_t, wc, w, split, names, chain) -> PoseStep:
+    c = sp.Matrix([_exact(v) for v in c_t])
+    return PoseStep(
+        "Kinematic decoupling: the wrist centre",
+        f"The axes of the last three joints meet at one point, the wrist centre W (a spherical wrist), "
+        f"fixed in the target frame and not moved by the wrist joints. Its position "
+        f"${{}}^{{0}}\\vec{{r}}_W = \\vec p + R\\,\\vec c$ depends on the first three joints only "
+        f"(frames 0 to {split}), so they are found from W; the last three then give the orientation.",
+        [("\\vec c", c), ("{}^{0}\\vec{r}_W", sp.Matrix(wc)), ("{}^{0}\\vec{r}_W", [[float(v)] for v in w])])
+
+
+def _wrist_step(R3, tail, A, names, tex, singular) -> PoseStep:
+    text = ("With the first three joints known, the wrist's rotation is "
+            "${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R$ (written $a_{ij}$ below); equating it to the wrist's "
+            "product of rotations gives the last three angles as Euler-like (ZYZ) angles: two branches, "
+            "from the sign of the middle angle's sine.")
+    if singular:
+        text += (" At this pose the middle wrist angle's sine is 0 (the wrist singularity): the first and "
+                 "last wrist axes are aligned, only their sum is determined.")
+    else:
+        text += " The wrist is singular where the middle wrist angle's sine vanishes (first and last axes aligned)."
+    return PoseStep("Kinematic decoupling: the wrist", text,
+                    [("{}^{3}R_{6}(" + ", ".join(names.get(s, str(s)) for s in sorted(tail.free_symbols, key=str)) + ")",
+                      tail), ("{}^{3}R_{6}", A)])
