@@ -153,8 +153,12 @@ def as_written(value) -> str:
     return str(value)
 
 
-def _wrong_labels(outcome) -> str:
-    """What is wrong, without the expected value (`--no-expected`)."""
+def _wrong_given(outcome, g) -> str:
+    """What is wrong, with what was given there but not the expected value (`--no-expected`)."""
+    if outcome.where:
+        parts = [f"{label} is {show(_at(g, p))}" for label, p in zip(outcome.wrong, outcome.where)][:3]
+        more = len(outcome.where) - len(parts)
+        return "wrong: " + "; ".join(parts) + (f" (and {more} more)" if more > 0 else "")
     if outcome.wrong and outcome.wrong != ["the value"]:
         return "wrong: " + ", ".join(outcome.wrong)
     return "this is not the expected value"
@@ -308,7 +312,7 @@ class Grader:
             return KeyResult(verdict, compared, diagnosis, f"{text}; {expected_text}", hidden=text,
                              expected=shown, credit=credit)
         return KeyResult(INCORRECT, compared, "", self._wrong_entries(outcome, g, e) + expected_text,
-                         hidden=_wrong_labels(outcome), expected=shown, credit=credit)
+                         hidden=_wrong_given(outcome, g), expected=shown, credit=credit)
 
     def _credit(self, ak, diagnosis: str, outcome, e) -> Fraction:
         """Partial credit (grading.md): the diagnosis's share, or the share of entries right."""

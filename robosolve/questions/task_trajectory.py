@@ -94,8 +94,40 @@ def _check(ql, path, item, q):
         chk.error(path + ("shape",), "shape: quintic goes with `duration`")
 
 
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the path, its ends, its timing and the branch."""
+    o = q.options
+
+    def place(eqs):
+        return ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in eqs)
+
+    path = o.get("path", "line")
+    if isinstance(path, dict) and "circle" in path:
+        circle = path["circle"]
+        shape = f"along the arc of circle of centre {say.math(list(circle['center']))}"
+        if circle.get("normal") is not None:
+            shape += f" and normal {say.math(list(circle['normal']))}"
+        shape += " (the shorter way)"
+    else:
+        shape = "along a straight line"
+    text = f"{say.point(q)[0].upper() + say.point(q)[1:]} moves {shape} from {place(o['from'])} to {place(o['to'])}"
+    if "duration" in o:
+        text += f", with a quintic timing law over {say.value(o['duration'])} s"
+    else:
+        text += (f", with a trapezoidal timing law along the path: maximum speed "
+                 f"{say.value(o['max_velocity'])} m/s and maximum acceleration "
+                 f"{say.value(o['max_acceleration'])} m/s²")
+    start = o.get("start")
+    branch = (f"following the inverse-kinematics branch of {say.joint_values(start)}" if isinstance(start, dict)
+              else "following the inverse-kinematics solution of the start chosen within the joint limits")
+    return (text + f", {branch}. Compute the duration $T$, the length of the path, the joint "
+            "configurations at both ends, the largest joint rates and accelerations along the "
+            "motion, and the smallest singular value of the Jacobian along the path.")
+
+
 TYPE = QuestionType(
     "task_trajectory", "Work-space trajectory", "§1.2.2",
+    statement=_statement,
     options={"coordinates": V.v_coordinates, "from": V.v_equations, "to": V.v_equations, "path": v_path,
              "max_velocity": v_positive, "max_acceleration": v_positive, "duration": V.v_duration,
              "shape": v_quintic, "start": V.v_joint_values},

@@ -43,6 +43,10 @@ def _inputs(problem, text: str) -> set[str]:
     values = list(problem.parameters.values()) + [v for q in problem.questions for v in q.at.values()]
     values += [x for j in problem.joints if j.limits for x in j.limits]
     values += [x for q in problem.questions for x in _leaves(q.options) if isinstance(x, sp.Basic)]
+    for q in problem.questions:        # a pose target's R and p: the given orientation, as a matrix
+        target = q.options.get("target")
+        if hasattr(target, "R") and hasattr(target, "p"):
+            values += list(target.R) + list(target.p)
     subs = {s: v for s, v in problem.parameters.items() if v is not None}
     for v in values:
         try:
