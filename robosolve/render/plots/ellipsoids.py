@@ -54,12 +54,12 @@ def _semi_axis_label(k, ln, panel):
     return f"{_axis_letter(k)} = " + (_fmt(ln) if ln is not None else "∞") + f" {panel['unit']}"
 
 
-def _legend(ax, panel, links, finite, s):
+def _legend(ax, panel, links, finite, s, **where):
     """The semi-axes' lengths (and the drawing scale) in a legend placed where it hides the
     least of the drawing (labels written at the tips overlapped the ellipse and each other)."""
     title = (f"scale: 1 {panel['unit']} = {_fmt(s)} m"
              if links and finite and max(finite) > 0 else None)
-    leg = ax.legend(loc="best", fontsize=8, title=title, title_fontsize=8, framealpha=0.9,
+    leg = ax.legend(**(where or {"loc": "best"}), fontsize=8, title=title, title_fontsize=8, framealpha=0.9,
                     handlelength=1.5)
     leg.set_zorder(10)
 
@@ -145,7 +145,8 @@ def _draw_3d(ax, spec_data, panel, color):
                 ha="center", va="center")
         ax.plot([], [], "-" if ln is not None else "--", color=color, lw=1.5,
                 label=_semi_axis_label(k, ln, panel))
-    _legend(ax, panel, links, finite, s)
+    # a 3-D panel's "best" is its top right, under the title: the empty top left instead
+    _legend(ax, panel, links, finite, s, loc="upper left", bbox_to_anchor=(0.0, 0.94))
     labels = spec_data["axis_labels"]
     unit_axis = "m" if links else panel["unit"]
     ax.set_xlabel(f"{labels[0]} [{unit_axis}]")
