@@ -9,8 +9,9 @@ one configuration, each in its own panel, drawn at the end effector over the rob
     end: [x, y(, z)]                   where the ellipses are centred
     panels: [{title, unit, lengths: [float|null], directions: [[...]]}, ...]
 
-The robot is drawn at true scale (m); each ellipse is scaled to fit next to it and its
-semi-axes are labelled with their true lengths and units (a null length is an infinite
+The robot is drawn at true scale (m); each ellipse is scaled to fit next to it; its
+semi-axes carry a letter past their tips (a, b, c) and the legend gives their true lengths,
+units and the drawing scale (a null length is an infinite
 semi-axis: the ellipse degenerates into two parallel lines; a zero length flattens it).
 Without a robot (coordinates that are not positions) the ellipse is drawn at true scale.
 """
