@@ -11,6 +11,7 @@ solve context carries one: `ctx.budgets.simplify`); engines use the defaults.
 | --- | --- | --- |
 | `chain_product` (alias `tidy`) | entries of chain products M, W, H, L (c1 c2 - s1 s2 -> cos(q1 + q2)) | `chain_ops` (+ `chain_seconds` safety net) |
 | `tidy_products` | chain products of long arms (5+ joints): addition formulas, trigsimp only when a power of sin/cos is left | as `chain_product` |
+| `congruence_entry` | entries of M J Mᵀ (a pseudo-inertia in frame 0): the shorter of the canonical form and the expanded product of tidied factors (d² m s1², not d² m - d² m c1²) | none (one expand) |
 | `jacobian_entry` | Jacobian entries: trigsimp, then factor if shorter | none (entries are small) |
 | `small_trig` | small pieces: the dynamics engine's sympy fallback, twists L = dM/dq M^-1 | none |
 | `exact_geometry` | rotation / displacement quantities (angles, axes, quaternions) | `geometry_ops` |
@@ -42,6 +43,7 @@ from robosolve.errors import SymbolicTimeout
 
 __all__ = [
     "SimplifyBudgets", "DEFAULT_BUDGETS", "chain_product", "tidy", "tidy_matrix", "jacobian_entry",
+    "congruence_entry",
     "small_trig", "exact_geometry", "full", "bounded_full", "ik_fraction", "determinant_factors",
     "factored_determinant", "coefficient", "factored", "radicals", "eigenvalue", "rational",
     "is_zero",
@@ -264,6 +266,15 @@ def _has_trig_products(expr) -> bool:
 
 def tidy_matrix(m: sp.Matrix, seconds: float | None = None) -> sp.Matrix:
     return m.applyfunc(lambda e: tidy(e, seconds))
+
+
+def congruence_entry(canonical, product):
+    """One entry of a congruence M J Mᵀ (a pseudo-inertia moved to frame 0), given two
+    equal forms: `canonical` (a trig-ring form, each sin² written 1 - cos²) and `product`
+    (the entry of the product of the tidied factors, which holds the compact squares:
+    d² m s1², m (L1 s1 + L2 s12)²). The shorter by count_ops; `canonical` on a tie."""
+    expanded = sp.expand(product)
+    return expanded if sp.count_ops(expanded) < sp.count_ops(canonical) else canonical
 
 
 def _has_trig_squares(expr) -> bool:

@@ -33,7 +33,7 @@ from typing import Mapping
 import sympy as sp
 
 from robosolve.core.matrices import action_matrix
-from robosolve.core.simplify import coefficient
+from robosolve.core.simplify import coefficient, congruence_entry
 from robosolve.core.transforms import skew, vex
 from robosolve.core.trigring import TrigAlgebra, fourier_terms, product_terms
 from robosolve.dynamics.sympy_algebra import SympyAlgebra
@@ -466,7 +466,15 @@ class DynamicsEngine:
             m = self._rrel(BASE, b.frame)
             mt = [list(r) for r in zip(*m)]
             return alg.matmul(alg.matmul(m, self._mat4(("J", b.name))), mt)
-        return self._view(("J0", b.name), self._cached(("rJ0", b.name), build))
+        ring = self._view(("J0", b.name), self._cached(("rJ0", b.name), build))
+        if not self.simplify or self.n > COMPACT_MAX_JOINTS:
+            return ring
+
+        def compact():
+            m = self.M0(b.frame)
+            product = m * sp.Matrix(b.J) * m.T
+            return sp.Matrix(4, 4, [congruence_entry(c, p) for c, p in zip(ring, product)])
+        return self._cached(("J0 compact", b.name), compact)
 
     def W0(self, name: str) -> sp.Matrix:
         """⁰W₀ⱼ = Σᵢ ⁰Lᵢⱼ q̇ᵢ (for the report)."""

@@ -128,3 +128,35 @@ def test_puma560_problem_against_robotics_toolbox():
     assert tau == pytest.approx(ref, rel=1e-9, abs=1e-9 * np.abs(ref).max())
     assert np.array(ans.numeric["mass_matrix"]) == pytest.approx(p.inertia(q), rel=1e-9,
                                                                  abs=1e-12)
+
+
+def _frame0_pseudo_inertia(ans, body):
+    step = next(s for s in ans.steps if s.title == "Pseudo-inertia of each body")
+    head = f"{{}}^{{0}}J_{{\\mathrm{{{body}}}}}"
+    return next(sp.Matrix(e) for name, e in step.equations if name.startswith(head))
+
+
+def test_scara_payload_frame0_pseudo_inertia_compact_and_equal():
+    """Issue 22: ⁰J entries were written with sin² as 1 - cos² (−L1² m c1² + … +
+    m (L1² + L2²) for m (L1 s1 + L2 s12)²). The entry is now the short form, equal at
+    random points to the old form and to m p pᵀ built by hand (p = the payload in frame 0)."""
+    ans = _answer("scara-payload-dynamics")
+    j0 = _frame0_pseudo_inertia(ans, "payload")
+    syms = {s.name: s for s in j0.free_symbols}
+    L1, L2, h, m = (syms.get(n, sp.Symbol(n)) for n in ("L1", "L2", "h", "m_p"))
+    t1, t2, l = (syms.get(n, sp.Symbol(n)) for n in ("theta1", "theta2", "l"))
+    entry = j0[1, 1]
+    assert not entry.has(sp.cos(t1) ** 2), entry
+    old = (-L1**2 * m * sp.cos(t1)**2 + L1 * L2 * m * sp.cos(t2)
+           - L1 * L2 * m * sp.cos(2 * t1 + t2) - L2**2 * m * sp.cos(t1 + t2)**2
+           + m * (L1**2 + L2**2))
+    assert sp.count_ops(entry) < sp.count_ops(old), entry
+    p = sp.Matrix([L1 * sp.cos(t1) + L2 * sp.cos(t1 + t2),
+                   L1 * sp.sin(t1) + L2 * sp.sin(t1 + t2), h - l, 1])
+    ref = m * p * p.T
+    rng = np.random.default_rng(22)
+    for _ in range(5):
+        at = dict(zip((L1, L2, h, m, t1, t2, l), rng.uniform(-3, 3, 7)))
+        assert float(entry.subs(at)) == pytest.approx(float(old.subs(at)), rel=1e-12, abs=1e-12)
+        got = np.array(j0.subs(at), dtype=float)
+        assert got == pytest.approx(np.array(ref.subs(at), dtype=float), rel=1e-12, abs=1e-12)

@@ -9,8 +9,9 @@ one configuration, each in its own panel, drawn at the end effector over the rob
     end: [x, y(, z)]                   where the ellipses are centred
     panels: [{title, unit, lengths: [float|null], directions: [[...]]}, ...]
 
-The robot is drawn at true scale (m); each ellipse is scaled to fit next to it and its
-semi-axes are labelled with their true lengths and units (a null length is an infinite
+The robot is drawn at true scale (m); each ellipse is scaled to fit next to it; its
+semi-axes carry a letter past their tips (a, b, c) and the legend gives their true lengths,
+units and the drawing scale (a null length is an infinite
 semi-axis: the ellipse degenerates into two parallel lines; a zero length flattens it).
 Without a robot (coordinates that are not positions) the ellipse is drawn at true scale.
 """
@@ -46,6 +47,24 @@ def _robot_extent(robot, end):
     return span if span > 1e-9 else None
 
 
+def _axis_letter(k):
+    return "abc"[k] if k < 3 else str(k + 1)
+
+
+def _semi_axis_label(k, ln, panel):
+    return f"{_axis_letter(k)} = " + (_fmt(ln) if ln is not None else "∞") + f" {panel['unit']}"
+
+
+def _legend(ax, panel, links, finite, s, **where):
+    """The semi-axes' lengths (and the drawing scale) in a legend placed where it hides the
+    least of the drawing (labels written at the tips overlapped the ellipse and each other)."""
+    title = (f"scale: 1 {panel['unit']} = {_fmt(s)} m"
+             if links and finite and max(finite) > 0 else None)
+    leg = ax.legend(**(where or {"loc": "best"}), fontsize=8, title=title, title_fontsize=8, framealpha=0.9,
+                    handlelength=1.5)
+    leg.set_zorder(10)
+
+
 def _placement(spec_data, panel):
     """The ellipse's centre, the robot's links as arrays (none without a robot) and the
     scale that fits the panel's ellipse next to the robot."""
@@ -78,16 +97,19 @@ def _draw_2d(ax, spec_data, panel, color):
         for sign in (1, -1):
             a, b = end + sign * off - far, end + sign * off + far
             ax.plot([a[0], b[0]], [a[1], b[1]], "-", color=color, lw=2, zorder=5)
+    pad = 0.08 * max(big, _robot_extent(spec_data.get("robot"), end) or 0.0, 1e-9)
     for k, (ln, d) in enumerate(zip(lengths, dirs)):
         reach = (ln * s) if ln is not None else 2 * (big if big > 0 else 1.0)
-        tip = end + reach * d
         style = "-" if ln is not None else "--"
-        ax.plot([end[0] - reach * d[0], tip[0]], [end[1] - reach * d[1], tip[1]], style,
-                color=color, lw=1, alpha=0.8, zorder=4)
-        label = f"{'ab'[k] if k < 2 else k} = " + (_fmt(ln) if ln is not None else "∞") \
-            + f" {panel['unit']}"
-        ax.annotate(label, xy=tip, xytext=(4, 4), textcoords="offset points", color=color,
-                    fontsize=9, zorder=6)
+        ax.plot([end[0] - reach * d[0], end[0] + reach * d[0]],
+                [end[1] - reach * d[1], end[1] + reach * d[1]], style,
+                color=color, lw=1, alpha=0.8, zorder=4, label=_semi_axis_label(k, ln, panel))
+        # the axis letter just past the tip, outside the ellipse (the values are in the legend)
+        at = end + (reach + pad) * d
+        ax.text(at[0], at[1], _axis_letter(k), color=color, fontsize=10, fontweight="bold",
+                ha="center", va="center", zorder=6,
+                bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.8})
+        ax.plot(*at, alpha=0.0)  # keeps the letter inside the data limits
     labels = spec_data["axis_labels"]
     unit_axis = "m" if links else panel["unit"]
     ax.set_xlabel(f"{labels[0]} [{unit_axis}]")
@@ -96,9 +118,7 @@ def _draw_2d(ax, spec_data, panel, color):
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.axhline(0, color="0.6", lw=0.6)
     ax.axvline(0, color="0.6", lw=0.6)
-    if links and finite and max(finite) > 0:
-        ax.text(0.02, 0.02, f"ellipse scale: 1 {panel['unit']} = {_fmt(s)} m",
-                transform=ax.transAxes, fontsize=8, color="0.3")
+    _legend(ax, panel, links, finite, s)
     ax.set_title(f"{panel['title']} [{panel['unit']}]", fontsize=10)
 
 
@@ -121,11 +141,13 @@ def _draw_3d(ax, spec_data, panel, color):
         a, b = end - e * d, end + e * d
         ax.plot([a[0], b[0]], [a[1], b[1]], [a[2], b[2]], "-" if ln is not None else "--",
                 color=color, lw=1.5)
-        ax.text(*b, f"{'abc'[k]} = " + (_fmt(ln) if ln is not None else "∞") + f" {panel['unit']}",
-                color=color, fontsize=8)
-    if links and finite and max(finite) > 0:
-        ax.text2D(0.02, 0.02, f"ellipsoid scale: 1 {panel['unit']} = {_fmt(s)} m",
-                  transform=ax.transAxes, fontsize=8, color="0.3")
+        at = end + 1.12 * e * d
+        ax.text(*at, _axis_letter(k), color=color, fontsize=9, fontweight="bold",
+                ha="center", va="center")
+        ax.plot([], [], "-" if ln is not None else "--", color=color, lw=1.5,
+                label=_semi_axis_label(k, ln, panel))
+    # a 3-D panel's "best" is its top right, under the title: the empty top left instead
+    _legend(ax, panel, links, finite, s, loc="upper left", bbox_to_anchor=(0.0, 0.94))
     labels = spec_data["axis_labels"]
     unit_axis = "m" if links else panel["unit"]
     ax.set_xlabel(f"{labels[0]} [{unit_axis}]")
