@@ -121,7 +121,8 @@ def test_every_bundled_notebook_runs_from_an_unrelated_directory(name, tmp_path,
                             resources={"metadata": {"path": str(elsewhere)}}).execute()
     printed = "".join(o.get("text", "") for c in nb.cells if c.cell_type == "code" for o in c.outputs)
     verdicts = COMPARED.findall(printed)
-    assert verdicts, printed[-2000:]
+    recomputing = any("compare(" in c.source for c in nb.cells if c.cell_type == "code")
+    assert verdicts or not recomputing, printed[-2000:]     # (work-space runs: see NOT_REBUILT)
     assert [v for v in verdicts if v[1] != "agrees with robosolve"] == [], printed
     compared_cells = sum("compare(" in c.source for c in nb.cells if c.cell_type == "code")
     assert len(verdicts) >= compared_cells
