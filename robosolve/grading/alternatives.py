@@ -20,7 +20,7 @@ from robosolve.questions.registry import question_type
 
 
 def alternatives(report) -> dict:
-    model = getattr(report, "model", None)   # a report rebuilt from results.json has none
+    model = report.model
     if model is None:
         return {}
     problem = report.problem

@@ -112,7 +112,7 @@ class Reference:
                 symbolic=dict(a.symbolic), numeric=dict(a.numeric), extra=dict(a.extra),
                 subs=subs, roles=_roles(problem, q, subs, answers), frame=q.frame or problem.last_frame,
                 form=tuple(q.options), alternatives=alts.get(q.id, {}),
-                reach=reach_data(getattr(report, "model", None), problem, q, subs) if question_type(q.type).reaches else ()))
+                reach=reach_data(report.model, problem, q, subs) if question_type(q.type).reaches else ()))
         grading = problem.grading or {}
         tol = Tolerance(
             rtol if rtol is not None else grading.get("rtol", DEFAULT_TOLERANCE.rtol),

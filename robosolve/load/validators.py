@@ -278,3 +278,14 @@ def v_rotation_matrix(ql, path, value, q):
         return None
     return m
 
+
+def joint_motion_in_at(ql, item) -> list:
+    """The keys of a question's `at` that are joint values, rates or accelerations, each with
+    its joint's name: for the types whose `at` may override parameters only."""
+    at = item.get("at")
+    if not isinstance(at, dict):
+        return []
+    motion = {}
+    for j in ql.b.joints:
+        motion[j.name] = motion[j.dot.name] = motion[j.ddot.name] = j.name
+    return [(key, motion[key]) for key in at if key in motion]

@@ -11,17 +11,10 @@ from robosolve.questions.notebook_code import at_literal, compare_line, guarded,
 
 def _check(ql, path, item, q):
     """`at` overrides parameters only: the motion starts from `start`."""
-    at = item.get("at")
-    if not isinstance(at, dict):
-        return
-    motion = {}
-    for j in ql.b.joints:
-        motion[j.name] = motion[j.dot.name] = motion[j.ddot.name] = j.name
-    for key in at:
-        if key in motion:
-            ql.chk.error(path + ("at", key), f"a forward_dynamics question's `at` may override "
-                         f"parameters only: give the starting value of '{key}' in `start` "
-                         "(joint values and <joint>_dot rates)")
+    for key, _ in V.joint_motion_in_at(ql, item):
+        ql.chk.error(path + ("at", key), f"a forward_dynamics question's `at` may override "
+                     f"parameters only: give the starting value of '{key}' in `start` "
+                     "(joint values and <joint>_dot rates)")
 
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the start state, actuator laws and duration."""

@@ -73,18 +73,11 @@ def _statement(q, say) -> str:
 
 def _check(ql, path, item, q):
     """`at` overrides parameters only: the joints are the unknowns (they were ignored silently)."""
-    at = item.get("at")
-    if not isinstance(at, dict):
-        return
-    motion = {}
-    for j in ql.b.joints:
-        motion[j.name] = motion[j.dot.name] = motion[j.ddot.name] = j.name
-    for key in at:
-        if key in motion:
-            hint = (" (to choose the solution nearest a configuration, give it in `select`)"
-                    if key == motion[key] else " (joint rates come from `velocity`)")
-            ql.chk.error(path + ("at", key), "an inverse_kinematics question solves for the joints: "
-                         f"its `at` may override parameters only, not '{key}'{hint}")
+    for key, joint in V.joint_motion_in_at(ql, item):
+        hint = (" (to choose the solution nearest a configuration, give it in `select`)"
+                if key == joint else " (joint rates come from `velocity`)")
+        ql.chk.error(path + ("at", key), "an inverse_kinematics question solves for the joints: "
+                     f"its `at` may override parameters only, not '{key}'{hint}")
 
 
 def _pose_cell(q, answer, problem, target):

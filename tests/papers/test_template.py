@@ -43,7 +43,7 @@ def golden_reference(problem) -> tuple[Reference, dict]:
         extra = {k: v for k, v in r.items() if k not in ("type", "symbolic", "numeric", "figures", "notes", "error")}
         answers.append(SimpleNamespace(id=q.id, error=r.get("error"), symbolic=_sym(r.get("symbolic", {}), problem.names),
                                        numeric=r.get("numeric", {}), extra=extra))
-    return Reference.from_report(SimpleNamespace(problem=problem, answers=answers)), results
+    return Reference.from_report(SimpleNamespace(problem=problem, answers=answers, model=None)), results
 
 
 def _grade(problem, ref, text):
