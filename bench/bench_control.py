@@ -22,7 +22,7 @@ def in_process():
     from robosolve.load.loader import load_problem
     from robosolve.model import RobotModel
     from robosolve.dynamics.numeric import NumericDynamics
-    from robosolve.motion.control import simulate
+    from robosolve.simulation.joint_control import simulate
     from robosolve.solvers import motion_profile, p_control
     from robosolve.solvers.base import SolveContext
 

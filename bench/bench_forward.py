@@ -122,7 +122,7 @@ def engine_time(text_or_path):
 
     from robosolve.load.loader import load_problem, load_problem_text
     from robosolve.model import RobotModel
-    from robosolve.motion.forward import compile_plant, integrate
+    from robosolve.simulation.forward import compile_plant, integrate
     from robosolve.solvers import forward_dynamics as fd
     from robosolve.solvers.base import SolveContext
 

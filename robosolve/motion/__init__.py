@@ -1,4 +1,4 @@
-"""Joint-space motion: synchronized profiles, torques along them, closed-loop control.
+"""Motion: the references a robot follows, and the actuator forces along them.
 
 Pure engines on plain sympy/numpy inputs (no loader, no I/O):
 
@@ -6,10 +6,9 @@ Pure engines on plain sympy/numpy inputs (no loader, no I/O):
   each joint's own time, the synchronized time T and the rescaled values;
 * :mod:`robosolve.motion.torques`: actuator forces along a profile, closed form
   piecewise in t and signed peaks;
-* :mod:`robosolve.motion.control`: closed-loop simulation (p, pd, pd_gravity,
-  computed_torque) with max and final errors.
+* :mod:`robosolve.motion.task_path`: work-space paths (line, arc), timed along their
+  length and converted to joints.
 
-The numeric equations of motion they take are
-:class:`robosolve.dynamics.numeric.NumericDynamics` (built by the model bridge,
-:mod:`robosolve.dynamics.bridge`).
+The simulations that integrate the equations of motion along these references are in
+:mod:`robosolve.simulation`.
 """

@@ -3,7 +3,7 @@
 The plant is the problem's own equations of motion (the same derivation as
 equations_of_motion), M(q) q'' + c(q, q') + g(q) = tau(t, q, q') + f_ext, with the
 actuators replaced by the question's laws (missing actuators: 0).  `compute` runs the
-integration (robosolve.motion.forward) and returns the numbers; `solve` adds the steps
+integration (robosolve.simulation.forward) and returns the numbers; `solve` adds the steps
 of the report and the figures.
 """
 
@@ -89,8 +89,8 @@ def _numbers(question, ctx, dyn, st: Setup):
 
 
 def compute(question: Question, ctx: SolveContext, dyn, st: Setup, values):
-    """Integrate the run (robosolve.motion.forward.Run)."""
-    from robosolve.motion.forward import RunTooLong, compile_plant, integrate
+    """Integrate the run (robosolve.simulation.forward.Run)."""
+    from robosolve.simulation.forward import RunTooLong, compile_plant, integrate
 
     params, q0, qd0, duration = values
     if not duration > 0:

@@ -4,7 +4,7 @@ Plant M(q) qdd + c(q, qd) + g(q) = tau + f_ext(q) (numeric, lambdified with cse)
 controller chosen by `law` (spec, "Control"): p (the course's tau = Kp (q_d - q)),
 pd, pd_gravity, computed_torque.  The arm starts at rest at `start` (default the
 profile's start).  The ODE is integrated in error coordinates with LSODA (stiff-
-capable), restarted at each switching instant; see robosolve/motion/control.py.
+capable), restarted at each switching instant; see robosolve/simulation/joint_control.py.
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ import sympy as sp
 from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
-from robosolve.motion.control import simulate
+from robosolve.simulation.joint_control import simulate
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 
 SAMPLES = 2001
@@ -180,7 +180,7 @@ def _task_gains(opts, key, traj):
 
 
 def _solve_trajectory(question, ctx, ans, subs, law):
-    from robosolve.motion.task_control import TASK_LAWS, simulate_task
+    from robosolve.simulation.task_control import TASK_LAWS, simulate_task
 
     opts, model = question.options, ctx.model
     traj = ctx.trajectory(opts["trajectory"])

@@ -7,7 +7,7 @@ Every `import` of every module is read from the AST (function-level imports incl
 * a module imports only its own layer or lower ones: load -> model -> engines -> solvers
   -> render -> run/grading/variants -> cli, with errors/core below everything and the
   question types (questions/) beside the loader;
-* the engines (kinematics, ik, dynamics, motion, geometry) are pure math: besides each
+* the engines (kinematics, ik, dynamics, motion, simulation, geometry) are pure math: besides each
   other they import only core and errors (no question, no context, no model);
 * no import circle between modules.
 """
@@ -26,13 +26,13 @@ LAYERS = {
     # (load/validators.py) and the loader reads the registry
     "load": 1, "questions": 1,
     "model": 2,
-    "kinematics": 3, "ik": 3, "dynamics": 3, "motion": 3, "geometry": 3,
+    "kinematics": 3, "ik": 3, "dynamics": 3, "motion": 3, "simulation": 3, "geometry": 3,
     "solvers": 4,
     "render": 5,
     "run": 6, "grading": 6, "variants": 6, "papers": 6,
     "cli": 7, "__main__": 7,
 }
-ENGINES = {"kinematics", "ik", "dynamics", "motion", "geometry"}
+ENGINES = {"kinematics", "ik", "dynamics", "motion", "simulation", "geometry"}
 ENGINE_MAY_IMPORT = ENGINES | {"core", "errors"}
 
 

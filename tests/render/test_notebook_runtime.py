@@ -147,7 +147,7 @@ def test_torque_peaks_match_the_torque_engine():
 @pytest.mark.parametrize("law, kp, kd", [("p", [400.0, 300.0], None), ("pd_gravity", [200.0, 100.0], [20.0, 10.0]),
                                           ("computed_torque", [100.0, 100.0], [20.0, 20.0])])
 def test_closed_loop_matches_the_control_engine(law, kp, kd):
-    from robosolve.motion.control import simulate
+    from robosolve.simulation.joint_control import simulate
 
     problem, robot, ref, mine, fast = _exam_profile_and_dynamics()
     want = simulate(fast, ref.numeric_plan(), law, kp, kd, start=[0.05, -0.02])

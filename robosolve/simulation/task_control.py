@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robosolve.motion.control import MAX_EVALUATIONS, TIME_LIMIT, SimulationTooLong, _Budget
+from robosolve.simulation.joint_control import MAX_EVALUATIONS, TIME_LIMIT, SimulationTooLong, _Budget
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 RTOL = 1e-10

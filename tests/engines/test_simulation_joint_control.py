@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from robosolve.motion.control import simulate
+from robosolve.simulation.joint_control import simulate
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import synchronize
 
@@ -130,7 +130,7 @@ def test_bad_law(arm, plan):
 
 
 def test_time_budget_explains_the_oscillation(arm, plan):
-    from robosolve.motion.control import SimulationTooLong
+    from robosolve.simulation.joint_control import SimulationTooLong
 
     with pytest.raises(SimulationTooLong, match="oscillates at up to .* Hz"):
         simulate(arm, plan, "p", [5e6, 5e6], time_limit=0.05)
@@ -139,14 +139,14 @@ def test_time_budget_explains_the_oscillation(arm, plan):
 def test_counted_budget_stops_a_stiff_loop_the_same_way_on_any_machine(arm, plan):
     """The budget is a count of right-hand-side evaluations, not seconds (issue 11): the same
     input stops at the same point whatever the load."""
-    from robosolve.motion.control import SimulationTooLong
+    from robosolve.simulation.joint_control import SimulationTooLong
 
     with pytest.raises(SimulationTooLong, match="budget of 2,000 evaluations.*oscillates at up to"):
         simulate(arm, plan, "p", [5e6, 5e6], time_limit=None, max_evaluations=2000)
 
 
 def test_negative_gain_is_described_as_unstable(arm, plan):
-    from robosolve.motion.control import SimulationTooLong
+    from robosolve.simulation.joint_control import SimulationTooLong
 
     with pytest.raises(SimulationTooLong, match="negative gain makes the loop unstable"):
         simulate(arm, plan, "p", [-5000, 100], time_limit=None, max_evaluations=2000)

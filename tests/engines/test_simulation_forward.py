@@ -1,4 +1,4 @@
-"""Forward dynamics (robosolve.motion.forward) against independent references.
+"""Forward dynamics (robosolve.simulation.forward) against independent references.
 
 robosolve's side: the problem's own equations of motion (robosolve's dynamics engine, from a
 problem file), compiled by ``compile_plant`` and integrated by ``integrate`` (DOP853).
@@ -18,7 +18,7 @@ from robosolve.core.symbols import TIME
 from robosolve.load.loader import load_problem_text
 from robosolve.model import RobotModel
 from robosolve.dynamics.bridge import dynamics_for
-from robosolve.motion.forward import RunTooLong, compile_plant, integrate
+from robosolve.simulation.forward import RunTooLong, compile_plant, integrate
 
 pin = pytest.importorskip("pinocchio")
 
