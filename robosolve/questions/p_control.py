@@ -12,7 +12,8 @@ import sympy as sp
 from robosolve.load import validators as V
 from robosolve.load.expressions import ExpressionError, point_symbol
 from robosolve.questions.schema import CONTROL_MAP, COORDINATE_MAP, QuestionType, _k
-from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id, robosolve_numbers, text
+from robosolve.questions.notebook_code import (at_literal, compare_line, coordinate_values, lines, literal, profile_lines,
+                                               question_by_id, robosolve_numbers, text, trajectory_lines)
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 
@@ -131,7 +132,7 @@ def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
     o = q.options
     if "profile" not in o and o.get("trajectory") is not None:
-        return None                                  # a work-space reference: not rebuilt here
+        return _trajectory_cell(q, answer, problem)
     pq = question_by_id(problem, o["profile"])
     if "max_error" not in answer.numeric:
         return None
@@ -153,6 +154,43 @@ def notebook_cell(q, answer, problem):
         compare_line("max_error", f"dict(zip({names!r}, max_error))", rtol=1e-4),
         f"compare('final_error', dict(zip({names!r}, final_error)), robosolve['final_error'], rtol=1e-3, atol=1e-7)",
         "plot_errors(times, errors, " + literal(names) + ", law)",
+    )
+
+
+def _trajectory_cell(q, answer, problem):
+    """The cell of a run along a work-space trajectory: the trajectory rebuilt, then the loop."""
+    o = q.options
+    if "max_error" not in answer.numeric:
+        return None
+    tq = question_by_id(problem, o["trajectory"])
+    law = o.get("law", "p")
+    names = [j.name for j in problem.joints]
+    coords = _coords(tq)
+    labels = [str(c) for c in coords]
+
+    def gains(key):
+        if key not in o:
+            return "None"
+        given = o[key]
+        texts = coordinate_values(given["coordinates"], coords) if law in TASK_LAWS else [text(given[n]) for n in names]
+        return f"numbers({literal(texts)})"
+
+    start = f"numbers({literal([text(o['start'][n]) for n in names])})" if "start" in o else "None"
+    duration = f"robot.number(robot.parse({text(o['duration'])!r}), at)" if "duration" in o else "None"
+    keys = labels if law in TASK_LAWS else names
+    return lines(
+        "# the reference followed (its work-space trajectory question)",
+        *trajectory_lines(tq, problem),
+        f"at = {at_literal(q)}",
+        f"law = {law!r}",
+        f"kp, kd, start = {gains('gains')}, {gains('gains_d')}, {start}",
+        "max_error, t_max_error, final_error, times, errors, task_errors = simulate_task_control(",
+        f"    robot, trajectory, law, kp, kd, start, {duration}, at)",
+        robosolve_numbers(answer, ["max_error", "t_max_error", "final_error", "max_task_error"]),
+        compare_line("max_error", f"dict(zip({keys!r}, max_error))", rtol=1e-4),
+        f"compare('final_error', dict(zip({keys!r}, final_error)), robosolve['final_error'], rtol=1e-3, atol=1e-7)",
+        compare_line("max_task_error", f"dict(zip({labels!r}, np.abs(task_errors).max(axis=0)))", rtol=1e-3),
+        f"plot_errors(times, errors, {literal(keys)}, law)",
     )
 
 

@@ -11,6 +11,7 @@ import sympy as sp
 
 from robosolve.load import validators as V
 from robosolve.load.expressions import point_symbol
+from robosolve.questions.notebook_code import compare_line, lines, literal, robosolve_numbers, trajectory_lines
 from robosolve.questions.schema import BOOL, JOINT_MAP, SCALAR, TEXT, QuestionType, _k
 
 
@@ -125,6 +126,30 @@ def _statement(q, say) -> str:
             "motion, and the smallest singular value of the Jacobian along the path.")
 
 
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py): the path, its
+    timing and the joint motion from the same branch, then the extremes."""
+    names = [j.name for j in problem.joints]
+    per_joint = f"dict(zip({names!r}, {{}}))"
+    followed = "end" in answer.numeric
+    return lines(
+        *trajectory_lines(q, problem),
+        robosolve_numbers(answer, ["T", "length", "start", "end", "max_joint_velocity", "max_joint_acceleration",
+                                   "min_singular_value"]),
+        compare_line("T", "timing.T"),
+        compare_line("length", "path.length"),
+        compare_line("start", per_joint.format("trajectory.q[:, 0]")),
+        "if trajectory.failure is not None:",
+        "    print('the path cannot be followed:', trajectory.failure)",
+        *(["velocities, accelerations, (sigma_min, t_sigma_min) = trajectory.extremes()",
+           compare_line("end", per_joint.format("trajectory.q[:, -1]")),
+           compare_line("max_joint_velocity", per_joint.format("velocities")),
+           compare_line("max_joint_acceleration", per_joint.format("accelerations")),
+           compare_line("min_singular_value", "sigma_min"),
+           f"plot_joints(trajectory.t, trajectory.q.T, {literal(names)})"] if followed else []),
+    )
+
+
 TYPE = QuestionType(
     "task_trajectory", "Work-space trajectory", "§1.2.2",
     statement=_statement,
@@ -148,4 +173,5 @@ TYPE = QuestionType(
     figures=(("path", "task_path"), ("joints", "joint_motion")),
     cost=0.4, unit="dynamics",
     check=_check, model_checked=True, makes_trajectory=True,
+    notebook_cells=notebook_cell,
 )
