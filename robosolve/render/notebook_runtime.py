@@ -13,6 +13,11 @@ nothing of robosolve. The tests import it in-process and compare it with robosol
 * `Profile`: the synchronized bang-bang, trapezoidal and quintic profiles, numerically.
 * `torque_peaks`, `simulate_control`, `forward_run`: the actuators along a profile, the closed
   loop, and the motion under given actuator laws, integrated by an adaptive Dormand-Prince 5(4).
+* `TaskPath`, `Timing`, `TaskArm`, `TaskTrajectory`: a line or an arc of task coordinates timed
+  along its length (trapezoidal or quintic), the task map x(q), J, J' q', and the joint motion
+  by Newton's method sample to sample from one IK branch (q' = J+ x', q'' from J'), with its
+  extremes; `simulate_task_control`: the work-space closed loops along it (the task laws, or a
+  joint law on the converted trajectory, `JointPlan`).
 * geometry (axis-angle, helical axis, Euler angles, screws), `newton_solutions` (IK), ellipsoid
   semi-axes, and `compare`, which prints a recomputed value beside robosolve's.
 """
