@@ -3,6 +3,7 @@ engines: chain products, W and H, Jacobians, the equations of motion, profiles, 
 profile, the closed loop and a forward-dynamics run, rotations and screws."""
 
 import ast
+import functools
 import inspect
 import math
 
@@ -310,9 +311,10 @@ questions:
 }
 
 
+@functools.lru_cache(maxsize=None)
 def _trajectory_setup(key):
     """(problem, engine pieces (coords, arm, path, timing, q_from), the notebook's namespace after
-    the data cell and the cell's trajectory lines)."""
+    the data cell and the cell's trajectory lines); built once per key (the tests only read them)."""
     from robosolve.load.loader import load_problem_text
     from robosolve.questions.notebook_code import trajectory_lines
     from robosolve.solvers import task_trajectory as tt
@@ -410,7 +412,7 @@ def test_a_path_leaving_the_reach_fails_where_the_engine_says():
                                           ("task_computed_torque", [400.0, 400.0], [30.0, 30.0]),
                                           ("pd_gravity", [2000.0, 2000.0], [100.0, 100.0])])
 def test_work_space_closed_loops_match_the_control_engines(law, kp, kd):
-    """The bundled 2R arm along its line (0.6 s of its 1.25 s, from a displaced start for the task
+    """The bundled 2R arm along its line (0.4 s of its 1.25 s, from a displaced start for the task
     laws): the task laws against simulation/task_control.py, the ideal scheme (a joint law on the
     converted trajectory) against simulation/joint_control.py on the solver's own joint plan."""
     from robosolve.motion import task_path as tp
@@ -425,11 +427,11 @@ def test_work_space_closed_loops_match_the_control_engines(law, kp, kd):
     dyn, _ = ctx.simulation_dynamics(subs)
     task = law.startswith("task_")
     start = q_from + np.array([0.01, -0.02]) if task else None
-    got = rt.simulate_task_control(ns["robot"], ns["trajectory"], law, kp, kd, start=start, duration=0.6)
+    got = rt.simulate_task_control(ns["robot"], ns["trajectory"], law, kp, kd, start=start, duration=0.4, samples=800)
     if task:
-        want = simulate_task(dyn, arm, traj.desired, timing.breaks, law, kp, kd, start, 0.6, samples=2001)
+        want = simulate_task(dyn, arm, traj.desired, timing.breaks, law, kp, kd, start, 0.4, samples=2001)
     else:
-        want = simulate(dyn, traj.plan(), law, kp, kd, start=traj.start, duration=0.6, samples=2001)
+        want = simulate(dyn, traj.plan(), law, kp, kd, start=traj.start, duration=0.4, samples=2001)
     assert got[0] == pytest.approx(want.max_error, rel=1e-4)
     assert got[2] == pytest.approx(want.final_error, rel=1e-5, abs=1e-9)
     if not task:                                    # the work-space error of the ideal scheme
