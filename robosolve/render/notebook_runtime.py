@@ -967,8 +967,8 @@ class TaskTrajectory:
             q_prev, qd_prev, t_prev = q, qd, t
         cols = list(zip(*rows)) if rows else [[]] * 10
         self.t, self.segment, self.s = np.array(cols[0]), np.array(cols[1], dtype=int), np.array(cols[2])
-        self.x, self.xd, self.xdd, self.q, self.qd, self.qdd = (np.array(c).reshape(len(rows), -1).T
-                                                                for c in cols[3:9])
+        self.x, self.xd, self.xdd, self.q, self.qd, self.qdd = (np.array(c, dtype=float).reshape(len(rows), w).T
+                                                                for c, w in zip(cols[3:9], [arm.m] * 3 + [n] * 3))
         self.sigma = np.array(cols[9])
         if self.failure is None:
             self._singular_between(sigma_tol * scale)
