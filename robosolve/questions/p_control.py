@@ -112,16 +112,15 @@ def _statement(q, say) -> str:
     if "trajectory" in o:
         return _task_statement(q, say)
     text = (f"The robot follows the motion of {say.question_number(o['profile'])} under "
-            f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller with the gains "
-            f"$K_p$ {say.per_joint(o['gains'])}")
-    if "gains_d" in o:
-        text += f" and $K_d$ {say.per_joint(o['gains_d'])}"
+            f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller, "
+            f"${JOINT_LAW_TEX.get(o.get('law', 'p'), '')}$ with $e = q_d - q$, with the gains {_gains_text(q, say, [])}")
     if "start" in o:
         text += f", starting from {say.joint_values(o['start'])}"
     if "duration" in o:
         text += f", for {say.value(o['duration'])} s"
-    return (text + ". Simulate the closed loop; give, for each joint, the largest tracking error "
-            "$|e|$ over the run and the signed error at the end.")
+    unit = joint_unit(say.problem)
+    return (text + f". Simulate the closed loop; give, for each joint, the largest tracking error "
+            f"$|e|$ over the run ({unit}) and the signed error at the end ({unit}).")
 
 
 def notebook_cell(q, answer, problem):
