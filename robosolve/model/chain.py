@@ -11,24 +11,15 @@ symbols q, q_dot, q_ddot (no sympy Functions of t: faster and printable).
 
 from __future__ import annotations
 
-from functools import cached_property
-
 import sympy as sp
-from sympy.printing.conventions import split_super_sub
 
 from robosolve.core import matrices as mx
 from robosolve.core.simplify import tidy, tidy_matrix
 from robosolve.core.transforms import ELEMENTARY, rigid_inverse
-from robosolve.load.expressions import point_symbol
 from robosolve.load.problem import Body, Problem
 from robosolve.model.algebras import RingChainAlgebra, SympyChainAlgebra
-from robosolve.model.description import ChainDescription, elementary_factors, factor_matrices
+from robosolve.model.description import ChainDescription, elementary_factors
 from robosolve.model.forward import forward
-
-
-def elementary_latex(op: str, arg, names: dict | None = None) -> str:
-    """LaTeX of one factor of a pose string, e.g. R_z(\\theta_1)."""
-    return f"{'T' if op[0] == 'T' else 'R'}_{{{op[1]}}}\\left({sp.latex(arg, symbol_names=names or {})}\\right)"
 
 
 class RobotModel:
@@ -69,25 +60,6 @@ class RobotModel:
     def chain(self, frame: str) -> list[str]:
         """Frames from the base (excluded) down to `frame` (included)."""
         return self.description.chain(frame)
-
-    def local_factors(self, frame: str) -> list[tuple[str, sp.Matrix]]:
-        """The elementary matrices of a frame's pose, with their LaTeX names."""
-        f = self.frames[frame]
-        names = self.symbol_latex
-
-        def tex(e):
-            return sp.latex(e, symbol_names=names)
-
-        matrices = factor_matrices(self.description.frame[frame])
-        if f.kind == "pose":
-            return [(elementary_latex(op, arg, names), m) for (op, arg), m in zip(f.factors, matrices)]
-        if f.kind == "matrix":
-            return [("M", f.matrix)]
-        if f.kind == "dh":
-            th, d, a, al = f.factors
-            return [(f"DH({tex(th)}, {tex(d)}, {tex(a)}, {tex(al)})", matrices[0])]
-        al, a, th, d = f.factors
-        return [(f"MDH({tex(al)}, {tex(a)}, {tex(th)}, {tex(d)})", matrices[0])]
 
     def elementary_factors(self, frame: str) -> list | None:
         """The frame's pose as elementary motions [(op, arg)] (DH rows expanded), or
@@ -245,40 +217,3 @@ class RobotModel:
         """Centre of mass of a body in frame 0."""
         hp = self.M0(body.frame) * sp.Matrix([*self.com_local(body), 1])
         return sp.Matrix([tidy(e) for e in hp[:3, 0]])
-
-    # -- convenience -----------------------------------------------------
-    @cached_property
-    def symbol_latex(self) -> dict:
-        """LaTeX names of the problem's symbols: theta1_dot -> \\dot{\\theta}_{1}."""
-        out = {s: upright_name(s.name) for s in self.parameters if upright_name(s.name)}
-        for j in self.joints:
-            if upright_name(j.name):
-                out[j.symbol] = upright_name(j.name)
-            base = out.get(j.symbol) or sp.latex(j.symbol)
-            out[j.dot] = f"\\dot{{{base}}}" if "_" not in base else _accent(base, "dot")
-            out[j.ddot] = f"\\ddot{{{base}}}" if "_" not in base else _accent(base, "ddot")
-        for name in self.points:
-            for axis in "xyz":
-                out[point_symbol(name, axis)] = f"{name}_{{{axis}}}"
-        return out
-
-
-def upright_name(name: str) -> str | None:
-    """The LaTeX of a name whose letters before its subscript are several and not a Greek
-    letter (`ma`, `Jg2`, `Kp`): upright, \\mathrm{ma}, so that it does not read as a product of
-    italic one-letter symbols (m·a); None for the names sympy prints well (L1, m_p, theta1)."""
-    base, sups, subs = split_super_sub(name)
-    if len(base) < 2 or sp.latex(sp.Symbol(base)).startswith("\\"):
-        return None
-    out = f"\\mathrm{{{base}}}"
-    if subs:
-        out += "_{" + " ".join(subs) + "}"
-    if sups:
-        out += "^{" + " ".join(sups) + "}"
-    return out
-
-
-def _accent(base: str, accent: str) -> str:
-    """\\theta_{1} -> \\dot{\\theta}_{1}."""
-    head, _, sub = base.partition("_")
-    return f"\\{accent}{{{head}}}_{sub}"
