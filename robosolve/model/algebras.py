@@ -4,8 +4,8 @@
   variants (the report's M, L, W, H: RobotModel);
 * `RingChainAlgebra`: 4×4 lists of trig-ring polynomials (core/trigring.py), every product
   reduced modulo sᵢ² + cᵢ² = 1, canonical (the structured determinant);
-* `NumpyChainAlgebra`: floats at one configuration; only the small local inputs are symbolic
-  and evaluated once (NumericChain).
+* `NumpyChainAlgebra`: floats at one configuration (the operations of model/numpy_algebra.py);
+  only the small local inputs are symbolic and evaluated once (NumericChain).
 
 Each one turns the description's symbolic inputs (local pose, twist, Ä A⁻¹, joint rates,
 point coordinates) into its own entries and provides the operations listed in forward.py.
@@ -21,8 +21,10 @@ from robosolve.core.simplify import tidy, tidy_matrix, tidy_products_matrix
 from robosolve.core.transforms import homogeneous, rigid_inverse
 from robosolve.core.trigring import TrigAlgebra
 from robosolve.errors import MissingValues
+from robosolve.model.numpy_algebra import NumpyOperations
+from robosolve.model.numpy_algebra import rigid_inverse as rigid_inverse_np
 
-__all__ = ["NumpyChainAlgebra", "RingChainAlgebra", "SympyChainAlgebra", "evaluate", "np_rigid_inverse"]
+__all__ = ["NumpyChainAlgebra", "RingChainAlgebra", "SympyChainAlgebra", "evaluate"]
 
 
 class SympyChainAlgebra:
@@ -182,15 +184,9 @@ def evaluate(obj, subs) -> np.ndarray:
     return np.array(m.tolist(), dtype=float)
 
 
-def np_rigid_inverse(m: np.ndarray) -> np.ndarray:
-    out = np.eye(4)
-    out[:3, :3] = m[:3, :3].T
-    out[:3, 3] = -m[:3, :3].T @ m[:3, 3]
-    return out
-
-
-class NumpyChainAlgebra:
-    """Floats at the substitutions `subs`: the local inputs evaluated once each."""
+class NumpyChainAlgebra(NumpyOperations):
+    """Floats at the substitutions `subs`: the local inputs evaluated once each, the operations
+    of model/numpy_algebra.py."""
 
     def __init__(self, description, subs: dict):
         self.description = description
@@ -209,11 +205,11 @@ class NumpyChainAlgebra:
     def twist(self, frame, index):
         d = self.description
         return self._evaluated(("partial", frame, index), d.local_partial(frame, index)) @ \
-            np_rigid_inverse(self.pose(frame))
+            rigid_inverse_np(self.pose(frame))
 
     def acceleration(self, frame):
         return self._evaluated(("rate", frame), self.description.local_rate(frame, 2)) @ \
-            np_rigid_inverse(self.pose(frame))
+            rigid_inverse_np(self.pose(frame))
 
     def rate(self, index, order):
         j = self.description.joints[index]
@@ -221,46 +217,3 @@ class NumpyChainAlgebra:
 
     def coordinates(self, name):
         return self._evaluated(("point", name), sp.Matrix([*self.description.points[name].at, 1]))[:, 0]
-
-    # -- operations -------------------------------------------------------
-    @staticmethod
-    def identity():
-        return np.eye(4)
-
-    @staticmethod
-    def zero():
-        return np.zeros((4, 4))
-
-    @staticmethod
-    def compose(a, b):
-        return a @ b
-
-    @staticmethod
-    def act(m, a):
-        return m @ a @ np_rigid_inverse(m)
-
-    conjugate = act
-
-    @staticmethod
-    def add(a, b):
-        return a + b
-
-    @staticmethod
-    def scale(a, s):
-        return a * s
-
-    @staticmethod
-    def mul(a, b):
-        return a @ b
-
-    @staticmethod
-    def tidy(a):
-        return a
-
-    @staticmethod
-    def expand(a):
-        return a
-
-    @staticmethod
-    def point(m, p):
-        return (m @ p)[:3]

@@ -128,6 +128,9 @@ class ChainDescription:
             return [j.index for j in self.joints if j.q in free]
         return list(self._memoised(("moved_by", frame), build))
 
+    def point_frame(self, name: str) -> str:
+        return self.points[name].frame
+
     def joint_frame(self, index: int) -> str | None:
         """The first frame (file order) whose local pose contains joint `index`."""
         for f in self.frames:

@@ -21,7 +21,7 @@ polynomials, floats):
   `mul(a, b)`, `tidy(a)` (the normal form of a product), `expand(a)` (of a sum), `point(m, p)`.
 
 The description needs `parent`, `chain`, `moved_by`, `joint_frame`, `constant_twist` and
-`points` (robosolve.model.description.ChainDescription). This module imports nothing, so
+`point_frame` (robosolve.model.description.ChainDescription; the notebook's `Robot` chain). This module imports nothing, so
 that it can be copied into a notebook as it is.
 """
 
@@ -54,9 +54,9 @@ class ChainData:
 
     def point(self, name):
         """A point's coordinates in frame 0 (3 entries)."""
-        p = self.description.points[name]
+        frame = self.description.point_frame(name)
         return self._get(("point", name), lambda: self.algebra.point(
-            self.M(p.frame), self.algebra.coordinates(name)))
+            self.M(frame), self.algebra.coordinates(name)))
 
     # -- L matrices ---------------------------------------------------------
     def twist(self, frame, index):

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from robosolve.model.algebras import NumpyChainAlgebra, evaluate
-from robosolve.model.algebras import np_rigid_inverse as rigid_inverse
+from robosolve.model.numpy_algebra import rigid_inverse
 from robosolve.model.forward import forward
 
 __all__ = ["NumericChain", "evaluate", "rigid_inverse"]
