@@ -56,6 +56,10 @@ class SympyChainAlgebra:
         j = self.description.joints[index]
         return j.qd if order == 1 else j.qdd
 
+    def body_twist(self, frame, index):
+        d = self.description
+        return tidy_matrix(rigid_inverse(d.local_pose(frame)) * d.local_partial(frame, index))
+
     def coordinates(self, name):
         return self.description.points[name].at
 
@@ -74,6 +78,10 @@ class SympyChainAlgebra:
         r = self._tidy_pose(mp[:3, :3] * ml[:3, :3])
         t = mp[:3, 3] + self._tidy_pose(mp[:3, :3] * ml[:3, 3])
         return homogeneous(r, t)
+
+    @staticmethod
+    def inverse(m):
+        return rigid_inverse(m)
 
     @staticmethod
     def act(m, a):
@@ -140,6 +148,13 @@ class RingChainAlgebra:
     def twist(self, frame, index):
         loc, ring = self.local[frame], self.ring
         return ring.matmul(ring.mdiff(loc, index), ring.rigid_inverse(loc))
+
+    def body_twist(self, frame, index):
+        loc, ring = self.local[frame], self.ring
+        return ring.matmul(ring.rigid_inverse(loc), ring.mdiff(loc, index))
+
+    def inverse(self, m):
+        return self.ring.rigid_inverse(m)
 
     def identity(self):
         return self.ring.eye(4)
@@ -210,6 +225,10 @@ class NumpyChainAlgebra(NumpyOperations):
     def acceleration(self, frame):
         return self._evaluated(("rate", frame), self.description.local_rate(frame, 2)) @ \
             rigid_inverse_np(self.pose(frame))
+
+    def body_twist(self, frame, index):
+        return rigid_inverse_np(self.pose(frame)) @ \
+            self._evaluated(("partial", frame, index), self.description.local_partial(frame, index))
 
     def rate(self, index, order):
         j = self.description.joints[index]

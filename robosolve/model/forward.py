@@ -8,17 +8,24 @@
 * ⁰W_{p,f} = Σᵢ ⁰Lᵢ q̇ᵢ over the joints of A_f, and Rivals: ⁰W_f = ⁰W_p + ⁰W_{p,f};
 * ⁰H_{p,f} = ⁰Lᵢ q̈ᵢ + (⁰Lᵢ)² q̇ᵢ² for one joint with a constant twist, else ⁰M_p Ä A⁻¹ ⁰M_p⁻¹;
   Coriolis: ⁰H_f = ⁰H_p + 2 ⁰W_p ⁰W_{p,f} + ⁰H_{p,f};
-* points: ⁰M_f [p; 1].
+* points: ⁰M_f [p; 1];
+* the body-frame route (the dynamics engine's): ᵃM_f between a frame and an ancestor, and
+  ᵇLᵢ = ⁰M_f⁻¹ ∂⁰M_f/∂qᵢ, built from the relative poses (small entries).
 
 The algebra is a small strategy object; the entries are its own (sympy expressions, trig-ring
 polynomials, floats):
 
 * inputs from the description: `pose(f)` = A_f, `twist(f, i)` = ∂A_f/∂qᵢ A_f⁻¹ (in the
   parent), `acceleration(f)` = Ä_f A_f⁻¹, `rate(i, order)` = q̇ᵢ / q̈ᵢ (scalars),
-  `coordinates(name)` = a point's coordinates in its frame;
-* operations: `identity()`, `zero()`, `compose(a, b)` (pose products), `act(m, l)` (m l m⁻¹ of
-  a twist: skew rotation block), `conjugate(m, a)` (m a m⁻¹ of any 4×4), `add`, `scale(a, s)`,
-  `mul(a, b)`, `tidy(a)` (the normal form of a product), `expand(a)` (of a sum), `point(m, p)`.
+  `coordinates(name)` = a point's coordinates in its frame; for the body-frame route,
+  `body_twist(f, i)` = A_f⁻¹ ∂A_f/∂qᵢ;
+* operations: `identity()`, `zero()`, `compose(a, b)` (pose products), `inverse(m)` (of a
+  pose), `act(m, l)` (m l m⁻¹ of a twist: skew rotation block), `conjugate(m, a)` (m a m⁻¹
+  of any 4×4), `add`, `scale(a, s)`, `mul(a, b)`, `tidy(a)` (the normal form of a product),
+  `expand(a)` (of a sum), `point(m, p)`.
+
+Each quantity asks only for what it needs: an algebra without rates (the ring) serves M, L,
+points and the body-frame L.
 
 The description needs `parent`, `chain`, `moved_by`, `joint_frame`, `constant_twist` and
 `point_frame` (robosolve.model.description.ChainDescription; the notebook's `Robot` chain). This module imports nothing, so
@@ -82,6 +89,36 @@ class ChainData:
                     total = self.algebra.add(total, self.moved_twist(f, index))
             return total
         return self._get(("L", index, frame), build)
+
+    # -- in the body frame (the dynamics engine's route: small entries) ------------------
+    def relative(self, ancestor, frame):
+        """ᵃM_f: the pose of `frame` in its ancestor `ancestor` (the identity when equal)."""
+        if ancestor == frame:
+            return self.algebra.identity()
+        if ancestor == BASE:
+            return self.M(frame)
+        parent = self.description.parent(frame)
+        return self._get(("rel", ancestor, frame), lambda: self.algebra.compose(
+            self.relative(ancestor, parent), self.algebra.pose(frame)))
+
+    def body_twist(self, frame, index):
+        """A_f⁻¹ ∂A_f/∂qᵢ: joint `index`'s twist in `frame` itself (the algebra's input)."""
+        return self._get(("body_twist", frame, index), lambda: self.algebra.body_twist(frame, index))
+
+    def body_L(self, index, frame):
+        """ᵇLᵢ = ⁰M_f⁻¹ ∂⁰M_f/∂qᵢ = Σ_g ᵍM_f⁻¹ (A_g⁻¹ ∂A_g/∂qᵢ) ᵍM_f over the frames g of the
+        chain whose pose contains qᵢ: ⁰Lᵢ seen in `frame` (it depends only on the joints
+        between joint i and `frame`)."""
+        desc, alg = self.description, self.algebra
+
+        def build():
+            total = alg.zero()
+            for g in desc.chain(frame):
+                if index in desc.moved_by(g):
+                    r = self.relative(g, frame)
+                    total = alg.add(total, alg.mul(alg.mul(alg.inverse(r), self.body_twist(g, index)), r))
+            return alg.tidy(total)
+        return self._get(("body_L", index, frame), build)
 
     # -- velocities and accelerations ---------------------------------------
     def W_relative(self, frame):

@@ -33,6 +33,10 @@ class NumpyOperations:
         return a @ b
 
     @staticmethod
+    def inverse(m):
+        return rigid_inverse(m)
+
+    @staticmethod
     def act(m, a):
         return m @ a @ rigid_inverse(m)
 

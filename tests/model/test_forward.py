@@ -10,6 +10,7 @@ import pytest
 import sympy as sp
 
 from conftest import PROBLEMS
+from robosolve.core.transforms import rigid_inverse
 from robosolve.load.loader import load_problem, load_problem_text
 from robosolve.model import RobotModel
 from robosolve.model.algebras import NumpyChainAlgebra, SympyChainAlgebra
@@ -175,3 +176,25 @@ def test_each_quantity_is_computed_once(tangle):
     assert calls.count("compose") == 2          # ⁰M₁, ⁰M₂
     assert calls.count("act") == 4              # one moved twist per (frame, joint)
     assert sp.simplify(data.M("2") - model.M0("2")) == sp.zeros(4, 4)
+
+
+def test_the_body_frame_route_is_the_l_matrix_seen_in_the_body(puma, tangle):
+    """ᵇLᵢ = ⁰M⁻¹ ⁰Lᵢ ⁰M (numpy, and exactly in the trig ring), ᵃM_f ⁰M_a = ⁰M_f."""
+    problem, model, _ = puma
+    q = np.array([0.3, -1.1, 0.7, 0.2, 1.3, -0.4])
+    num = forward(model.description, NumpyChainAlgebra(model.description, _subs(problem, q)))
+    for i in range(6):
+        m = num.M("6")
+        np.testing.assert_allclose(num.body_L(i, "6"), np.linalg.inv(m) @ num.L(i, "6") @ m, atol=1e-12)
+    np.testing.assert_allclose(num.M("2") @ num.relative("2", "5"), num.M("5"), atol=1e-12)
+    ring = model.ring_chain(model.chain("4"))
+    alg = ring.algebra
+    for i in range(4):
+        m = ring.M("4")
+        assert ring.body_L(i, "4") == alg.mul(alg.mul(alg.inverse(m), ring.L(i, "4")), m)
+    tproblem, tmodel = tangle
+    sym = forward(tmodel.description, SympyChainAlgebra(tmodel.description))
+    m, subs = sym.M("2"), _subs(tproblem, [0.4, -0.8, 0.15, 0.6])
+    for i in range(4):
+        diff = (sym.body_L(i, "2") - rigid_inverse(m) * sym.L(i, "2") * m).xreplace(subs).evalf()
+        assert np.abs(np.array(diff, dtype=float)).max() < 1e-12
