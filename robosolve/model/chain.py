@@ -1,7 +1,9 @@
 """The symbolic robot: frames, points, L/W/H matrices, bodies' pseudo-inertia.
 
 `RobotModel` is built once per problem and memoises everything it derives, so
-solvers share one chain product, one set of L matrices, and so on.
+solvers share one chain product, one set of L matrices, and so on. It holds the problem's
+`ChainDescription` (model/description.py) and its chain data over sympy (model/forward.py
+with model/algebras.SympyChainAlgebra); the LaTeX names are render/chain_names.py's.
 
 Conventions (spec §3; docs/course-notes.md: frame-notation, w-matrix, h-matrix, l-matrix): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
 and H_0j = Mddot_0j M_0j^-1, both expressed in frame 0; the L matrix of joint i
