@@ -3,7 +3,9 @@
 * `SympyChainAlgebra`: sympy matrices, every product tidied by core/simplify.py's chain
   variants (the report's M, L, W, H: RobotModel);
 * `RingChainAlgebra`: 4×4 lists of trig-ring polynomials (core/trigring.py), every product
-  reduced modulo sᵢ² + cᵢ² = 1, canonical (the structured determinant);
+  reduced modulo sᵢ² + cᵢ² = 1, canonical (the structured determinant); `ListChainAlgebra`,
+  which it extends, takes any list algebra with that interface and its poses (the dynamics
+  engine's own ring, or its SympyAlgebra fallback);
 * `NumpyChainAlgebra`: floats at one configuration (the operations of model/numpy_algebra.py);
   only the small local inputs are symbolic and evaluated once (NumericChain).
 
@@ -24,7 +26,7 @@ from robosolve.errors import MissingValues
 from robosolve.model.numpy_algebra import NumpyOperations
 from robosolve.model.numpy_algebra import rigid_inverse as rigid_inverse_np
 
-__all__ = ["NumpyChainAlgebra", "RingChainAlgebra", "SympyChainAlgebra", "evaluate"]
+__all__ = ["ListChainAlgebra", "NumpyChainAlgebra", "RingChainAlgebra", "SympyChainAlgebra", "evaluate"]
 
 
 class SympyChainAlgebra:
@@ -123,24 +125,15 @@ class SympyChainAlgebra:
         return sp.Matrix([tidy(e) for e in hp[:3, 0]])
 
 
-class RingChainAlgebra:
-    """4×4 lists of trig-ring polynomials over the poses of `frames` (and extra point
-    coordinates `points`, lists of three expressions); `ring` is None when an input is not
-    a polynomial in cos qᵢ, sin qᵢ (and prismatic qᵢ)."""
+class ListChainAlgebra:
+    """4×4 lists over a list algebra: `alg` has matmul, rigid_inverse, mdiff, madd, zeros, eye
+    and reduce (core/trigring.TrigAlgebra, or the dynamics engine's SympyAlgebra fallback);
+    `local` maps each frame to its pose in its parent as such a 4×4 list. `tidy` reduces each
+    entry (the ring's products are already reduced; SympyAlgebra tidies small pieces)."""
 
-    def __init__(self, description, frames, points=()):
-        self.description = description
-        frames = list(frames)
-        extra = [c for p in points for c in p]
-        entries = [e for f in frames for e in description.local_pose(f)]
-        ring = TrigAlgebra.from_inputs(description.q, entries + extra)
-        self.ring = ring
-        if ring is None:
-            return
-        self.local = {f: [[ring.element(16 * k + 4 * r + c) for c in range(4)] for r in range(4)]
-                      for k, f in enumerate(frames)}
-        k0 = 16 * len(frames)
-        self.points = [[ring.element(k0 + 3 * j + r) for r in range(3)] for j in range(len(points))]
+    def __init__(self, alg, local: dict):
+        self.ring = alg
+        self.local = local
 
     def pose(self, frame):
         return self.local[frame]
@@ -153,9 +146,6 @@ class RingChainAlgebra:
         loc, ring = self.local[frame], self.ring
         return ring.matmul(ring.rigid_inverse(loc), ring.mdiff(loc, index))
 
-    def inverse(self, m):
-        return self.ring.rigid_inverse(m)
-
     def identity(self):
         return self.ring.eye(4)
 
@@ -164,6 +154,9 @@ class RingChainAlgebra:
 
     def compose(self, a, b):
         return self.ring.matmul(a, b)
+
+    def inverse(self, m):
+        return self.ring.rigid_inverse(m)
 
     def act(self, m, a):
         ring = self.ring
@@ -177,9 +170,8 @@ class RingChainAlgebra:
     def mul(self, a, b):
         return self.ring.matmul(a, b)
 
-    @staticmethod
-    def tidy(a):
-        return a
+    def tidy(self, a):
+        return [[self.ring.reduce(x) for x in row] for row in a]
 
     @staticmethod
     def expand(a):
@@ -187,6 +179,25 @@ class RingChainAlgebra:
 
     def point(self, m, p):
         return [self.ring.reduce(sum((m[r][k] * p[k] for k in range(3)), m[r][3])) for r in range(3)]
+
+
+class RingChainAlgebra(ListChainAlgebra):
+    """The trig ring over the poses of `frames` (and extra point coordinates `points`, lists of
+    three expressions); `ring` is None when an input is not a polynomial in cos qᵢ, sin qᵢ (and
+    prismatic qᵢ)."""
+
+    def __init__(self, description, frames, points=()):
+        frames = list(frames)
+        extra = [c for p in points for c in p]
+        entries = [e for f in frames for e in description.local_pose(f)]
+        ring = TrigAlgebra.from_inputs(description.q, entries + extra)
+        local = {} if ring is None else {
+            f: [[ring.element(16 * k + 4 * r + c) for c in range(4)] for r in range(4)]
+            for k, f in enumerate(frames)}
+        super().__init__(ring, local)
+        k0 = 16 * len(frames)
+        self.points = [] if ring is None else [[ring.element(k0 + 3 * j + r) for r in range(3)]
+                                               for j in range(len(points))]
 
 
 def evaluate(obj, subs) -> np.ndarray:

@@ -198,3 +198,37 @@ def test_the_body_frame_route_is_the_l_matrix_seen_in_the_body(puma, tangle):
     for i in range(4):
         diff = (sym.body_L(i, "2") - rigid_inverse(m) * sym.L(i, "2") * m).xreplace(subs).evalf()
         assert np.abs(np.array(diff, dtype=float)).max() < 1e-12
+
+
+@pytest.mark.parametrize("algebra", ["trig", pytest.param("sympy", marks=pytest.mark.slow)])
+def test_the_chain_data_over_the_dynamics_engines_own_algebra(algebra):
+    """The route the dynamics engine can take (ListChainAlgebra over its own ring, or its
+    SympyAlgebra fallback, and its poses): ⁰M, ⁰L and the body-frame ᵇL of ChainData equal the
+    engine's public M0, L0 and Lb at random numbers."""
+    from support.robots import anthropomorphic_3r
+    from robosolve.dynamics.engine import DynamicsEngine
+    from robosolve.model.algebras import ListChainAlgebra
+
+    r = anthropomorphic_3r()
+    eng = DynamicsEngine(**r.engine_inputs(), algebra=algebra)
+    alg = eng.alg
+    local = {f: [[alg.from_expr(x) for x in row] for row in eng.local(f).tolist()] for f in eng.order}
+
+    class Structure:                       # what forward.py asks of a description
+        parent = staticmethod(lambda f: None if f == "0" else eng.frames[f].parent)
+        chain = staticmethod(eng.path)
+        moved_by = staticmethod(lambda f: [i for i in range(eng.n) if eng.local(f).has(eng.q[i])])
+        joint_frame = staticmethod(eng.joint_frame)
+
+    data = forward(Structure, ListChainAlgebra(alg, local))
+    rng = np.random.default_rng(11)
+    subs = {**{k: float(v) for k, v in r.values.items()}, **dict(zip(eng.q, rng.uniform(-1, 1, eng.n)))}
+
+    def num(m):
+        return np.array(sp.Matrix(m).xreplace(subs).evalf(), dtype=float)
+
+    last = eng.order[-1]
+    np.testing.assert_allclose(num(alg.to_matrix(data.M(last))), num(eng.M0(last)), atol=1e-12)
+    for i in range(eng.n):
+        np.testing.assert_allclose(num(alg.to_matrix(data.L(i, last))), num(eng.L0(i, last)), atol=1e-12)
+        np.testing.assert_allclose(num(alg.to_matrix(data.body_L(i, last))), num(eng.Lb(i, last)), atol=1e-12)
