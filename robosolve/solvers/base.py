@@ -98,6 +98,18 @@ class Answer:
             self.notes.append(text)
 
 
+class _PlainNames:
+    """No names given: sympy's LaTeX of every symbol, poses shown without their factors."""
+
+    @property
+    def symbols(self) -> dict:
+        return {}
+
+    @staticmethod
+    def factors(frame: str) -> list:
+        return []
+
+
 class SolveContext:
     """What one problem's solve shares: the problem, the model, the budgets, earlier
     results (by question id, through typed accessors) and numeric helpers."""
@@ -114,11 +126,9 @@ class SolveContext:
     @property
     def names(self):
         """The LaTeX names of the problem's symbols and poses (`symbols`, `factors(frame)`),
-        handed in by whoever builds the context (run.pipeline.solve_context)."""
-        if self._names is None:
-            raise RuntimeError("this SolveContext has no LaTeX names: build it with "
-                               "robosolve.run.pipeline.solve_context")
-        return self._names
+        handed in by whoever builds the context (run.pipeline.solve_context); a context built
+        without them writes sympy's own LaTeX and no factors."""
+        return self._names if self._names is not None else _PlainNames()
 
     @property
     def symbol_latex(self) -> dict:

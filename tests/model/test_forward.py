@@ -232,3 +232,19 @@ def test_the_chain_data_over_the_dynamics_engines_own_algebra(algebra):
     for i in range(eng.n):
         np.testing.assert_allclose(num(alg.to_matrix(data.L(i, last))), num(eng.L0(i, last)), atol=1e-12)
         np.testing.assert_allclose(num(alg.to_matrix(data.body_L(i, last))), num(eng.Lb(i, last)), atol=1e-12)
+
+
+def test_a_context_without_names_still_solves(tangle):
+    """A SolveContext built by hand (no LaTeX names handed in) answers with sympy's own LaTeX;
+    the pipeline's context names the poses' factors."""
+    from robosolve.run.pipeline import solve_context
+    from robosolve.solvers import position
+    from robosolve.solvers.base import SolveContext
+
+    problem, model = tangle
+    plain = position.solve(problem.questions[0], SolveContext(problem, model))
+    named = position.solve(problem.questions[0], solve_context(problem, model))
+    assert plain.numeric == named.numeric
+    lhs = [lhs for step in named.steps for lhs, _ in step.equations]
+    assert any("R_{z}" in x for x in lhs) and not any("R_{z}" in x for step in plain.steps
+                                                     for x, _ in step.equations)
