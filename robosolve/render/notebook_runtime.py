@@ -2,13 +2,15 @@
 
 robosolve copies this module's source into the first code cell of every notebook it writes
 (robosolve/render/notebook.py, with `inspect.getsource`), so a notebook runs anywhere with only
-sympy, numpy and matplotlib installed: this module imports nothing else, and in particular
-nothing of robosolve. The tests import it in-process and compare it with robosolve's engines
+sympy, numpy and matplotlib installed: this module imports nothing else but robosolve's own
+numeric chain computation (robosolve/model/forward.py and model/numpy_algebra.py, which import
+nothing but numpy), whose sources the cell copies in before it, without the two import lines. The tests import it in-process and compare it with robosolve's engines
 (tests/render/test_notebook_runtime.py).
 
 * `Robot`: the problem's data (parameters, joints, frames, points, bodies, forces, gravity) given
   as text expressions, so that a reader changes a number and re-runs; the chain products
-  (0M of a frame, points in frame 0), W and H, Jacobians, Lagrange's equations of motion from
+  (0M of a frame, points in frame 0), W and H (symbolic, and `chain_at`: robosolve's chain
+  computation at numbers, Rivals and Coriolis), Jacobians, Lagrange's equations of motion from
   the bodies' pseudo-inertia matrices, the weight's generalized forces, numeric dynamics.
 * `Profile`: the synchronized bang-bang, trapezoidal and quintic profiles, numerically.
 * `torque_peaks`, `simulate_control`, `forward_run`: the actuators along a profile, the closed
@@ -24,6 +26,9 @@ nothing of robosolve. The tests import it in-process and compare it with robosol
 
 import numpy as np
 import sympy as sp
+
+from robosolve.model.forward import ChainData  # the notebook: forward.py is copied in above
+from robosolve.model.numpy_algebra import NumpyOperations, rigid_inverse  # copied in above
 
 np.set_printoptions(precision=6, suppress=True)
 
@@ -198,6 +203,14 @@ class Robot:
         inv = inverse_pose(M)
         return dM * inv, self.time_derivative(dM) * inv
 
+    def chain_at(self, at=None):
+        """0M, 0L, 0W (Rivals) and 0H (Coriolis) of every frame, and the points, as numbers at the
+        data and `at` (joints, rates, accelerations): robosolve's chain computation (forward.py's
+        ChainData over numpy): chain.M(frame), chain.L(i, frame), chain.W(frame), chain.H(frame),
+        chain.point(name)."""
+        numbers = _ChainAt(self, at)
+        return ChainData(numbers, numbers)
+
     def jacobian(self, coordinates):
         """The analytic Jacobian of coordinates (text expressions) in the joints."""
         return self.vector(coordinates).jacobian(self.joints)
@@ -332,6 +345,64 @@ class Robot:
         args = [self.t, self.joints, self.rates]
         parts = {"mass": mass, "c": c, "g": grav, "Q": Q, "rest": tau + Q - c - grav}
         return {k: _numeric(sp.lambdify(args, v, "numpy"), k != "mass") for k, v in parts.items()}
+
+
+class _ChainAt(NumpyOperations):
+    """A robot's chain at one configuration, what forward.py's ChainData asks: the description
+    (parents, the joints in each pose, the frame of a point) and the numpy algebra's inputs (each
+    pose in its parent A, a joint's twist dA/dq A^-1, A'' A^-1, the rates), evaluated once each."""
+
+    def __init__(self, robot, at):
+        self.robot, self.subs, self._memo = robot, robot.values(at), {}
+
+    def _num(self, key, build):
+        if key not in self._memo:
+            self._memo[key] = np.array(sp.N(sp.Matrix(build()).subs(self.subs)).tolist(), dtype=float)
+        return self._memo[key]
+
+    # -- the description
+    def parent(self, frame):
+        return None if frame == "0" else self.robot.frames[frame][0]
+
+    def chain(self, frame):
+        out = []
+        while frame != "0":
+            out.append(frame)
+            frame = self.robot.frames[frame][0]
+        return out[::-1]
+
+    def moved_by(self, frame):
+        local = self.robot.frames[frame][1]
+        return [i for i, q in enumerate(self.robot.joints) if local.has(q)]
+
+    def joint_frame(self, index):
+        return next((f for f in self.robot.frames if index in self.moved_by(f)), None)
+
+    def constant_twist(self, frame):
+        return None                     # H of every pose from A'' A^-1
+
+    def point_frame(self, name):
+        return self.robot.points[name][0]
+
+    # -- the inputs
+    def pose(self, frame):
+        return self._num(("A", frame), lambda: self.robot.frames[frame][1])
+
+    def twist(self, frame, index):
+        dA = self._num(("dA", frame, index), lambda: self.robot.frames[frame][1].diff(self.robot.joints[index]))
+        return dA @ rigid_inverse(self.pose(frame))
+
+    def acceleration(self, frame):
+        robot = self.robot
+        ddA = self._num(("ddA", frame), lambda: robot.time_derivative(robot.time_derivative(robot.frames[frame][1])))
+        return ddA @ rigid_inverse(self.pose(frame))
+
+    def rate(self, index, order):
+        symbol = (self.robot.rates if order == 1 else self.robot.accelerations)[index]
+        return float(self._num(("rate", index, order), lambda: [symbol])[0, 0])
+
+    def coordinates(self, name):
+        return self._num(("P", name), lambda: [*self.robot.points[name][1], 1]).ravel()
 
 
 def _numeric(f, column):

@@ -14,7 +14,9 @@ import sympy as sp
 from robosolve.load.loader import load_problem
 from robosolve.model.chain import RobotModel
 from robosolve.render import notebook_runtime as rt
-from robosolve.render.notebook import data_cell
+from robosolve.model import forward, numpy_algebra
+from robosolve.model.numeric import NumericChain
+from robosolve.render.notebook import data_cell, runtime_source
 from robosolve.questions.notebook_code import literal
 
 from conftest import PROBLEMS
@@ -49,11 +51,28 @@ def _n(expr, subs):
     return np.array(sp.N(sp.Matrix(expr).subs(subs)).tolist(), dtype=float)
 
 
+def _imported(source) -> set:
+    tree = ast.parse(source)
+    modules = {a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+    return modules | {n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+
+
 def test_the_runtime_imports_only_sympy_numpy_and_matplotlib():
-    tree = ast.parse(inspect.getsource(rt))
-    modules = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
-    modules |= {n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
-    assert modules <= {"numpy", "sympy", "matplotlib", "IPython"}, modules
+    """The runtime imports robosolve's numeric chain computation only (forward.py imports
+    nothing, numpy_algebra.py numpy), and the notebook's runtime cell, which copies both in
+    before it, imports nothing of robosolve."""
+    modules = _imported(inspect.getsource(rt))
+    assert {m.split(".")[0] for m in modules} <= {"numpy", "sympy", "matplotlib", "IPython", "robosolve"}
+    assert {m for m in modules if m.startswith("robosolve")} == {"robosolve.model.forward",
+                                                                  "robosolve.model.numpy_algebra"}
+    assert _imported(inspect.getsource(forward)) == set()
+    assert _imported(inspect.getsource(numpy_algebra)) == {"numpy"}
+    cell = runtime_source()
+    assert {m.split(".")[0] for m in _imported(cell)} <= {"numpy", "sympy", "matplotlib", "IPython"}
+    namespace = {}
+    exec(compile(cell, "runtime cell", "exec"), namespace)      # runs without robosolve's modules
+    assert namespace["ChainData"].__module__ != "robosolve.model.forward"
+    tree = ast.parse(cell)
     calls = {n.func.id for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
     assert not calls & {"open", "exec", "eval", "__import__"}
 
@@ -75,6 +94,27 @@ def test_chain_products_points_and_velocity_matrices_match_the_model(name):
             assert _n(robot.point0(point), mine) == pytest.approx(_n(model.point0(point), theirs), abs=1e-12)
         J = robot.jacobian(["E_x", "E_y", "E_z"])
         assert _n(J, mine) == pytest.approx(_n(model.point0("E").jacobian(model.q), theirs), abs=1e-12)
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_the_chain_at_numbers_matches_the_model_and_the_numeric_chain(name):
+    """robot.chain_at (the notebook's data through robosolve's numeric chain computation) against
+    the symbolic RobotModel evaluated and robosolve's NumericChain, at random states."""
+    problem, model, robot, values = _setup(name)
+    rng = np.random.default_rng(5)
+    state = _state(problem, rng)
+    mine = {s.name: str(v) for s, v in state.items()}
+    theirs = {**values, **state}
+    chain, numeric = robot.chain_at(mine), NumericChain(model, theirs)
+    for frame in problem.frames:
+        for got, want in ((chain.M(frame), model.M0(frame)), (chain.W(frame), model.W0(frame)),
+                          (chain.H(frame), model.H0(frame))):
+            assert got == pytest.approx(_n(want, theirs), abs=1e-10)
+        assert chain.H(frame) == pytest.approx(numeric.H0(frame), abs=1e-10)
+        for i in range(len(problem.joints)):
+            assert chain.L(i, frame) == pytest.approx(_n(model.L0(i, frame), theirs), abs=1e-12)
+    for point in problem.points:
+        assert chain.point(point) == pytest.approx(_n(model.point0(point), theirs).ravel(), abs=1e-12)
 
 
 @pytest.mark.parametrize("name", ["exam-2r-full", "scara-payload-dynamics", "one-link-eom"])
