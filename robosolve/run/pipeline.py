@@ -110,6 +110,11 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
     return report
 
 
+def may_draw(problem: Problem) -> bool:
+    """Whether some question of the problem may draw a figure (a drawer gets ready early)."""
+    return _may_draw(problem.questions)
+
+
 def _may_draw(questions) -> bool:
     from robosolve.questions.registry import QUESTION_TYPES
 
