@@ -3,11 +3,15 @@ robosolve (this one and a `--base` checkout, e.g. `git archive main | tar -x -C 
 next to its reference, all interleaved in every round so that the three see the same machine load.
 
     python bench/ab_rows.py --base /tmp/base [--rounds 5] [--rows task,exam,3r,puma]
+    python bench/ab_rows.py --base /tmp/base --batch [--rounds 1]
 
 Prints, per row, the minimum and the median over the rounds of the wall and CPU seconds (user +
 sys of the child and its waited helpers) of base, new and reference, and the ratios
 tree / reference of the minima (on a shared machine the minimum is the run least disturbed by
 the other jobs). Both trees are byte-compiled first (as `pip install .` does).
+With `--batch`: `robosolve batch` of the problems of bench_rows.py's batch row vs the same
+`solve`s one after another, for both trees, interleaved (wall seconds: the speed-up is the
+ratio sequence / batch).
 """
 
 from __future__ import annotations
@@ -50,11 +54,14 @@ def main():
     ap.add_argument("--base", required=True)
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--rows", default="task,exam,3r,puma")
+    ap.add_argument("--batch", action="store_true")
     args = ap.parse_args()
     base = Path(args.base).resolve()
     for tree in (ROOT, base):
         subprocess.run([PY, "-m", "compileall", "-q", str(tree / "robosolve")], check=True)
     out = Path(tempfile.mkdtemp(prefix="robosolve-ab-"))
+    if args.batch:
+        return batch_ab(base, out, args.rounds)
     rows = args.rows.split(",")
     times = {(r, w): [] for r in rows for w in ("base", "new", "ref")}
     print(f"# A/B: {args.rounds} rounds, base = {base}")
@@ -83,6 +90,36 @@ def main():
     print("\nall runs (wall, CPU):")
     for key, v in times.items():
         print(f"  {key[0]} {key[1]}: " + ", ".join(f"{a:.2f}/{b:.2f}" for a, b in v))
+
+
+def batch_ab(base: Path, out: Path, rounds: int) -> None:
+    import shutil
+
+    from bench_rows import batch_files
+
+    files = batch_files()
+    folder = out / "batch-in"
+    folder.mkdir()
+    for f in files:
+        shutil.copy(f, folder / f.name)
+    res = {k: [] for k in ("base batch", "new batch", "base sequence", "new sequence")}
+    print(f"# A/B batch of {len(files)} problems, {rounds} round(s), base = {base}")
+    print(f"start: {load_note()}  ({time.strftime('%H:%M', time.gmtime())} UTC)")
+    for k in range(rounds):
+        for who, tree in (("base", base), ("new", ROOT)):
+            res[f"{who} batch"].append(run([PY, "-m", "robosolve", "batch", str(folder), "--out",
+                                            str(out / f"{who}-batch-{k}")], tree))
+        for who, tree in (("base", base), ("new", ROOT)):
+            walls = [run([PY, "-m", "robosolve", "solve", str(f), "--out", str(out / f"{who}-seq-{k}" / f.stem)], tree)
+                     for f in files]
+            res[f"{who} sequence"].append((sum(w for w, _c in walls), sum(c for _w, c in walls)))
+    print(f"end:   {load_note()}  ({time.strftime('%H:%M', time.gmtime())} UTC)\n")
+    print("| tree | batch wall (CPU) | the same solves one after another, wall (CPU) | speed-up (wall minima) | goal |")
+    print("| --- | --- | --- | --- | --- |")
+    for who in ("base", "new"):
+        b, q = min(res[f"{who} batch"]), min(res[f"{who} sequence"])
+        print(f"| {who} | {b[0]:.2f} s ({b[1]:.2f} s) | {q[0]:.2f} s ({q[1]:.2f} s) | **{q[0] / b[0]:.2f}×** | ≥ 2.5× |")
+    print("\nall runs (wall, CPU):", {k: [f"{a:.2f}/{c:.2f}" for a, c in v] for k, v in res.items()})
 
 
 if __name__ == "__main__":
