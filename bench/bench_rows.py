@@ -1,13 +1,13 @@
-"""Benchmark: the other rows of issue 15's table, whole processes, one run.
+"""Benchmark: the other rows of bench/RESULTS-perf.md (issues 15 and 26), whole processes, one run.
 
     python bench/bench_rows.py [N] [--rows scara,3r,puma,batch]   (median of N, default 3)
 
 * SCARA position + velocity_acceleration (problems/scara-rrp.yaml) vs the import floor
   (`import sympy, numpy, scipy.integrate, matplotlib.pyplot`), goal ≤ 1.3;
 * anthropomorphic 3R, 5 questions (bench/problems/anthropomorphic-3r-5q.yaml) vs the
-  import floor, goal ≤ 2.0;
+  import floor, goal ≤ 1.3 (issue 26; 2.0 in issue 15);
 * PUMA 560 position + geometric 6×6 Jacobian + orientation + EOM
-  (bench/problems/puma560-4q.yaml) vs the import floor, goal ≤ 5.0;
+  (bench/problems/puma560-4q.yaml) vs the import floor, goal ≤ 2.0 (issue 26; 5.0 in issue 15);
 * a batch of 14 problems (problems/*.yaml + the 3R bench problem) with `robosolve batch`
   vs the same 14 solved one process after another, goal ≥ 2.5× faster.
 Every row's commands are interleaved with the import floor in the same round.
@@ -25,9 +25,9 @@ from _timing import CPU, IMPORT_FLOOR, ROOT, interleaved, load_note, median, rob
 SINGLE = {
     "scara": ("position + velocity_acceleration of a 3-joint SCARA", "problems/scara-rrp.yaml", 1.3),
     "3r": ("anthropomorphic 3R, 5 questions (position, vel/acc, jacobian, IK, EOM)",
-           "bench/problems/anthropomorphic-3r-5q.yaml", 2.0),
+           "bench/problems/anthropomorphic-3r-5q.yaml", 1.3),
     "puma": ("PUMA 560: position, geometric 6×6 Jacobian, orientation, EOM",
-             "bench/problems/puma560-4q.yaml", 5.0),
+             "bench/problems/puma560-4q.yaml", 2.0),
 }
 
 
@@ -51,7 +51,7 @@ def main():
     before = load_note()
     times = interleaved(commands, args.n)
     floor = median(times["floor"])
-    print(f"# issue 15 rows, median of {args.n}")
+    print(f"# rows of bench/RESULTS-perf.md, median of {args.n}")
     print(f"before: {before}")
     lines = []
     for key in rows:

@@ -23,22 +23,27 @@ def solve(
     """Solve problem files: write report.md, results.json and figures/."""
     from robosolve.load.loader import load_problem
     from robosolve.render.drawing import figure_drawer
-    from robosolve.run.pipeline import check_inputs
+    from robosolve.run.pipeline import check_inputs, may_draw
 
     formats = parse_formats(format)
 
-    # Validate every file first: nothing is written when any input is invalid.
+    # Validate every file first: nothing is written when any input is invalid. The figure
+    # helper starts as soon as a problem with figures is read: it imports matplotlib while this
+    # process checks the inputs and solves (the PNGs are drawn while the next question solves).
     problems, status = [], ExitStatus.OK
-    for f in files:
-        try:
-            problems.append(check_inputs(load_problem(f)))
-        except InputError as exc:
-            err(str(exc))
-            status = ExitStatus.INPUT
-    if status == ExitStatus.INPUT:
-        raise typer.Exit(ExitStatus.INPUT)
-    targets = _solve_targets(problems, out)
-    with figure_drawer(background=True) as figures:    # drawn while the next question solves
+    with figure_drawer(background=True) as figures:
+        for f in files:
+            try:
+                problem = load_problem(f)
+                if may_draw(problem):
+                    figures.expect()
+                problems.append(check_inputs(problem))
+            except InputError as exc:
+                err(str(exc))
+                status = ExitStatus.INPUT
+        if status == ExitStatus.INPUT:
+            raise typer.Exit(ExitStatus.INPUT)
+        targets = _solve_targets(problems, out)
         for problem, target in zip(problems, targets):
             status = max(status, _solve_one(problem, target, formats, files, figures))
     raise typer.Exit(status)

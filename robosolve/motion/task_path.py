@@ -268,7 +268,7 @@ def state_at(arm: Arm, path: Path, timing: Timing, conv: Conversion, t: float, s
 
 def _refine(fun, conv: Conversion, k: int, sign: float = 1.0):
     """max of sign*fun(t, segment) near sample k, within its segment: (value, t)."""
-    from scipy.optimize import minimize_scalar
+    from robosolve.core.minimize import minimize_bounded
 
     seg = conv.segment[k]
     idx = np.nonzero(conv.segment == seg)[0]
@@ -276,8 +276,7 @@ def _refine(fun, conv: Conversion, k: int, sign: float = 1.0):
     hi = conv.t[min(k + 1, idx[-1])]
     best = (sign * fun(conv.t[k], seg), float(conv.t[k]))
     if hi > lo:
-        res = minimize_scalar(lambda tt: -sign * fun(tt, seg), bounds=(lo, hi), method="bounded",
-                              options={"xatol": 1e-12 * max(1.0, conv.t[-1])})
+        res = minimize_bounded(lambda tt: -sign * fun(tt, seg), (lo, hi), xatol=1e-12 * max(1.0, conv.t[-1]))
         if -res.fun > best[0]:
             best = (float(-res.fun), float(res.x))
     return best

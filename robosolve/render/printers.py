@@ -6,7 +6,8 @@ again wherever it occurs. Their printing methods depend only on the expression a
 printer's settings (and, for `str`, on the level: see `SharedStrPrinter`), so the text of a
 subexpression printed without keyword arguments (`exp=` of a power of a function changes the
 text) is kept and reused: the same text (tested against `sympy.latex` and `str`), in about
-half of a report's printing time.
+half of a report's printing time. The memo and the `str` printer are in core/printing.py
+(solvers print with it too).
 """
 
 from __future__ import annotations
@@ -15,25 +16,12 @@ import math
 
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
-from sympy.printing.str import StrPrinter
 
+from robosolve.core.printing import PrintsEachOnce as _PrintsEachOnce
+from robosolve.core.printing import SharedStrPrinter
 from robosolve.render.numbers import REPORT_DIGITS
 
-
-class _PrintsEachOnce:
-    """The memo of the two printers below; `_key` is what the text of an expression depends on."""
-
-    def _key(self, expr):
-        return expr
-
-    def _print(self, expr, **kwargs) -> str:
-        if kwargs or not isinstance(expr, sp.Basic):
-            return super()._print(expr, **kwargs)
-        key = self._key(expr)
-        out = self._printed.get(key)
-        if out is None:
-            out = self._printed[key] = super()._print(expr)
-        return out
+__all__ = ["SharedLatexPrinter", "SharedStrPrinter"]
 
 
 class SharedLatexPrinter(_PrintsEachOnce, LatexPrinter):
@@ -58,16 +46,3 @@ class SharedLatexPrinter(_PrintsEachOnce, LatexPrinter):
         if coeff.is_Float and f"{abs(float(coeff)):.{REPORT_DIGITS}g}" == "1" and rest != 1:
             return self._print(-rest if coeff < 0 else rest)
         return super()._print_Mul(expr)
-
-
-class SharedStrPrinter(_PrintsEachOnce, StrPrinter):
-    """`str(expr)` of sympy expressions (not of matrices: results.json prints them entry by
-    entry), for results.json. A Float is printed differently at the top and inside another
-    expression: that is part of the key."""
-
-    def __init__(self):
-        super().__init__({"order": None})       # what Basic.__str__ asks for
-        self._printed: dict = {}
-
-    def _key(self, expr):
-        return expr, self._print_level == 0

@@ -118,6 +118,11 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
     return report
 
 
+def may_draw(problem: Problem) -> bool:
+    """Whether some question of the problem may draw a figure (a drawer gets ready early)."""
+    return _may_draw(problem.questions)
+
+
 def _may_draw(questions) -> bool:
     from robosolve.questions.registry import QUESTION_TYPES
 
@@ -196,13 +201,20 @@ def solve_file(path) -> Report:
 def render_files(report: Report, formats=("md",), figures=None) -> dict[str, bytes]:
     """results.json, figures/*.png and the reports of `formats` (robosolve.render.formats:
     md -> report.md, html -> report.html, ipynb -> report.ipynb) as relative path -> bytes.
-    The PNGs come from `figures` (robosolve.render.drawing; drawn here when None)."""
+    The PNGs come from `figures` (robosolve.render.drawing; drawn here when None).
+
+    results.json and the Markdown are printed before the PNGs are collected, for figures drawn
+    in the background are still being drawn meanwhile; they name every figure, so they are
+    printed again in the rare case one could not be drawn (its answer then carries a note)."""
     from robosolve.render.drawing import FigureFailed, InlineFigures
     from robosolve.render.formats import FORMATS
-    from robosolve.render.markdown import render_report
-    from robosolve.render.results_json import render_results_json
 
     figures = figures or InlineFigures()
+    planned: dict[str, list[str]] = {}
+    for answer in report.answers:
+        for spec in answer.figures:
+            planned.setdefault(answer.id, []).append(f"figures/{answer.id}-{spec.name}.png")
+    texts = _texts(report, planned)
     files: dict[str, bytes] = {}
     figure_paths: dict[str, list[str]] = {}
     for answer in report.answers:
@@ -214,12 +226,22 @@ def render_files(report: Report, formats=("md",), figures=None) -> dict[str, byt
                 answer.note(f"figure {spec.name} could not be drawn ({exc})")
                 continue
             figure_paths.setdefault(answer.id, []).append(rel)
-    files["results.json"] = render_results_json(report, figure_paths).encode("utf-8")
-    markdown = render_report(report, figure_paths)
+    if figure_paths != planned:
+        texts = _texts(report, figure_paths)
+    results, markdown = texts
+    files["results.json"] = results.encode("utf-8")
     for name in formats:
         fmt = FORMATS[name]
         files[fmt.filename] = fmt.render(report, markdown, figure_paths, files).encode("utf-8")
     return files
+
+
+def _texts(report: Report, figure_paths: dict) -> tuple[str, str]:
+    """(results.json, report.md) of the report with these figures."""
+    from robosolve.render.markdown import render_report
+    from robosolve.render.results_json import render_results_json
+
+    return render_results_json(report, figure_paths), render_report(report, figure_paths)
 
 
 def write_outputs(report: Report, out_dir, formats=("md",), inputs=(), figures=None) -> Path:

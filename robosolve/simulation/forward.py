@@ -211,7 +211,7 @@ def integrate(plant: Plant, q0, qd0, duration: float, *, rtol: float = RTOL, ato
               max_evaluations: int = MAX_EVALUATIONS, samples: int = 1001,
               wall_seconds: float = WALL_SECONDS, method: str = "DOP853") -> Run:
     """Integrate the plant from (q0, qd0) at t = 0 over [0, duration]."""
-    from scipy.integrate import solve_ivp
+    from robosolve.simulation.dop853 import solve_ivp
 
     n = plant.n
     duration = float(duration)

@@ -177,7 +177,7 @@ def _error_rhs(dyn: NumericDynamics, fast, law, kp, kd, a, coeffs, deg):
 def _integrate(dyn: NumericDynamics, deg, law, kp, kd, intervals, y, budget, method, rtol, atol):
     """The error ODE from state ``y``, restarted at every switching instant:
     ([(t_a, t_b, coeffs, solution)], evaluations)."""
-    from scipy.integrate import solve_ivp
+    from robosolve.simulation.dop853 import solve_ivp
 
     fast = dyn.closed_loop(law, kp, kd)
     sols = []
@@ -236,7 +236,7 @@ def _max_errors(sols, n, duration):
 def _max_abs_error(sols, i, duration):
     """max |e_i| and where: the solver's own steps sample every oscillation finely; the best
     few local maxima are then polished on the dense output."""
-    from scipy.optimize import minimize_scalar
+    from robosolve.core.minimize import minimize_bounded
 
     cands = []
     for a, b, _c, sol in sols:
@@ -247,8 +247,8 @@ def _max_abs_error(sols, i, duration):
             lo_t, hi_t = ts[max(j - 1, 0)], ts[min(j + 1, m - 1)]
             tc, vc = float(ts[j]), float(vals[j])
             if hi_t > lo_t:
-                res = minimize_scalar(lambda s, sol=sol: -abs(sol.sol(s)[i]), bounds=(lo_t, hi_t),
-                                      method="bounded", options={"xatol": 1e-12 * max(1.0, duration)})
+                res = minimize_bounded(lambda s, sol=sol: -abs(sol.sol(s)[i]), (lo_t, hi_t),
+                                       xatol=1e-12 * max(1.0, duration))
                 if -res.fun > vc:
                     tc, vc = float(res.x), float(-res.fun)
             cands.append((vc, tc))

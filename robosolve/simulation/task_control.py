@@ -58,7 +58,7 @@ def simulate_task(dyn, arm, desired, breaks, law, kp, kd, q0, duration, samples=
     """``desired(t, segment) -> (x_d, x_dot_d, x_ddot_d)``; ``breaks`` of the timing law [0, ..., T]."""
     import time
 
-    from scipy.integrate import solve_ivp
+    from robosolve.simulation.dop853 import solve_ivp
 
     if law not in TASK_LAWS:
         raise ValueError(f"unknown task law {law!r}")
@@ -100,7 +100,7 @@ def _error_at(arm, desired, sols, t):
 
 
 def _result(dyn, arm, desired, law, kp, kd, sols, duration, samples, nfev):
-    from scipy.optimize import minimize_scalar
+    from robosolve.core.minimize import minimize_bounded
 
     grid = np.union1d(np.linspace(0.0, duration, samples), [s[0] for s in sols] + [duration])
     n = dyn.n
@@ -120,8 +120,8 @@ def _result(dyn, arm, desired, law, kp, kd, sols, duration, samples, nfev):
         lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
         mx[i], tm[i] = abs(e[i, k]), grid[k]
         if hi > lo:
-            res = minimize_scalar(lambda s: -abs(_error_at(arm, desired, sols, s)[i]), bounds=(lo, hi),
-                                  method="bounded", options={"xatol": 1e-12 * max(1.0, duration)})
+            res = minimize_bounded(lambda s: -abs(_error_at(arm, desired, sols, s)[i]), (lo, hi),
+                                   xatol=1e-12 * max(1.0, duration))
             if -res.fun > mx[i]:
                 mx[i], tm[i] = -res.fun, res.x
     return TaskControlResult(law, duration, grid, np.array(cols["q"]).T, np.array(cols["x"]).T,

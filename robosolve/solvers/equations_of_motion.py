@@ -12,6 +12,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.course_notes import note_link
+from robosolve.core.printing import SharedStrPrinter
 from robosolve.dynamics.bridge import numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
@@ -84,7 +85,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     f = dyn.generalized_forces
     ans.symbolic["generalized_forces"] = {names[i]: f[i] for i in range(n)}
     lhs = dyn.lhs()
-    ans.symbolic["equations"] = [f"{lhs[i]} = {f[i]}" for i in range(n)]
+    text = SharedStrPrinter().doprint      # str(), each shared subexpression printed once
+    ans.symbolic["equations"] = [f"{text(lhs[i])} = {text(f[i])}" for i in range(n)]
     ans.symbolic["mass_matrix"] = dyn.mass_matrix
     ans.symbolic["velocity_terms"] = list(dyn.velocity_terms)
     ans.symbolic["gravity_terms"] = list(dyn.gravity_terms)

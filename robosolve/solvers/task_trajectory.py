@@ -156,8 +156,26 @@ def _ik(ctx, model, x_expr, target, subs, key):
     return np.array([res.selected[j.name] for j in model.joints], dtype=float), res
 
 
+# check_input's setup of a question, reused by solve (the IK and the lambdified arm are half of
+# a small problem's work): id(question) -> (question, budgets, setup); a few, the latest
+_SETUPS: dict = {}
+_KEPT_SETUPS = 8
+
+
 def setup(question, ctx: SolveContext):
-    """Everything before the conversion; raises BadInput for a mistake in the file."""
+    """Everything before the conversion; raises BadInput for a mistake in the file. The same
+    question with the same budgets gives the same setup, computed once."""
+    hit = _SETUPS.get(id(question))
+    if hit is not None and hit[0] is question and hit[1] == ctx.budgets:
+        return hit[2]
+    out = _setup(question, ctx)
+    while len(_SETUPS) >= _KEPT_SETUPS:
+        _SETUPS.pop(next(iter(_SETUPS)))
+    _SETUPS[id(question)] = (question, ctx.budgets, out)
+    return out
+
+
+def _setup(question, ctx: SolveContext):
     model, opts = ctx.model, question.options
     subs = ctx.substitutions(question.at)
     coords = coordinates(question, model)

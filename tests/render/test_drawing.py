@@ -132,3 +132,28 @@ def test_the_helper_ends_with_its_parent(tmp_path):
     else:
         os.kill(helper, 9)
         pytest.fail("the drawing helper outlived its parent")
+
+
+def test_a_failing_figure_is_named_in_the_texts(reports):
+    """results.json and report.md are printed before the PNGs are collected: when a figure
+    fails they are printed again, with its note and without its path (as when printed after)."""
+    import copy
+    import json
+
+    from robosolve.render.markdown import render_report
+    from robosolve.render.results_json import render_results_json
+
+    report = copy.deepcopy(reports[0])
+    answer = next(a for a in report.answers if a.figures)
+    good = [s for s in answer.figures]
+    answer.figures.append(_broken_spec())
+    files = render_files(report)
+    record = json.loads(files["results.json"])["answers"][answer.id]
+    assert record["figures"] == [f"figures/{answer.id}-{s.name}.png" for s in good]
+    assert any("figure broken could not be drawn" in n for n in answer.notes)
+    assert "figure broken could not be drawn" in files["report.md"].decode()
+    paths = {a.id: [f"figures/{a.id}-{s.name}.png" for s in a.figures if s.name != "broken"]
+             for a in report.answers if a.figures}
+    assert files["results.json"].decode() == render_results_json(report, paths)
+    assert files["report.md"].decode() == render_report(report, paths)
+    assert "figures/" + answer.id + "-broken.png" not in files
