@@ -315,6 +315,11 @@ class DynamicsEngine:
                     for k, ld in enumerate(self.loads) if i in self.moving(ld.frame))
         return self._cached("rext", lambda: self._pseudo_scalar_sums(terms))
 
+    def external_polynomials(self) -> list:
+        """The generalized forces of the loads as plain sympy expressions (the canonical
+        polynomials, no readable form: numeric code lambdifies them)."""
+        return [self.alg.to_expr(x) for x in self._rext()]
+
     def _pseudo_scalar_sums(self, terms) -> list:
         """For each joint i, Σ Φ ⊗ L over the pairs (Φ, L) of `terms(i)`, in the algebra."""
         from robosolve.core.matrices import _PSP_ENTRIES

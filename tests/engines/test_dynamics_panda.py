@@ -1,0 +1,130 @@
+"""The Franka Panda (problems/panda.yaml: modified DH, 7 joints, 7 point masses): its equations
+of motion against Robotics Toolbox (`inertia`, `coriolis`, `gravload`, `rne`) built from the
+same modified DH table and point masses (r = centre of mass, I = 0), at random states.
+
+Three routes are checked: the numeric code (`ChainDynamics`, what the solver's numbers come
+from), the engine's polynomials in cos/sin (what results.json prints, evaluated here), and the
+whole solve of the problem (results.json's numbers and symbolic strings)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+rtb = pytest.importorskip("roboticstoolbox")
+
+from robosolve.dynamics.bridge import engine_inputs  # noqa: E402
+from robosolve.dynamics.engine import DynamicsEngine  # noqa: E402
+from robosolve.dynamics.numeric import ChainDynamics  # noqa: E402
+from robosolve.load.loader import load_problem, load_problem_text  # noqa: E402
+from robosolve.model import RobotModel  # noqa: E402
+
+PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+
+
+def _values(problem) -> dict:
+    return {s: v for s, v in problem.parameters.items()}
+
+
+def _rtb_twin(problem):
+    """The problem's modified DH chain (frames with a body) and point masses as an RTB DHRobot."""
+    values = _values(problem)
+
+    def num(e):
+        return float(sp.N(sp.sympify(e).xreplace(values)))
+
+    links = []
+    for name, frame in problem.frames.items():
+        body = next((b for b in problem.bodies if b.frame == name), None)
+        if body is None:
+            continue            # the flange: no mass, after the last joint
+        al, a, _, d = frame.factors
+        links.append(rtb.RevoluteMDH(d=num(d), a=num(a), alpha=num(al), m=float(body.mass),
+                                     r=[num(v) for v in body.data["at"]], I=np.zeros(3), Jm=0.0, G=1.0))
+    g = next(v for s, v in values.items() if s.name == "g")
+    return rtb.DHRobot(links, gravity=[0, 0, -float(g)])
+
+
+def _close(x, ref):
+    ref = np.asarray(ref, dtype=float)
+    return np.allclose(x, ref, rtol=1e-8, atol=1e-8 * max(1.0, np.abs(ref).max()))
+
+
+def _cut(joints: int) -> str:
+    """problems/panda.yaml with its first `joints` joints, rows and bodies (no questions)."""
+    text = (PROBLEMS / "panda.yaml").read_text()
+    head, rest = text.split("joints:\n", 1)
+    lines = rest.split("questions:")[0].splitlines()
+    keep = []
+    for line in lines:
+        for k in range(joints + 1, 8):
+            if f"q{k}" in line or f'frame: "{k}"' in line or line.startswith("frames:") or "F:" in line:
+                break
+        else:
+            keep.append(line)
+    return head + "joints:\n" + "\n".join(keep) + "\nquestions:\n  - {type: equations_of_motion}\n"
+
+
+@pytest.fixture(scope="module")
+def panda():
+    problem = load_problem(PROBLEMS / "panda.yaml")
+    return problem, RobotModel(problem), _rtb_twin(problem)
+
+
+def test_rtb_twin_matches_the_published_panda(panda):
+    """Our table and masses are the ones of RTB's own models.DH.Panda, whose frame 7 is our
+    flange F (d7 folded into its last row) and whose tool is a further Tz(0.103) Rz(−π/4)."""
+    problem, model, robot = panda
+    ref = rtb.models.DH.Panda()
+    q = np.random.default_rng(1).uniform(-2, 2, 7)
+    flange = np.array(model.M0("F").xreplace({**_values(problem), **dict(zip(model.q, q))}).evalf(),
+                      dtype=float)
+    ref_flange = ref.fkine(q).A @ np.linalg.inv(ref.tool.A)
+    assert np.allclose(flange, ref_flange, atol=1e-12)
+    assert np.allclose(robot.fkine(q).A @ _tz(0.107), ref_flange, atol=1e-12)
+    for k, (ours, theirs) in enumerate(zip(robot.links, ref.links)):
+        assert ours.m == pytest.approx(theirs.m, abs=1e-12)
+        shift = np.array([0, 0, 0.107 if k == 6 else 0.0])
+        # link 1's centre of mass height lies on joint 1's axis: RTB's 0 there changes nothing
+        mask = np.array([1, 1, 0 if k == 0 else 1])
+        assert np.allclose(mask * (ours.r - shift), mask * theirs.r, atol=1e-12)
+
+
+def _tz(d):
+    out = np.eye(4)
+    out[2, 3] = d
+    return out
+
+
+def test_numeric_code_against_rtb(panda):
+    problem, model, robot = panda
+    nd = ChainDynamics(DynamicsEngine(**engine_inputs(model)), _values(problem))
+    rng = np.random.default_rng(26)
+    for _ in range(5):
+        q, qd, qdd = rng.uniform(-np.pi, np.pi, (3, 7))
+        out = nd.evaluate(q, qd)
+        assert _close(out["mass_matrix"], robot.inertia(q))
+        assert _close(out["velocity_terms"], robot.coriolis(q, qd) @ qd)
+        assert _close(out["gravity_terms"], robot.gravload(q))
+        tau = out["mass_matrix"] @ qdd + out["velocity_terms"] + out["gravity_terms"]
+        assert _close(tau, robot.rne(q, qd, qdd))
+
+
+def test_four_joint_cut_polynomials_against_rtb():
+    """The engine's polynomials (the symbolic answers) of the first four links, evaluated."""
+    problem = load_problem_text(_cut(4), "panda-4.yaml")
+    model = RobotModel(problem)
+    robot = _rtb_twin(problem)
+    eng = DynamicsEngine(**engine_inputs(model))
+    alg, values = eng.alg, _values(problem)
+    exprs = [alg.to_expr(x) for row in eng._rM() for x in row] + [alg.to_expr(x) for x in eng._rg()]
+    f = sp.lambdify([model.q], [e.xreplace(values) for e in exprs])
+    rng = np.random.default_rng(4)
+    for _ in range(5):
+        q = rng.uniform(-np.pi, np.pi, 4)
+        out = np.array(f(q), dtype=float)
+        assert _close(out[:16].reshape(4, 4), robot.inertia(q))
+        assert _close(out[16:], robot.gravload(q))
