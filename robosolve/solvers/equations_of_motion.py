@@ -68,6 +68,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return _numeric_only(question, ctx, ans)
 
     eng = dyn.engine
+    if getattr(eng, "large", False):
+        from robosolve.solvers.dynamics_big import solve_big
+        return solve_big(question, ctx, ans, dyn)
     n = len(dyn.joints)
     names = [j.name for j in dyn.joints]
     _steps_inertia(ans, model, eng)
