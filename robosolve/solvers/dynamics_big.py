@@ -111,10 +111,10 @@ def _steps_energy(ans, eng, poly) -> None:
     ans.steps.append(Step(
         "Lagrangian",
         "$\\mathcal{L} = \\sum_j (T_j - U_j)$. Its kinetic part is $\\frac{1}{2}\\dot q^T M(q)\\,\\dot q$, "
-        "which defines the mass matrix $M_{ik} = \\sum_j \\mathrm{tr}(L_i J_j L_k^T)$, written entry "
-        "by entry (its entries are polynomials in $\\cos q_i$, $\\sin q_i$ reduced by "
-        "$\\cos^2 + \\sin^2 = 1$).",
-        equations=[("\\mathcal{L}", lagrangian), ("M(q)", _matrix(eng, m))],
+        "which defines the mass matrix $M_{ik} = \\sum_j \\mathrm{tr}(L_i J_j L_k^T)$ (written entry "
+        "by entry in the matrix form below; its entries are polynomials in $\\cos q_i$, $\\sin q_i$ "
+        "reduced by $\\cos^2 + \\sin^2 = 1$).",
+        equations=[("\\mathcal{L}", lagrangian)],
     ))
 
 

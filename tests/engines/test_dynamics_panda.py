@@ -128,3 +128,69 @@ def test_four_joint_cut_polynomials_against_rtb():
         out = np.array(f(q), dtype=float)
         assert _close(out[:16].reshape(4, 4), robot.inertia(q))
         assert _close(out[16:], robot.gravload(q))
+
+
+AT = {"q1": 0.1, "q2": -0.4, "q3": 0.2, "q4": -1.9, "q5": 0.3, "q6": 1.5, "q7": 0.6,
+      "q1_dot": 0.5, "q2_dot": -0.3, "q3_dot": 0.8, "q4_dot": 0.1, "q5_dot": -0.6, "q6_dot": 0.4,
+      "q7_dot": 0.2, "q1_ddot": 1, "q2_ddot": -0.5, "q3_ddot": 0.2, "q4_ddot": 0.7, "q5_ddot": -1,
+      "q6_ddot": 0.3, "q7_ddot": -0.8}
+
+
+@pytest.fixture(scope="module")
+def solved():
+    """The Panda with one equations-of-motion question, solved in this process (~5 s)."""
+    import json
+
+    from robosolve.run.pipeline import solve_loaded
+
+    text = (PROBLEMS / "panda.yaml").read_text().split("questions:")[0]
+    text += "questions:\n  - type: equations_of_motion\n    at: {" + ", ".join(
+        f"{k}: {v}" for k, v in AT.items()) + "}\n"
+    problem = load_problem_text(text, "panda-eom.yaml")
+    result = solve_loaded(problem)
+    assert result.status == 0, result.messages
+    doc = json.loads(result.files["results.json"])
+    return problem, doc["answers"]["equations_of_motion"], result.files["report.md"].decode()
+
+
+def test_solved_numbers_against_rtb(solved, panda):
+    problem, answer, _ = solved
+    robot = panda[2]
+    q, qd, qdd = (np.array([AT[f"q{i}{s}"] for i in range(1, 8)], dtype=float)
+                  for s in ("", "_dot", "_ddot"))
+    num = answer["numeric"]
+    assert _close(num["mass_matrix"], robot.inertia(q))
+    assert _close(num["velocity_terms"], robot.coriolis(q, qd) @ qd)
+    assert _close(num["gravity_terms"], robot.gravload(q))
+    assert _close([num["actuators"][f"C{i}"] for i in range(1, 8)], robot.rne(q, qd, qdd))
+    kinetic = 0.5 * qd @ robot.inertia(q) @ qd
+    assert num["kinetic_energy"]["total"] == pytest.approx(kinetic, rel=1e-9)
+
+
+def _evaluate(problem, texts):
+    """Each symbolic string read back by sympy and evaluated at AT with the parameters."""
+    values = {**{s: v for s, v in problem.parameters.items()}}
+    names = {s.name: s for s in values}
+    for k, v in AT.items():
+        names.setdefault(k, sp.Symbol(k))
+    values.update({names[k]: v for k, v in AT.items()})
+    return [float(sp.sympify(t, locals=names).xreplace(values)) for t in texts]
+
+
+def test_solved_symbolic_mass_matrix_and_gravity_read_back(solved):
+    """results.json's symbolic M(q) and g(q), read back by sympy, give the numbers."""
+    problem, answer, report = solved
+    sym, num = answer["symbolic"], answer["numeric"]
+    m = _evaluate(problem, [x for row in sym["mass_matrix"] for x in row])
+    assert _close(np.array(m).reshape(7, 7), num["mass_matrix"])
+    assert _close(_evaluate(problem, sym["gravity_terms"]), num["gravity_terms"])
+    assert "M(q)[1,1] = \\text{(long:" in report and "M(q)[7,7] = " in report
+
+
+@pytest.mark.slow
+def test_solved_symbolic_velocity_terms_and_equations_read_back(solved):
+    problem, answer, _ = solved
+    sym, num = answer["symbolic"], answer["numeric"]
+    assert _close(_evaluate(problem, sym["velocity_terms"]), num["velocity_terms"])
+    lhs = _evaluate(problem, [e.split(" = ")[0] for e in sym["equations"]])
+    assert _close(lhs, [num["actuators"][f"C{i}"] for i in range(1, 8)])
