@@ -47,9 +47,9 @@ def _rates(eng, j, k, half=False):
     return w * eng.qd[j] * eng.qd[k]
 
 
-def solve_big(question, ctx: SolveContext, ans: Answer, dyn) -> Answer:
-    from robosolve.solvers import equations_of_motion as eom
-
+def solve_big(question, ctx: SolveContext, ans: Answer, dyn, shared: dict) -> Answer:
+    """`shared`: the steps this route has in common with the general one (the solver's
+    "inertia", "velocity", "actions" steps and its "rates", the state with unset rates 0)."""
     eng = dyn.engine
     model = ctx.model
     poly = eng.polynomials()
@@ -58,10 +58,10 @@ def solve_big(question, ctx: SolveContext, ans: Answer, dyn) -> Answer:
              f"{sum(eng.term_count(x) for row in poly['mass_matrix'] for x in row)} terms (mass "
              "matrix) and more, written in results.json nested by joint; the report writes out the "
              f"entries of at most {SHOW_TERMS} terms; the numbers come from numeric code")
-    eom._steps_inertia(ans, model, eng)
-    eom._steps_velocity(ans, model, eng)
+    shared["inertia"](ans, model, eng)
+    shared["velocity"](ans, model, eng)
     _steps_energy(ans, eng, poly)
-    eom._steps_actions(ans, model, eng, dyn)
+    shared["actions"](ans, model, eng, dyn)
     _steps_lagrange(ans, eng, dyn, poly)
     f = dyn.generalized_forces
     names = [j.name for j in dyn.joints]
@@ -73,7 +73,7 @@ def solve_big(question, ctx: SolveContext, ans: Answer, dyn) -> Answer:
     ans.symbolic["velocity_terms"] = texts["velocity_terms"]
     ans.symbolic["gravity_terms"] = texts["gravity_terms"]
     if question.at:
-        _numeric(question, ctx, ans, dyn)
+        _numeric(question, ctx, ans, dyn, shared["rates"])
     return ans
 
 
@@ -152,11 +152,9 @@ def _steps_lagrange(ans, eng, dyn, poly) -> None:
     ))
 
 
-def _numeric(question, ctx, ans, dyn) -> None:
-    from robosolve.solvers import equations_of_motion as eom
-
+def _numeric(question, ctx, ans, dyn, rates) -> None:
     eng = dyn.engine
-    subs = eom._rates(question, ctx, ans, dyn)
+    subs = rates(question, ctx, ans, dyn)
     joint_syms = set(dyn.q) | set(dyn.qd) | set(dyn.qdd)
     missing = [s.name for s in dyn.q if s not in subs]
     if missing:

@@ -70,7 +70,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     eng = dyn.engine
     if getattr(eng, "large", False):
         from robosolve.solvers.dynamics_big import solve_big
-        return solve_big(question, ctx, ans, dyn)
+        shared = {"inertia": _steps_inertia, "velocity": _steps_velocity, "actions": _steps_actions,
+                  "rates": _rates}
+        return solve_big(question, ctx, ans, dyn, shared)
     n = len(dyn.joints)
     names = [j.name for j in dyn.joints]
     _steps_inertia(ans, model, eng)
