@@ -606,7 +606,10 @@ class DynamicsEngine:
         def build():
             if not isinstance(self.alg, TrigAlgebra) or not self.simplify:
                 return False
-            return sum(len(x) for row in self._rM() for x in row) > LARGE_TERMS
+            big = sum(len(x) for row in self._rM() for x in row) > LARGE_TERMS
+            if big:     # what follows (c, texts) is new to this route: the faster reduction
+                self.alg.term_by_term = True
+            return big
         return self._cached("large", build)
 
     def _ring_text(self):
@@ -624,7 +627,7 @@ class DynamicsEngine:
         count = self.term_count(p)
         if count > SHOW_TERMS:
             return None, count
-        return self.pretty(p, force=True), count
+        return self.pretty(p, light=True), count
 
     def polynomials(self) -> dict:
         """The final algebra elements: M (rows), c (per joint: {(j, k): Γ}), g, U and M per body."""

@@ -76,6 +76,7 @@ class RingText:
         domain = ring.domain
         self.params = [str(s) for s in getattr(domain, "symbols", ())]
         self.nested = bool(self.params)
+        self._memo: dict = {}       # id(element) -> (element, its signed terms)
 
     # ------------------------------------------------------------ counts
     def term_count(self, p) -> int:
@@ -115,9 +116,13 @@ class RingText:
         return out
 
     def signed_terms(self, p) -> list[tuple[bool, str]]:
+        """The terms of p's text (remembered: the left sides of the equations repeat M and c)."""
         if p == 0:
             return []
-        return self._terms(sorted(p.items()), 0)
+        hit = self._memo.get(id(p))
+        if hit is None or hit[0] is not p:
+            hit = self._memo[id(p)] = (p, self._terms(sorted(p.items()), 0))
+        return hit[1]
 
     def text(self, p) -> str:
         return _join(self.signed_terms(p))

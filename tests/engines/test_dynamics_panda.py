@@ -194,3 +194,41 @@ def test_solved_symbolic_velocity_terms_and_equations_read_back(solved):
     assert _close(_evaluate(problem, sym["velocity_terms"]), num["velocity_terms"])
     lhs = _evaluate(problem, [e.split(" = ")[0] for e in sym["equations"]])
     assert _close(lhs, [num["actuators"][f"C{i}"] for i in range(1, 8)])
+
+
+def test_term_by_term_reduction_is_the_division():
+    """TrigAlgebra.reduce's term-by-term elimination of sin² gives the normal form of the
+    division by {sᵢ² + cᵢ² − 1}: equal with exact coefficients, within rounding with decimals."""
+    from robosolve.core.trigring import TrigAlgebra
+
+    q = sp.symbols("q1:4", real=True)
+    a, b = sp.symbols("a b")
+    rng = np.random.default_rng(9)
+    for decimal in (False, True):
+        exprs = []
+        for _ in range(6):
+            terms = []
+            for _ in range(8):
+                c = (sp.Float(rng.normal()) if decimal
+                     else sp.Rational(int(rng.integers(-9, 9)), int(rng.integers(1, 5))))
+                e = [int(x) for x in rng.integers(0, 4, 6)]
+                trig = sp.Mul(*[sp.sin(qi) ** e[k] * sp.cos(qi) ** e[3 + k] for k, qi in enumerate(q)])
+                terms.append(c * (a if e[0] % 2 else b) * trig)
+            exprs.append(sp.Add(*terms))
+        alg = TrigAlgebra.from_inputs(list(q), exprs)
+        alg.term_by_term = True
+        for p in alg.elements:
+            for r in (p, p * p):
+                fast, division = alg.reduce(r), r.rem(alg._basis)
+                if decimal:
+                    assert all(abs(float(c2)) < 1e-9 for c2 in _coefficients(fast - division))
+                    assert all(m[k] < 2 for m in fast for k, _ in alg._slots)
+                else:
+                    assert fast == division
+
+
+def _coefficients(p):
+    out = []
+    for c in p.values():
+        out += list(c.values()) if hasattr(c, "values") else [c]
+    return out
