@@ -232,3 +232,23 @@ def _coefficients(p):
     for c in p.values():
         out += list(c.values()) if hasattr(c, "values") else [c]
     return out
+
+
+def test_bridge_numeric_and_lazy_expressions_of_the_big_robot(panda):
+    """Through the model bridge (what joint torques and simulations use): numeric code for a
+    big robot, and its sympy expressions built on first use (here g(q), against RTB)."""
+    from robosolve.dynamics.bridge import dynamics_for, numeric_for
+    from robosolve.solvers.base import SolveContext
+
+    problem, model, robot = panda
+    values = SolveContext(problem, model).substitutions({})
+    nd, note = numeric_for(model, values)
+    assert note is None
+    dyn = dynamics_for(model)
+    assert dyn.engine.large and "gravity_terms" not in vars(dyn)
+    g = sp.lambdify([model.q], list(dyn.gravity_terms.xreplace(_values(problem))))
+    rng = np.random.default_rng(8)
+    for _ in range(3):
+        q, qd, qdd = rng.uniform(-np.pi, np.pi, (3, 7))
+        assert _close(nd.actuators(q, qd, qdd), robot.rne(q, qd, qdd))
+        assert _close(g(q), robot.gravload(q))
