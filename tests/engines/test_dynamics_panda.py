@@ -185,6 +185,9 @@ def test_solved_symbolic_mass_matrix_and_gravity_read_back(solved):
     assert _close(np.array(m).reshape(7, 7), num["mass_matrix"])
     assert _close(_evaluate(problem, sym["gravity_terms"]), num["gravity_terms"])
     assert "M(q)[1,1] = \\text{(long:" in report and "M(q)[7,7] = " in report
+    for key in ("kinetic_energy", "potential_energy"):
+        names = ["total", "link2", "link7"]
+        assert _close(_evaluate(problem, [sym[key][k] for k in names]), [num[key][k] for k in names])
 
 
 @pytest.mark.slow
