@@ -16,7 +16,7 @@ import weakref
 
 from robosolve.core.timing import time_limit
 from robosolve.dynamics.api import derive_dynamics, numeric_dynamics
-from robosolve.dynamics.numeric import NumericDynamics, lambdify_dynamics
+from robosolve.dynamics.numeric import ChainDynamics, NumericDynamics, lambdify_dynamics
 from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
 from robosolve.errors import SymbolicTimeout
 
@@ -107,6 +107,15 @@ def _joint_free(model, subs: dict) -> dict:
     return {k: v for k, v in subs.items() if k not in joint_syms}
 
 
+def _large(dyn) -> bool:
+    return bool(getattr(dyn.engine, "large", False))
+
+
+def _chain(dyn, subs) -> NumericDynamics:
+    """A big robot's NumericDynamics from numeric code (see dynamics.numeric.ChainDynamics)."""
+    return ChainDynamics(dyn.engine, subs).numeric()
+
+
 def _subs_key(kind: str, subs: dict) -> tuple:
     return (kind, tuple(sorted((str(k), str(v)) for k, v in subs.items())))
 
@@ -122,7 +131,8 @@ def numeric_for(model, subs: dict, seconds: float | None = DYNAMICS_SECONDS
         return store[key]
     try:
         dyn = dynamics_for(model, seconds)
-        out = (lambdify_dynamics(dyn, subs), None)
+        # a big robot's expressions are thousands of terms: numeric code, not lambdify
+        out = (_chain(dyn, subs) if _large(dyn) else lambdify_dynamics(dyn, subs), None)
     except SymbolicTimeout:
         out = (numeric_dynamics(**engine_inputs(model), subs=subs), NUMERIC_ONLY_NOTE)
     store[key] = out
@@ -143,6 +153,8 @@ def simulation_dynamics(model, subs: dict, seconds: float | None = DYNAMICS_SECO
     except SymbolicTimeout:
         dyn = None
     if dyn is not None:
+        if _large(dyn):
+            return _chain(dyn, _joint_free(model, subs)), dyn
         return NumericDynamics.from_dynamics(dyn, subs), dyn
     key = _subs_key("numeric-only", subs)
     store = _store(model)

@@ -43,6 +43,13 @@ __all__ = ["DynamicsEngine"]
 
 BASE = "0"
 COMPACT_MAX_JOINTS = 4  # robots up to this size get the sum-of-angles compaction
+# A mass matrix with more terms than this (all entries, in the trig ring) is a big robot's: its
+# answers are written straight from the ring (dynamics/ring_text.py), its report shows the
+# entries that are short enough, and its sympy expressions are built only when asked for.
+# (PUMA 560, UR5, KUKA KR: 200-300 terms; the Franka Panda: 5 549.)
+LARGE_TERMS = 2000
+# Largest entry (terms of the expanded polynomial) the report of a big robot writes out.
+SHOW_TERMS = 40
 
 
 class DynamicsEngine:
@@ -314,6 +321,11 @@ class DynamicsEngine:
             return ((self._rload_phi(k), self._rLb(i, ld.frame))
                     for k, ld in enumerate(self.loads) if i in self.moving(ld.frame))
         return self._cached("rext", lambda: self._pseudo_scalar_sums(terms))
+
+    def external_polynomials(self) -> list:
+        """The generalized forces of the loads as plain sympy expressions (the canonical
+        polynomials, no readable form: numeric code lambdifies them)."""
+        return [self.alg.to_expr(x) for x in self._rext()]
 
     def _pseudo_scalar_sums(self, terms) -> list:
         """For each joint i, Σ Φ ⊗ L over the pairs (Φ, L) of `terms(i)`, in the algebra."""
@@ -587,8 +599,107 @@ class DynamicsEngine:
                 return False
         return True
 
+    # ------------------------------------------------------------------ big robots
+    @property
+    def large(self) -> bool:
+        """A big robot's equations (see LARGE_TERMS): answers written from the ring."""
+        def build():
+            if not isinstance(self.alg, TrigAlgebra) or not self.simplify:
+                return False
+            big = sum(len(x) for row in self._rM() for x in row) > LARGE_TERMS
+            if big:     # what follows (c, texts) is new to this route: the faster reduction
+                self.alg.term_by_term = True
+            return big
+        return self._cached("large", build)
+
+    def _ring_text(self):
+        from robosolve.dynamics.ring_text import RingText
+        return self._cached("ring text", lambda: RingText(self.alg))
+
+    def term_count(self, p) -> int:
+        """Terms of an algebra element written out (expanded)."""
+        if isinstance(self.alg, TrigAlgebra):
+            return self._ring_text().term_count(p)
+        return len(sp.Add.make_args(sp.expand(p)))
+
+    def shown(self, p):
+        """(the readable sympy form, or None when longer than SHOW_TERMS terms; the count)."""
+        count = self.term_count(p)
+        if count > SHOW_TERMS:
+            return None, count
+        return self.pretty(p, light=True), count
+
+    def polynomials(self) -> dict:
+        """The final algebra elements: M (rows), c (per joint: {(j, k): Γ}), g, U and M per body."""
+        return {"mass_matrix": self._rM(), "velocity_terms": self._rc(), "gravity_terms": self._rg(),
+                "potential_energy": self._rU(),
+                "body_mass_matrices": {b.name: self._rbody_M(b) for b in self.bodies}}
+
+    def _rates_text(self, j: int, k: int, half: bool = False) -> str:
+        if j == k:
+            return f"{self.qd[j]}**2" + ("/2" if half else "")
+        return f"{self.qd[j]}*{self.qd[k]}"
+
+    def _kinetic_text(self, m) -> str:
+        """T = ½ q̇ᵀ M q̇ written from M's upper triangle."""
+        rt = self._ring_text()
+        return rt.weighted_sum([(self._rates_text(i, k, half=True), m[i][k])
+                                for i in range(self.n) for k in range(i, self.n)])
+
+    def answer_texts(self) -> dict:
+        """The symbolic answers as text (sympy's syntax), straight from the ring: mass_matrix,
+        velocity_terms, gravity_terms, kinetic / potential energy (per body and total), and
+        the left sides of the equations Σₖ M_ik q̈ₖ + cᵢ + gᵢ."""
+        def build():
+            rt = self._ring_text()
+            m, c, g = self._rM(), self._rc(), self._rg()
+            velocity = [rt.weighted_sum([(self._rates_text(j, k), v) for (j, k), v in ci.items()])
+                        for ci in c]
+            kinetic = {b.name: self._kinetic_text(self._rbody_M(b)) for b in self.bodies}
+            kinetic["total"] = self._kinetic_text(m)
+            u = self._rU()
+            potential = {name: rt.text(v) for name, v in u.items()}
+            potential["total"] = rt.text(sum(u.values(), self.alg.zero))
+            lhs = []
+            for i in range(self.n):
+                pieces = [(str(self.qdd[k]), m[i][k]) for k in range(self.n)]
+                pieces += [(self._rates_text(j, k), v) for (j, k), v in c[i].items()]
+                pieces.append(("", g[i]))
+                lhs.append(rt.weighted_sum(pieces))
+            return {"mass_matrix": [[rt.text(x) for x in row] for row in m],
+                    "velocity_terms": velocity,
+                    "gravity_terms": [rt.text(x) for x in g],
+                    "kinetic_energy": kinetic, "potential_energy": potential, "lhs": lhs}
+        return self._cached("answer texts", build)
+
+    def _lazy_dynamics(self) -> Dynamics:
+        """A big robot's Dynamics: the sympy expressions (canonical polynomials) built on use."""
+        alg = self.alg
+
+        def kinetic():
+            out = {}
+            for b in self.bodies:
+                mb = self._rbody_M(b)
+                out[b.name] = sp.Add(*[(sp.S.Half if i == k else 1) * self.qd[i] * self.qd[k] *
+                                       alg.to_expr(mb[i][k])
+                                       for i in range(self.n) for k in range(i, self.n) if mb[i][k]])
+            return out
+
+        return Dynamics(joints=self.joints, engine=self, builders={
+            "mass_matrix": lambda: alg.to_matrix(self._rM()),
+            "velocity_terms": lambda: sp.Matrix([
+                sp.Add(*[alg.to_expr(v) * self.qd[j] * self.qd[k] for (j, k), v in ci.items()])
+                for ci in self._rc()]),
+            "gravity_terms": lambda: sp.Matrix([alg.to_expr(x) for x in self._rg()]),
+            "external_forces": lambda: sp.Matrix(self.external_polynomials()),
+            "kinetic_energy": kinetic,
+            "potential_energy": lambda: {k: alg.to_expr(v) for k, v in self._rU().items()},
+        })
+
     # ------------------------------------------------------------------ result
     def dynamics(self) -> Dynamics:
+        if self.large:
+            return self._lazy_dynamics()
         return Dynamics(
             joints=self.joints,
             mass_matrix=self.mass_matrix(),

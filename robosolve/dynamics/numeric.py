@@ -12,7 +12,8 @@ from robosolve.core.numpy_code import numpy_modules
 from robosolve.core.symbols import TIME
 from robosolve.dynamics.types import Dynamics
 
-__all__ = ["NumericDynamics", "lambdify_dynamics", "numeric_from_engine", "free_symbols_left"]
+__all__ = ["ChainDynamics", "NumericDynamics", "lambdify_dynamics", "numeric_from_engine",
+           "free_symbols_left"]
 
 
 class NumericDynamics:
@@ -265,61 +266,127 @@ def lambdify_dynamics(dyn: Dynamics, subs: Mapping) -> NumericDynamics:
     )
 
 
-def numeric_from_engine(eng) -> NumericDynamics:
-    """Numeric-only dynamics: only the small body-frame L matrices (and their derivatives)
-    are symbolic; M, ∂M/∂q, c, g are assembled with numpy at each call.
+class ChainDynamics:
+    """The course's equations of motion evaluated with numbers (no symbolic M, c, g).
 
-    M_ik = Σ_b tr(ᵇLᵢ J_b ᵇLₖᵀ);  ∂M_ik/∂q_l = Σ_b tr(∂ᵇLᵢ J ᵇLₖᵀ) + tr(ᵇLᵢ J ∂ᵇLₖᵀ);
-    c from the Christoffel symbols; g = ∂U/∂q with U = −Σ (g,0)·M₀ⱼ J[:,4].
+    Only the local poses are symbolic: Aᶠ(q), ∂Aᶠ/∂qᵢ and ∂²Aᶠ/∂qᵢ∂qₖ of each frame, lambdified
+    once (small 4×4 matrices). At a state (q, q̇), parents before children,
+
+        ⁰Tᶠ = ⁰Tᵖ Aᶠ,   Uᶠᵢ = ∂⁰Tᶠ/∂qᵢ = Uᵖᵢ Aᶠ + ⁰Tᵖ ∂Aᶠ/∂qᵢ,
+        Vᶠ = d²⁰Tᶠ/dt² at q̈ = 0 = Vᵖ Aᶠ + 2 Ṫᵖ Ȧᶠ + ⁰Tᵖ Äᶠ   (Ṫ = Σ Uᵢ q̇ᵢ),
+
+    then M_ik = Σ_b tr(Uᵇᵢ J_b Uᵇₖᵀ) (= Σ tr(L J Lᵀ) of the course, the trace being the same in
+    frame 0 and in the body frame), cᵢ = Σ_b tr(Vᵇ J_b Uᵇᵢᵀ), gᵢ = ∂U/∂qᵢ = −Σ_b (g, 0)·Uᵇᵢ J_b[:, 4]:
+    d/dt ∂T/∂q̇ᵢ − ∂T/∂qᵢ = Σ_b tr(T̈ᵇ J_b Uᵇᵢᵀ) written out. Energies per body: T_b = ½ q̇ᵀ M_b q̇,
+    U_b = −(g, 0)·⁰Tᵇ J_b[:, 4]. External loads: their generalized forces Φ ⊗ L lambdified from
+    the engine's (small) polynomials.
     """
-    n = eng.n
-    q = eng.q
-    frames = sorted({b.frame for b in eng.bodies} | {ld.frame for ld in eng.loads},
-                    key=eng.order.index)
-    # per frame: stack of L_b (n,4,4) and dL_b/dq (n,n,4,4) as one lambdified function
-    lb_exprs = {f: [eng.Lb(i, f) if i in eng.moving(f) else sp.zeros(4, 4) for i in range(n)]
-                for f in frames}
-    dlb_exprs = {f: [[lb.diff(ql) for ql in q] for lb in lb_exprs[f]] for f in frames}
-    f_lb = {f: _lambdify([q], [m.tolist() for m in lb_exprs[f]]) for f in frames}
-    f_dlb = {f: _lambdify([q], [[m.tolist() for m in row] for row in dlb_exprs[f]])
-             for f in frames}
-    jb = []
-    for b in eng.bodies:
-        if b.J.free_symbols:
-            raise ValueError("parameters without a value in the inertia of " + b.name)
-        jb.append((b.frame, np.array(b.J.tolist(), dtype=float)))
-    u = sp.Add(*eng.potential_energy().values())
-    f_g = _lambdify([q], [u.diff(qi) for qi in q])
-    f_ext = _lambdify([q], list(eng.external_forces()))
 
-    def parts(qv):
-        lbs = {f: np.array(f_lb[f](qv), dtype=float) for f in frames}
-        return lbs
+    def __init__(self, eng, subs: Mapping | None = None):
+        rep = _sympified(subs or {})
+        self.n = n = eng.n
+        q = list(eng.q)
+        self.order = list(eng.order)
+        self.parent = {f: eng.frames[f].parent for f in self.order}
+        self.moving = {f: [i for i in range(n) if eng.local(f).has(q[i])] for f in self.order}
+        self._local = {}
+        for f in self.order:
+            a = _subs(eng.local(f), rep)
+            idx = self.moving[f]
+            d1 = [a.diff(q[i]) for i in idx]
+            d2 = [[m.diff(q[k]) for k in idx] for m in d1]
+            _no_symbols_left([a, *d1, *[m for row in d2 for m in row]], q, f"the pose of frame {f}")
+            self._local[f] = _lambdify([q], [a.tolist(), [m.tolist() for m in d1],
+                                              [[m.tolist() for m in row] for row in d2]])
+        self.bodies = []
+        for b in eng.bodies:
+            j = _subs(b.J, rep)
+            _no_symbols_left([j], [], f"the inertia of {b.name}")
+            self.bodies.append((b.name, b.frame, np.array(j.tolist(), dtype=float)))
+        grav = _subs(sp.Matrix(eng.gravity), rep)
+        _no_symbols_left([grav], [], "gravity")
+        self.gravity = np.array([float(x) for x in grav] + [0.0])
+        ext = [_subs(e, rep) for e in eng.external_polynomials()]
+        _no_symbols_left(ext, q, "the external forces")
+        self._ext = _lambdify([q], ext) if any(e != 0 for e in ext) else None
 
-    def mass(qv):
-        lbs = parts(qv)
-        out = np.zeros((n, n))
-        for f, j in jb:
-            lb = lbs[f]
-            out += np.einsum("irs,st,krt->ik", lb, j, lb)
+    def _frames(self, qv, qdv):
+        """{frame: (⁰T, U (n, 4, 4), V)} at (q, q̇)."""
+        n = self.n
+        qv = [float(x) for x in qv]
+        qdv = np.asarray(qdv, dtype=float)
+        base = (np.eye(4), np.zeros((n, 4, 4)), np.zeros((4, 4)))
+        out = {"0": base}
+        for f in self.order:
+            t_p, u_p, v_p = out[self.parent[f]]
+            a, d1, d2 = self._local[f](qv)
+            a = np.array(a, dtype=float)
+            idx = self.moving[f]
+            u = u_p @ a
+            tdot_p = np.tensordot(qdv, u_p, axes=1)
+            if idx:
+                d1 = np.array(d1, dtype=float)
+                d2 = np.array(d2, dtype=float)
+                rates = qdv[idx]
+                u[idx] += t_p @ d1
+                adot = np.tensordot(rates, d1, axes=1)
+                addot = np.einsum("i,k,ikrs->rs", rates, rates, d2)
+                v = v_p @ a + 2.0 * tdot_p @ adot + t_p @ addot
+            else:
+                v = v_p @ a
+            out[f] = (t_p @ a, u, v)
         return out
 
-    def velocity_terms(qv, qdv):
+    def evaluate(self, qv, qdv) -> dict:
+        """M, c, g and the energies per body at (q, q̇), as numpy arrays / floats."""
+        n = self.n
+        frames = self._frames(qv, qdv)
         qdv = np.asarray(qdv, dtype=float)
-        dm = np.zeros((n, n, n))  # dm[i, k, l] = dM_ik/dq_l
-        lbs = parts(qv)
-        for f, j in jb:
-            lb = lbs[f]
-            dlb = np.array(f_dlb[f](qv), dtype=float)  # (i, l, 4, 4)
-            t = np.einsum("ilrs,st,krt->ikl", dlb, j, lb)
-            dm += t + t.transpose(1, 0, 2)
-        # c_i = sum_jk (dM_ij/dq_k - 1/2 dM_jk/dq_i) qd_j qd_k
-        return (np.einsum("ijk,j,k->i", dm, qdv, qdv)
-                - 0.5 * np.einsum("jki,j,k->i", dm, qdv, qdv))
+        m = np.zeros((n, n))
+        c = np.zeros(n)
+        g = np.zeros(n)
+        kinetic, potential = {}, {}
+        for name, frame, j in self.bodies:
+            t, u, v = frames[frame]
+            uj = u @ j
+            mb = np.einsum("irs,krs->ik", uj, u)
+            m += mb
+            c += np.einsum("rs,irs->i", v @ j, u)
+            g -= u[:, :, :] @ j[:, 3] @ self.gravity
+            kinetic[name] = 0.5 * float(qdv @ mb @ qdv)
+            potential[name] = -float(self.gravity @ (t @ j[:, 3]))
+        return {"mass_matrix": m, "velocity_terms": c, "gravity_terms": g,
+                "kinetic_energy": kinetic, "potential_energy": potential}
 
-    return NumericDynamics(
-        n, mass=mass, velocity_terms=velocity_terms,
-        gravity=lambda qv: np.array(f_g(qv), dtype=float),
-        external=lambda qv: np.array(f_ext(qv), dtype=float),
-        note="numeric-only dynamics (mass matrix assembled numerically at each call)",
-    )
+    def external(self, qv):
+        if self._ext is None:
+            return np.zeros(self.n)
+        return np.array(self._ext([float(x) for x in qv]), dtype=float)
+
+    def numeric(self, note: str = "") -> NumericDynamics:
+        zeros = np.zeros(self.n)
+
+        def terms(qv, qdv):
+            out = self.evaluate(qv, qdv)
+            return out["mass_matrix"], out["velocity_terms"], out["gravity_terms"], self.external(qv)
+
+        return NumericDynamics(
+            self.n, terms,
+            mass=lambda qv: self.evaluate(qv, zeros)["mass_matrix"],
+            velocity_terms=lambda qv, qdv: self.evaluate(qv, qdv)["velocity_terms"],
+            gravity=lambda qv: self.evaluate(qv, zeros)["gravity_terms"],
+            external=self.external, note=note)
+
+
+def _no_symbols_left(exprs, allowed, what: str) -> None:
+    left = free_symbols_left([e for m in exprs for e in (m if isinstance(m, sp.MatrixBase) else [m])],
+                             allowed)
+    if left:
+        raise ValueError(f"parameters without a value in {what}: " + ", ".join(s.name for s in left))
+
+
+def numeric_from_engine(eng, subs: Mapping | None = None) -> NumericDynamics:
+    """Numeric-only dynamics (`ChainDynamics`): M, c, g assembled with numpy at each call from
+    the lambdified local poses and their derivatives; nothing symbolic beyond 4×4 matrices."""
+    return ChainDynamics(eng, subs).numeric(
+        note="numeric-only dynamics (mass matrix assembled numerically at each call)")

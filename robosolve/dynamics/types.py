@@ -7,7 +7,7 @@ these from a `RobotModel`, the engine (`engine.py`) consumes them, `numeric.py` 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any, Sequence
 
 import sympy as sp
@@ -82,18 +82,43 @@ class _PerJoint:
         return [getattr(j, self.attribute) for j in dynamics.joints]
 
 
-@dataclass
 class Dynamics:
-    """The equations of motion M(q) q'' + c(q, q') + g(q) = actuators + external."""
+    """The equations of motion M(q) q'' + c(q, q') + g(q) = actuators + external.
 
-    joints: list[JointSpec]
-    mass_matrix: sp.Matrix
-    velocity_terms: sp.Matrix
-    gravity_terms: sp.Matrix
-    external_forces: sp.Matrix
-    kinetic_energy: dict[str, Any]
-    potential_energy: dict[str, Any]
-    engine: Any = field(repr=False, default=None)  # the DynamicsEngine (intermediate matrices)
+    ``mass_matrix``, ``velocity_terms``, ``gravity_terms``, ``external_forces``,
+    ``kinetic_energy``, ``potential_energy`` are sympy objects; each may instead be given as
+    a function in ``builders`` (name -> zero-argument callable), called on first use: a big
+    robot's expressions are then built only when a reader asks for them (the equations of
+    motion question of a 7-joint arm reads the engine's polynomials directly).
+    """
+
+    FIELDS = ("mass_matrix", "velocity_terms", "gravity_terms", "external_forces",
+              "kinetic_energy", "potential_energy")
+
+    def __init__(self, joints: list[JointSpec], mass_matrix=None, velocity_terms=None,
+                 gravity_terms=None, external_forces=None, kinetic_energy=None,
+                 potential_energy=None, engine: Any = None, builders: dict | None = None):
+        self.joints = joints
+        self.engine = engine  # the DynamicsEngine (intermediate matrices)
+        self._builders = dict(builders or {})
+        given = dict(mass_matrix=mass_matrix, velocity_terms=velocity_terms,
+                     gravity_terms=gravity_terms, external_forces=external_forces,
+                     kinetic_energy=kinetic_energy, potential_energy=potential_energy)
+        for name, value in given.items():
+            if value is not None or name not in self._builders:
+                setattr(self, name, value)
+
+    def __getattr__(self, name):
+        # only called for an attribute not set yet: a lazily built field
+        builders = self.__dict__.get("_builders", {})
+        if name in builders:
+            value = builders.pop(name)()
+            setattr(self, name, value)
+            return value
+        raise AttributeError(name)
+
+    def __repr__(self) -> str:
+        return f"Dynamics({len(self.joints)} joints)"
 
     # the joints' symbols, in joint order
     q = _PerJoint("q")

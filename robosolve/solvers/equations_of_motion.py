@@ -69,6 +69,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return _numeric_only(question, ctx, ans)
 
     eng = dyn.engine
+    if getattr(eng, "large", False):
+        from robosolve.solvers.dynamics_big import solve_big
+        shared = {"inertia": _steps_inertia, "velocity": _steps_velocity, "actions": _steps_actions,
+                  "rates": _rates}
+        return solve_big(question, ctx, ans, dyn, shared)
     n = len(dyn.joints)
     names = [j.name for j in dyn.joints]
     _steps_inertia(ans, model, eng)

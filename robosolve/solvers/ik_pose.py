@@ -52,6 +52,10 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
         raise SolverError(f"a pose fixes 6 coordinates and this arm moves it with {len(used)} joints: the "
                           "target is reached along a continuum (self-motion), not at isolated solutions; "
                           "pose targets are solved for arms of up to 6 joints")
+    free = [j.symbol.name for j in ik_joints if j not in used]
+    if free:
+        ans.note(", ".join(free) + (" does" if len(free) == 1 else " do") + f" not move frame {frame}: "
+                 "any value reaches the target, and the solutions give the other joints")
     opts = question.options
     select = opts.get("select", "limits")
     if isinstance(select, dict):

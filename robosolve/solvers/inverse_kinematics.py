@@ -324,12 +324,13 @@ def figure(ans, ctx, params, res, ik_joints, question):
     configs = sols if sols else [res.nearest]
     for k, d in enumerate(configs, 1):
         s2 = dict(params)
-        s2.update({j.symbol: sp.Float(d[j.name]) for j in ik_joints})
+        # a joint after the target frame is in no solution: drawn at 0
+        s2.update({j.symbol: sp.Float(d.get(j.name, 0)) for j in ik_joints})
         drw = robot_drawing(ctx, s2)
         if drw is None:
             return
         drawings.append(drw)
-        lab = Text.join(", ", [Text(f"{j.name}=", Num(d[j.name], digits=3)) for j in ik_joints])
+        lab = Text.join(", ", [Text(f"{j.name}=", Num(d[j.name], digits=3)) for j in ik_joints if j.name in d])
         if sols:
             labels.append(f"#{k}: " + lab + (" (rejected)" if id(d) in rej else ""))
             rejected.append(id(d) in rej)
