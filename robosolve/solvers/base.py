@@ -117,10 +117,9 @@ class SolveContext:
 
     @property
     def step_seconds(self) -> float:
-        """Seconds for one symbolic step: the full budget up to 4 joints (where symbolic
-        answers are required), a quarter of it beyond (the numeric answers are always given)."""
-        n = len(self.model.q) if self.model is not None else 0
-        return self.budgets.symbolic_seconds if n <= 4 else self.budgets.symbolic_seconds / 4
+        """Seconds (CPU) of one symbolic step: a safety net only, whatever the number of joints
+        (what is attempted is decided by counts: `symbolic_nodes`, `rank_terms`, `rank_nodes`)."""
+        return self.budgets.symbolic_seconds
 
     # -- results of earlier questions ------------------------------------
     def record_profile(self, qid: str, profile: SyncProfile) -> None:
