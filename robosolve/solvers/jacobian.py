@@ -114,14 +114,7 @@ def _singularity_steps(ans, question, ctx, ts):
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
-    det, det_parts = _structured_det_steps(ans, question, ctx, ts)
-    wide, err = _wide_minors(question, ctx, ts)
-    if wide is not None:
-        res, err = _wide_search(ctx, model, kinds, params, wide)
-    elif err is None:
-        res, err = limited(ctx, ctx.step_seconds, find_singularities, J, model.q, kinds, params, det)
-    else:
-        res = None
+    res, err, wide, det_parts = _rank_conditions(ans, question, ctx, ts, kinds, params)
     if res is None:
         ans.note(f"The rank conditions (singular configurations) were not derived symbolically ({err}); "
                  "the numeric answers are given, with the distance from singularity at the question's "
@@ -194,6 +187,20 @@ def _singularity_steps(ans, question, ctx, ts):
 
 
 STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its settled form
+
+
+def _rank_conditions(ans, question, ctx, ts, kinds, params):
+    """(result or None, why not, WideMinors or None, det parts): det J by structure (square), the
+    minors by structure (wide, 5+ joints), else the direct route; each within its counted budget."""
+    det, det_parts = _structured_det_steps(ans, question, ctx, ts)
+    wide, err = _wide_minors(question, ctx, ts)
+    if wide is not None:
+        res, err = _wide_search(ctx, ctx.model, kinds, params, wide)
+    elif err is None:
+        res, err = limited(ctx, ctx.step_seconds, find_singularities, ts.J, ctx.model.q, kinds, params, det)
+    else:
+        res = None
+    return res, err, wide, det_parts
 
 
 def _wide_minors(question, ctx, ts):
