@@ -24,7 +24,7 @@ def in_process():
     from robosolve.dynamics.numeric import NumericDynamics
     from robosolve.simulation.joint_control import simulate
     from robosolve.solvers import motion_profile, p_control
-    from robosolve.solvers.base import SolveContext
+    from robosolve.run.pipeline import solve_context
 
     problem = load_problem(PROBLEM)
     qp, qc = problem.questions
@@ -32,7 +32,7 @@ def in_process():
             "simulate (LSODA, error coordinates)": [], "p_control question, whole (cold)": [],
             "p_control question, dynamics cached": []}
     for _ in range(RUNS):
-        ctx = SolveContext(problem, RobotModel(problem))
+        ctx = solve_context(problem, RobotModel(problem))
         motion_profile.solve(qp, ctx)
         t0 = time.perf_counter()
         ans = p_control.solve(qc, ctx)
@@ -41,7 +41,7 @@ def in_process():
         p_control.solve(qc, ctx)
         rows["p_control question, dynamics cached"].append(time.perf_counter() - t0)
         # breakdown
-        ctx = SolveContext(problem, RobotModel(problem))
+        ctx = solve_context(problem, RobotModel(problem))
         motion_profile.solve(qp, ctx)
         prof = ctx.profile(qp.id)
         t0 = time.perf_counter()

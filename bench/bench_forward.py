@@ -99,13 +99,13 @@ def robosolve_times(text_or_path):
     from robosolve.load.loader import load_problem, load_problem_text
     from robosolve.model import RobotModel
     from robosolve.solvers import forward_dynamics
-    from robosolve.solvers.base import SolveContext
+    from robosolve.run.pipeline import solve_context
 
     whole, runs = [], []
     for _ in range(RUNS):
         t0 = time.perf_counter()
         problem = load_problem(text_or_path) if isinstance(text_or_path, Path) else load_problem_text(text_or_path)
-        ctx = SolveContext(problem, RobotModel(problem))
+        ctx = solve_context(problem, RobotModel(problem))
         for q in problem.questions:
             forward_dynamics.solve(q, ctx)
         whole.append(time.perf_counter() - t0)
@@ -124,10 +124,10 @@ def engine_time(text_or_path):
     from robosolve.model import RobotModel
     from robosolve.simulation.forward import compile_plant, integrate
     from robosolve.solvers import forward_dynamics as fd
-    from robosolve.solvers.base import SolveContext
+    from robosolve.run.pipeline import solve_context
 
     problem = load_problem(text_or_path) if isinstance(text_or_path, Path) else load_problem_text(text_or_path)
-    ctx = SolveContext(problem, RobotModel(problem))
+    ctx = solve_context(problem, RobotModel(problem))
     dyn = ctx.dynamics()
     prepared = []
     for q in problem.questions:

@@ -155,42 +155,28 @@ class WristJacobian:
 class RingChain:
     """Poses ⁰Mf and ⁰Lᵢ of a serial chain in the trig ring, every product reduced
     (canonical: the entries of a serial arm's Jacobian come out multilinear, as compact
-    as trigsimp would make them, in milliseconds)."""
+    as trigsimp would make them, in milliseconds): the one chain computation
+    (model/forward.py) over the ring, `model.ring_chain` (the model's
+    model/algebras.RingChainAlgebra over these frames)."""
 
     def __init__(self, model, frame: str, points=()):
         self.model = model
         self.chain = model.chain(frame)
-        locals_ = [model.M_local(f) for f in self.chain]
-        extra = [c for p in points for c in p]
-        alg = TrigAlgebra.from_inputs(list(model.q), [e for m in locals_ for e in m] + extra)
-        self.alg = alg
-        if alg is None:
+        self.data = model.ring_chain(self.chain, points)
+        self.alg = None if self.data is None else self.data.algebra.ring
+        if self.alg is None:
             return
-        k0 = 16 * len(self.chain)
-        self.points = [[alg.element(k0 + 3 * j + r) for r in range(3)] for j in range(len(points))]
-        self.m0 = {"0": alg.eye(4)}
-        self.local = {}
-        for k, f in enumerate(self.chain):
-            self.local[f] = [[alg.element(16 * k + 4 * r + c) for c in range(4)] for r in range(4)]
-            self.m0[f] = alg.matmul(self.m0[model.frames[f].parent], self.local[f])
+        self.points = self.data.algebra.points
+
+    def M0(self, frame: str):
+        return self.data.M(frame)
 
     def l0(self, i: int, frame: str):
         """⁰Lᵢ for the motion of `frame` (zero when joint i does not move it)."""
-        alg, model = self.alg, self.model
-        total = alg.zeros(4)
-        for f in model.chain(frame):
-            if i not in model.joints_in(f):
-                continue
-            loc = self.local[f]
-            l_loc = alg.matmul(alg.mdiff(loc, i), alg.rigid_inverse(loc))
-            mp = self.m0[model.frames[f].parent]
-            moved = alg.matmul(alg.matmul(mp, l_loc), alg.rigid_inverse(mp))
-            total = alg.madd(total, moved)
-        return total
+        return self.data.L(i, frame)
 
     def point0(self, frame: str, local):
-        m = self.m0[frame]
-        return [self.alg.reduce(sum((m[r][k] * local[k] for k in range(3)), m[r][3])) for r in range(3)]
+        return self.data.algebra.point(self.M0(frame), local)
 
     def columns(self, l_point, l_frame, w):
         """Geometric Jacobian entries (rows × joints): ([uᵢ] w + tᵢ, uᵢ)."""
@@ -235,7 +221,7 @@ def wrist_decoupled_det(model, point_frame: str, frame: str) -> WristJacobian | 
         return None
     l0 = [ring.l0(i, frame) for i in range(6)]
     for f in ring.chain:
-        w = [ring.m0[f][r][3] for r in range(3)]
+        w = [ring.M0(f)[r][3] for r in range(3)]
         # reduced entries (canonical and small); the blocks' determinants are taken
         # unreduced, so products of rotation entries factor literally (sᵢ² + cᵢ² factors)
         ring_j = ring.columns(l0, l0, w)

@@ -55,7 +55,7 @@ def _terms(p) -> int:
 def _rows_in(ring, rows, k, geometric, point):
     """The Jacobian's rows in the axes of frame k (velocity at k's origin when geometric)."""
     alg = ring.alg
-    m0 = ring.m0[k]
+    m0 = ring.M0(k)
     rot = [[m0[r][c] for c in range(3)] for r in range(3)]
     n = len(rows[0])
     lin = [list(r) for r in rows[:3]]

@@ -1,7 +1,9 @@
 """The symbolic robot: frames, points, L/W/H matrices, bodies' pseudo-inertia.
 
 `RobotModel` is built once per problem and memoises everything it derives, so
-solvers share one chain product, one set of L matrices, and so on.
+solvers share one chain product, one set of L matrices, and so on. It holds the problem's
+`ChainDescription` (model/description.py) and its chain data over sympy (model/forward.py
+with model/algebras.SympyChainAlgebra); the LaTeX names are render/chain_names.py's.
 
 Conventions (spec §3; docs/course-notes.md: frame-notation, w-matrix, h-matrix, l-matrix): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
 and H_0j = Mddot_0j M_0j^-1, both expressed in frame 0; the L matrix of joint i
@@ -11,28 +13,24 @@ symbols q, q_dot, q_ddot (no sympy Functions of t: faster and printable).
 
 from __future__ import annotations
 
-from functools import cached_property
-
 import sympy as sp
-from sympy.printing.conventions import split_super_sub
 
 from robosolve.core import matrices as mx
-from robosolve.core.simplify import tidy, tidy_matrix, tidy_products_matrix
-from robosolve.core.transforms import ELEMENTARY, dh_modified, dh_standard, homogeneous, rigid_inverse
-from robosolve.load.expressions import point_symbol
+from robosolve.core.simplify import tidy, tidy_matrix
+from robosolve.core.transforms import ELEMENTARY, rigid_inverse
 from robosolve.load.problem import Body, Problem
-
-
-def elementary_latex(op: str, arg, names: dict | None = None) -> str:
-    """LaTeX of one factor of a pose string, e.g. R_z(\\theta_1)."""
-    return f"{'T' if op[0] == 'T' else 'R'}_{{{op[1]}}}\\left({sp.latex(arg, symbol_names=names or {})}\\right)"
+from robosolve.model.algebras import RingChainAlgebra, SympyChainAlgebra
+from robosolve.model.description import ChainDescription, elementary_factors
+from robosolve.model.forward import forward
 
 
 class RobotModel:
-    """Symbolic kinematics and mass model of a problem's robot."""
+    """Symbolic kinematics and mass model of a problem's robot: the sympy user of the one
+    chain computation (model/forward.py over model/algebras.SympyChainAlgebra)."""
 
     def __init__(self, problem: Problem):
         self.problem = problem
+        self.description = ChainDescription.from_problem(problem)
         self.joints = problem.joints
         self.q = [j.symbol for j in self.joints]
         self.qd = [j.dot for j in self.joints]
@@ -43,83 +41,40 @@ class RobotModel:
         self.bodies = problem.bodies
         self.forces = problem.forces
         self.points = problem.points
-        self._m0: dict[str, sp.Matrix] = {"0": sp.eye(4)}
-        self._w0: dict[str, sp.Matrix] = {"0": sp.zeros(4, 4)}
-        self._h0: dict[str, sp.Matrix] = {"0": sp.zeros(4, 4)}
+        self.algebra = SympyChainAlgebra(self.description)
+        self.data = forward(self.description, self.algebra)
         self._cache: dict = {}
+
+    def ring_chain(self, frames, points=()):
+        """The chain data of `frames` (a chain from the base) in the trig ring, with extra point
+        coordinates `points` as ring elements (`.algebra.points`); None when a pose is not a
+        polynomial in cos qᵢ, sin qᵢ (kinematics/structured_det.py's RingChain)."""
+        algebra = RingChainAlgebra(self.description, frames, points)
+        return None if algebra.ring is None else forward(self.description, algebra)
 
     # -- frames -------------------------------------------------------
     def frame_names(self) -> list[str]:
         return list(self.frames)
 
     def parent(self, frame: str) -> str | None:
-        return None if frame == "0" else self.frames[frame].parent
+        return self.description.parent(frame)
 
     def chain(self, frame: str) -> list[str]:
         """Frames from the base (excluded) down to `frame` (included)."""
-        out = []
-        while frame != "0":
-            out.append(frame)
-            frame = self.frames[frame].parent
-        return out[::-1]
-
-    def local_factors(self, frame: str) -> list[tuple[str, sp.Matrix]]:
-        """The elementary matrices of a frame's pose, with their LaTeX names."""
-        f = self.frames[frame]
-        names = self.symbol_latex
-
-        def tex(e):
-            return sp.latex(e, symbol_names=names)
-
-        if f.kind == "pose":
-            return [(elementary_latex(op, arg, names), ELEMENTARY[op](arg)) for op, arg in f.factors]
-        if f.kind == "matrix":
-            return [("M", f.matrix)]
-        if f.kind == "dh":
-            th, d, a, al = f.factors
-            return [(f"DH({tex(th)}, {tex(d)}, {tex(a)}, {tex(al)})", dh_standard(th, d, a, al))]
-        al, a, th, d = f.factors
-        return [(f"MDH({tex(al)}, {tex(a)}, {tex(th)}, {tex(d)})", dh_modified(al, a, th, d))]
+        return self.description.chain(frame)
 
     def elementary_factors(self, frame: str) -> list | None:
         """The frame's pose as elementary motions [(op, arg)] (DH rows expanded), or
         None for a pose given as a matrix."""
-        f = self.frames[frame]
-        if f.kind == "pose":
-            return list(f.factors)
-        if f.kind == "dh":
-            th, d, a, al = f.factors
-            return [("Rz", th), ("Tz", d), ("Tx", a), ("Rx", al)]
-        if f.kind == "mdh":
-            al, a, th, d = f.factors
-            return [("Rx", al), ("Tx", a), ("Rz", th), ("Tz", d)]
-        return None
+        return elementary_factors(self.description.frame[frame])
 
     def M_local(self, frame: str) -> sp.Matrix:
         """Pose of `frame` in its parent (the product of its elementary factors)."""
-        key = ("M_local", frame)
-        if key not in self._cache:
-            m = sp.eye(4)
-            for _, factor in self.local_factors(frame):
-                m = m * factor
-            self._cache[key] = tidy_matrix(m)
-        return self._cache[key]
+        return self.description.local_pose(frame)
 
     def M0(self, frame: str) -> sp.Matrix:
         """Pose of `frame` in frame 0: M_0p * M_p,frame (memoised, trig-tidied)."""
-        if frame not in self._m0:
-            parent = self.frames[frame].parent
-            mp, ml = self.M0(parent), self.M_local(frame)
-            # Only the new products need tidying: the parent's translation is already
-            # tidy, so re-simplifying the whole growing sum (exponential in the chain
-            # length) is avoided.
-            # Arms of 5+ joints: addition formulas only (trigsimp finds nothing more in
-            # their products and costs seconds per entry), see core.simplify.
-            tidy_m = tidy_matrix if len(self.q) <= 4 else tidy_products_matrix
-            r = tidy_m(mp[:3, :3] * ml[:3, :3])
-            t = mp[:3, 3] + tidy_m(mp[:3, :3] * ml[:3, 3])
-            self._m0[frame] = homogeneous(r, t)
-        return self._m0[frame]
+        return self.data.M(frame)
 
     def M0_inverse(self, frame: str) -> sp.Matrix:
         return rigid_inverse(self.M0(frame))
@@ -144,12 +99,7 @@ class RobotModel:
 
     def point0(self, name: str) -> sp.Matrix:
         """Coordinates of point `name` in frame 0 (3x1)."""
-        key = ("point0", name)
-        if key not in self._cache:
-            frame, at = self.point_local(name)
-            hp = self.M0(frame) * sp.Matrix([*at, 1])
-            self._cache[key] = sp.Matrix([tidy(e) for e in hp[:3, 0]])
-        return self._cache[key]
+        return self.data.point(name)
 
     def coordinate(self, expr):
         """Replace the placeholders P.x, P.y, P.z by the point's coordinates in frame 0."""
@@ -164,131 +114,61 @@ class RobotModel:
     # -- time derivatives ---------------------------------------------
     def time_derivative(self, expr):
         """d/dt of an expression of q and q_dot (chain rule)."""
-        expr = sp.sympify(expr)
-        if isinstance(expr, sp.MatrixBase):
-            return expr.applyfunc(self.time_derivative)
-        out = 0
-        for q, qd, qdd in zip(self.q, self.qd, self.qdd):
-            if expr.has(q):
-                out += sp.diff(expr, q) * qd
-            if expr.has(qd):
-                out += sp.diff(expr, qd) * qdd
-        return out
+        return self.description.time_derivative(expr)
 
     def local_derivative(self, frame: str, order: int) -> sp.Matrix:
         """Mdot (order 1) or Mddot (2) of the frame's local pose, raw (chain rule, no
-        simplification); once per model: H_local and every NumericChain use them."""
-        if order == 0:
-            return self.M_local(frame)
-        key = ("M_local_dot", frame, order)
-        if key not in self._cache:
-            self._cache[key] = self.time_derivative(self.local_derivative(frame, order - 1))
-        return self._cache[key]
+        simplification); once per description."""
+        return self.description.local_rate(frame, order)
 
     # -- L, W, H ------------------------------------------------------
     def joints_in(self, frame: str) -> list[int]:
         """Indices of the joints whose variable appears in the frame's local pose."""
-        free = self.M_local(frame).free_symbols
-        return [j.index for j in self.joints if j.symbol in free]
+        return self.description.moved_by(frame)
 
     def joint_frame(self, index: int) -> str | None:
         """The first frame (file order) whose local pose contains joint `index`."""
-        for f in self.frames:
-            if index in self.joints_in(f):
-                return f
-        return None
+        return self.description.joint_frame(index)
 
     def L_local(self, index: int, frame: str | None = None) -> sp.Matrix:
         """L of joint `index` in the parent of the frame it moves: dM/dq M^-1."""
-        frame = frame or self.joint_frame(index)
-        key = ("L_local", index, frame)
-        if key not in self._cache:
-            q = self.joints[index].symbol
-            factors = self.elementary_factors(frame)
-            l_mat = mx.l_matrix_of_factors(factors, q) if factors is not None else None
-            if l_mat is not None:
-                l_mat = tidy_matrix(l_mat)
-            else:
-                l_mat = mx.l_matrix(self.M_local(frame), q)
-            self._cache[key] = l_mat
-        return self._cache[key]
+        return self.description.local_twist(frame or self.joint_frame(index), index)
 
     def L0(self, index: int, frame: str | None = None) -> sp.Matrix:
         """L of joint `index` in frame 0, for the motion of `frame` (default: the
         frame the joint moves). Sums the contributions of every frame of the chain
         whose pose contains the joint (one, for an ordinary serial robot)."""
-        frame = frame or self.joint_frame(index)
-        key = ("L0", index, frame)
-        if key not in self._cache:
-            total = sp.zeros(4, 4)
-            for f in self.chain(frame):
-                if index in self.joints_in(f):
-                    total += _moved_velocity_matrix(self.M0(self.frames[f].parent), self.L_local(index, f))
-            self._cache[key] = total
-        return self._cache[key]
+        return self.data.L(index, frame)
 
     def W_local(self, frame: str) -> sp.Matrix:
         """Velocity of `frame` relative to its parent, expressed in the parent."""
         key = ("W_local", frame)
         if key not in self._cache:
-            self._cache[key] = self._rates_sum(frame, lambda i: self.L_local(i, frame))
+            w = sp.zeros(4, 4)
+            for i in self.joints_in(frame):
+                w += self.L_local(i, frame) * self.joints[i].dot
+            self._cache[key] = w
         return self._cache[key]
-
-    def _rates_sum(self, frame: str, l_of) -> sp.Matrix:
-        """W = sum of L_i q_dot_i over the joints that move `frame` relative to its parent,
-        L_i = l_of(i)."""
-        w = sp.zeros(4, 4)
-        for i in self.joints_in(frame):
-            w += l_of(i) * self.joints[i].dot
-        return w
 
     def H_local(self, frame: str) -> sp.Matrix:
         """Acceleration of `frame` relative to its parent, in the parent: Mddot M^-1."""
-        key = ("H_local", frame)
-        if key not in self._cache:
-            m = self.M_local(frame)
-            self._cache[key] = tidy_matrix(self.local_derivative(frame, 2) * rigid_inverse(m))
-        return self._cache[key]
+        return self.algebra.acceleration(frame)
 
     def W_relative0(self, frame: str) -> sp.Matrix:
         """0W_{p,frame} = sum of 0L_i q_dot_i: the relative velocity matrix in frame 0."""
-        key = ("W_rel0", frame)
-        if key not in self._cache:
-            parent_m = self.M0(self.frames[frame].parent)
-            self._cache[key] = self._rates_sum(
-                frame, lambda i: _moved_velocity_matrix(parent_m, self.L_local(i, frame)))
-        return self._cache[key]
+        return self.data.W_relative(frame)
 
     def H_relative0(self, frame: str) -> sp.Matrix:
         """0H_{p,frame}: Mddot M^-1 of the relative motion, moved to frame 0."""
-        key = ("H_rel0", frame)
-        if key not in self._cache:
-            joints = self.joints_in(frame)
-            parent_m = self.M0(self.frames[frame].parent)
-            if len(joints) == 1 and not self.L_local(joints[0], frame).free_symbols & set(self.q):
-                # one joint with a constant L: 0H = 0L q_ddot + 0L^2 q_dot^2
-                j = self.joints[joints[0]]
-                l0 = _moved_velocity_matrix(parent_m, self.L_local(j.index, frame))
-                h = l0 * j.ddot + tidy_matrix(l0 * l0) * j.dot ** 2
-            else:
-                h = tidy_matrix(mx.change_frame(parent_m, self.H_local(frame)))
-            self._cache[key] = h
-        return self._cache[key]
+        return self.data.H_relative(frame)
 
     def W0(self, frame: str) -> sp.Matrix:
         """Rivals: W_0j = W_0p + 0W_pj (every term in frame 0)."""
-        if frame not in self._w0:
-            parent = self.frames[frame].parent
-            self._w0[frame] = (self.W0(parent) + self.W_relative0(frame)).applyfunc(sp.expand)
-        return self._w0[frame]
+        return self.data.W(frame)
 
     def H0(self, frame: str) -> sp.Matrix:
         """Coriolis: H_0j = H_0p + 2 W_0p 0W_pj + 0H_pj (every term in frame 0)."""
-        if frame not in self._h0:
-            parent = self.frames[frame].parent
-            h = self.H0(parent) + 2 * self.W0(parent) * self.W_relative0(frame) + self.H_relative0(frame)
-            self._h0[frame] = h.applyfunc(sp.expand)
-        return self._h0[frame]
+        return self.data.H(frame)
 
     def auxiliary(self, point: str) -> sp.Matrix:
         """0_aM: the auxiliary frame with origin at the point and the axes of frame 0."""
@@ -339,50 +219,3 @@ class RobotModel:
         """Centre of mass of a body in frame 0."""
         hp = self.M0(body.frame) * sp.Matrix([*self.com_local(body), 1])
         return sp.Matrix([tidy(e) for e in hp[:3, 0]])
-
-    # -- convenience -----------------------------------------------------
-    @cached_property
-    def symbol_latex(self) -> dict:
-        """LaTeX names of the problem's symbols: theta1_dot -> \\dot{\\theta}_{1}."""
-        out = {s: upright_name(s.name) for s in self.parameters if upright_name(s.name)}
-        for j in self.joints:
-            if upright_name(j.name):
-                out[j.symbol] = upright_name(j.name)
-            base = out.get(j.symbol) or sp.latex(j.symbol)
-            out[j.dot] = f"\\dot{{{base}}}" if "_" not in base else _accent(base, "dot")
-            out[j.ddot] = f"\\ddot{{{base}}}" if "_" not in base else _accent(base, "ddot")
-        for name in self.points:
-            for axis in "xyz":
-                out[point_symbol(name, axis)] = f"{name}_{{{axis}}}"
-        return out
-
-
-def upright_name(name: str) -> str | None:
-    """The LaTeX of a name whose letters before its subscript are several and not a Greek
-    letter (`ma`, `Jg2`, `Kp`): upright, \\mathrm{ma}, so that it does not read as a product of
-    italic one-letter symbols (m·a); None for the names sympy prints well (L1, m_p, theta1)."""
-    base, sups, subs = split_super_sub(name)
-    if len(base) < 2 or sp.latex(sp.Symbol(base)).startswith("\\"):
-        return None
-    out = f"\\mathrm{{{base}}}"
-    if subs:
-        out += "_{" + " ".join(subs) + "}"
-    if sups:
-        out += "^{" + " ".join(sups) + "}"
-    return out
-
-
-def _moved_velocity_matrix(m: sp.Matrix, a: sp.Matrix) -> sp.Matrix:
-    """M A M^-1 for A = [[skew(w), v], [0, 0]], computed as vectors:
-    [[skew(R w), R v - (R w) x t], [0, 0]] (cheaper and smaller than two 4x4 products)."""
-    r, t = m[:3, :3], m[:3, 3]
-    w = r * sp.Matrix([a[2, 1], a[0, 2], a[1, 0]])
-    w = w.applyfunc(tidy)
-    v = (r * a[:3, 3] - w.cross(t)).applyfunc(tidy)
-    return mx.velocity_matrix(w, v)
-
-
-def _accent(base: str, accent: str) -> str:
-    """\\theta_{1} -> \\dot{\\theta}_{1}."""
-    head, _, sub = base.partition("_")
-    return f"\\{accent}{{{head}}}_{sub}"

@@ -137,6 +137,7 @@ def plane_of(points, joints) -> tuple | None:
 def paper_figure(problem, model):
     """The FigureSpec of figures/robot.png, or None (no robot)."""
     from robosolve.model.numeric import NumericChain
+    from robosolve.render.chain_names import ChainNames
     from robosolve.solvers.base import FigureSpec, SolveContext
     from robosolve.solvers.common import robot_drawing
 
@@ -144,7 +145,7 @@ def paper_figure(problem, model):
         return None
     config = reference_configuration(problem)
     subs = {**_parameter_values(problem), **config}
-    drawing = robot_drawing(SolveContext(problem, model), subs)
+    drawing = robot_drawing(SolveContext(problem, model, names=ChainNames(problem)), subs)
     if drawing is None:
         return None
     chain = NumericChain(model, subs)

@@ -64,7 +64,7 @@ def box_html(ak, question, problem) -> str:
         inner = _grid(len(shape), len(shape[0]))
     elif kind == R.VECTOR and isinstance(shape, list):
         inner = _grid(1, len(shape))
-    elif kind in (R.JOINT_MAP, R.ACTUATOR_MAP) and isinstance(shape, dict):
+    elif kind in (R.JOINT_MAP, R.ACTUATOR_MAP, R.CONTROL_MAP, R.COORDINATE_MAP) and isinstance(shape, dict):
         inner = _grid(1, len(shape), list(shape))
     elif kind == R.ACTUATOR_RECORDS and isinstance(shape, dict):
         fields = [f.name for f in ak.fields]

@@ -40,9 +40,18 @@ def shape(ak, question, problem) -> tuple:
     return tuple(dims.get(s, s) if isinstance(s, str) else s for s in ak.shape)
 
 
+def decided(ak, question, problem) -> tuple:
+    """(entries, unit) the question decides for the key (its type's `paper_layout`), else (None, None)."""
+    layout = question_type(question.type).paper_layout
+    return (layout(question, problem) if layout is not None else {}).get(ak.name, (None, None))
+
+
 def placeholder(ak, question, problem):
     """The answer's shape with None (YAML `~`) in every entry a student fills."""
     kind, dims = ak.kind, shape(ak, question, problem)
+    entries = decided(ak, question, problem)[0]
+    if entries is not None:
+        return {e: None for e in entries}
     joints = [j.name for j in problem.joints]
     if kind == R.MATRIX and len(dims) == 2:
         return [[None] * dims[1] for _ in range(dims[0])]

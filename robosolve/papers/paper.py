@@ -12,8 +12,9 @@ import sympy as sp
 
 from robosolve.load.paper import PLACEHOLDER
 from robosolve.papers.keys import graded_keys
-from robosolve.papers.template import form_text, layout_text, marks_text, unit_text
+from robosolve.papers.template import form_text, key_unit, layout_text, marks_text
 from robosolve.questions.registry import question_type, title as question_title
+from robosolve.render.chain_names import symbol_latex
 from robosolve.render.configuration import _value, split_at
 from robosolve.render.markdown import Tex, render_data
 
@@ -137,7 +138,7 @@ def what_to_give(question, problem, boxes: bool = False) -> list[str]:
     out = []
     for k, gk in enumerate(graded_keys(question, problem)):
         ak = gk.answer_key
-        unit = unit_text(ak.unit, problem)
+        unit = key_unit(ak, question, problem)
         out.append(f"- `{gk.key}`: {ak.doc}; {layout_text(ak, question, problem)}; {form_text(ak)}"
                    + (f"; {unit}" if unit else "") + "."
                    + (" " + box_marker(question.index, k) if boxes else ""))
@@ -185,7 +186,7 @@ def render_paper(problem, model, student: str | None = None, variant: str | None
                  figure: bool = True, boxes: bool = False) -> str:
     """paper.md of `problem` (`model`: its RobotModel, for the frames table, or None);
     `boxes`: with the markers of paper.html's answer boxes."""
-    names = model.symbol_latex if model is not None else {}
+    names = symbol_latex(problem) if model is not None else {}
     tex = Tex(names)
     say = Say(problem, tex)
     out = header(problem, student, variant)

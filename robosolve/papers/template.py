@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import re
 
-from robosolve.papers.keys import graded_keys, placeholder, shape
+from robosolve.papers.keys import decided, graded_keys, placeholder, shape
 from robosolve.questions import registry as R
 from robosolve.questions.registry import title as question_title
 
@@ -53,11 +53,22 @@ def unit_text(unit: str, problem) -> str:
     return f"{names['revolute']} (revolute joints) or {names['prismatic']} (prismatic)"
 
 
+def key_unit(ak, question, problem) -> str:
+    """The unit of a key in this question: the one the question decides, else the schema's."""
+    unit = decided(ak, question, problem)[1]
+    return unit_text(unit if unit is not None else ak.unit, problem)
+
+
 def layout_text(ak, question, problem) -> str:
     """How the answer is laid out, in words."""
     kind = ak.kind
     dims = shape(ak, question, problem)
     joints = ", ".join(j.name for j in problem.joints)
+    entries = decided(ak, question, problem)[0]
+    if entries is not None:
+        names = [j.name for j in problem.joints]
+        return (f"one value per joint ({joints})" if list(entries) == names else
+                f"one value per coordinate ({', '.join(entries)})")
     if kind == R.MATRIX and len(dims) == 2:
         return f"{dims[0]}×{dims[1]} matrix, a list of rows"
     if kind == R.VECTOR and len(dims) == 1:
@@ -93,7 +104,7 @@ def form_text(ak) -> str:
 
 def key_comment(ak, question, problem) -> str:
     parts = [ak.doc, layout_text(ak, question, problem), form_text(ak)]
-    unit = unit_text(ak.unit, problem)
+    unit = key_unit(ak, question, problem)
     if unit:
         parts.append(unit)
     return "; ".join(p for p in parts if p)

@@ -14,7 +14,8 @@ import math
 import sympy as sp
 
 __all__ = ["text", "literal", "at_literal", "robosolve_numbers", "lines", "compare_line", "guarded",
-           "coordinates", "jacobian_lines", "profile_lines", "question_by_id"]
+           "coordinates", "jacobian_lines", "profile_lines", "trajectory_lines", "coordinate_values",
+           "question_by_id"]
 
 def text(expr) -> str:
     """A sympy value as the text the runtime parses (`Robot.parse`): sympy's own printing, the
@@ -99,3 +100,37 @@ def question_by_id(problem, qid):
     """The question of the problem with the id `qid` (a profile a question refers to)."""
     return next(x for x in problem.questions if x.id == qid)
 
+
+
+def coordinate_values(mapping, coords) -> list[str]:
+    """The texts of a mapping coordinate -> value ([(text, lhs, value)]) in the order of `coords`."""
+    return [text(next(v for _t, lhs, v in mapping if sp.expand(lhs - c) == 0)) for c in coords]
+
+
+def trajectory_lines(tq, problem) -> list[str]:
+    """`trajectory = TaskTrajectory(...)`: the work-space trajectory question `tq`'s path, timed and
+    converted to joint motion from its start's branch, numerically."""
+    from robosolve.load.expressions import point_symbol
+
+    o = tq.options
+    coords = list(o.get("coordinates") or [point_symbol(tq.point, a) for a in "xyz"])
+    path = o.get("path") if isinstance(o.get("path"), dict) else {"kind": "line"}
+    circle = "" if path.get("kind") != "circle" else f", center=numbers({literal([text(v) for v in path['center']])})" \
+        + (f", normal=numbers({literal([text(v) for v in path['normal']])})" if path.get("normal") else "")
+    timing = (f"duration=robot.number(robot.parse({text(o['duration'])!r}), at)" if "duration" in o else
+              f"max_velocity=robot.number(robot.parse({text(o['max_velocity'])!r}), at), "
+              f"max_acceleration=robot.number(robot.parse({text(o['max_acceleration'])!r}), at)")
+    limits = [[text(lo), text(hi)] for lo, hi in
+              (j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-10, 10)) for j in problem.joints)]
+    given = (f"numbers({literal([text(o['start'][j.name]) for j in problem.joints])})"
+             if isinstance(o.get("start"), dict) else "None")
+    return [f"at = {at_literal(tq)}",
+            "numbers = lambda texts: np.array([robot.number(robot.parse(x), at) for x in texts])",
+            f"arm = TaskArm(robot, {coordinates(tq)}, at)",
+            f"path = TaskPath(numbers({literal(coordinate_values(o['from'], coords))}), "
+            f"numbers({literal(coordinate_values(o['to'], coords))}){circle})",
+            f"timing = Timing(path.length, {timing})",
+            f"limits = [[robot.number(robot.parse(x), at) for x in pair] for pair in {literal(limits)}]",
+            "# the configuration at `from` whose inverse-kinematics branch is followed",
+            f"start = arm.start(path.a, limits, {given})",
+            "trajectory = TaskTrajectory(arm, path, timing, start)"]

@@ -10,9 +10,11 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.load import validators as V
-from robosolve.load.expressions import ExpressionError, point_symbol
+from robosolve.load.expressions import ExpressionError
 from robosolve.questions.schema import CONTROL_MAP, COORDINATE_MAP, QuestionType, _k
-from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id, robosolve_numbers, text
+from robosolve.questions.work_space import coordinate_list, coordinate_unit, gain_unit, joint_unit, path_phrase
+from robosolve.questions.notebook_code import (at_literal, compare_line, coordinate_values, lines, literal, profile_lines,
+                                               question_by_id, robosolve_numbers, text, trajectory_lines)
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 
@@ -63,11 +65,6 @@ def _check(ql, path, item, q):
                          f"law {law} takes gains per joint (joints: {', '.join(ql.joint_names)})")
 
 
-def _coords(tq) -> list:
-    raw = tq.options.get("coordinates")
-    return list(raw) if raw else [point_symbol(tq.point, a) for a in "xyz"]
-
-
 def _resolve(ql, q, questions):
     """The trajectory reference, and the task gains against its coordinates."""
     ref = q.options.get("trajectory")
@@ -83,7 +80,7 @@ def _resolve(ql, q, questions):
     law = q.options.get("law", "p")
     if law not in TASK_LAWS:
         return
-    coords = _coords(target)
+    coords = coordinate_list(target)
     texts = [str(c) for c in coords]
     if law == "task_computed_torque" and len(coords) != len(ql.joint_names):
         ql.chk.error(base + ("law",), f"task_computed_torque needs a square J: the trajectory '{ref}' has "
@@ -115,23 +112,22 @@ def _statement(q, say) -> str:
     if "trajectory" in o:
         return _task_statement(q, say)
     text = (f"The robot follows the motion of {say.question_number(o['profile'])} under "
-            f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller with the gains "
-            f"$K_p$ {say.per_joint(o['gains'])}")
-    if "gains_d" in o:
-        text += f" and $K_d$ {say.per_joint(o['gains_d'])}"
+            f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller, "
+            f"${JOINT_LAW_TEX.get(o.get('law', 'p'), '')}$ with $e = q_d - q$, with the gains {_gains_text(q, say, [])}")
     if "start" in o:
         text += f", starting from {say.joint_values(o['start'])}"
     if "duration" in o:
         text += f", for {say.value(o['duration'])} s"
-    return (text + ". Simulate the closed loop; give, for each joint, the largest tracking error "
-            "$|e|$ over the run and the signed error at the end.")
+    unit = joint_unit(say.problem)
+    return (text + f". Simulate the closed loop; give, for each joint, the largest tracking error "
+            f"$|e|$ over the run ({unit}) and the signed error at the end ({unit}).")
 
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
     o = q.options
     if "profile" not in o and o.get("trajectory") is not None:
-        return None                                  # a work-space reference: not rebuilt here
+        return _trajectory_cell(q, answer, problem)
     pq = question_by_id(problem, o["profile"])
     if "max_error" not in answer.numeric:
         return None
@@ -156,17 +152,142 @@ def notebook_cell(q, answer, problem):
     )
 
 
-def _task_statement(q, say) -> str:
-    """The statement of a run along a work-space trajectory."""
+def _trajectory_cell(q, answer, problem):
+    """The cell of a run along a work-space trajectory: the trajectory rebuilt, then the loop."""
     o = q.options
+    if "max_error" not in answer.numeric:
+        return None
+    tq = question_by_id(problem, o["trajectory"])
     law = o.get("law", "p")
-    scheme = ("the actual work-space scheme, " + {"task_pd_gravity": "a PD on the task error through J^T "
-              "with gravity compensation", "task_computed_torque": "a resolved-acceleration computed torque"}[law]
-              if law in TASK_LAWS else f"the ideal work-space scheme (the path converted to joint references, "
-              f"then a {law} joint law)")
-    return (f"The end effector follows the path of {say.question_number(o['trajectory'])} under {scheme}. "
-            "Simulate the closed loop; give the largest error and the signed error at the end, and the "
-            "largest error of each task coordinate.")
+    names = [j.name for j in problem.joints]
+    coords = coordinate_list(tq)
+    labels = [str(c) for c in coords]
+
+    def gains(key):
+        if key not in o:
+            return "None"
+        given = o[key]
+        texts = coordinate_values(given["coordinates"], coords) if law in TASK_LAWS else [text(given[n]) for n in names]
+        return f"numbers({literal(texts)})"
+
+    start = f"numbers({literal([text(o['start'][n]) for n in names])})" if "start" in o else "None"
+    duration = f"robot.number(robot.parse({text(o['duration'])!r}), at)" if "duration" in o else "None"
+    keys = labels if law in TASK_LAWS else names
+    return lines(
+        "# the reference followed (its work-space trajectory question)",
+        *trajectory_lines(tq, problem),
+        f"at = {at_literal(q)}",
+        f"law = {law!r}",
+        f"kp, kd, start = {gains('gains')}, {gains('gains_d')}, {start}",
+        "max_error, t_max_error, final_error, times, errors, task_errors = simulate_task_control(",
+        f"    robot, trajectory, law, kp, kd, start, {duration}, at)",
+        robosolve_numbers(answer, ["max_error", "t_max_error", "final_error", "max_task_error"]),
+        compare_line("max_error", f"dict(zip({keys!r}, max_error))", rtol=1e-4),
+        f"compare('final_error', dict(zip({keys!r}, final_error)), robosolve['final_error'], rtol=1e-3, atol=1e-7)",
+        compare_line("max_task_error", f"dict(zip({labels!r}, np.abs(task_errors).max(axis=0)))", rtol=1e-3),
+        f"plot_errors(times, errors, {literal(keys)}, law)",
+    )
+
+
+JOINT_LAW_WORDS = {"p": "a proportional joint law", "pd": "a PD joint law",
+                   "pd_gravity": "a PD joint law with gravity compensation",
+                   "computed_torque": "a computed-torque joint law"}
+JOINT_LAW_TEX = {"p": "\\tau = K_p e", "pd": "\\tau = K_p e + K_d \\dot e",
+                 "pd_gravity": "\\tau = K_p e + K_d \\dot e + g(q)",
+                 "computed_torque": "\\tau = M(q)(\\ddot q_d + K_d \\dot e + K_p e) + c(q, \\dot q) + g(q)"}
+
+
+def _trajectory_of(q, problem):
+    return question_by_id(problem, q.options["trajectory"])
+
+
+def _gains_text(q, say, coords) -> str:
+    """'$K_p$: $E_y$: $2000$ N/m, … and $K_d$: …', per coordinate (task laws) or per joint."""
+    o, law = q.options, q.options.get("law", "p")
+    ct = law in ("computed_torque", "task_computed_torque")
+
+    def listing(key, derivative):
+        if law in TASK_LAWS:
+            pairs = [(c, next(v for _t, lhs, v in o[key]["coordinates"] if sp.expand(lhs - c) == 0),
+                      coordinate_unit(c, say.problem)) for c in coords]
+        else:
+            pairs = [(j.symbol, o[key][j.name], "rad" if j.is_revolute else "m") for j in say.problem.joints]
+        return ", ".join(f"${say.tex(c)}$: {say.value(v)}" + (f" {u}" if (u := gain_unit(unit, derivative, ct)) else "")
+                         for c, v, unit in pairs)
+
+    out = f"$K_p$ ({listing('gains', False)})"
+    return out + (f" and $K_d$ ({listing('gains_d', True)})" if "gains_d" in o else "")
+
+
+def _scheme_text(q, say) -> str:
+    law = q.options.get("law", "p")
+    if law == "task_pd_gravity":
+        return ("the actual work-space scheme: the error in the task coordinates, $e = x_d - x(q)$ and "
+                "$\\dot e = \\dot x_d - J(q)\\,\\dot q$, acts through the transposed Jacobian, with gravity "
+                "compensation: $\\tau = J^T(q)\\,(K_p e + K_d \\dot e) + g(q)$")
+    if law == "task_computed_torque":
+        return ("the actual work-space scheme with a resolved-acceleration computed torque: with the error in the "
+                "task coordinates $e = x_d - x(q)$, $\\dot e = \\dot x_d - J(q)\\,\\dot q$, "
+                "$\\tau = M(q)\\,J^{-1}(q)\\,(\\ddot x_d + K_d \\dot e + K_p e - \\dot J\\,\\dot q) + c(q, \\dot q) + g(q)$")
+    return ("the ideal work-space scheme: the trajectory is converted by inverse kinematics into joint "
+            "references $q_d(t)$, $\\dot q_d(t)$, $\\ddot q_d(t)$, which " + JOINT_LAW_WORDS.get(law, law)
+            + f" follows, ${JOINT_LAW_TEX.get(law, '')}$ with $e = q_d - q$")
+
+
+def _task_asked(q, say, coords) -> str:
+    """What to compute, with the units: the errors per coordinate (task laws) or per joint."""
+    law = q.options.get("law", "p")
+    keys = q.grade or TYPE.template_keys(q.options, len(say.problem.joints))
+    units = {coordinate_unit(c, say.problem) for c in coords}
+    x_unit = units.pop() if len(units) == 1 and None not in units else "m for a position, rad for an angle"
+    if law in TASK_LAWS:
+        who, err, unit = "each task coordinate (" + ", ".join(say.math(c) for c in coords) + ")", "|x_d - x|", x_unit
+    else:
+        who, err, unit = f"each joint ({say.joints()})", "|q_d - q|", joint_unit(say.problem)
+    words = {"max_error": f"the largest error ${err}$ over the run ({unit})",
+             "final_error": f"the signed error at the end of the run ({unit})",
+             "t_max_error": "the time of the largest error (s)",
+             "max_task_error": f"the largest work-space error $|x_d - x|$ of each task coordinate ({x_unit})"}
+    asked = [words[k] for k in keys if k in words]
+    return f"Give, for {who}: " + "; ".join(asked) + "." if asked else ""
+
+
+def _task_statement(q, say) -> str:
+    """The statement of a run along a work-space trajectory: the path restated, the scheme with
+    its gains and units, the start, the duration, what to give with its units."""
+    o = q.options
+    tq = _trajectory_of(q, say.problem)
+    coords = coordinate_list(tq)
+    start = (f"from rest at {say.joint_values(o['start'])}" if "start" in o else
+             f"from rest at the configuration of {say.question_number(o['trajectory'])} at the start of the path")
+    duration = (f"for {say.value(o['duration'])} s (after the end $T$ of the path the reference stays at its end)"
+                if "duration" in o else "from $t = 0$ to the end $T$ of the path")
+    point = say.point(tq)
+    return (f"Along the work-space trajectory of {say.question_number(o['trajectory'])}: {point} "
+            f"{path_phrase(tq, say)}, in the task coordinates " + ", ".join(say.math(c) for c in coords)
+            + f". The actuators follow it under {_scheme_text(q, say)}. Gains: {_gains_text(q, say, coords)}. "
+            f"The arm starts {start}; simulate the closed loop on the robot's equations of motion (its bodies, "
+            f"gravity and loads) {duration}. " + _task_asked(q, say, coords))
+
+
+def paper_layout(q, problem) -> dict:
+    """{key: (entries, unit)}: the errors per joint (joint laws) or per task coordinate (task laws)."""
+    names = [j.name for j in problem.joints]
+    law = q.options.get("law", "p")
+    out = {"max_error": (names, None), "final_error": (names, None), "t_max_error": (names, "s")}
+    if q.options.get("trajectory") is None:
+        return out
+    try:
+        coords = coordinate_list(_trajectory_of(q, problem))
+    except StopIteration:
+        return out
+    units = {coordinate_unit(c, problem) for c in coords}
+    x_unit = units.pop() if len(units) == 1 and None not in units else "m (positions) or rad (angles)"
+    labels = [str(c) for c in coords]
+    if law in TASK_LAWS:
+        out = {"max_error": (labels, x_unit), "final_error": (labels, x_unit), "t_max_error": (labels, "s")}
+    out["max_task_error"] = (labels, x_unit)
+    return out
 
 
 TYPE = QuestionType(
@@ -190,5 +311,5 @@ TYPE = QuestionType(
     figures=(("tracking", "control_tracking"), ("effort", "control_effort"), ("task", "control_tracking")),
     cost=1.3, unit="dynamics",
     check=_check, resolve=_resolve, integrates=True, uses_profile=True, time_use=(2, "a p_control simulation"),
-    notebook_cells=notebook_cell,
+    notebook_cells=notebook_cell, paper_layout=paper_layout,
 )

@@ -150,6 +150,11 @@ class QuestionType:
     # answers template): paper_keys(options, joints) with the parsed options and the number of
     # joints; None: ``principal_keys_for(options)``
     paper_keys: Callable | None = None
+    # What the question decides about the layout of some of its keys, known before solving:
+    # paper_layout(question, problem) -> {key: (entries, unit)}, entries the names of a mapping's
+    # entries (a control law's errors per joint or per coordinate) or None, unit its unit or None
+    # (papers.md: the template's placeholders, the paper's "what to give")
+    paper_layout: Callable | None = None
 
     def split_cost(self, joints: int) -> float:
         """The `cost` of one question of this type on a robot with `joints` joints."""

@@ -10,8 +10,9 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.load import validators as V
-from robosolve.load.expressions import point_symbol
+from robosolve.questions.notebook_code import compare_line, lines, literal, robosolve_numbers, trajectory_lines
 from robosolve.questions.schema import BOOL, JOINT_MAP, SCALAR, TEXT, QuestionType, _k
+from robosolve.questions.work_space import common_unit, coordinate_list, coordinate_unit, joint_unit, path_phrase
 
 
 def v_path(ql, path, value, q):
@@ -52,11 +53,6 @@ def v_positive(ql, path, value, q):
     return e
 
 
-def coordinate_list(q) -> list:
-    raw = q.options.get("coordinates")
-    return list(raw) if raw else [point_symbol(q.point, a) for a in "xyz"]
-
-
 def _check_ends(ql, path, item, q, coords):
     texts = [str(c) for c in coords]
     for key in ("from", "to"):
@@ -94,35 +90,85 @@ def _check(ql, path, item, q):
         chk.error(path + ("shape",), "shape: quintic goes with `duration`")
 
 
+def _branch(q, say) -> str:
+    """Which inverse-kinematics solution the motion starts from, in words."""
+    start = q.options.get("start")
+    if isinstance(start, dict):
+        return (f"The arm starts on the inverse-kinematics branch of {say.joint_values(start)} (Newton's "
+                "method from this configuration onto the start of the path)")
+    if len(coordinate_list(q)) < len(say.problem.joints):
+        return ("With fewer coordinates than joints, the arm starts from the configuration Newton's "
+                "minimum-norm steps reach from every joint at 0, and the joint rates are the minimum-norm "
+                "ones, $\\dot q = J^+ \\dot x$")
+    return ("The arm starts from the inverse-kinematics solution of the start of the path that lies within "
+            "the joint limits and comes first in the order of the joints' values (" + say.joints()
+            + "; smallest first)")
+
+
+def _asked(q, say) -> list[str]:
+    """The quantities the paper asks for (the graded keys), with their units."""
+    unit = common_unit(coordinate_unit(c, say.problem) for c in coordinate_list(q))
+    words = {
+        "T": "the duration $T$ of the motion (s)",
+        "length": "the length of the path" + (f" ({unit})" if unit else ""),
+        "start": f"the joint configuration at the start ({joint_unit(say.problem)})",
+        "end": f"the joint configuration at the end ({joint_unit(say.problem)})",
+        "max_joint_velocity": "the largest rate $|\\dot q|$ of each joint over $[0, T]$ ("
+                              + joint_unit(say.problem, "/s") + ")",
+        "max_joint_acceleration": "the largest acceleration $|\\ddot q|$ of each joint over $[0, T]$ ("
+                                  + joint_unit(say.problem, "/s²") + ")",
+        "min_singular_value": "the smallest singular value of the Jacobian along the path",
+    }
+    return [words[k] for k in _graded(q, say.problem) if k in words]
+
+
+def _graded(q, problem) -> list:
+    return list(q.grade or TYPE.template_keys(q.options, len(problem.joints)))
+
+
+def paper_layout(q, problem) -> dict:
+    """{key: (entries, unit)} of the keys whose unit the coordinates decide (papers)."""
+    unit = common_unit(coordinate_unit(c, problem) for c in coordinate_list(q))
+    return {"length": (None, unit)} if unit else {}
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the path, its ends, its timing and the branch."""
-    o = q.options
+    """The paper's statement (papers.md): the path, its ends and timing, the branch, the asked
+    quantities with their units."""
+    coords = ", ".join(say.math(c) for c in coordinate_list(q))
+    point = say.point(q)
+    text = (f"{point[0].upper() + point[1:]} {path_phrase(q, say)}; the task coordinates are {coords} "
+            f"(in frame 0). {_branch(q, say)}, and follows the path on the same branch, converting each "
+            "sample by inverse kinematics ($\\dot q$ and $\\ddot q$ from the Jacobian $J$ and its "
+            "derivative).")
+    asked = _asked(q, say)
+    if asked:
+        text += " Compute " + "; ".join(asked) + "."
+    return text
 
-    def place(eqs):
-        return ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in eqs)
 
-    path = o.get("path", "line")
-    if isinstance(path, dict) and "circle" in path:
-        circle = path["circle"]
-        shape = f"along the arc of circle of centre {say.math(list(circle['center']))}"
-        if circle.get("normal") is not None:
-            shape += f" and normal {say.math(list(circle['normal']))}"
-        shape += " (the shorter way)"
-    else:
-        shape = "along a straight line"
-    text = f"{say.point(q)[0].upper() + say.point(q)[1:]} moves {shape} from {place(o['from'])} to {place(o['to'])}"
-    if "duration" in o:
-        text += f", with a quintic timing law over {say.value(o['duration'])} s"
-    else:
-        text += (f", with a trapezoidal timing law along the path: maximum speed "
-                 f"{say.value(o['max_velocity'])} m/s and maximum acceleration "
-                 f"{say.value(o['max_acceleration'])} m/s²")
-    start = o.get("start")
-    branch = (f"following the inverse-kinematics branch of {say.joint_values(start)}" if isinstance(start, dict)
-              else "following the inverse-kinematics solution of the start chosen within the joint limits")
-    return (text + f", {branch}. Compute the duration $T$, the length of the path, the joint "
-            "configurations at both ends, the largest joint rates and accelerations along the "
-            "motion, and the smallest singular value of the Jacobian along the path.")
+def notebook_cell(q, answer, problem):
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py): the path, its
+    timing and the joint motion from the same branch, then the extremes."""
+    names = [j.name for j in problem.joints]
+    per_joint = f"dict(zip({names!r}, {{}}))"
+    followed = "end" in answer.numeric
+    return lines(
+        *trajectory_lines(q, problem),
+        robosolve_numbers(answer, ["T", "length", "start", "end", "max_joint_velocity", "max_joint_acceleration",
+                                   "min_singular_value"]),
+        compare_line("T", "timing.T"),
+        compare_line("length", "path.length"),
+        compare_line("start", per_joint.format("trajectory.q[:, 0]")),
+        "if trajectory.failure is not None:",
+        "    print('the path cannot be followed:', trajectory.failure)",
+        *(["velocities, accelerations, (sigma_min, t_sigma_min) = trajectory.extremes()",
+           compare_line("end", per_joint.format("trajectory.q[:, -1]")),
+           compare_line("max_joint_velocity", per_joint.format("velocities")),
+           compare_line("max_joint_acceleration", per_joint.format("accelerations")),
+           compare_line("min_singular_value", "sigma_min"),
+           f"plot_joints(trajectory.t, trajectory.q.T, {literal(names)})"] if followed else []),
+    )
 
 
 TYPE = QuestionType(
@@ -148,4 +194,5 @@ TYPE = QuestionType(
     figures=(("path", "task_path"), ("joints", "joint_motion")),
     cost=0.4, unit="dynamics",
     check=_check, model_checked=True, makes_trajectory=True,
+    notebook_cells=notebook_cell, paper_layout=paper_layout,
 )

@@ -14,14 +14,15 @@ def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
     return lines(
         f"at = {at_literal(q)}",
-        "# W = M' M^-1 and H = M'' M^-1 of 0M (in frame 0); a point's velocity W P, acceleration H P",
-        f"W, H = robot.velocity_matrices({q.frame!r})",
-        f"P = sp.Matrix([*robot.point0({q.point!r}), 1])",
+        "# W and H of 0M in frame 0 at these numbers, by Rivals (W = W_0p + sum 0L_i q_i') and Coriolis",
+        "# (H = H_0p + 2 W_0p W_pj + H_pj); robot.velocity_matrices gives them as M' M^-1, M'' M^-1",
+        "chain = robot.chain_at(at)",
+        f"W, H = chain.W({q.frame!r}), chain.H({q.frame!r})",
+        f"P = np.append(chain.point({q.point!r}), 1.0)       # the point, homogeneous",
         robosolve_numbers(answer, ["W", "H", "velocity", "acceleration"]),
-        *guarded(answer, ("W", compare_line("W", "robot.number(W, at)")),
-                  ("H", compare_line("H", "robot.number(H, at)")),
-                  ("velocity", compare_line("velocity", "robot.number(W * P, at).ravel()[:3]")),
-                  ("acceleration", compare_line("acceleration", "robot.number(H * P, at).ravel()[:3]"))),
+        *guarded(answer, ("W", compare_line("W", "W")), ("H", compare_line("H", "H")),
+                 ("velocity", compare_line("velocity", "(W @ P)[:3]")),
+                 ("acceleration", compare_line("acceleration", "(H @ P)[:3]"))),
     )
 
 def _statement(q, say) -> str:

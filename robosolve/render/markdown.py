@@ -12,6 +12,7 @@ import sympy as sp
 
 from robosolve.questions.registry import title as question_title
 from robosolve.core.prose import Num, Text, name_md
+from robosolve.render.chain_names import ChainNames, symbol_latex
 from robosolve.render.compact import CompactTrig, display_lines
 from robosolve.render.configuration import configuration_text, overrides_by_parameter
 from robosolve.render.numbers import report_number, text
@@ -104,10 +105,11 @@ def render_data(problem, model, tex: Tex) -> list[str]:
         out += ["### Joints", render_table(("#", "variable", "type", "limits", "actuator"), rows)]
     if problem.frames and model is not None:
         rows = []
+        names = ChainNames(problem)
         for name, f in problem.frames.items():
-            factors = model.local_factors(name)
-            pose = " ".join(t for t, _ in factors) if f.kind == "pose" else (
-                "explicit matrix" if f.kind == "matrix" else f"${factors[0][0]}$ ({f.kind})")
+            factors = names.factors(name)
+            pose = " ".join(factors) if f.kind == "pose" else (
+                "explicit matrix" if f.kind == "matrix" else f"${factors[0]}$ ({f.kind})")
             if f.kind == "pose":
                 pose = f"${pose}$"
             rows.append((name_md(name), name_md(f.parent), pose))
@@ -239,7 +241,7 @@ class ReportSections:
 
 def report_sections(report, figure_paths: dict) -> ReportSections:
     problem, model = report.problem, report.model
-    names = model.symbol_latex if model is not None else {}
+    names = symbol_latex(problem) if model is not None else {}
     tex = Tex(names, CompactTrig(problem))
     head = [f"# {problem.title or problem.name}"]
     if problem.description:

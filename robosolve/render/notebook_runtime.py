@@ -2,23 +2,33 @@
 
 robosolve copies this module's source into the first code cell of every notebook it writes
 (robosolve/render/notebook.py, with `inspect.getsource`), so a notebook runs anywhere with only
-sympy, numpy and matplotlib installed: this module imports nothing else, and in particular
-nothing of robosolve. The tests import it in-process and compare it with robosolve's engines
+sympy, numpy and matplotlib installed: this module imports nothing else but robosolve's own
+numeric chain computation (robosolve/model/forward.py and model/numpy_algebra.py, which import
+nothing but numpy), whose sources the cell copies in before it, without the two import lines. The tests import it in-process and compare it with robosolve's engines
 (tests/render/test_notebook_runtime.py).
 
 * `Robot`: the problem's data (parameters, joints, frames, points, bodies, forces, gravity) given
   as text expressions, so that a reader changes a number and re-runs; the chain products
-  (0M of a frame, points in frame 0), W and H, Jacobians, Lagrange's equations of motion from
+  (0M of a frame, points in frame 0), W and H (symbolic, and `chain_at`: robosolve's chain
+  computation at numbers, Rivals and Coriolis), Jacobians, Lagrange's equations of motion from
   the bodies' pseudo-inertia matrices, the weight's generalized forces, numeric dynamics.
 * `Profile`: the synchronized bang-bang, trapezoidal and quintic profiles, numerically.
 * `torque_peaks`, `simulate_control`, `forward_run`: the actuators along a profile, the closed
   loop, and the motion under given actuator laws, integrated by an adaptive Dormand-Prince 5(4).
+* `TaskPath`, `Timing`, `TaskArm`, `TaskTrajectory`: a line or an arc of task coordinates timed
+  along its length (trapezoidal or quintic), the task map x(q), J, J' q', and the joint motion
+  by Newton's method sample to sample from one IK branch (q' = J+ x', q'' from J'), with its
+  extremes; `simulate_task_control`: the work-space closed loops along it (the task laws, or a
+  joint law on the converted trajectory, `JointPlan`).
 * geometry (axis-angle, helical axis, Euler angles, screws), `newton_solutions` (IK), ellipsoid
   semi-axes, and `compare`, which prints a recomputed value beside robosolve's.
 """
 
 import numpy as np
 import sympy as sp
+
+from robosolve.model.forward import ChainData  # the notebook: forward.py is copied in above
+from robosolve.model.numpy_algebra import NumpyOperations, rigid_inverse  # copied in above
 
 np.set_printoptions(precision=6, suppress=True)
 
@@ -193,6 +203,14 @@ class Robot:
         inv = inverse_pose(M)
         return dM * inv, self.time_derivative(dM) * inv
 
+    def chain_at(self, at=None):
+        """0M, 0L, 0W (Rivals) and 0H (Coriolis) of every frame, and the points, as numbers at the
+        data and `at` (joints, rates, accelerations): robosolve's chain computation (forward.py's
+        ChainData over numpy): chain.M(frame), chain.L(i, frame), chain.W(frame), chain.H(frame),
+        chain.point(name)."""
+        numbers = _ChainAt(self, at)
+        return ChainData(numbers, numbers)
+
     def jacobian(self, coordinates):
         """The analytic Jacobian of coordinates (text expressions) in the joints."""
         return self.vector(coordinates).jacobian(self.joints)
@@ -327,6 +345,64 @@ class Robot:
         args = [self.t, self.joints, self.rates]
         parts = {"mass": mass, "c": c, "g": grav, "Q": Q, "rest": tau + Q - c - grav}
         return {k: _numeric(sp.lambdify(args, v, "numpy"), k != "mass") for k, v in parts.items()}
+
+
+class _ChainAt(NumpyOperations):
+    """A robot's chain at one configuration, what forward.py's ChainData asks: the description
+    (parents, the joints in each pose, the frame of a point) and the numpy algebra's inputs (each
+    pose in its parent A, a joint's twist dA/dq A^-1, A'' A^-1, the rates), evaluated once each."""
+
+    def __init__(self, robot, at):
+        self.robot, self.subs, self._memo = robot, robot.values(at), {}
+
+    def _num(self, key, build):
+        if key not in self._memo:
+            self._memo[key] = np.array(sp.N(sp.Matrix(build()).subs(self.subs)).tolist(), dtype=float)
+        return self._memo[key]
+
+    # -- the description
+    def parent(self, frame):
+        return None if frame == "0" else self.robot.frames[frame][0]
+
+    def chain(self, frame):
+        out = []
+        while frame != "0":
+            out.append(frame)
+            frame = self.robot.frames[frame][0]
+        return out[::-1]
+
+    def moved_by(self, frame):
+        local = self.robot.frames[frame][1]
+        return [i for i, q in enumerate(self.robot.joints) if local.has(q)]
+
+    def joint_frame(self, index):
+        return next((f for f in self.robot.frames if index in self.moved_by(f)), None)
+
+    def constant_twist(self, frame):
+        return None                     # H of every pose from A'' A^-1
+
+    def point_frame(self, name):
+        return self.robot.points[name][0]
+
+    # -- the inputs
+    def pose(self, frame):
+        return self._num(("A", frame), lambda: self.robot.frames[frame][1])
+
+    def twist(self, frame, index):
+        dA = self._num(("dA", frame, index), lambda: self.robot.frames[frame][1].diff(self.robot.joints[index]))
+        return dA @ rigid_inverse(self.pose(frame))
+
+    def acceleration(self, frame):
+        robot = self.robot
+        ddA = self._num(("ddA", frame), lambda: robot.time_derivative(robot.time_derivative(robot.frames[frame][1])))
+        return ddA @ rigid_inverse(self.pose(frame))
+
+    def rate(self, index, order):
+        symbol = (self.robot.rates if order == 1 else self.robot.accelerations)[index]
+        return float(self._num(("rate", index, order), lambda: [symbol])[0, 0])
+
+    def coordinates(self, name):
+        return self._num(("P", name), lambda: [*self.robot.points[name][1], 1]).ravel()
 
 
 def _numeric(f, column):
@@ -775,6 +851,357 @@ def extremes(times, qs, rates):
                     value = p(s.real)
                     low[i], high[i] = min(low[i], value), max(high[i], value)
     return low, high
+
+
+# -- work-space trajectories ------------------------------------------------------------------------
+
+class TaskPath:
+    """A path of the task coordinates with s its arc length, 0 <= s <= L: the line
+    x(s) = a + s u, u = (b - a) / L; or, given a centre c, the arc from a to b the shorter way,
+    x(s) = c + r (cos(s/r) e1 + sin(s/r) e2), e1 = (a - c) / r, e2 in the arc's plane towards b
+    (a half circle: e2 = normal x e1, or e1 turned counter-clockwise in the plane)."""
+
+    def __init__(self, a, b, center=None, normal=None):
+        self.a, self.b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+        self.center = None if center is None else np.asarray(center, dtype=float)
+        if self.center is None:
+            self.kind, self.length = "line", float(np.linalg.norm(self.b - self.a))
+            return
+        ra, rb = self.a - self.center, self.b - self.center
+        r = self.radius = float(np.linalg.norm(ra))
+        self.e1 = ra / r
+        perp = rb / r - float(np.dot(rb / r, self.e1)) * self.e1
+        self.angle = float(np.arccos(np.clip(np.dot(ra, rb) / (r * r), -1.0, 1.0)))
+        if np.linalg.norm(perp) > 1e-9:
+            self.e2 = perp / np.linalg.norm(perp)
+        elif self.a.size == 2:
+            self.e2 = np.array([-self.e1[1], self.e1[0]])
+        else:
+            n = np.asarray(normal, dtype=float)
+            self.e2 = np.cross(n / np.linalg.norm(n), self.e1)
+        self.kind, self.length = "circle", r * self.angle
+
+    def at(self, s):
+        """(x, dx/ds, d2x/ds2) at arc length s."""
+        if self.kind == "line":
+            u = (self.b - self.a) / self.length
+            return self.a + s * u, u, np.zeros_like(u)
+        r, th = self.radius, s / self.radius
+        c, sn = np.cos(th), np.sin(th)
+        return (self.center + r * (c * self.e1 + sn * self.e2), -sn * self.e1 + c * self.e2,
+                -(c * self.e1 + sn * self.e2) / r)
+
+
+class Timing:
+    """s(t) on [0, T] along a path of length L: with a `duration`, quintic
+    s = L (10 u^3 - 15 u^4 + 6 u^5), u = t / T; else trapezoidal (accelerate at a_max, cruise at
+    v_max, decelerate: T = L / v + v / a), bang-bang when L < v^2 / a (T = 2 sqrt(L / a))."""
+
+    def __init__(self, length, max_velocity=None, max_acceleration=None, duration=None):
+        L = self.length = float(length)
+        if duration is not None:
+            T = self.T = float(duration)
+            self.kind, self.breaks = "quintic", [0.0, T]
+            self.v_peak, self.a_max, self.t_acc = 1.875 * L / T, 5.773502691896258 * L / T ** 2, 0.0
+            return
+        v, a = float(max_velocity), float(max_acceleration)
+        if L >= v * v / a:
+            ta = v / a
+            self.kind, self.T, self.v_peak = "trapezoidal", L / v + ta, v
+            self.breaks = [0.0, ta, self.T - ta, self.T]
+        else:
+            ta = np.sqrt(L / a)
+            self.kind, self.T, self.v_peak = "bang-bang", 2 * ta, a * ta
+            self.breaks = [0.0, ta, 2 * ta]
+        self.a_max, self.t_acc = a, ta
+
+    def at(self, t, segment=None):
+        """(s, s', s'') at t; `segment` (an interval of `breaks`) picks the side at a switch."""
+        if segment is None:
+            segment = max(0, min(int(np.searchsorted(self.breaks, t, side="right")) - 1, len(self.breaks) - 2))
+        L, T = self.length, self.T
+        if self.kind == "quintic":
+            u = t / T
+            return (L * (10 * u ** 3 - 15 * u ** 4 + 6 * u ** 5), L * (30 * u ** 2 - 60 * u ** 3 + 30 * u ** 4) / T,
+                    L * (60 * u - 180 * u ** 2 + 120 * u ** 3) / T ** 2)
+        a, v, ta = self.a_max, self.v_peak, self.t_acc
+        if segment == 0:
+            return 0.5 * a * t * t, a * t, a
+        if segment == len(self.breaks) - 2:
+            d = T - t
+            return L - 0.5 * a * d * d, a * d, -a
+        return 0.5 * a * ta * ta + v * (t - ta), v, 0.0
+
+
+class TaskArm:
+    """The task map of `coordinates` (text expressions such as E_y) at the data and `at`:
+    x(q), J(q) = dx/dq and J'(q) q' = d(J q')/dq q', numerically."""
+
+    def __init__(self, robot, coordinates, at=None):
+        self.joints, self.m, self.n = robot.joints, len(coordinates), len(robot.joints)
+        self.expr = robot.vector(coordinates).subs(robot.fixed(at))
+        J = self.expr.jacobian(robot.joints)
+        rates = sp.Matrix(robot.rates)
+        self._x = sp.lambdify([robot.joints], list(self.expr), "numpy")
+        self._J = sp.lambdify([robot.joints], J.tolist(), "numpy")
+        self._h = sp.lambdify([robot.joints, robot.rates], list((J * rates).jacobian(robot.joints) * rates), "numpy")
+        self.revolute = [kind == "revolute" for kind in robot.kinds]
+
+    def x(self, q):
+        return np.asarray(self._x(list(q)), dtype=float).reshape(self.m)
+
+    def J(self, q):
+        return np.asarray(self._J(list(q)), dtype=float).reshape(self.m, self.n)
+
+    def jdot_qdot(self, q, qd):
+        return np.asarray(self._h(list(q), list(qd)), dtype=float).reshape(self.m)
+
+    def newton(self, target, q0, tol=1e-12, max_iter=30):
+        """q with x(q) = target near q0 (minimum-norm steps, at most 0.5 per joint); None when
+        it does not converge."""
+        q, target = np.array(q0, dtype=float), np.asarray(target, dtype=float)
+        scale = max(1.0, float(np.max(np.abs(target))))
+        for _ in range(max_iter):
+            r = target - self.x(q)
+            if float(np.max(np.abs(r))) <= tol * scale:
+                return q
+            step = np.linalg.lstsq(self.J(q), r, rcond=None)[0]
+            big = float(np.max(np.abs(step)))
+            q = q + (step if big <= 0.5 else step * (0.5 / big))
+        return q if float(np.max(np.abs(target - self.x(q)))) <= 1e3 * tol * scale else None
+
+    def rates(self, q, xd, xdd):
+        """(q' = J+ x', q'' = J+ (x'' - J' q'), the smallest singular value of J) at q."""
+        J = self.J(q)
+        sv = np.linalg.svd(J, compute_uv=False)
+        Jp = np.linalg.pinv(J)
+        qd = Jp @ xd
+        return qd, Jp @ (xdd - self.jdot_qdot(q, qd)), float(sv[-1]) if sv.size else 0.0
+
+    def start(self, target, limits, given=None):
+        """The configuration at `target` whose branch is followed: Newton from `given`; else, as
+        many coordinates as joints, the first of the sorted IK solutions within the limits;
+        else (J wide) Newton from q = 0."""
+        if given is not None:
+            return self.newton(target, given)
+        if self.m < self.n:
+            return self.newton(target, np.zeros(self.n))
+        solutions = newton_solutions(self.expr - sp.Matrix(list(target)), self.joints, limits, self.revolute)
+        return solutions[0] if solutions else None
+
+
+class TaskTrajectory:
+    """The joint motion along a timed path from the branch of `start`: at each sample q solves
+    x(q) = x_d(t) by Newton from the previous sample (predicted with its rates), then
+    q' = J+ x'_d and q'' = J+ (x''_d - J' q'). The samples: `samples` over [0, T], shared out
+    between the intervals of the timing law, whose ends are sampled on both sides. Stops at the
+    first sample out of reach or at a singularity (`failure`: kind, t, x, q)."""
+
+    def __init__(self, arm, path, timing, start, samples=401, sigma_tol=1e-6):
+        self.arm, self.path, self.timing = arm, path, timing
+        ts, segs = [], []
+        for k, (a, b) in enumerate(zip(timing.breaks[:-1], timing.breaks[1:])):
+            count = max(3, int(round(samples * (b - a) / timing.T)) + 1)
+            ts += [float(t) for t in np.linspace(a, b, count)]
+            segs += [k] * count
+        self._follow(np.array(ts), np.array(segs), np.asarray(start, dtype=float), sigma_tol)
+
+    def state(self, t, segment=None):
+        """(s, x_d, x'_d, x''_d) at t."""
+        s, sd, sdd = self.timing.at(t, segment)
+        x, d1, d2 = self.path.at(s)
+        return s, x, d1 * sd, d2 * sd * sd + d1 * sdd
+
+    def desired(self, t, segment=None):
+        """(x_d, x'_d, x''_d) at t; after T the end, at rest."""
+        if t >= self.timing.T:
+            x = self.path.at(self.path.length)[0]
+            return x, np.zeros_like(x), np.zeros_like(x)
+        return self.state(max(t, 0.0), segment)[1:]
+
+    def _follow(self, ts, segs, q_prev, sigma_tol):
+        arm, n = self.arm, len(q_prev)
+        rows, qd_prev, t_prev, self.failure = [], np.zeros(n), 0.0, None
+        scale = max(float(np.linalg.norm(arm.J(q_prev), 2)), 1e-300)
+        for t, seg in zip(ts, segs):
+            s, x, xd, xdd = self.state(t, seg)
+            guess = q_prev + qd_prev * (t - t_prev)
+            q = arm.newton(x, guess)
+            if q is None:
+                self.failure = self._leaving(t_prev, float(t), seg, q_prev)
+                break
+            qd, qdd, sigma = arm.rates(q, xd, xdd)
+            if sigma < sigma_tol * scale or (t > 0 and float(np.max(np.abs(q - guess))) > 0.2):
+                self.failure = {"kind": "singular", "t": float(t), "x": x.tolist(), "q": q.tolist()}
+                break
+            rows.append((t, seg, s, x, xd, xdd, q, qd, qdd, sigma))
+            q_prev, qd_prev, t_prev = q, qd, t
+        cols = list(zip(*rows)) if rows else [[]] * 10
+        self.t, self.segment, self.s = np.array(cols[0]), np.array(cols[1], dtype=int), np.array(cols[2])
+        self.x, self.xd, self.xdd, self.q, self.qd, self.qdd = (np.array(c, dtype=float).reshape(len(rows), w).T
+                                                                for c, w in zip(cols[3:9], [arm.m] * 3 + [n] * 3))
+        self.sigma = np.array(cols[9])
+        if self.failure is None:
+            self._singular_between(sigma_tol * scale)
+
+    def _leaving(self, t_in, t_out, seg, q_in):
+        """Where the path leaves the reach: bisection between a reached and an unreached instant."""
+        q_last = np.asarray(q_in, dtype=float)
+        for _ in range(40):
+            mid = 0.5 * (t_in + t_out)
+            q = self.arm.newton(self.state(mid, seg)[1], q_last)
+            if q is None:
+                t_out = mid
+            else:
+                t_in, q_last = mid, q
+        return {"kind": "unreachable", "t": float(t_out), "x": self.state(t_out, seg)[1].tolist(),
+                "q": q_last.tolist()}
+
+    def state_at(self, t, segment):
+        """(q, q', q'', sigma) at any t of a segment, by Newton from the nearest sample."""
+        k = int(np.argmin(np.abs(self.t - t) + 1e9 * (self.segment != segment)))
+        _, x, xd, xdd = self.state(t, segment)
+        q = self.arm.newton(x, self.q[:, k] + self.qd[:, k] * (t - self.t[k]))
+        return (self.q[:, k] if q is None else q, *self.arm.rates(self.q[:, k] if q is None else q, xd, xdd))
+
+    def _refine(self, fun, k, sign=1.0):
+        """The largest sign * fun(t, segment) near sample k within its segment: (value, t)."""
+        seg = self.segment[k]
+        idx = np.nonzero(self.segment == seg)[0]
+        lo, hi = self.t[max(k - 1, idx[0])], self.t[min(k + 1, idx[-1])]
+        best = (sign * fun(self.t[k], seg), float(self.t[k]))
+        if hi > lo:
+            t, value = _golden_max(lambda tt: sign * fun(tt, seg), lo, hi)
+            if value > best[0]:
+                best = (float(value), float(t))
+        return best
+
+    def _singular_between(self, tol):
+        """A singular configuration between samples (sigma dipping to 0 at a local minimum)."""
+        sig = self.sigma
+        for k in range(1, sig.size - 1):
+            if sig[k] <= sig[k - 1] and sig[k] <= sig[k + 1] and self.segment[k - 1] == self.segment[k + 1]:
+                value, t = self._refine(lambda tt, sg: self.state_at(tt, sg)[3], k, sign=-1.0)
+                if -value < tol:
+                    seg = self.segment[k]
+                    self.failure = {"kind": "singular", "t": t, "x": self.state(t, seg)[1].tolist(),
+                                    "q": self.state_at(t, seg)[0].tolist()}
+                    return
+
+    def extremes(self):
+        """max |q'_i| and max |q''_i| over [0, T] (refined between samples), and the smallest
+        singular value of J with its time: (velocities, accelerations, (sigma_min, t))."""
+        n = self.q.shape[0]
+        vel, acc = np.zeros(n), np.zeros(n)
+        for i in range(n):
+            for values, out, which in ((self.qd, vel, 1), (self.qdd, acc, 2)):
+                k = int(np.argmax(np.abs(values[i])))
+                out[i] = self._refine(lambda tt, sg, i=i, w=which: abs(self.state_at(tt, sg)[w][i]), k)[0]
+        smin, tmin = self._refine(lambda tt, sg: self.state_at(tt, sg)[3], int(np.argmin(self.sigma)), sign=-1.0)
+        return vel, acc, (-smin, tmin)
+
+    def plan(self, every=5):
+        """The joint reference of the ideal scheme: quintics matching q, q', q'' at every
+        `every`-th sample of each interval of the timing law (and at its ends)."""
+        knots = []
+        for seg in range(len(self.timing.breaks) - 1):
+            idx = np.nonzero(self.segment == seg)[0]
+            if idx.size:
+                knots += list(idx[::every]) + ([idx[-1]] if (idx.size - 1) % every else [])
+        breaks, coeffs = [float(self.t[0])], []
+        for a, b in zip(knots[:-1], knots[1:]):
+            h = float(self.t[b] - self.t[a])
+            if h > 0:
+                coeffs.append(_hermite(self.q[:, a], self.qd[:, a], self.qdd[:, a],
+                                       self.q[:, b], self.qd[:, b], self.qdd[:, b], h))
+                breaks.append(float(self.t[b]))
+        return JointPlan(breaks, coeffs)
+
+
+def _hermite(q0, v0, a0, q1, v1, a1, h):
+    """(n, 6) coefficients, about the interval's start, of the quintic with these ends."""
+    A = np.array([[h ** 3, h ** 4, h ** 5], [3 * h ** 2, 4 * h ** 3, 5 * h ** 4], [6 * h, 12 * h ** 2, 20 * h ** 3]])
+    rhs = np.vstack([q1 - (q0 + v0 * h + a0 * h * h / 2), v1 - (v0 + a0 * h), a1 - a0])
+    return np.column_stack([q0, v0, a0 / 2, np.linalg.solve(A, rhs).T])
+
+
+class JointPlan:
+    """Piecewise polynomials of the joints: on interval k, q_i = sum_p coeffs[k][i, p] (t - breaks[k])^p;
+    before 0 the start, after T the end, at rest."""
+
+    def __init__(self, breaks, coeffs):
+        self.breaks, self.coeffs = [float(b) for b in breaks], [np.asarray(c, dtype=float) for c in coeffs]
+        self.T = self.breaks[-1]
+        self.start, self.end = self.evaluate(0.0, 0)[0], self.evaluate(self.T, len(self.coeffs) - 1)[0]
+
+    def evaluate(self, t, segment=None):
+        """(q, q', q'') at t, on interval `segment` (one-sided at its ends)."""
+        if segment is None:
+            if t < 0 or t > self.T:
+                end = self.evaluate(min(max(t, 0.0), self.T))[0]
+                return end, np.zeros_like(end), np.zeros_like(end)
+            segment = min(max(int(np.searchsorted(self.breaks, t, side="right")) - 1, 0), len(self.coeffs) - 1)
+        c, u = self.coeffs[segment], t - self.breaks[segment]
+        p = np.arange(c.shape[1])
+        q = c @ u ** p
+        qd = c[:, 1:] @ (p[1:] * u ** (p[1:] - 1))
+        qdd = c[:, 2:] @ (p[2:] * (p[2:] - 1) * u ** (p[2:] - 2))
+        return q, qd, qdd
+
+
+# -- work-space closed loops --------------------------------------------------------------------------
+
+def task_control_torque(law, kp, kd, arm, q, qd, xd, vd, ad, m, c, g):
+    """The task laws on e = x_d - x(q), e' = x'_d - J q': task_pd_gravity: tau = J^T (Kp e + Kd e') + g;
+    task_computed_torque: tau = M J^-1 (x''_d + Kd e' + Kp e - J' q') + c + g."""
+    J = arm.J(q)
+    e, ed = xd - arm.x(q), vd - J @ qd
+    if law == "task_pd_gravity":
+        return J.T @ (kp * e + kd * ed) + g
+    return m @ np.linalg.solve(J, ad + kd * ed + kp * e - arm.jdot_qdot(q, qd)) + c + g
+
+
+def simulate_task_control(robot, trajectory, law, kp, kd=None, start=None, duration=None, at=None,
+                          rtol=1e-10, samples=2000):
+    """A closed loop along a work-space trajectory, on M q'' + c + g = tau + Q from `start` at rest
+    (default the trajectory's start), state (q, q'), over [0, duration] (default T): a task law
+    (`task_control_torque`, restarted at each switch of the timing law), or a joint law following
+    the converted trajectory (`trajectory.plan()`, the ideal scheme; restarted at each of its knots).
+    Returns (max |e|, when, e at the end, times, e, x_d - x) with e per coordinate for a task law
+    and per joint for a joint law; about `samples` steps or more."""
+    f, arm, n = robot.numeric_dynamics(at), trajectory.arm, len(robot.joints)
+    kp = np.asarray(kp, dtype=float)
+    kd = np.zeros(n) if kd is None else np.asarray(kd, dtype=float)
+    task = law.startswith("task_")
+    plan = None if task else trajectory.plan()
+    breaks = trajectory.timing.breaks if task else plan.breaks
+    T = float(breaks[-1])
+    duration = T if duration is None else float(duration)
+    pieces = [(breaks[k], min(breaks[k + 1], duration), k) for k in range(len(breaks) - 1) if breaks[k] < duration]
+    pieces += [(T, duration, None)] if duration > T else []
+
+    def torque(t, seg, q, qd, m, c, g):
+        if task:
+            return task_control_torque(law, kp, kd, arm, q, qd, *trajectory.desired(t, seg), m, c, g)
+        q_d, qd_d, qdd_d = plan.evaluate(t, seg)
+        return control_torque(law, kp, kd, q_d - q, qd_d - qd, qdd_d, m, c, g)
+
+    y = np.concatenate([trajectory.q[:, 0] if start is None else np.asarray(start, dtype=float), np.zeros(n)])
+    out = []
+    for a, b, seg in pieces:
+        def rhs(t, yy, seg=seg):
+            q, qd = yy[:n], yy[n:]
+            m, c, g = f["mass"](t, q, qd), f["c"](t, q, qd), f["g"](t, q, qd)
+            tau = torque(t, seg, q, qd, m, c, g)
+            return np.concatenate([qd, np.linalg.solve(m, tau + f["Q"](t, q, qd) - c - g)])
+        tt, yy = integrate(rhs, a, b, y, rtol=rtol, atol=1e-12, max_step=duration / samples)
+        out += [(t, seg, state) for t, state in zip(tt[1:] if out else tt, yy[1:] if out else yy)]
+        y = yy[-1]
+    times = np.array([t for t, _, _ in out])
+    x_err = np.array([trajectory.desired(t)[0] - arm.x(s[:n]) for t, _, s in out])     # x_d is continuous
+    errors = x_err if task else np.array([plan.evaluate(t, seg)[0] - s[:n] for t, seg, s in out])
+    k = np.argmax(np.abs(errors), axis=0)
+    return np.abs(errors[k, range(errors.shape[1])]), times[k], errors[-1], times, errors, x_err
 
 
 # -- mobility -----------------------------------------------------------------------------------------

@@ -27,6 +27,15 @@ class Report:
         return ExitStatus.ANSWER_ERROR if any(a.error is not None for a in self.answers) else ExitStatus.OK
 
 
+def solve_context(problem: Problem, model=None, budgets=None):
+    """The SolveContext of a problem's solve: its model, budgets and the LaTeX names of its
+    symbols and poses (render.chain_names: the solvers write them, the model has none)."""
+    from robosolve.render.chain_names import ChainNames
+    from robosolve.solvers.base import SolveContext
+
+    return SolveContext(problem, model, budgets, names=ChainNames(problem))
+
+
 def check_inputs(problem: Problem) -> Problem:
     """The input mistakes only the robot's model shows (the types with `model_checked`: their
     solver's `check_input`), raised as an InputError (FILE:LINE, exit 2); the problem otherwise."""
@@ -40,9 +49,8 @@ def check_inputs(problem: Problem) -> Problem:
     if not checked or not problem.has_robot:
         return problem
     from robosolve.model import RobotModel
-    from robosolve.solvers.base import SolveContext
 
-    ctx = SolveContext(problem, RobotModel(problem))
+    ctx = solve_context(problem, RobotModel(problem))
     issues = []
     for q in checked:
         module = importlib.import_module(QUESTION_TYPES[q.type].solver_module)
@@ -61,12 +69,12 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
     (the `solve` command, two cores or more), a forked helper solves some of the questions
     meanwhile (robosolve.run.split_solve): the same answers."""
     from robosolve.model import RobotModel
-    from robosolve.solvers.base import Answer, Budgets, SolveContext
+    from robosolve.solvers.base import Answer, Budgets
 
     budgets = budgets or Budgets()
     clock = _FileClock()
     model = RobotModel(problem) if problem.has_robot else None
-    ctx = SolveContext(problem, model, budgets)
+    ctx = solve_context(problem, model, budgets)
     questions = problem.questions
 
     def answer_for(i: int):

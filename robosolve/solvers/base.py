@@ -103,17 +103,42 @@ class Answer:
             self.notes.append(text)
 
 
+class _PlainNames:
+    """No names given: sympy's LaTeX of every symbol, poses shown without their factors."""
+
+    @property
+    def symbols(self) -> dict:
+        return {}
+
+    @staticmethod
+    def factors(frame: str) -> list:
+        return []
+
+
 class SolveContext:
     """What one problem's solve shares: the problem, the model, the budgets, earlier
     results (by question id, through typed accessors) and numeric helpers."""
 
-    def __init__(self, problem: Problem, model=None, budgets: Budgets | None = None):
+    def __init__(self, problem: Problem, model=None, budgets: Budgets | None = None, names=None):
         self.problem = problem
         self.model = model
         self.budgets = budgets or Budgets()
+        self._names = names     # render.chain_names.ChainNames, given by the run layer
         self.answers: dict[str, Answer] = {}      # earlier answers, by question id
         self._profiles: dict[str, SyncProfile] = {}
         self._trajectories: dict = {}
+
+    @property
+    def names(self):
+        """The LaTeX names of the problem's symbols and poses (`symbols`, `factors(frame)`),
+        handed in by whoever builds the context (run.pipeline.solve_context); a context built
+        without them writes sympy's own LaTeX and no factors."""
+        return self._names if self._names is not None else _PlainNames()
+
+    @property
+    def symbol_latex(self) -> dict:
+        """symbol -> LaTeX (theta1_dot -> \\dot{\\theta}_{1}, multi-letter names upright)."""
+        return self.names.symbols
 
     @property
     def step_seconds(self) -> float:

@@ -152,7 +152,7 @@ def _joint_rates(ans, ctx, model, velocity, subs, jn_a, square):
     ans.steps.append(Step(
         "Joint velocities for the desired velocity",
         f"{how}" + (f". {note}" if note else "") + ":",
-        equations=[("V", v)] + [(model.symbol_latex.get(j.dot, sp.latex(j.dot)), x)
+        equations=[("V", v)] + [(ctx.symbol_latex.get(j.dot, sp.latex(j.dot)), x)
                                 for j, x in zip(model.joints, qd)],
     ))
 

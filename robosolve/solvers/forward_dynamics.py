@@ -9,7 +9,7 @@ of the report and the figures.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy as sp
 
@@ -37,6 +37,7 @@ class Setup:
     equations: list       # "lhs = rhs" strings
     kinetic: sp.Expr
     potential: sp.Expr
+    names: dict = field(default_factory=dict)   # the symbols' LaTeX (ctx.symbol_latex)
 
 
 def _unit(kind: str, rate: bool = False) -> str:
@@ -63,7 +64,7 @@ def setup(question: Question, ctx: SolveContext, dyn) -> Setup:
     lhs = dyn.lhs()
     equations = [f"{lhs[i]} = {forces[i]}" for i in range(len(laws))]
     return Setup(laws, forces, equations, sp.Add(*dyn.kinetic_energy.values()),
-                 sp.Add(*dyn.potential_energy.values()))
+                 sp.Add(*dyn.potential_energy.values()), ctx.symbol_latex)
 
 
 def _numbers(question, ctx, dyn, st: Setup):
@@ -133,31 +134,31 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     for n in run.notes:
         ans.note(n)
     _limit_notes(ans, model, run, values[0])
-    ans.steps.append(_step_results(model, run, values))
+    ans.steps.append(_step_results(model, st, run, values))
     ans.steps.append(_step_energy(question, model, st, run, values[0], ans.numeric["energy"]))
     ans.figures.extend(_figures(model, st, run))
     return ans
 
 
 # ---------------------------------------------------------------------- report
-def _tex(model, e) -> str:
-    return sp.latex(e, symbol_names=model.symbol_latex)
+def _tex(st, e) -> str:
+    return sp.latex(e, symbol_names=st.names)
 
 
 def _law_tex(model, st) -> list[str]:
-    return [f"{_tex(model, j.actuator)} = {_tex(model, st.laws[i])}" for i, j in enumerate(model.joints)]
+    return [f"{_tex(st, j.actuator)} = {_tex(st, st.laws[i])}" for i, j in enumerate(model.joints)]
 
 
 def _steps_setup(question, model, dyn, st) -> list:
     start = question.options.get("start", {})
     joints = model.joints
     start_tex = ",\\quad ".join(
-        f"{_tex(model, j.symbol)}(0) = {_tex(model, start.get(j.name, 0))},\\;"
-        f"{_tex(model, j.dot)}(0) = {_tex(model, start.get(j.dot.name, 0))}" for j in joints)
+        f"{_tex(st, j.symbol)}(0) = {_tex(st, start.get(j.name, 0))},\\;"
+        f"{_tex(st, j.dot)}(0) = {_tex(st, start.get(j.dot.name, 0))}" for j in joints)
     given = question.options.get("actuators", {})
     idle = [str(j.actuator) for j in joints if str(j.actuator) not in given]
     text = ("The arm starts at the values below and moves under the actuator laws for "
-            f"$t \\in [0, {_tex(model, question.options['duration'])}]$ s. "
+            f"$t \\in [0, {_tex(st, question.options['duration'])}]$ s. "
             + (f"Actuators not given act with zero force ({', '.join(idle)}). " if idle else "")
             + "The plant is the problem's own equations of motion (the same derivation as "
             "`equations_of_motion`), with the laws in place of the actuators:")
@@ -165,15 +166,15 @@ def _steps_setup(question, model, dyn, st) -> list:
     eqs = [("", start_tex)] + [("", s) for s in _law_tex(model, st)]
     eqs.append(("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau(t, q, \\dot q) + f_{ext}"))
     for i, j in enumerate(joints):
-        eqs.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{_tex(model, st.forces[i])}", lhs[i]))
+        eqs.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{_tex(st, st.forces[i])}", lhs[i]))
     return [Step("Start, laws and equations of motion", text, equations=eqs)]
 
 
-def _step_results(model, run, values) -> Step:
+def _step_results(model, st, run, values) -> Step:
     rows = []
     for i, j in enumerate(model.joints):
         u = _unit(j.kind)
-        rows.append([f"${_tex(model, j.symbol)}$", Num(values[1][i], u), Num(run.final[i], u),
+        rows.append([f"${_tex(st, j.symbol)}$", Num(values[1][i], u), Num(run.final[i], u),
                      Text(Num(run.q_min[i]), " (t = ", Num(run.t_min[i]), " s)"),
                      Text(Num(run.q_max[i]), " (t = ", Num(run.t_max[i]), " s)"),
                      Num(run.final_velocity[i], _unit(j.kind, True))])
@@ -235,7 +236,7 @@ def _bound(x: float) -> str:
 def _step_energy(question, model, st, run, params, energy) -> Step:
     e0, e1 = energy["start"], energy["end"]
     scale = run.energy_scale or 1.0
-    eqs = [("E = T + U", _tex(model, st.kinetic + st.potential)),
+    eqs = [("E = T + U", _tex(st, st.kinetic + st.potential)),
            ("E(0)", e0), (f"E({run.duration:g})", e1), ("\\Delta E", e1 - e0)]
     nothing_acts = all(sp.sympify(f).xreplace(params) == 0 for f in st.forces)
     if nothing_acts:
@@ -282,11 +283,11 @@ def _figures(model, st, run) -> list:
     out = []
     r = lambda a: [float(f"{float(x):.10g}") + 0.0 for x in a]   # noqa: E731
     for i, j in enumerate(model.joints):
-        sym = _tex(model, j.symbol)
+        sym = _tex(st, j.symbol)
         out.append(FigureSpec(
             f"joint_{j.name}", "forward_dynamics", f"${sym}(t)$ with {law_title}",
             {"t": r(run.t), "q": r(run.q[i]), "qd": r(run.qd[i]), "label": sym,
-             "rate_label": _tex(model, j.dot), "unit": _unit(j.kind), "rate_unit": _unit(j.kind, True),
+             "rate_label": _tex(st, j.dot), "unit": _unit(j.kind), "rate_unit": _unit(j.kind, True),
              "max": float(run.q_max[i]), "t_max": float(run.t_max[i]),
              "min": float(run.q_min[i]), "t_min": float(run.t_min[i])}))
     return out

@@ -56,7 +56,7 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
     select = opts.get("select", "limits")
     if isinstance(select, dict):
         select = {k: ctx.numeric(v, params) for k, v in select.items()}
-    names = {j.symbol: sp.latex(j.symbol, symbol_names=dict(model.symbol_latex)) for j in used}
+    names = {j.symbol: sp.latex(j.symbol, symbol_names=dict(ctx.symbol_latex)) for j in used}
     res = solve_pose(factors, used, R, p, select=select, latex_names=names, tex=tex,
                      time_limit_s=ctx.budgets.closed_form_seconds)
     ans.steps.append(_target_step(target, R, p, frame, question, c, tex))

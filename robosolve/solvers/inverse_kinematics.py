@@ -46,7 +46,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     opts = question.options
     joints = model.joints
     names = {j.symbol: sp.latex(j.symbol) for j in joints}
-    symnames = dict(model.symbol_latex)
+    symnames = dict(ctx.symbol_latex)
 
     def tex(e):
         return sp.latex(e, symbol_names=symnames)

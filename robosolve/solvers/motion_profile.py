@@ -64,7 +64,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     shape = question.options.get("shape", "bang-bang")
     subs = ctx.substitutions(question.at)
     joints = model.joints
-    syms = {j.name: sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in joints}
+    syms = {j.name: sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in joints}
     ans.steps += steps(prof, shape, joints, syms)
     # -- answers
     ans.symbolic["durations"] = {jm.name: jm.own_time for jm in prof.joints}

@@ -41,10 +41,10 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     )
     for f in chain:
         parent = model.frames[f].parent
-        factors = model.local_factors(f)
+        factors = ctx.names.factors(f)
         lhs = m_name(parent, f)
         if len(factors) > 1:
-            lhs += " = " + " ".join(tex for tex, _ in factors)
+            lhs += " = " + " ".join(factors)
         elementary.equations.append((lhs, model.M_local(f)))
     ans.steps.append(elementary)
 

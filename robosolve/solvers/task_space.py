@@ -65,9 +65,9 @@ def tidy_limited(ctx, m, seconds, long_chain=False):
     return out if out is not None else sp.Matrix(m)
 
 
-def coordinate_latex(expr, model) -> str:
-    """LaTeX of a coordinate as the user wrote it (E.x -> E_{x})."""
-    names = getattr(model, "symbol_latex", {}) or {}
+def coordinate_latex(expr, names: dict) -> str:
+    """LaTeX of a coordinate as the user wrote it (E.x -> E_{x}), with the problem's symbol
+    names (`ctx.symbol_latex`)."""
     return sp.latex(expr, symbol_names=names)
 
 
@@ -120,7 +120,7 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
         texts = [f"{point}.{a}" for a in "xyz"]
     else:
         coords = [model.coordinate(c) for c in raw]
-        labels = [coordinate_latex(c, model) for c in raw]
+        labels = [coordinate_latex(c, ctx.symbol_latex) for c in raw]
         texts = [sp.sstr(c) for c in raw]
     # the model's coordinates are already trig-tidied: their derivatives need no more
     J = analytic_jacobian(coords, q)

@@ -243,13 +243,13 @@ def solve(question, ctx: SolveContext) -> Answer:
         raise SolverError(f"the trajectory needs numeric data ({exc})") from None
     names = [j.name for j in model.joints]
     labels = [str(c) for c in coords]
-    tex = [sp.latex(c, symbol_names=model.symbol_latex) for c in coords]
+    tex = [sp.latex(c, symbol_names=ctx.symbol_latex) for c in coords]
     conv = tp.follow(arm, path, timing, q_from, samples=SAMPLES)
     traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names)
     ans.numeric["T"] = timing.T
     ans.numeric["length"] = path.length
     ans.numeric["start"] = {n: float(q_from[i]) for i, n in enumerate(names)}
-    _path_steps(ans, traj, res, question, model)
+    _path_steps(ans, traj, res, question, model, ctx.symbol_latex)
     if conv.failure is not None:
         _failure(ans, traj, model)
     else:
@@ -259,7 +259,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         ans.numeric["max_joint_velocity"] = {n: float(vel[i]) for i, n in enumerate(names)}
         ans.numeric["max_joint_acceleration"] = {n: float(acc[i]) for i, n in enumerate(names)}
         ans.numeric["min_singular_value"] = smin
-        _joint_steps(ans, traj, model, vel, acc, smin, tmin)
+        _joint_steps(ans, traj, model, ctx.symbol_latex, vel, acc, smin, tmin)
     _figures(ans, ctx, traj, subs, question)
     return ans
 
@@ -279,7 +279,7 @@ def _figures(ans, ctx, traj, subs, question) -> None:
                 poses.append({"label": Text(label, " (t = ", Num(conv.t[k], "s"), ")"), "drawing": drw})
     ans.figures.append(FigureSpec("path", "task_path", "Path of the end effector, the arm at start, middle and end",
                                   {"trace": trace, "poses": poses, "point": question.point}))
-    syms = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in model.joints]
+    syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
     ans.figures.append(FigureSpec("joints", "joint_motion", "Joint positions, rates and accelerations",
                                   {"t": [float(v) for v in conv.t], "T": traj.timing.T,
                                    "switches": [float(v) for v in traj.timing.breaks[1:-1]],
@@ -294,7 +294,7 @@ def _vec(tex_list, values):
     return Text("$", Text.join(",\\; ", [Text(f"{t} = ", Num(v)) for t, v in zip(tex_list, values)]), "$")
 
 
-def _path_steps(ans, traj, res, question, model) -> None:
+def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
     path, timing = traj.path, traj.timing
     xs = "\\begin{bmatrix}" + " \\\\ ".join(traj.tex) + "\\end{bmatrix}"
     if path.kind == "line":
@@ -315,7 +315,7 @@ def _path_steps(ans, traj, res, question, model) -> None:
         eq = [(f"{xs}(s)", "c + r\\left(\\cos\\frac{s}{r}\\,e_1 + \\sin\\frac{s}{r}\\,e_2\\right)")]
     ans.steps.append(Step("Path", text, equations=eq))
     ans.steps.append(_timing_step(timing))
-    names = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in model.joints]
+    names = [sp.latex(j.symbol, symbol_names=symbols) for j in model.joints]
     q0 = traj.conv.q[:, 0]
     how = ("the configuration given as `start`, brought onto `from` by Newton's method"
            if "start" in question.options else
@@ -367,9 +367,9 @@ def _failure(ans, traj, model) -> None:
     ans.steps.append(Step("The path cannot be followed", Text("The conversion stops: ", reason, ".")))
 
 
-def _joint_steps(ans, traj, model, vel, acc, smin, tmin) -> None:
+def _joint_steps(ans, traj, model, symbols: dict, vel, acc, smin, tmin) -> None:
     conv = traj.conv
-    names = [sp.latex(j.symbol, symbol_names=model.symbol_latex) for j in model.joints]
+    names = [sp.latex(j.symbol, symbol_names=symbols) for j in model.joints]
     wide = len(traj.labels) < len(names)
     ans.steps.append(Step(
         "Joint rates and accelerations",

@@ -14,7 +14,7 @@ rtb = pytest.importorskip("roboticstoolbox")
 from robosolve.dynamics.bridge import numeric_for  # noqa: E402
 from robosolve.load.loader import load_problem  # noqa: E402
 from robosolve.model import RobotModel  # noqa: E402
-from robosolve.solvers.base import SolveContext  # noqa: E402
+from robosolve.run.pipeline import solve_context  # noqa: E402
 
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
 
@@ -36,7 +36,7 @@ def _rtb_twin(problem, values):
 def test_bundled_arm_dynamics_against_rtb(name):
     problem = load_problem(PROBLEMS / f"{name}.yaml")
     model = RobotModel(problem)
-    ctx = SolveContext(problem, model)
+    ctx = solve_context(problem, model)
     values = ctx.substitutions({})
     nd, note = numeric_for(model, values)
     robot = _rtb_twin(problem, values)

@@ -13,7 +13,7 @@ from robosolve.load.loader import load_problem_text
 from robosolve.model import RobotModel
 from robosolve.motion import task_path as tp
 from robosolve.solvers import task_trajectory as tt
-from robosolve.solvers.base import SolveContext
+from robosolve.run.pipeline import solve_context
 
 HEAD = "robosolve: 1\nname: r\nparameters: {}\n"
 
@@ -69,7 +69,7 @@ def _rtb(name):
 
 def _convert(text):
     problem = load_problem_text(text, "r.yaml")
-    ctx = SolveContext(problem, RobotModel(problem))
+    ctx = solve_context(problem, RobotModel(problem))
     q = problem.questions[0]
     coords, arm, path, timing, q_from, _res, _subs = tt.setup(q, ctx)
     conv = tp.follow(arm, path, timing, q_from, samples=101)

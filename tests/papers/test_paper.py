@@ -181,3 +181,64 @@ def test_every_type_writes_its_statement():
     assert "maximum accelerations $\\theta_{1}$: $2$ rad/s², $\\theta_{2}$: $3$ rad/s²" in paper
     assert "$E_{y} = 0.6$, $E_{z} = 0.3$" in paper and "question 8" in paper
     assert "$F_s = $" in paper and "Gravity points along −z₀" in paper
+
+
+WORK_SPACE = """robosolve: 1
+name: ws
+parameters: {L1: 0.5, L2: 0.4, m1: 2, m2: 1, g: 9.81}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}, {name: q3, type: revolute}]
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+  "3": {pose: "Rz(q3) Tx(0.3)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: b1, frame: "1", mass: m1, point: [0, 0, 0]}
+  - {name: b2, frame: "2", mass: m2, point: [0, 0, 0]}
+  - {name: b3, frame: "3", mass: 1, point: [0, 0, 0]}
+questions:
+  - {type: task_trajectory, id: arc, coordinates: [E.x, E.y, "q1 + q2 + q3"],
+     from: {E.x: 0.8, E.y: 0.2, "q1 + q2 + q3": 0.3}, to: {E.x: 0.4, E.y: 0.6, "q1 + q2 + q3": 0.3},
+     path: {circle: {center: [0.4, 0.2, 0.3]}}, duration: 2, shape: quintic}
+  - {type: p_control, id: ct, trajectory: arc, law: task_computed_torque, duration: 2.5,
+     gains: {E.x: 400, E.y: 400, "q1 + q2 + q3": 300}, gains_d: {E.x: 30, E.y: 30, "q1 + q2 + q3": 20},
+     grade: [max_error, final_error, max_task_error]}
+  - {type: p_control, id: pd, trajectory: arc, law: task_pd_gravity, start: {q1: 0.1, q2: 0.2, q3: 0.3},
+     gains: {E.x: 2000, E.y: 2000, "q1 + q2 + q3": 50}, gains_d: {E.x: 100, E.y: 100, "q1 + q2 + q3": 5}}
+"""
+
+
+def _statements(paper: str) -> list[str]:
+    questions = paper.split("## Questions", 1)[1]
+    return [s.split("**What to give**")[0] for s in questions.split("\n### ")[1:]]
+
+
+def test_the_work_space_statements_state_the_path_scheme_gains_units_and_what_to_give(tmp_path):
+    from robosolve.load.loader import load_problem_text
+
+    problem = load_problem_text(WORK_SPACE, str(tmp_path / "ws.yaml"))
+    paper = render_paper(problem, RobotModel(problem))
+    traj, ct, pd = _statements(paper)
+    assert "along the arc of the circle of centre" in traj and "quintic timing law" in traj and "$2$ s" in traj
+    assert "the length of the path (" not in traj         # positions and an angle: no one unit
+    for s in (ct, pd):                                     # the path restated, its coordinates
+        assert "along the arc of the circle" in s and "$E_{x} = 0.8$" in s and "$E_{y} = 0.6$" in s
+    assert "resolved-acceleration computed torque" in ct and "J^{-1}" in ct
+    assert "$400$ s⁻²" in ct and "$30$ s⁻¹" in ct and "for $2.5$ s" in ct
+    assert "transposed Jacobian" in pd and "gravity compensation" in pd
+    assert "$2000$ N/m" in pd and "$100$ N·s/m" in pd and "$50$ N·m/rad" in pd and "$5$ N·m·s/rad" in pd
+    assert "to the end $T$ of the path" in pd and "$\\theta_{1} = 0.1$" not in pd
+    assert "m for a position, rad for an angle" in pd and "(rad)" not in pd
+    assert "largest work-space error" in ct                # graded: asked
+
+
+def test_the_template_lays_out_a_control_law_s_errors_per_joint_or_per_coordinate(tmp_path):
+    from robosolve.load.loader import load_problem_text
+    from robosolve.papers.template import render_template
+
+    problem = load_problem_text(WORK_SPACE, str(tmp_path / "ws.yaml"))
+    template = render_template(problem, "ws.yaml")
+    assert 'max_error: {E.x: ~, E.y: ~, "q1 + q2 + q3": ~}' in template
+    assert 'max_task_error: {E.x: ~, E.y: ~, "q1 + q2 + q3": ~}' in template
+    exam = render_template(load_problem(PROBLEMS / "exam-2r-full.yaml"), "exam.yaml")
+    assert "max_error: {theta1: ~, theta2: ~}" in exam

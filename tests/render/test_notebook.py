@@ -21,10 +21,9 @@ BUNDLED = sorted(p.stem for p in PROBLEMS.glob("*.yaml"))
 FILE_CALLS = {"open", "exec", "eval", "compile", "__import__", "input"}
 FILE_ATTRIBUTES = {"read_text", "read_bytes", "write_text", "write_bytes", "load", "loadtxt", "genfromtxt",
                    "read_csv", "system", "popen", "chdir", "remove", "unlink", "rmtree"}
-# Option layouts the cells do not rebuild (they print robosolve's numbers and say so).
-# (problem, answer id) whose cell prints robosolve's numbers instead of recomputing them, and why:
-# a p_control run along a work-space trajectory (issue 25) is not rebuilt by the notebook yet
-NOT_REBUILT = {("workspace-2r-line", "work-space-pd"), ("workspace-2r-line", "ideal-scheme")}
+# (problem, answer id) whose cell prints robosolve's numbers instead of recomputing them, and why
+# (none: every answer of every bundled problem is recomputed)
+NOT_REBUILT: set = set()
 
 
 def _golden_answers(name):

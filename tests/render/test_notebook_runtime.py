@@ -3,6 +3,7 @@ engines: chain products, W and H, Jacobians, the equations of motion, profiles, 
 profile, the closed loop and a forward-dynamics run, rotations and screws."""
 
 import ast
+import functools
 import inspect
 import math
 
@@ -13,7 +14,9 @@ import sympy as sp
 from robosolve.load.loader import load_problem
 from robosolve.model.chain import RobotModel
 from robosolve.render import notebook_runtime as rt
-from robosolve.render.notebook import data_cell
+from robosolve.model import forward, numpy_algebra
+from robosolve.model.numeric import NumericChain
+from robosolve.render.notebook import data_cell, runtime_source
 from robosolve.questions.notebook_code import literal
 
 from conftest import PROBLEMS
@@ -48,11 +51,28 @@ def _n(expr, subs):
     return np.array(sp.N(sp.Matrix(expr).subs(subs)).tolist(), dtype=float)
 
 
+def _imported(source) -> set:
+    tree = ast.parse(source)
+    modules = {a.name for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+    return modules | {n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+
+
 def test_the_runtime_imports_only_sympy_numpy_and_matplotlib():
-    tree = ast.parse(inspect.getsource(rt))
-    modules = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
-    modules |= {n.module.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
-    assert modules <= {"numpy", "sympy", "matplotlib", "IPython"}, modules
+    """The runtime imports robosolve's numeric chain computation only (forward.py imports
+    nothing, numpy_algebra.py numpy), and the notebook's runtime cell, which copies both in
+    before it, imports nothing of robosolve."""
+    modules = _imported(inspect.getsource(rt))
+    assert {m.split(".")[0] for m in modules} <= {"numpy", "sympy", "matplotlib", "IPython", "robosolve"}
+    assert {m for m in modules if m.startswith("robosolve")} == {"robosolve.model.forward",
+                                                                  "robosolve.model.numpy_algebra"}
+    assert _imported(inspect.getsource(forward)) == set()
+    assert _imported(inspect.getsource(numpy_algebra)) == {"numpy"}
+    cell = runtime_source()
+    assert {m.split(".")[0] for m in _imported(cell)} <= {"numpy", "sympy", "matplotlib", "IPython"}
+    namespace = {}
+    exec(compile(cell, "runtime cell", "exec"), namespace)      # runs without robosolve's modules
+    assert namespace["ChainData"].__module__ != "robosolve.model.forward"
+    tree = ast.parse(cell)
     calls = {n.func.id for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
     assert not calls & {"open", "exec", "eval", "__import__"}
 
@@ -74,6 +94,27 @@ def test_chain_products_points_and_velocity_matrices_match_the_model(name):
             assert _n(robot.point0(point), mine) == pytest.approx(_n(model.point0(point), theirs), abs=1e-12)
         J = robot.jacobian(["E_x", "E_y", "E_z"])
         assert _n(J, mine) == pytest.approx(_n(model.point0("E").jacobian(model.q), theirs), abs=1e-12)
+
+
+@pytest.mark.parametrize("name", ROBOTS)
+def test_the_chain_at_numbers_matches_the_model_and_the_numeric_chain(name):
+    """robot.chain_at (the notebook's data through robosolve's numeric chain computation) against
+    the symbolic RobotModel evaluated and robosolve's NumericChain, at random states."""
+    problem, model, robot, values = _setup(name)
+    rng = np.random.default_rng(5)
+    state = _state(problem, rng)
+    mine = {s.name: str(v) for s, v in state.items()}
+    theirs = {**values, **state}
+    chain, numeric = robot.chain_at(mine), NumericChain(model, theirs)
+    for frame in problem.frames:
+        for got, want in ((chain.M(frame), model.M0(frame)), (chain.W(frame), model.W0(frame)),
+                          (chain.H(frame), model.H0(frame))):
+            assert got == pytest.approx(_n(want, theirs), abs=1e-10)
+        assert chain.H(frame) == pytest.approx(numeric.H0(frame), abs=1e-10)
+        for i in range(len(problem.joints)):
+            assert chain.L(i, frame) == pytest.approx(_n(model.L0(i, frame), theirs), abs=1e-12)
+    for point in problem.points:
+        assert chain.point(point) == pytest.approx(_n(model.point0(point), theirs).ravel(), abs=1e-12)
 
 
 @pytest.mark.parametrize("name", ["exam-2r-full", "scara-payload-dynamics", "one-link-eom"])
@@ -255,3 +296,184 @@ def test_numeric_equations_of_motion_of_the_puma_match_the_golden_report():
     assert mass == pytest.approx(np.array(want["mass_matrix"]), abs=1e-9)
     assert c == pytest.approx(want["velocity_terms"], abs=1e-9)
     assert grav == pytest.approx(want["gravity_terms"], abs=1e-9)
+
+
+# -- work-space trajectories and the closed loops along them ------------------------------------
+
+ARM_3R = """robosolve: 1
+name: r
+parameters: {}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}, {name: q3, type: revolute}]
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(0.5)"}
+  "2": {pose: "Rz(q2) Tx(0.4)"}
+  "3": {pose: "Rz(q3) Tx(0.3)"}
+questions:
+"""
+SCARA = """robosolve: 1
+name: r
+parameters: {}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}, {name: d3, type: prismatic}]
+frames:
+  "1": {parent: "0", pose: "Tz(1) Rz(q1) Tx(0.5)"}
+  "2": {pose: "Rz(q2) Tx(0.4)"}
+  "3": {pose: "Tz(d3)"}
+questions:
+"""
+TRAJECTORIES = {
+    # the bundled problem's line: trapezoidal, the first sorted IK solution at `from`
+    "2r-line": None,
+    "3r-quintic-with-orientation": ARM_3R + """  - {type: task_trajectory, coordinates: [E.x, E.y, "q1 + q2 + q3"],
+     from: {E.x: 0.8, E.y: 0.2, "q1 + q2 + q3": 0.3}, to: {E.x: 0.4, E.y: 0.6, "q1 + q2 + q3": 1.2},
+     duration: 2, shape: quintic}
+""",
+    "3r-wide-bang-bang-from-start": ARM_3R + """  - {type: task_trajectory, coordinates: [E.x, E.y], from: {E.x: 0.8, E.y: 0.2},
+     to: {E.x: 0.7, E.y: 0.3}, max_velocity: 0.5, max_acceleration: 2, start: {q1: 0.2, q2: -0.3, q3: 0.4}}
+""",
+    "scara-half-circle": SCARA + """  - type: task_trajectory
+    from: {E.x: 0.6, E.y: 0.3, E.z: 0.8}
+    to: {E.x: 0.2, E.y: 0.6, E.z: 0.9}
+    path: {circle: {center: [0.4, 0.45, 0.85], normal: [0.3, 0.4, 0]}}
+    max_velocity: 0.4
+    max_acceleration: 1.5
+""",
+    "2r-planar-arc": """robosolve: 1
+name: r
+parameters: {}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(0.5)"}
+  "2": {pose: "Rz(q2) Tx(0.4)"}
+questions:
+  - {type: task_trajectory, coordinates: [E.x, E.y], from: {E.x: 0.7, E.y: 0.1}, to: {E.x: 0.1, E.y: 0.7},
+     path: {circle: {center: [0.1, 0.1]}}, duration: 1.5, shape: quintic}
+""",
+}
+
+
+@functools.lru_cache(maxsize=None)
+def _trajectory_setup(key):
+    """(problem, engine pieces (coords, arm, path, timing, q_from), the notebook's namespace after
+    the data cell and the cell's trajectory lines); built once per key (the tests only read them)."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.notebook_code import trajectory_lines
+    from robosolve.solvers import task_trajectory as tt
+    from robosolve.solvers.base import SolveContext
+
+    text = TRAJECTORIES[key]
+    problem = load_problem(PROBLEMS / "workspace-2r-line.yaml") if text is None else load_problem_text(text, "r.yaml")
+    q = next(x for x in problem.questions if x.type == "task_trajectory")
+    ctx = SolveContext(problem, RobotModel(problem))
+    engine = tt.setup(q, ctx)
+    namespace = dict(vars(rt))
+    exec(data_cell(problem) + "\n" + "\n".join(trajectory_lines(q, problem)), namespace)
+    return problem, ctx, engine, namespace
+
+
+@pytest.mark.parametrize("kind", ["line", "arc-2d", "half-circle-3d"])
+@pytest.mark.parametrize("timing", [(None, 0.5, 2.0), (None, 2.0, 1.0), (1.7, None, None)],
+                         ids=["trapezoidal", "bang-bang", "quintic"])
+def test_paths_and_timing_laws_match_the_task_path_engine(kind, timing):
+    from robosolve.motion import task_path as tp
+
+    if kind == "line":
+        args = ([0.7, 0.2], [0.3, 0.5])
+        ref = tp.line(*args)
+        mine = rt.TaskPath(*args)
+    elif kind == "arc-2d":
+        ref = tp.circle([0.7, 0.1], [0.1, 0.7], [0.1, 0.1])
+        mine = rt.TaskPath([0.7, 0.1], [0.1, 0.7], center=[0.1, 0.1])
+    else:
+        ref = tp.circle([0.6, 0.3, 0.8], [0.2, 0.6, 0.9], [0.4, 0.45, 0.85], [0.3, 0.4, 0])
+        mine = rt.TaskPath([0.6, 0.3, 0.8], [0.2, 0.6, 0.9], center=[0.4, 0.45, 0.85], normal=[0.3, 0.4, 0])
+    assert mine.length == pytest.approx(ref.length, rel=1e-14)
+    duration, v, a = timing
+    want = tp.quintic(ref.length, duration) if duration else tp.trapezoidal(ref.length, v, a)
+    got = rt.Timing(mine.length, max_velocity=v, max_acceleration=a, duration=duration)
+    assert (got.kind, got.T) == (want.kind, pytest.approx(want.T, rel=1e-14))
+    assert got.breaks == pytest.approx(want.breaks, rel=1e-14)
+    if got.kind == "trapezoidal":                   # the closed form, independently
+        assert got.T == pytest.approx(mine.length / v + v / a, rel=1e-14)
+    elif got.kind == "bang-bang":
+        assert got.T == pytest.approx(2 * math.sqrt(mine.length / a), rel=1e-14)
+    for seg, (lo, hi) in enumerate(zip(got.breaks[:-1], got.breaks[1:])):
+        for t in np.linspace(lo, hi, 7):
+            assert got.at(t, seg) == pytest.approx(want.at(t, seg), rel=1e-13, abs=1e-15)
+            s = want.at(t, seg)[0]
+            for x, y in zip(mine.at(s), ref.at(s)):
+                assert x == pytest.approx(y, rel=1e-13, abs=1e-15)
+
+
+@pytest.mark.parametrize("key", list(TRAJECTORIES))
+def test_the_joint_path_and_its_extremes_match_the_engine(key):
+    from robosolve.motion import task_path as tp
+
+    problem, _, (coords, arm, path, timing, q_from, _res, _subs), ns = _trajectory_setup(key)
+    mine_arm, mine = ns["arm"], ns["trajectory"]
+    rng = np.random.default_rng(11)
+    for _ in range(3):                              # the task map, at random states
+        q, qd = rng.uniform(-1, 1, len(problem.joints)), rng.uniform(-1, 1, len(problem.joints))
+        assert mine_arm.x(q) == pytest.approx(arm.x(q), abs=1e-13)
+        assert mine_arm.J(q) == pytest.approx(arm.J(q), abs=1e-13)
+        assert mine_arm.jdot_qdot(q, qd) == pytest.approx(arm.jdot_qdot(q, qd), abs=1e-12)
+        h = 1e-6                                    # and J' q' by a central difference of J q'
+        fd = (mine_arm.J(q + h * qd) - mine_arm.J(q - h * qd)) @ qd / (2 * h)
+        assert mine_arm.jdot_qdot(q, qd) == pytest.approx(fd, abs=1e-7)
+    assert ns["start"] == pytest.approx(q_from, abs=1e-9)
+    conv = tp.follow(arm, path, timing, q_from, samples=401)
+    assert mine.failure is None and conv.failure is None
+    assert mine.t == pytest.approx(conv.t, abs=1e-15)
+    for a, b in ((mine.q, conv.q), (mine.qd, conv.qd), (mine.qdd, conv.qdd), (mine.x, conv.x)):
+        assert a == pytest.approx(b, abs=1e-9)
+    assert mine.sigma == pytest.approx(conv.sigma, abs=1e-9)
+    vel, acc, (smin, tmin) = mine.extremes()
+    want_vel, want_acc, (want_smin, want_tmin) = tp.extremes(arm, path, timing, conv)
+    assert vel == pytest.approx(want_vel, rel=1e-8)
+    assert acc == pytest.approx(want_acc, rel=1e-8)
+    assert smin == pytest.approx(want_smin, rel=1e-8)
+
+
+def test_a_path_leaving_the_reach_fails_where_the_engine_says():
+    from robosolve.motion import task_path as tp
+
+    _, _, (coords, arm, _p, _t, _q, _r, _s), ns = _trajectory_setup("2r-line")
+    for a, b in (([0.45, 0.05], [-0.45, 0.05]), ([0.45, 0.3], [0.85, 0.3])):    # the inner hole, the outer rim
+        q0 = ns["arm"].start(a, [[-math.pi, math.pi]] * 2)
+        path, timing = tp.line(a, b), tp.trapezoidal(float(np.hypot(*np.subtract(b, a))), 0.5, 2.0)
+        want = tp.follow(arm, path, timing, q0).failure
+        got = rt.TaskTrajectory(ns["arm"], rt.TaskPath(a, b), rt.Timing(path.length, 0.5, 2.0), q0).failure
+        assert want is not None and got["kind"] == want["kind"], (got, want)
+        # (at the edge of the reach Newton converges slowly: the bisections agree to ~1e-9 s)
+        assert got["t"] == pytest.approx(want["t"], abs=1e-7)
+        assert got["x"] == pytest.approx(want["x"], abs=1e-7)
+
+
+@pytest.mark.parametrize("law, kp, kd", [("task_pd_gravity", [2000.0, 1500.0], [100.0, 80.0]),
+                                          ("task_computed_torque", [400.0, 400.0], [30.0, 30.0]),
+                                          ("pd_gravity", [2000.0, 2000.0], [100.0, 100.0])])
+def test_work_space_closed_loops_match_the_control_engines(law, kp, kd):
+    """The bundled 2R arm along its line (0.4 s of its 1.25 s, from a displaced start for the task
+    laws): the task laws against simulation/task_control.py, the ideal scheme (a joint law on the
+    converted trajectory) against simulation/joint_control.py on the solver's own joint plan."""
+    from robosolve.motion import task_path as tp
+    from robosolve.simulation.joint_control import simulate
+    from robosolve.simulation.task_control import simulate_task
+    from robosolve.solvers import task_trajectory as tt
+
+    problem, ctx, (coords, arm, path, timing, q_from, _res, subs), ns = _trajectory_setup("2r-line")
+    conv = tp.follow(arm, path, timing, q_from, samples=tt.SAMPLES)
+    traj = tt.TaskTrajectory(coords, [str(c) for c in coords], [], path, timing, arm, conv,
+                             [j.name for j in problem.joints])
+    dyn, _ = ctx.simulation_dynamics(subs)
+    task = law.startswith("task_")
+    start = q_from + np.array([0.01, -0.02]) if task else None
+    got = rt.simulate_task_control(ns["robot"], ns["trajectory"], law, kp, kd, start=start, duration=0.4, samples=800)
+    if task:
+        want = simulate_task(dyn, arm, traj.desired, timing.breaks, law, kp, kd, start, 0.4, samples=2001)
+    else:
+        want = simulate(dyn, traj.plan(), law, kp, kd, start=traj.start, duration=0.4, samples=2001)
+    assert got[0] == pytest.approx(want.max_error, rel=1e-4)
+    assert got[2] == pytest.approx(want.final_error, rel=1e-5, abs=1e-9)
+    if not task:                                    # the work-space error of the ideal scheme
+        x_err = np.array([traj.desired(t)[0] - arm.x(want.q[:, k]) for k, t in enumerate(want.t)])
+        assert np.abs(got[5]).max(axis=0) == pytest.approx(np.abs(x_err).max(axis=0), rel=1e-4)

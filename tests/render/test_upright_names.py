@@ -1,11 +1,11 @@
 r"""Multi-letter names print upright (issue 22): `ma` is \mathrm{ma}, not the italic product m·a;
-names sympy prints well (L1, m_p, theta1) are unchanged. One rule, in the model's LaTeX names,
-which every report printer and solver uses."""
+names sympy prints well (L1, m_p, theta1) are unchanged. One rule, in render/chain_names.py's LaTeX
+names, which every report printer and (through SolveContext.names) every solver uses."""
 
 from __future__ import annotations
 
 from robosolve.load.loader import load_problem_text
-from robosolve.model.chain import RobotModel, upright_name
+from robosolve.render.chain_names import symbol_latex, upright_name
 from robosolve.run.pipeline import solve_problem
 from robosolve.render.markdown import render_report
 
@@ -31,7 +31,7 @@ def test_the_rule():
 
 def test_reports_print_multi_letter_names_upright():
     problem = load_problem_text(TEXT, "p.yaml")
-    names = RobotModel(problem).symbol_latex
+    names = symbol_latex(problem)
     assert set(names.values()) >= {r"\mathrm{ma}", r"\mathrm{Lb}", r"\mathrm{Jg}_{2}"}
     report = render_report(solve_problem(problem), {})
     text = report if isinstance(report, str) else report.decode()

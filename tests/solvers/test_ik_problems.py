@@ -21,8 +21,7 @@ from robosolve.ik.engine import IKJoint, solve_ik
 from robosolve.ik.numeric import wrap_angle
 from robosolve.load.loader import load_problem
 from robosolve.model import RobotModel
-from robosolve.run.pipeline import solve_problem
-from robosolve.solvers.base import SolveContext
+from robosolve.run.pipeline import solve_context, solve_problem
 
 PROBLEMS = sorted((Path(__file__).resolve().parents[2] / "problems").glob("*.yaml"))
 EXTRA = os.environ.get("ROBOSOLVE_IK_EXTRA_PROBLEMS")    # e.g. other folders, ':'-separated
@@ -34,7 +33,7 @@ def _model(path):
     problem = load_problem(path)
     if not problem.has_robot or not problem.joints:
         pytest.skip("no robot")
-    return problem, RobotModel(problem), SolveContext(problem, RobotModel(problem))
+    return problem, RobotModel(problem), solve_context(problem, RobotModel(problem))
 
 
 @pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])
@@ -85,7 +84,7 @@ def test_ik_questions_of_problem_files_verified_by_fk(path):
     problem = dataclasses.replace(problem, questions=qs)    # the IK questions only (fast)
     report = solve_problem(problem)
     model = report.model
-    ctx = SolveContext(problem, model)
+    ctx = solve_context(problem, model)
     for q, ans in zip(problem.questions, report.answers):
         if q.type != "inverse_kinematics":
             continue

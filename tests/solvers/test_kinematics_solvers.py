@@ -199,11 +199,12 @@ def test_six_joints_numeric_fallback_vs_rtb():
 
 def test_geometric_self_check_can_fail():
     from robosolve.model.chain import RobotModel
-    from robosolve.solvers.base import Answer, SolveContext
+    from robosolve.run.pipeline import solve_context
+    from robosolve.solvers.base import Answer
     from robosolve.solvers.jacobian import _check_geometric
 
     prob = load_problem("problems/polar-rrp.yaml")
-    ctx = SolveContext(prob, RobotModel(prob))
+    ctx = solve_context(prob, RobotModel(prob))
     q = prob.questions[1]
     good = solve_problem(prob).answers[1].numeric["J"]
     subs = ctx.substitutions(q.at)
