@@ -18,7 +18,7 @@ solve context carries one: `ctx.budgets.simplify`); engines use the defaults.
 | `full` | a blanket `simplify` on the few small exact expressions of one helical axis or one atan2 branch | none (callers pass small inputs) |
 | `bounded_full` | `full` below `root_ops`, else unchanged (roots of a singular factor) | `root_ops` |
 | `ik_fraction` | IK closed forms: one fraction, numerator expanded, no -(...) around a sum | none |
-| `determinant_factors`, `factored_determinant` | factors of det J (trig identities may reveal products) | none |
+| `determinant_factors`, `factored_determinant` | factors of det J and of the minors of a wide J (trig identities may reveal products) | `factor_ops` (a factor above it is not tidied) |
 | `coefficient` | parameter coefficients of the equations of motion: factored when small | `coefficient_ops` |
 | `factored` | a polynomial shown factored (profile derivatives, radicands) | none |
 | `radicals` | exact numbers with radicals: the shortest of expand / sqrtdenest / radsimp | none |
@@ -60,6 +60,8 @@ class SimplifyBudgets:
     geometry_ops: int = 60          # above: trigsimp on rotation entries takes minutes
     coefficient_ops: int = 60       # above: factor_terms only
     root_ops: int = 40              # above: a root is shown as solve gave it
+    factor_ops: int = 160           # above: a determinant's factor is kept as factor() gave it (TR10i
+                                    # on a 7-joint arm's minors takes minutes)
 
 
 DEFAULT_BUDGETS = SimplifyBudgets()
@@ -342,12 +344,13 @@ def determinant_factors(expr) -> list:
 
 
 @memoised
-def factored_determinant(expr):
-    """expr as a product of tidied factors (for display)."""
+def factored_determinant(expr, max_ops: int = DEFAULT_BUDGETS.factor_ops):
+    """expr as a product of tidied factors (for display); a factor of more than `max_ops`
+    operations is kept as factor() gave it."""
     coeff, raw = sp.factor_list(sp.factor(expr))
     out = coeff
     for fac, mult in raw:
-        out *= sp.factor(jacobian_entry(fac)) ** mult
+        out *= (sp.factor(jacobian_entry(fac)) if sp.count_ops(fac) <= max_ops else fac) ** mult
     return out
 
 

@@ -40,6 +40,15 @@ class NoClosedForm(Exception):
     """No rule applies: the caller answers numerically."""
 
 
+def whole_floats(e):
+    """Whole-number floats as integers (1.0*px -> px): sympy's polynomial algebra over floats
+    (`Poly`, `rem` of a chain with numbers) gives every coefficient as a float, 1 included;
+    the report and results.json print whole numbers as integers (render/numbers.py's policy)."""
+    e = sp.sympify(e)
+    whole = {f: sp.Integer(int(f)) for f in e.atoms(sp.Float) if float(f).is_integer()}
+    return e.xreplace(whole) if whole else e
+
+
 @dataclass
 class Stage:
     """One solved joint: its alternatives and how they were obtained."""
@@ -160,10 +169,7 @@ def trig_linear(expr, q):
         return None
     if p.total_degree() > 1:
         return None
-    a = p.coeff_monomial(C)
-    b = p.coeff_monomial(S)
-    c = p.coeff_monomial(1)
-    return a, b, c
+    return tuple(whole_floats(p.coeff_monomial(m)) for m in (C, S, 1))
 
 
 def _unknowns_in(e, unknowns):
@@ -188,7 +194,7 @@ def _to_poly_symbols(e, qs):
 def _reduce_pythagoras(e, rel):
     for C, S in rel:
         if e.has(S):
-            e = sp.expand(sp.rem(e, S**2 + C**2 - 1, S))
+            e = whole_floats(sp.expand(sp.rem(e, S**2 + C**2 - 1, S)))
     return e
 
 
@@ -225,14 +231,15 @@ def _solve_single(e, q, revolute, latex_q):
         p = sp.Poly(ee, q)
     except sp.PolynomialError:
         return None
-    if any(cf.has(q) for cf in p.all_coeffs()):
+    coeffs = [whole_floats(cf) for cf in p.all_coeffs()]
+    if any(cf.has(q) for cf in coeffs):
         return None
     d = p.degree()
     if d == 1:
-        c1, c0 = p.all_coeffs()
+        c1, c0 = coeffs
         return Stage(q, [ik_fraction(-c0 / c1)], "linear", e, latex_q, ik_fraction(-c0 / c1))
     if d == 2:
-        a, b, c = [ik_fraction(x) for x in p.all_coeffs()]
+        a, b, c = [ik_fraction(x) for x in coeffs]
         disc = ik_fraction(b**2 - 4 * a * c)
         if _is_zero(b):
             root = ik_fraction(sp.sqrt(-c / a))

@@ -424,7 +424,9 @@ def _parallel_step(zrow, lhs, split, names) -> PoseStep:
         "$q_1$, $q_5$, $q_6$. The first two rows are then a planar 3R problem for $q_2$, $q_3$, $q_4$: "
         "${}^{1}M_{4} = {}^{1}M_{6}\\,({}^{4}M_{6})^{-1}$ is known, its entries $b_{11}, b_{21}$ (the first "
         "column of the rotation, the angle $q_2 + q_3 + q_4$) and $b_x, b_y$ (the position) give two "
-        "elbow branches.",
+        "elbow branches. The wrist is not spherical: where $\\sin q_5 = 0$ the axes of joints 4 and 6 are "
+        "parallel (with those of joints 2 and 3), not aligned; the row then does not determine $q_6$, and "
+        "such a pose is reached along a continuum of configurations, or not at all.",
         [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), ("[({}^{0}M_{1})^{-1} M]_{3}", sp.Matrix([list(lhs[2, :])]))])
 
 

@@ -9,6 +9,9 @@ values or at generic positive samples):
   the axes of joints 1 and 2);
 * two revolute axes coincide (not everywhere) → "the axes of joints i and j are
   aligned" (the wrist singularity of a spherical wrist);
+* revolute axes that become parallel without meeting (not parallel in general) → "the axes
+  of joints i and j are parallel" (an offset wrist, the UR family: s5 = 0 makes the axes of
+  joints 4 and 6 parallel, not aligned);
 * a revolute joint k of the condition sets the distance from the point to the axis
   of the previous revolute joint to its maximum → "arm stretched at joint k", to its
   minimum → "arm folded at joint k".
@@ -180,6 +183,38 @@ def _stretch(geo, qv, k, prev, scale):
     return []
 
 
+def _parallel(u1, u2) -> bool:
+    return abs(abs(float(np.dot(u1, u2))) - 1) < 1e-9
+
+
+def _parallel_names(axes, generic, tol, n) -> list[str]:
+    """Axes that become parallel here without meeting (not parallel in general): an offset wrist
+    (the UR family: s5 = 0 makes the axes of joints 4 and 6 parallel, with those of joints 2 and 3)."""
+    fresh = [(i, j) for x, (i, ui, ai) in enumerate(axes) for (j, uj, aj) in axes[x + 1:]
+             if _parallel(ui, uj) and not _lines_coincide(ui, ai, uj, aj, tol)
+             and not (i in generic and j in generic and _parallel(generic[i][0], generic[j][0]))]
+    out = []
+    for i, j in fresh:
+        group = sorted({k for k, u, _a in axes if _parallel(u, dict((a, b) for a, b, _c in axes)[i])})
+        if tuple(group) in out:
+            continue
+        out.append(tuple(group))
+    names = []
+    for group in out:
+        joints = [g + 1 for g in group]
+        if n == 6 and 3 in group and 5 in group:
+            names.append("wrist singularity: the axes of joints 4 and 6 are parallel, not aligned "
+                         "(the wrist is not spherical)")
+        else:
+            names.append(f"the axes of joints {_and(joints)} are parallel")
+    return names
+
+
+def _and(items) -> str:
+    items = [str(x) for x in items]
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
+
+
 def _names(cond: Condition, geo: _Geometry) -> tuple[str, ...]:
     qv = _config(cond, geo)
     if qv is None:
@@ -209,6 +244,7 @@ def _names(cond: Condition, geo: _Geometry) -> tuple[str, ...]:
                     i in generic and j in generic
                     and _lines_coincide(*generic[i], *generic[j], tol)):
                 names.append(f"the axes of joints {i + 1} and {j + 1} are aligned")
+    names += _parallel_names(axes, generic, tol, len(geo.joints))
     # stretched / folded: an elbow whose axis is parallel to the previous revolute axis
     if not cond.equations:
         index = {s: k for k, s in enumerate(geo.joints)}

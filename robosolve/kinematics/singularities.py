@@ -17,7 +17,10 @@ prismatic joint every real value. A factor in which no joint can be isolated
 string ``"expr = 0"``. Parameters are assumed generic (non-zero): a factor free of
 joints, such as L1*L2, never vanishes.
 
-The functions here never time themselves; the caller wraps them in its time limit.
+The functions here never time themselves. The work of the search is counted instead
+(`SearchBudget`: the expression nodes handed to the factoring, the same on every machine):
+past its budget the search stops with `SearchTooLong`, and the caller answers numerically. A
+caller's time limit is only a safety net above that count.
 """
 
 from __future__ import annotations
@@ -34,7 +37,33 @@ from robosolve.core.simplify import (bounded_full, determinant_factors, factored
                                      jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
 
-__all__ = ["Condition", "SingularityResult", "find_singularities", "wrap_angle"]
+__all__ = ["Condition", "SearchBudget", "SearchTooLong", "SingularityResult", "find_singularities",
+           "wrap_angle"]
+
+
+# A factor of one joint longer than this (sympy operations, in c = cos q, s = sin q) is not solved
+# as a polynomial system (its radicals with symbolic parameters take minutes): it stays an equation.
+SOLVE_OPS = 30
+
+
+class SearchTooLong(Exception):
+    """The search needed more work (expression nodes factored) than its budget."""
+
+
+class SearchBudget:
+    """The count of the search's work: the expression nodes of every expression it factors.
+    `nodes=None`: unbounded (the count is still kept)."""
+
+    def __init__(self, nodes: int | None = None):
+        self.nodes, self.spent = nodes, 0
+
+    def spend(self, expr):
+        from robosolve.core.simplify import expression_nodes
+
+        self.spent += expression_nodes(expr)
+        if self.nodes is not None and self.spent > self.nodes:
+            raise SearchTooLong(f"the search for the rank conditions needs more than {self.nodes:,} expression "
+                                "nodes of factoring (a count, so the outcome is the same on every machine)")
 
 
 @dataclass(frozen=True)
@@ -162,6 +191,8 @@ def _solve_revolute(f, q, sample):
         return None
     g = sp.together(g)
     g = sp.numer(g)
+    if sp.count_ops(g) > SOLVE_OPS:
+        return None          # kept as an equation: solve's radicals of a long factor take minutes
     try:
         sols = sp.solve([g, c**2 + s**2 - 1], [c, s], dict=True)
     except (NotImplementedError, ValueError, TypeError):
@@ -229,17 +260,27 @@ def _isolate(f, joints, kinds, sample):
 # ---------------------------------------------------------------------------
 # the search
 
-def _joint_factors(expr, joints):
+def _joint_factors(expr, joints, work=None):
     """Distinct factors of expr that contain a joint, in a deterministic order."""
+    if work is not None:
+        work.spend(expr)
     out = [f for f in determinant_factors(expr) if any(f.has(q) for q in joints)]
     return sorted(out, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
 
 
-def _search(exprs, joints, kinds, fixed, sample, depth=0):
-    """All conditions making every expression of exprs vanish (given fixed values)."""
+def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
+    """All conditions making every expression of exprs vanish (given fixed values); `work`
+    (a SearchBudget) counts the factoring."""
+    work = work if work is not None else SearchBudget()
     live = []
     for e in exprs:
-        e2 = factored_determinant(sp.sympify(e).subs(fixed)) if fixed else e
+        if fixed:
+            e1 = sp.sympify(e).subs(fixed)
+            if not e1.is_polynomial():
+                # a joint value with a denominator of parameters: the zeros are the numerator's
+                e1 = sp.numer(sp.together(e1))
+            work.spend(e1)
+        e2 = factored_determinant(e1) if fixed else e
         if e2 == 0:
             continue
         if not any(e2.has(q) for q in joints):
@@ -251,20 +292,27 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0):
     first, rest = live[0], live[1:]
     free = [q for q in joints if q not in fixed]
     results = []
-    for fac in _joint_factors(first, free):
+    for fac in _joint_factors(first, free, work):
         iso = _isolate(fac, free, kinds, sample)
         if iso is None or depth > len(joints):
-            eqs = (fac,) + tuple(rest)
+            # the other expressions, but those the factor already makes vanish (its multiples)
+            eqs = (fac,) + tuple(r for r in rest if not _multiple_of(r, fac))
             results.append(Condition(values=tuple(fixed.items()), equations=eqs, factor=fac))
             continue
         q, vals = iso
         for v in vals:
             sub = dict(fixed)
             sub[q] = v
-            for cond in _search(rest, joints, kinds, sub, sample, depth + 1):
+            for cond in _search(rest, joints, kinds, sub, sample, depth + 1, work):
                 results.append(Condition(values=cond.values, equations=cond.equations,
                                          factor=cond.factor if cond.factor is not None else fac))
     return results
+
+
+def _multiple_of(expr, fac) -> bool:
+    """expr is fac times something (expr a product of factors, one of them ±fac)."""
+    return any(is_zero(f - fac) or is_zero(f + fac) for f in sp.Mul.make_args(expr)
+               if not f.is_number and f.free_symbols >= fac.free_symbols)
 
 
 def _maximal_minors(j: sp.Matrix):
@@ -305,33 +353,39 @@ def _subsumed(small: Condition, big: Condition) -> bool:
 
 
 def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping,
-                       params: Mapping | None = None, det=None) -> SingularityResult:
+                       params: Mapping | None = None, det=None, minors=None,
+                       work: SearchBudget | None = None) -> SingularityResult:
     """Singular configurations of J(q).
 
     ``kinds`` maps each joint symbol to 'revolute' or 'prismatic'; ``params`` maps
     parameter symbols to numbers (or None) and is used only to choose between
     equivalent closed forms, to order the results and to drop values that are not
     real for the given parameters (with a note). ``det``: det J of a square J, already
-    factored by structure (robosolve.kinematics.structured_det), used instead of expanding.
+    factored by structure (robosolve.kinematics.structured_det), used instead of expanding;
+    ``minors``: the maximal minors of a wide J, already factored by structure
+    (robosolve.kinematics.wide_rank). ``work``: the counted budget of the search (SearchTooLong
+    past it).
     """
-    j = sp.Matrix(j)
+    j = sp.Matrix(j) if j is not None else None
     joints = list(joints)
     params = dict(params or {})
-    if det is not None and j.shape[0] == j.shape[1]:
+    if det is not None and j is not None and j.shape[0] == j.shape[1]:
         kind, measure = "det", det
+    elif minors is not None:
+        kind, measure = "gram", None      # the sum of the minors' squares, below
     else:
         kind, measure = rank_measure(j)
     notes: list[str] = []
-    minors: list[sp.Expr] = []
+    given, minors = minors, []
     if kind == "det":
         measure = factored_determinant(measure) if det is None else measure
         exprs = [measure]
     else:
         # det(J Jᵀ) (or det(Jᵀ J)) = sum of the squares of the maximal minors
-        minors = [factored_determinant(m) for m in _maximal_minors(j)]
+        minors = list(given) if given is not None else [factored_determinant(m) for m in _maximal_minors(j)]
         exprs = [m for m in minors if m != 0]
         measure = sp.Add(*[m**2 for m in exprs])
-    conds = _search(exprs, joints, kinds, {}, params) if exprs else [Condition()]
+    conds = _search(exprs, joints, kinds, {}, params, work=work) if exprs else [Condition()]
     if not exprs:
         notes.append("J has rank below full in every configuration (all maximal minors vanish).")
     conds = [_canonical(c, joints) for c in conds]

@@ -41,6 +41,11 @@ class Budgets:
     # this is not attempted, and is answered numerically with a note. The seconds above are
     # then only a safety net for a machine much slower than usual (their note says so).
     symbolic_nodes: int = 800          # a 6R arm's Jacobian has ~1000 (its det search never ends)
+    # The rank conditions of a wide Jacobian (kinematics/wide_rank.py, singularities.py): the ring
+    # terms of its maximal minors and sub-minors (a UR5 flange's 3×6: 390, a Panda's 6×7: 479),
+    # then the expression nodes the search may factor (the UR5's: about 1,400).
+    rank_terms: int = 3000
+    rank_nodes: int = 20000
     # Whole-question and whole-file wall-clock safety nets (s), covering the numeric route and
     # rendering too: past them a question is answered with an error, and the remaining
     # questions of the file are not attempted (each says why).
@@ -137,10 +142,9 @@ class SolveContext:
 
     @property
     def step_seconds(self) -> float:
-        """Seconds for one symbolic step: the full budget up to 4 joints (where symbolic
-        answers are required), a quarter of it beyond (the numeric answers are always given)."""
-        n = len(self.model.q) if self.model is not None else 0
-        return self.budgets.symbolic_seconds if n <= 4 else self.budgets.symbolic_seconds / 4
+        """Seconds (CPU) of one symbolic step: a safety net only, whatever the number of joints
+        (what is attempted is decided by counts: `symbolic_nodes`, `rank_terms`, `rank_nodes`)."""
+        return self.budgets.symbolic_seconds
 
     # -- results of earlier questions ------------------------------------
     def record_profile(self, qid: str, profile: SyncProfile) -> None:

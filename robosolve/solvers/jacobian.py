@@ -70,7 +70,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     ans.symbolic["J"] = J
 
     # -- determinant / manipulability and singular configurations -------------
-    _singularity_steps(ans, question, ctx, ts)
+    derived = _singularity_steps(ans, question, ctx, ts)
 
     # -- centre-of-mass Jacobians ----------------------------------------------
     com = {}
@@ -79,7 +79,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         ans.symbolic["com_jacobians"] = com
 
     # -- numbers ----------------------------------------------------------------
-    _numeric(ans, question, ctx, J, com)
+    _numeric(ans, question, ctx, J, com, distance=not derived)
     return ans
 
 
@@ -114,15 +114,16 @@ def _singularity_steps(ans, question, ctx, ts):
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
-    det, det_parts = _structured_det_steps(ans, question, ctx, ts)
-    res, err = limited(ctx, ctx.step_seconds, find_singularities, J, model.q, kinds, params, det)
+    res, err, wide, det_parts = _rank_conditions(ans, question, ctx, ts, kinds, params)
     if res is None:
-        ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
-                 "the numeric answers are given.")
+        ans.note(f"The rank conditions (singular configurations) were not derived symbolically ({err}); "
+                 "the numeric answers are given, with the distance from singularity at the question's "
+                 "configuration.")
         ans.steps.append(Step("Singular configurations",
-                              "The symbolic search was stopped (see the note): see the numeric "
-                              "values below."))
-        return
+                              "The symbolic search was not completed (see the note): the smallest singular "
+                              "value of J at the question's configuration, below, says how far it is from "
+                              "a singular configuration."))
+        return False
     if res.kind == "det":
         ans.symbolic["det"] = res.measure
         ans.steps.append(Step(
@@ -137,9 +138,14 @@ def _singularity_steps(ans, question, ctx, ts):
 
         gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
         manip = sp.sqrt(gram if gram is not None else res.measure)
-        ans.symbolic["manipulability"] = manip
         shape = "wide (redundant)" if m < n else "tall"
         minors = [mi for mi in res.minors]
+        if wide is not None:
+            # the minors by structure: w as the root of their squares (written out it is pages long)
+            manip = "\\sqrt{" + " + ".join(f"\\Delta_{{{k + 1}}}^2" for k, mi in enumerate(minors) if mi != 0) + "}"
+            ans.steps.append(_wide_step(wide, ts))
+        else:
+            ans.symbolic["manipulability"] = manip
         ans.steps.append(Step(
             "Manipulability",
             f"J is {m}×{n} ({shape}), so it has no determinant. Its manipulability is the product "
@@ -177,9 +183,81 @@ def _singularity_steps(ans, question, ctx, ts):
         ans.steps.append(Step("Singular configurations",
                               "No factor vanishes for any joint value: J never loses rank "
                               "(for generic, non-zero parameters)."))
+    return True
 
 
 STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its settled form
+
+
+def _rank_conditions(ans, question, ctx, ts, kinds, params):
+    """(result or None, why not, WideMinors or None, det parts): det J by structure (square), the
+    minors by structure (wide, 5+ joints), else the direct route; each within its counted budget."""
+    det, det_parts = _structured_det_steps(ans, question, ctx, ts)
+    wide, err = _wide_minors(question, ctx, ts)
+    if wide is not None:
+        res, err = _wide_search(ctx, ctx.model, kinds, params, wide)
+    elif err is None:
+        res, err = limited(ctx, ctx.step_seconds, find_singularities, ts.J, ctx.model.q, kinds, params, det)
+    else:
+        res = None
+    return res, err, wide, det_parts
+
+
+def _wide_minors(question, ctx, ts):
+    """(WideMinors, None) for a wide J of 5+ joints (the point's x, y, z or the geometric
+    Jacobian) whose maximal minors fit the counted budget `Budgets.rank_terms`; (None, why)
+    past it; (None, None) for the other Jacobians (the direct route)."""
+    from robosolve.kinematics.wide_rank import OverBudget, wide_minors
+
+    model = ctx.model
+    m, n = ts.J.shape
+    if m >= n or n < STRUCTURE_MIN_JOINTS or not ts.default:
+        return None, None
+    pframe, plocal = model.point_local(question.point)
+    frame = question.frame or model.problem.last_frame
+    try:
+        return wide_minors(model, pframe, plocal, frame, ts.geometric, ctx.budgets.rank_terms), None
+    except OverBudget as exc:
+        return None, (f"the maximal minors of J need {exc}: a count, so the outcome is the same on "
+                      "every machine")
+
+
+def _wide_search(ctx, model, kinds, params, wide):
+    """The search on the structured minors, within its counted budget (`Budgets.rank_nodes`);
+    the time limit around it is a safety net only. (result, None) or (None, why)."""
+    from sympy.polys.polyerrors import BasePolynomialError
+
+    from robosolve.errors import SymbolicTimeout
+    from robosolve.kinematics.singularities import SearchBudget, SearchTooLong
+
+    try:
+        with ctx.time_limit(ctx.budgets.symbolic_seconds) as token:
+            return find_singularities(None, model.q, kinds, params, minors=wide.minors,
+                                      work=SearchBudget(ctx.budgets.rank_nodes)), None
+    except SearchTooLong as exc:
+        return None, str(exc)
+    except SymbolicTimeout as exc:
+        if exc.token is not token:
+            raise
+        return None, f"{exc}, a safety limit of CPU time that a usual exam does not reach"
+    except (BasePolynomialError, NotImplementedError) as exc:
+        return None, f"sympy cannot complete this step symbolically ({type(exc).__name__})"
+
+
+def _wide_step(wide, ts) -> Step:
+    rows = "the geometric Jacobian's rows (the velocity taken at its origin)" if ts.geometric else "J's rows"
+    zero = ""
+    if wide.zero_columns:
+        cols = ", ".join(str(c + 1) for c in wide.zero_columns)
+        zero = (f" Column{'s' if len(wide.zero_columns) > 1 else ''} {cols} "
+                f"{'are' if len(wide.zero_columns) > 1 else 'is'} zero (the joint does not move the point): "
+                "every minor containing it vanishes.")
+    return Step(
+        "Minors by structure",
+        f"The minors are computed with {rows} written in the axes of frame {name_md(wide.frame)}: a rotation "
+        "(and a shear), of determinant 1, so each maximal minor is unchanged, and the entries are the "
+        "shortest there (the fewest terms, counted on every frame of the chain). Each minor is a "
+        "polynomial in the cosines and sines of the joints, factored." + zero)
 
 
 def _structured_det_steps(ans, question, ctx, ts):
@@ -296,6 +374,23 @@ def _check_geometric(ans, ctx, question, jn, subs):
                       Num(err, digits=3)))
 
 
+def _distance(ans, jn) -> list:
+    """The numeric distance from singularity where the rank conditions were not derived: the
+    smallest singular value of J and its condition number, said plainly in a note."""
+    import numpy as np
+
+    sv = np.linalg.svd(np.array(jn, dtype=float), compute_uv=False)
+    smin, smax = float(sv[-1]), float(sv[0])
+    if smin <= 1e-12 * max(1.0, smax):
+        ans.note("Distance from singularity: the smallest singular value of J is 0 at the question's "
+                 "configuration: J loses rank there (a singular configuration).")
+        return [("\\sigma_{\\min}", 0.0)]
+    ans.note(Text("Distance from singularity: at the question's configuration the smallest singular value of "
+                  "J is σ_min = ", Num(smin), " (the largest ", Num(smax), ", condition number κ = ",
+                  Num(smax / smin), "): J has full rank there; σ_min is how far J is from losing it."))
+    return [("\\sigma_{\\min}", smin), ("\\sigma_{\\max}", smax), ("\\kappa = \\sigma_{\\max}/\\sigma_{\\min}", smax / smin)]
+
+
 def _com_steps(ans, ctx):
     model = ctx.model
     out = {}
@@ -315,7 +410,7 @@ def _com_steps(ans, ctx):
     return out
 
 
-def _numeric(ans, question, ctx, J, com):
+def _numeric(ans, question, ctx, J, com, distance=False):
     model = ctx.model
     if not question.at and (J.free_symbols & set(model.q)):
         return
@@ -346,6 +441,8 @@ def _numeric(ans, question, ctx, J, com):
             eqs.append(("w", w))
             if w < 1e-9:
                 ans.note("J loses rank at the given configuration (manipulability 0).")
+        if distance:
+            eqs += _distance(ans, jn)
     sing = ans.symbolic.get("singularities")
     if sing and all(isinstance(c, dict) for c in sing):
         params = ctx.parameter_values()

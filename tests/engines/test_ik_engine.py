@@ -233,3 +233,20 @@ def test_cartesian_robot_linear():
     assert res.solutions[0] == {"d1": pytest.approx(0.4, abs=1e-12), "d2": pytest.approx(0.5, abs=1e-12),
                                 "d3": pytest.approx(0.3, abs=1e-12)}
     assert all(st.rule in ("linear", "isolate") for st in res.closed_form.stages)
+
+
+def test_whole_number_floats_of_a_chain_with_numbers_print_as_integers():
+    """Poly / rem over floats give 1 as 1.0 (1.0*px in a closed form): the coefficients and
+    the eliminated equations come back with whole numbers as integers, other floats kept."""
+    import sympy as sp
+
+    from robosolve.ik.closed_form import _reduce_pythagoras, trig_linear, whole_floats
+
+    px, py, r13, q1 = sp.symbols("px py r13 q1")
+    e = -px * sp.sin(q1) + py * sp.cos(q1) + sp.Float(0.0823) * r13 * sp.sin(q1) + sp.Float(0.10915)
+    a, b, c = trig_linear(e, q1)
+    assert sp.srepr(a) == sp.srepr(py) and b == -px + sp.Float(0.0823) * r13 and c == sp.Float(0.10915)
+    C, S = sp.symbols("C S")
+    red = _reduce_pythagoras(sp.Float(2.0) * S**2 + sp.Float(0.5) * C, [(C, S)])
+    assert "2.0" not in sp.sstr(red) and "0.5" in sp.sstr(red)
+    assert whole_floats(sp.Float(3.0) * px + sp.Float(1.5)) == 3 * px + sp.Float(1.5)
