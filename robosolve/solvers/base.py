@@ -43,9 +43,11 @@ class Budgets:
     symbolic_nodes: int = 800          # a 6R arm's Jacobian has ~1000 (its det search never ends)
     # The rank conditions of a wide Jacobian (kinematics/wide_rank.py, singularities.py): the ring
     # terms of its maximal minors and sub-minors (a UR5 flange's 3×6: 390, a Panda's 6×7: 479),
-    # then the expression nodes the search may factor (the UR5's: about 1,400).
+    # then the expression nodes the search may factor (the UR5 flange's 3×6: about 1,300; a
+    # Panda's 6×7: about 16,000, ten seconds of factoring for families nobody can check by hand,
+    # so a 7-joint arm's rank conditions are answered by the numeric distance from singularity).
     rank_terms: int = 3000
-    rank_nodes: int = 20000
+    rank_nodes: int = 5000
     # Whole-question and whole-file wall-clock safety nets (s), covering the numeric route and
     # rendering too: past them a question is answered with an error, and the remaining
     # questions of the file are not attempted (each says why).
