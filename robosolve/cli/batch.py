@@ -10,16 +10,20 @@ import typer
 from robosolve.cli.common import (
     STATUS_LABEL, check_scheduler, console, err, format_option, formats as parse_formats, jobs_option, out,
     progress_bars, scheduler_option,
+    usable_paths,
 )
 from robosolve.errors import ExitStatus
 
 
 def batch(
-    source: str = typer.Argument(..., help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
-    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
+    source: str = typer.Argument(..., callback=usable_paths,
+        help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", callback=usable_paths,
+        help="Output folder: one sub-folder per problem."),
     jobs: int = jobs_option(),
     check: Optional[Path] = typer.Option(
-        None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
+        None, "--check", callback=usable_paths,
+            help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
     format: Optional[str] = format_option(),
     scheduler: Optional[str] = scheduler_option(),

@@ -47,7 +47,7 @@ def scheduler_option():
 
 
 def problem_option(help_text: str):
-    return typer.Option(None, "--problem", "-p", help=help_text)
+    return typer.Option(None, "--problem", "-p", help=help_text, callback=usable_paths)
 
 
 def tolerance_option(flag: str, kind: str, default: str):
@@ -61,6 +61,22 @@ def _tolerance(value: Optional[float]) -> Optional[float]:
 
     if value is not None and not (math.isfinite(value) and value >= 0):
         raise typer.BadParameter(f"expected a number >= 0, got {value:g}")
+    return value
+
+
+def usable_paths(value):
+    """Callback of every path argument and option: a path the system cannot even look up (a
+    name longer than it allows, a loop of symbolic links, no permission) is a usage error
+    said in words, before anything is read or written. A path that does not exist yet
+    passes (an output, or a missing input the command names itself)."""
+    for item in value if isinstance(value, (list, tuple)) else [value]:
+        if item is None or str(item) == "-":
+            continue
+        from robosolve.load.yamlsource import path_problem
+
+        problem = path_problem(str(item))
+        if problem:
+            raise typer.BadParameter(problem)
     return value
 
 

@@ -7,13 +7,14 @@ from typing import Optional
 
 import typer
 
-from robosolve.cli.common import err
+from robosolve.cli.common import err, usable_paths
 from robosolve.errors import ExitStatus, InputError
 
 
 def paper(
-    problem: Path = typer.Argument(..., help="A problem file (YAML)."),
-    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder (default: out/<name>-paper/)."),
+    problem: Path = typer.Argument(..., callback=usable_paths, help="A problem file (YAML)."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", callback=usable_paths,
+        help="Output folder (default: out/<name>-paper/)."),
     format: Optional[str] = typer.Option(None, "--format", "-f",
                                          help="md (paper.md, always written) and html (paper.html), comma-separated."),
     student: Optional[str] = typer.Option(None, "--student", help="The student's id, printed on the paper."),

@@ -7,15 +7,15 @@ from typing import List, Optional
 
 import typer
 
-from robosolve.cli.common import err, format_option, formats as parse_formats, out as say
+from robosolve.cli.common import err, format_option, formats as parse_formats, out as say, usable_paths
 from robosolve.errors import ExitStatus, InputError
 
 
 def solve(
-    files: List[Path] = typer.Argument(..., help="Problem files (YAML)."),
+    files: List[Path] = typer.Argument(..., callback=usable_paths, help="Problem files (YAML)."),
     out: Optional[str] = typer.Option(
         None, "--out", "-o",
-        help="Output folder. With one file: the folder itself (DIR/report.md). "
+        callback=usable_paths, help="Output folder. With one file: the folder itself (DIR/report.md). "
              "With several: DIR/<problem name>/. Default: out/<problem name>/. "
              "robosolve only replaces folders that are new, empty or its own (marked .robosolve)."),
     format: Optional[str] = format_option(),

@@ -7,11 +7,13 @@ from typing import List
 
 import typer
 
-from robosolve.cli.common import err, out
+from robosolve.cli.common import err, out, usable_paths
 from robosolve.errors import ExitStatus, InputError
 
 
-def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).")) -> None:
+def validate(
+    files: List[Path] = typer.Argument(..., callback=usable_paths, help="Problem files (YAML)."),
+) -> None:
     """Check problem files without solving them (exit 2 on any problem)."""
     from robosolve.load.loader import load_problem
     from robosolve.run.pipeline import check_inputs

@@ -20,7 +20,7 @@ from pathlib import Path
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean
 from robosolve.load.loader import path_str, type_name
-from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, read_text_file
+from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, path_problem, read_text_file
 from robosolve.questions.registry import RECORD, question_type
 from robosolve.variants.naming import safe_name  # noqa: F401  (the one rule, variants.md)
 
@@ -132,6 +132,10 @@ def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
         issues.error(("problem",), f"expected the path of the problem file, got {type_name(value)}")
         return None
     path = Path(file).parent / value
+    unusable = path_problem(str(path), value)
+    if unusable:
+        issues.error(("problem",), unusable)
+        return None
     try:
         mode = os.stat(path).st_mode
     except (OSError, ValueError):
