@@ -8,9 +8,8 @@ from typing import Optional
 import typer
 
 from robosolve.cli.common import (
-    STATUS_LABEL, check_scheduler, console, err, format_option, formats as parse_formats, jobs_option, out,
-    progress_bars, scheduler_option,
-    usable_paths,
+    STATUS_LABEL, check_scheduler, console, counted, err, format_option, formats as parse_formats, jobs_option, out,
+    progress_bars, scheduler_option, usable_paths,
 )
 from robosolve.errors import ExitStatus
 
@@ -74,15 +73,12 @@ def show(outcome, golden, update, con) -> None:
         err(f"golden check: {d}: no problem file checked has the name '{d.name}' (was its problem "
             "removed or renamed? delete the folder, or check it with its problem file)")
     if golden is not None and update:
-        err(f"golden folder {golden} updated ({problems(outcome.solved - len(outcome.write_errors))})")
+        err(f"golden folder {golden} updated ({counted(outcome.solved - len(outcome.write_errors), 'problem')})")
     elif golden is not None:
         for line in outcome.diff_lines:
             out(line)
         if outcome.diff_lines:
             err("golden check: differences found (rerun with --update to accept them)")
         else:
-            err(f"golden check: {problems(outcome.solved)} identical")
+            err(f"golden check: {counted(outcome.solved, 'problem')} identical")
 
-
-def problems(n: int) -> str:
-    return f"{n} problem" + ("" if n == 1 else "s")

@@ -87,6 +87,11 @@ def err(text: str) -> None:
     sys.stderr.write(text + "\n")
 
 
+def counted(n: int, word: str) -> str:
+    """'1 question', '3 questions': a count and its noun, singular for one."""
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
 def out(text: str) -> None:
     """A plain line on standard output."""
     typer.echo(text)

@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from robosolve.cli.common import err, usable_paths
+from robosolve.cli.common import counted, err, usable_paths
 from robosolve.errors import ExitStatus, InputError
 
 
@@ -37,5 +37,5 @@ def paper(
     except OSError as exc:
         err(f"{out}: cannot write the paper ({exc.strerror or exc})")
         raise typer.Exit(ExitStatus.INPUT)
-    err(f"{problem}: paper of {len(loaded.questions)} questions -> {target}")
+    err(f"{problem}: paper of {counted(len(loaded.questions), 'question')} -> {target}")
     raise typer.Exit(ExitStatus.OK)

@@ -8,9 +8,8 @@ from typing import Optional
 import typer
 
 from robosolve.cli.common import (
-    STATUS_LABEL, Steps, check_scheduler, console, err, format_option, formats as parse_formats, jobs_option,
-    scheduler_option,
-    usable_paths,
+    STATUS_LABEL, Steps, check_scheduler, console, counted, err, format_option, formats as parse_formats,
+    jobs_option, scheduler_option, usable_paths,
 )
 from robosolve.errors import ExitStatus, InputError
 
@@ -66,7 +65,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         err("\n".join(exc.messages))
         return ExitStatus.INPUT
     summary(con, plan, results, solve)
-    err(f"{len(plan.variants)} variants of {plan.problem.name} (seed {seed}) -> {out}")
+    err(f"{counted(len(plan.variants), 'variant')} of {plan.problem.name} (seed {seed}) -> {out}")
     return status
 
 
