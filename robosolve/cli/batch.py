@@ -65,7 +65,7 @@ def show(outcome, golden, update, con) -> None:
         table.add_row(r.file, r.name or "—", f"{r.answered}/{r.total}", STATUS_LABEL[r.status])
     con.print(table)
     for r in outcome.results:
-        for m in r.messages:
+        for m in r.warnings + r.messages:
             err(m)
     for m in outcome.write_errors:
         err(m)

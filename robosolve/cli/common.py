@@ -92,6 +92,13 @@ def counted(n: int, word: str) -> str:
     return f"{n} {word}" + ("" if n == 1 else "s")
 
 
+def warnings_of(problem) -> None:
+    """The problem's accepted-but-suspicious data (`FILE:LINE: where: warning: what`) on standard
+    error; the report says them too."""
+    for w in getattr(problem, "warnings", ()):
+        err(str(w))
+
+
 def out(text: str) -> None:
     """A plain line on standard output."""
     typer.echo(text)

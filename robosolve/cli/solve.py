@@ -7,7 +7,9 @@ from typing import List, Optional
 
 import typer
 
-from robosolve.cli.common import err, format_option, formats as parse_formats, out as say, usable_paths
+from robosolve.cli.common import (
+    err, format_option, formats as parse_formats, out as say, usable_paths, warnings_of,
+)
 from robosolve.errors import ExitStatus, InputError
 
 
@@ -37,6 +39,8 @@ def solve(
             status = ExitStatus.INPUT
     if status == ExitStatus.INPUT:
         raise typer.Exit(ExitStatus.INPUT)
+    for problem in problems:
+        warnings_of(problem)
     targets = _solve_targets(problems, out)
     with figure_drawer(background=True) as figures:    # drawn while the next question solves
         for problem, target in zip(problems, targets):

@@ -7,7 +7,7 @@ from typing import List
 
 import typer
 
-from robosolve.cli.common import counted, err, out, usable_paths
+from robosolve.cli.common import counted, err, out, usable_paths, warnings_of
 from robosolve.errors import ExitStatus, InputError
 
 
@@ -22,6 +22,7 @@ def validate(
     for f in files:
         try:
             p = check_inputs(load_problem(f))
+            warnings_of(p)
             out(f"{f}: ok ({counted(len(p.questions), 'question')})")
         except InputError as exc:
             err(str(exc))

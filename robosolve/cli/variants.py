@@ -9,7 +9,7 @@ import typer
 
 from robosolve.cli.common import (
     STATUS_LABEL, Steps, check_scheduler, console, counted, err, format_option, formats as parse_formats,
-    jobs_option, scheduler_option, usable_paths,
+    jobs_option, scheduler_option, usable_paths, warnings_of,
 )
 from robosolve.errors import ExitStatus, InputError
 
@@ -65,6 +65,7 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         err("\n".join(exc.messages))
         return ExitStatus.INPUT
     summary(con, plan, results, solve)
+    warnings_of(plan.problem)
     err(f"{counted(len(plan.variants), 'variant')} of {plan.problem.name} (seed {seed}) -> {out}")
     return status
 

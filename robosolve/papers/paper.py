@@ -194,7 +194,7 @@ def render_paper(problem, model, student: str | None = None, variant: str | None
     out.append(conventions(problem))
     if figure:
         out.append(f"![The robot at its reference configuration]({FIGURE})")
-    out += render_data(problem, model, tex)
+    out += render_data(problem, model, tex, notes=False)
     out.append("## Questions")
     for i, q in enumerate(problem.questions, 1):
         out.append(f"### {i}. {question_title(q.type)} ({marks_text(q.marks)})")
