@@ -49,6 +49,7 @@ class Submission:
     answers: dict = field(default_factory=dict)   # question id -> {dotted key: Given}
     issues: list = field(default_factory=list)    # layout issues found by read_answers (not fatal)
     notes: list = field(default_factory=list)     # `grade` only: unknown question ids, as messages
+    blank_student: bool = False    # `student: ""` or `~` (a template's blank): the file's name stands
 
     def where(self, path) -> tuple[int, str]:
         return self.source.line(path), path_str(path)
@@ -119,7 +120,9 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
                 raw[qid] = value
     if any(i.path in ("", FORMAT_KEY, "answers") for i in issues.items):
         issues.raise_if_any()     # no answers to check against a problem: stop here
-    return Submission(file, student, problem_file, raw, source, issues=list(issues.items))
+    blank = "student" in data and (data["student"] is None or (isinstance(data["student"], str)
+                                                               and not data["student"].strip()))
+    return Submission(file, student, problem_file, raw, source, issues=list(issues.items), blank_student=blank)
 
 
 def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
@@ -155,7 +158,8 @@ def _student(issues: _Issues, data: dict, file: str) -> str:
     if isinstance(s, (str, int)) and not isinstance(s, bool) and str(s).strip():
         return str(s).strip()
     if not (isinstance(s, str) or s is None):
-        issues.error(("student",), f"expected the student's id, got {type_name(s)}")
+        issues.error(("student",), f"expected the student's id (a name or a number, such as s123456 "
+                     f"or \"Jo Smith\"), got {type_name(s)}")
     return Path(file).stem    # "" or ~: a template's blank (papers.md), the file's name stands
 
 
