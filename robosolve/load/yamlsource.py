@@ -185,9 +185,12 @@ def decode_utf8(raw: bytes, file, what: str = "the file", bom: bool = True) -> s
         line = raw.count(b"\n", 0, exc.start) + 1
         column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
         byte = raw[exc.start:exc.start + 1].hex()
-        raise InputError([InputIssue(str(file), line, "",
-                                     f"{what} is not UTF-8 text: byte 0x{byte} at column {column} "
-                                     "(save it as UTF-8)")]) from None
+        if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):   # Notepad's "Unicode"
+            message = f"{what} is UTF-16 text, not UTF-8 (save it as UTF-8)"
+            line = 1
+        else:
+            message = f"{what} is not UTF-8 text: byte 0x{byte} at column {column} (save it as UTF-8)"
+        raise InputError([InputIssue(str(file), line, "", message)]) from None
 
 
 def read_text_file(file, line: int = 0, what: str = "the file") -> str:
