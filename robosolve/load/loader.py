@@ -380,6 +380,7 @@ class _ProblemBuilder:
             issue = size_issue(e, known)
             if issue is not None:
                 chk.error(("parameters", n), issue)
+                raw[n] = None     # refused: its uses say nothing more (one mistake, one message)
                 continue
             v = e.xreplace(known)
             if v.free_symbols:
@@ -388,9 +389,11 @@ class _ProblemBuilder:
                 fv = complex(sp.N(v))
             except (TypeError, ValueError):
                 chk.error(("parameters", n), "value is not a finite number")
+                raw[n] = None
                 continue
             if abs(fv.imag) > 1e-12 or fv.real != fv.real or abs(fv.real) == float("inf"):
                 chk.error(("parameters", n), _not_real(value[n], fv))
+                raw[n] = None
                 continue
             numeric[n] = v
         # Final symbols: positive when the value is a positive number (helps sqrt/atan2).

@@ -81,3 +81,15 @@ def test_no_declare_g_when_g_or_gravity_is_given(params, gravity, message):
 def test_declare_g_still_said_when_it_is_missing():
     [m] = messages(DYN % ("a: 1", ""))
     assert "declare g in parameters" in m
+
+
+@pytest.mark.parametrize("value, use", [
+    ("a: sqrt(-1)", "Tx(L*a)"),             # used through an expression
+    ("a: sqrt(-1)", "Tx(a)"),               # used as it is
+    ("a: 1e400", "Tx(a)"),                  # too large
+    ("a: log(0)", "Tx(a)"),                 # not finite
+])
+def test_a_refused_parameter_is_one_message_not_one_more_per_use(value, use):
+    """One mistake, one message: the parameter's line, not again at every frame that uses it."""
+    found = messages(DYN.replace("Rz(q) Tx(L)", "Rz(q) " + use) % ("g: 9.81, " + value, ""))
+    assert len(found) == 1 and found[0].startswith("p.yaml:3: parameters.a: "), found
