@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import one_3d_box, save
+from robosolve.render.plots import figure_number, one_3d_box, save
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 FRAME_STYLE = {"initial": ("-", 1.0), "final": ("--", 1.0)}
@@ -44,14 +44,14 @@ def draw(spec, path):
         half = max(span, 1.0) * 0.9
         a, b = p + (t0 - half) * u, p + (t0 + half) * u
         ax.plot([a[0], b[0]], [a[1], b[1]], [a[2], b[2]], "-", color="black", lw=1.8,
-                label=f"helical axis: α = {d['alpha']:.4g} rad, h = {d['h']:.4g}")
+                label=f"helical axis: α = {figure_number(d['alpha'])} rad, h = {figure_number(d['h'])}")
         ax.quiver(*p, *(u * scale * 1.5), color="black", arrow_length_ratio=0.25)
         ax.scatter(*p, color="black", s=25, depthshade=False, label="P* (nearest the origin)")
         pts += [a, b, p]
     elif axis is not None:  # pure translation
         o1, o2 = origins[1], origins[2]
         ax.quiver(*o1, *(o2 - o1), color="black", arrow_length_ratio=0.1,
-                  label=f"pure translation: h = {d['h']:.4g}")
+                  label=f"pure translation: h = {figure_number(d['h'])}")
     _equal(ax, np.array(pts, dtype=float))
     ax.set_xlabel("x")
     ax.set_ylabel("y")
