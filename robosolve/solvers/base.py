@@ -41,6 +41,11 @@ class Budgets:
     # this is not attempted, and is answered numerically with a note. The seconds above are
     # then only a safety net for a machine much slower than usual (their note says so).
     symbolic_nodes: int = 800          # a 6R arm's Jacobian has ~1000 (its det search never ends)
+    # The rank search of a Jacobian that is not square sets every maximal minor to zero: its
+    # work is counted as the Jacobian's nodes times its number of minors (a UR5's 3×6 position
+    # Jacobian: 393 × 20 = 7860, about 12 s of CPU). Past this count it is not attempted; under
+    # it, it runs with the whole `symbolic_seconds` as its safety net (not a quarter of it).
+    rank_search_work: int = 10_000
     # Whole-question and whole-file wall-clock safety nets (s), covering the numeric route and
     # rendering too: past them a question is answered with an error, and the remaining
     # questions of the file are not attempted (each says why).

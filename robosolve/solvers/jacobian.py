@@ -107,6 +107,27 @@ def _geometric_steps(ans, question, ctx, ts):
     ))
 
 
+def _rank_search(ctx, J, kinds, params, det):
+    """find_singularities under its budgets: (result, None) or (None, why not). Whether it is
+    attempted is a count (spec §2): the nodes of J (as every step), and for a J that is not
+    square its nodes times its maximal minors (`Budgets.rank_search_work`); an attempted search
+    of a wide or tall J gets the whole symbolic step time as its safety net."""
+    import math
+
+    from robosolve.core.simplify import expression_nodes
+
+    m, n = J.shape
+    if m == n:
+        return limited(ctx, ctx.step_seconds, find_singularities, J, ctx.model.q, kinds, params, det)
+    minors = math.comb(max(m, n), min(m, n))
+    work = expression_nodes((J,)) * minors
+    if work > ctx.budgets.rank_search_work:
+        return None, (f"its {minors} minors of {min(m, n)}×{min(m, n)} on a Jacobian of "
+                      f"{expression_nodes((J,)):,} expression nodes count {work:,}, above the budget of "
+                      f"{ctx.budgets.rank_search_work:,}: a count, so the outcome is the same on every machine")
+    return limited(ctx, ctx.budgets.symbolic_seconds, find_singularities, J, ctx.model.q, kinds, params, det)
+
+
 def _singularity_steps(ans, question, ctx, ts):
     model = ctx.model
     J = ts.J
@@ -115,7 +136,7 @@ def _singularity_steps(ans, question, ctx, ts):
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
     det, det_parts = _structured_det_steps(ans, question, ctx, ts)
-    res, err = limited(ctx, ctx.step_seconds, find_singularities, J, model.q, kinds, params, det)
+    res, err = _rank_search(ctx, J, kinds, params, det)
     if res is None:
         ans.note(f"The symbolic determinant and singularity search were stopped ({err}); "
                  "the numeric answers are given.")
