@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from robosolve.core.prose import name_plot
 from robosolve.render.plots import figure_number, one_3d_box, save
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
@@ -27,7 +28,7 @@ def draw(spec, path):
         key = tuple(np.round(np.array(fr["origin"], dtype=float), 9))
         labels[key] = (labels[key] + " = " if key in labels else "") + fr["name"]
     for key, text in labels.items():
-        ax.text(*key, f" {text}", fontsize=9)
+        ax.text(*key, f" {name_plot(text)}", fontsize=9)
     for k, fr in enumerate(d["frames"]):
         o = np.array(fr["origin"], dtype=float)
         style, lw = FRAME_STYLE.get(fr["name"], (":", 0.8))
