@@ -250,7 +250,7 @@ def report_sections(report, figure_paths: dict) -> ReportSections:
     problem, model = report.problem, report.model
     names = model.symbol_latex if model is not None else {}
     tex = Tex(names, CompactTrig(problem))
-    head = [f"# {problem.title or problem.name}"]
+    head = [f"# {name_md(problem.title or problem.name)}"]
     if problem.description:
         head.append(problem.description.strip())
     head.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "
