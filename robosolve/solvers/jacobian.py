@@ -120,10 +120,11 @@ def _rank_search(ctx, J, kinds, params, det):
     if m == n:
         return limited(ctx, ctx.step_seconds, find_singularities, J, ctx.model.q, kinds, params, det)
     minors = math.comb(max(m, n), min(m, n))
-    work = expression_nodes((J,)) * minors
-    if work > ctx.budgets.rank_search_work:
+    nodes = expression_nodes((J,))
+    work = nodes * minors
+    if work > ctx.budgets.rank_search_work and nodes <= ctx.budgets.symbolic_nodes:   # else `limited` says
         return None, (f"its {minors} minors of {min(m, n)}×{min(m, n)} on a Jacobian of "
-                      f"{expression_nodes((J,)):,} expression nodes count {work:,}, above the budget of "
+                      f"{nodes:,} expression nodes count {work:,}, above the budget of "
                       f"{ctx.budgets.rank_search_work:,}: a count, so the outcome is the same on every machine")
     return limited(ctx, ctx.budgets.symbolic_seconds, find_singularities, J, ctx.model.q, kinds, params, det)
 
