@@ -82,7 +82,8 @@ def _named(rng: random.Random) -> tuple[str, dict]:
     return NAMED.format(**{k: json.dumps(n) for k, n in zip(keys, names)}), dict(zip(keys, names))
 
 
-@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow), pytest.param(2, marks=pytest.mark.slow),
+                                  pytest.param(3, marks=pytest.mark.slow)])
 def test_fuzz_names_reach_every_output_as_written(tmp_path, seed):
     text, names = _named(random.Random(seed))
     (tmp_path / "p.yaml").write_text(text, encoding="utf-8")
@@ -264,7 +265,8 @@ def _leave_free(disk: Path, free: int) -> None:
         fh.write(b"\0" * max(stat.f_bavail * stat.f_frsize - free, 0))
 
 
-def test_fuzz_full_disks_at_every_point_of_a_write(small_disk, tmp_path):
+@pytest.mark.parametrize("runs", [6, pytest.param(18, marks=pytest.mark.slow)])
+def test_fuzz_full_disks_at_every_point_of_a_write(small_disk, tmp_path, runs):
     """Each command on a disk with 0 to 200 kB free: it writes everything (exit 0 or 1), or says
     "No space left on device" with the path (exit 2) and leaves nothing behind."""
     src = tmp_path / "src"
@@ -280,7 +282,7 @@ def test_fuzz_full_disks_at_every_point_of_a_write(small_disk, tmp_path):
                 lambda o: ["variants", src / "v.yaml", "--count", "2", "--out", o, "--jobs", "1", "--no-solve"],
                 lambda o: ["batch", src / "p.yaml", "--out", o, "--jobs", "1"],
                 lambda o: ["paper", src / "p.yaml", "--out", o]]
-    for k in range(18):
+    for k in range(runs):
         free = rng.choice([0, 4096, 20_000, 60_000, 120_000, 200_000])
         make = commands[k % len(commands)]
         _leave_free(small_disk, free)
