@@ -38,6 +38,20 @@ class InputIssue:
         return f"{self.file}{line}: {where}{self.message}"
 
 
+@dataclass(frozen=True)
+class InputWarning(InputIssue):
+    """Given data that is accepted but may be a mistake, about `subject` (("body", "link1")):
+    `FILE:LINE: where: warning: body 'link1': what` (the report says it too)."""
+
+    subject: tuple = ()
+
+    def __str__(self) -> str:
+        where = f"{self.path}: " if self.path else ""
+        line = f":{self.line}" if self.line > 0 else ""
+        about = f"{self.subject[0]} '{self.subject[1]}': " if self.subject else ""
+        return f"{self.file}{line}: {where}warning: {about}{self.message}"
+
+
 class InputError(RobosolveError):
     """A problem file is invalid; carries every issue found, in file order."""
 

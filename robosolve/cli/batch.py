@@ -8,18 +8,21 @@ from typing import Optional
 import typer
 
 from robosolve.cli.common import (
-    STATUS_LABEL, check_scheduler, console, err, format_option, formats as parse_formats, jobs_option, out,
-    progress_bars, scheduler_option,
+    STATUS_LABEL, check_scheduler, console, counted, err, format_option, formats as parse_formats, jobs_option, out,
+    progress_bars, scheduler_option, usable_paths,
 )
 from robosolve.errors import ExitStatus
 
 
 def batch(
-    source: str = typer.Argument(..., help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
-    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder: one sub-folder per problem."),
+    source: str = typer.Argument(..., callback=usable_paths,
+        help="A folder of problem files, or a glob such as 'problems/*.yaml'."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", callback=usable_paths,
+        help="Output folder: one sub-folder per problem."),
     jobs: int = jobs_option(),
     check: Optional[Path] = typer.Option(
-        None, "--check", help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
+        None, "--check", callback=usable_paths,
+            help="Golden folder: regenerate in memory and compare (with --update: rewrite it)."),
     update: bool = typer.Option(False, "--update", help="With --check: rewrite the golden folder."),
     format: Optional[str] = format_option(),
     scheduler: Optional[str] = scheduler_option(),
@@ -62,7 +65,7 @@ def show(outcome, golden, update, con) -> None:
         table.add_row(r.file, r.name or "—", f"{r.answered}/{r.total}", STATUS_LABEL[r.status])
     con.print(table)
     for r in outcome.results:
-        for m in r.messages:
+        for m in r.warnings + r.messages:
             err(m)
     for m in outcome.write_errors:
         err(m)
@@ -70,15 +73,12 @@ def show(outcome, golden, update, con) -> None:
         err(f"golden check: {d}: no problem file checked has the name '{d.name}' (was its problem "
             "removed or renamed? delete the folder, or check it with its problem file)")
     if golden is not None and update:
-        err(f"golden folder {golden} updated ({problems(outcome.solved - len(outcome.write_errors))})")
+        err(f"golden folder {golden} updated ({counted(outcome.solved - len(outcome.write_errors), 'problem')})")
     elif golden is not None:
         for line in outcome.diff_lines:
             out(line)
         if outcome.diff_lines:
             err("golden check: differences found (rerun with --update to accept them)")
         else:
-            err(f"golden check: {problems(outcome.solved)} identical")
+            err(f"golden check: {counted(outcome.solved, 'problem')} identical")
 
-
-def problems(n: int) -> str:
-    return f"{n} problem" + ("" if n == 1 else "s")

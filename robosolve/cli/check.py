@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from robosolve.cli.common import console, err, problem_option, tolerance_option, write_stdout
+from robosolve.cli.common import console, err, problem_option, tolerance_option, usable_paths, write_stdout
 from robosolve.errors import ExitStatus, InputError
 
 VERDICT_STYLE = {"correct": "green", "incorrect": "red", "missing": "yellow", "invalid": "magenta",
@@ -15,9 +15,10 @@ VERDICT_STYLE = {"correct": "green", "incorrect": "red", "missing": "yellow", "i
 
 
 def check(
-    answers: Path = typer.Argument(..., help="An answers file (YAML, grading.md)."),
+    answers: Path = typer.Argument(..., callback=usable_paths, help="An answers file (YAML, grading.md)."),
     problem: Optional[Path] = problem_option("Problem file (default: the answers file's `problem:`)."),
-    json_out: Optional[str] = typer.Option(None, "--json", help="Write the result record to FILE ('-': standard output)."),
+    json_out: Optional[str] = typer.Option(None, "--json", callback=usable_paths,
+        help="Write the result record to FILE ('-': standard output)."),
     rtol: Optional[float] = tolerance_option("--rtol", "Relative", "0.005"),
     atol: Optional[float] = tolerance_option("--atol", "Absolute", "1e-6"),
     json_format: str = typer.Option("record", "--json-format", help="Layout of --json: record, or gradescope (results.json)."),

@@ -47,7 +47,7 @@ def scheduler_option():
 
 
 def problem_option(help_text: str):
-    return typer.Option(None, "--problem", "-p", help=help_text)
+    return typer.Option(None, "--problem", "-p", help=help_text, callback=usable_paths)
 
 
 def tolerance_option(flag: str, kind: str, default: str):
@@ -64,11 +64,39 @@ def _tolerance(value: Optional[float]) -> Optional[float]:
     return value
 
 
+def usable_paths(value):
+    """Callback of every path argument and option: a path the system cannot even look up (a
+    name longer than it allows, a loop of symbolic links, no permission) is a usage error
+    said in words, before anything is read or written. A path that does not exist yet
+    passes (an output, or a missing input the command names itself)."""
+    for item in value if isinstance(value, (list, tuple)) else [value]:
+        if item is None or str(item) == "-":
+            continue
+        from robosolve.load.yamlsource import path_problem
+
+        problem = path_problem(str(item))
+        if problem:
+            raise typer.BadParameter(problem)
+    return value
+
+
 # ---------------------------------------------------------------- printing
 
 def err(text: str) -> None:
     """A plain line on standard error (an editor can jump to FILE:LINE; rich would wrap it)."""
     sys.stderr.write(text + "\n")
+
+
+def counted(n: int, word: str) -> str:
+    """'1 question', '3 questions': a count and its noun, singular for one."""
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def warnings_of(problem) -> None:
+    """The problem's accepted-but-suspicious data (`FILE:LINE: where: warning: what`) on standard
+    error; the report says them too."""
+    for w in getattr(problem, "warnings", ()):
+        err(str(w))
 
 
 def out(text: str) -> None:

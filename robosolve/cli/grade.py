@@ -8,15 +8,18 @@ from typing import List, Optional
 
 import typer
 
-from robosolve.cli.common import console, err, jobs_option, problem_option, tolerance_option
+from robosolve.cli.common import console, err, jobs_option, problem_option, tolerance_option, usable_paths
 from robosolve.errors import ExitStatus
 
 
 def grade(
-    submissions: List[Path] = typer.Argument(..., help="Answers files, or folders of them (*.yaml, *.yml)."),
-    out: Path = typer.Option(..., "--out", "-o", help="Output folder: grades.csv, summary.csv, <student>.json, feedback/."),
+    submissions: List[Path] = typer.Argument(..., callback=usable_paths,
+        help="Answers files, or folders of them (*.yaml, *.yml)."),
+    out: Path = typer.Option(..., "--out", "-o", callback=usable_paths,
+        help="Output folder: grades.csv, summary.csv, <student>.json, feedback/."),
     problem: Optional[Path] = problem_option("Grade every submission against this problem."),
-    variants: Optional[Path] = typer.Option(None, "--variants", help="A `robosolve variants` folder: each student's own variant."),
+    variants: Optional[Path] = typer.Option(None, "--variants", callback=usable_paths,
+        help="A `robosolve variants` folder: each student's own variant."),
     jobs: int = jobs_option(),
     rtol: Optional[float] = tolerance_option("--rtol", "Relative", "0.005"),
     atol: Optional[float] = tolerance_option("--atol", "Absolute", "1e-6"),

@@ -7,13 +7,14 @@ from typing import Optional
 
 import typer
 
-from robosolve.cli.common import err
+from robosolve.cli.common import counted, err, usable_paths
 from robosolve.errors import ExitStatus, InputError
 
 
 def paper(
-    problem: Path = typer.Argument(..., help="A problem file (YAML)."),
-    out: Optional[str] = typer.Option(None, "--out", "-o", help="Output folder (default: out/<name>-paper/)."),
+    problem: Path = typer.Argument(..., callback=usable_paths, help="A problem file (YAML)."),
+    out: Optional[str] = typer.Option(None, "--out", "-o", callback=usable_paths,
+        help="Output folder (default: out/<name>-paper/)."),
     format: Optional[str] = typer.Option(None, "--format", "-f",
                                          help="md (paper.md, always written) and html (paper.html), comma-separated."),
     student: Optional[str] = typer.Option(None, "--student", help="The student's id, printed on the paper."),
@@ -36,5 +37,5 @@ def paper(
     except OSError as exc:
         err(f"{out}: cannot write the paper ({exc.strerror or exc})")
         raise typer.Exit(ExitStatus.INPUT)
-    err(f"{problem}: paper of {len(loaded.questions)} questions -> {target}")
+    err(f"{problem}: paper of {counted(len(loaded.questions), 'question')} -> {target}")
     raise typer.Exit(ExitStatus.OK)

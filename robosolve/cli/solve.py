@@ -7,15 +7,17 @@ from typing import List, Optional
 
 import typer
 
-from robosolve.cli.common import err, format_option, formats as parse_formats, out as say
+from robosolve.cli.common import (
+    err, format_option, formats as parse_formats, out as say, usable_paths, warnings_of,
+)
 from robosolve.errors import ExitStatus, InputError
 
 
 def solve(
-    files: List[Path] = typer.Argument(..., help="Problem files (YAML)."),
+    files: List[Path] = typer.Argument(..., callback=usable_paths, help="Problem files (YAML)."),
     out: Optional[str] = typer.Option(
         None, "--out", "-o",
-        help="Output folder. With one file: the folder itself (DIR/report.md). "
+        callback=usable_paths, help="Output folder. With one file: the folder itself (DIR/report.md). "
              "With several: DIR/<problem name>/. Default: out/<problem name>/. "
              "robosolve only replaces folders that are new, empty or its own (marked .robosolve)."),
     format: Optional[str] = format_option(),
@@ -43,6 +45,8 @@ def solve(
                 status = ExitStatus.INPUT
         if status == ExitStatus.INPUT:
             raise typer.Exit(ExitStatus.INPUT)
+        for problem in problems:
+            warnings_of(problem)
         targets = _solve_targets(problems, out)
         for problem, target in zip(problems, targets):
             status = max(status, _solve_one(problem, target, formats, files, figures))

@@ -7,11 +7,13 @@ from typing import List
 
 import typer
 
-from robosolve.cli.common import err, out
+from robosolve.cli.common import counted, err, out, usable_paths, warnings_of
 from robosolve.errors import ExitStatus, InputError
 
 
-def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).")) -> None:
+def validate(
+    files: List[Path] = typer.Argument(..., callback=usable_paths, help="Problem files (YAML)."),
+) -> None:
     """Check problem files without solving them (exit 2 on any problem)."""
     from robosolve.load.loader import load_problem
     from robosolve.run.pipeline import check_inputs
@@ -20,7 +22,8 @@ def validate(files: List[Path] = typer.Argument(..., help="Problem files (YAML).
     for f in files:
         try:
             p = check_inputs(load_problem(f))
-            out(f"{f}: ok ({len(p.questions)} questions)")
+            warnings_of(p)
+            out(f"{f}: ok ({counted(len(p.questions), 'question')})")
         except InputError as exc:
             err(str(exc))
             status = ExitStatus.INPUT

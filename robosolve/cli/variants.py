@@ -8,17 +8,20 @@ from typing import Optional
 import typer
 
 from robosolve.cli.common import (
-    STATUS_LABEL, Steps, check_scheduler, console, err, format_option, formats as parse_formats, jobs_option,
-    scheduler_option,
+    STATUS_LABEL, Steps, check_scheduler, console, counted, err, format_option, formats as parse_formats,
+    jobs_option, scheduler_option, usable_paths, warnings_of,
 )
 from robosolve.errors import ExitStatus, InputError
 
 
 def variants(
-    problem: Path = typer.Argument(..., help="A problem file with a `variants` section."),
+    problem: Path = typer.Argument(..., callback=usable_paths,
+        help="A problem file with a `variants` section."),
     count: Optional[int] = typer.Option(None, "--count", "-n", help="Make variants 1..N (zero-padded ids)."),
-    roster: Optional[Path] = typer.Option(None, "--roster", help="CSV with a `student` column: one variant each."),
-    out: Path = typer.Option(..., "--out", "-o", help="Output folder (replaced as a whole)."),
+    roster: Optional[Path] = typer.Option(None, "--roster", callback=usable_paths,
+        help="CSV with a `student` column: one variant each."),
+    out: Path = typer.Option(..., "--out", "-o", callback=usable_paths,
+        help="Output folder (replaced as a whole)."),
     seed: int = typer.Option(0, "--seed", help="Seed of the draws (same seed, same variants)."),
     no_solve: bool = typer.Option(False, "--no-solve", help="Write the problem files only."),
     format: Optional[str] = format_option(),
@@ -62,7 +65,8 @@ def command(problem: Path, count, roster, out: Path, seed: int, solve: bool, for
         err("\n".join(exc.messages))
         return ExitStatus.INPUT
     summary(con, plan, results, solve)
-    err(f"{len(plan.variants)} variants of {plan.problem.name} (seed {seed}) -> {out}")
+    warnings_of(plan.problem)
+    err(f"{counted(len(plan.variants), 'variant')} of {plan.problem.name} (seed {seed}) -> {out}")
     return status
 
 

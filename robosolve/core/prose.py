@@ -16,6 +16,7 @@ means the report's default.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 __all__ = ["Num", "Text", "name_tex", "name_md"]
@@ -40,6 +41,15 @@ def name_md(name: str) -> str:
     """A name inside Markdown prose or a table cell: its ASCII punctuation backslash-escaped
     (CommonMark), so it shows as written."""
     return "".join("\\" + c if c in _MD_SPECIAL else c for c in name)
+
+
+def name_plot(name: str) -> str:
+    """A name (any string) in a figure's plain text: its `$` escaped, so that matplotlib never
+    reads it as mathtext (`$\\frac{$` would stop the figure) and shows it as written."""
+    return name.replace("$", "\\$")
+
+
+PLAIN_NAME = re.compile(r"[A-Za-z0-9]+")   # a name mathtext shows as written inside \mathrm{}
 
 
 @dataclass(frozen=True)

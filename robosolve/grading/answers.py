@@ -20,7 +20,7 @@ from pathlib import Path
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean
 from robosolve.load.loader import path_str, type_name
-from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, read_text_file
+from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, path_problem, read_text_file
 from robosolve.questions.registry import RECORD, question_type
 from robosolve.variants.naming import safe_name  # noqa: F401  (the one rule, variants.md)
 
@@ -49,6 +49,7 @@ class Submission:
     answers: dict = field(default_factory=dict)   # question id -> {dotted key: Given}
     issues: list = field(default_factory=list)    # layout issues found by read_answers (not fatal)
     notes: list = field(default_factory=list)     # `grade` only: unknown question ids, as messages
+    blank_student: bool = False    # `student: ""` or `~` (a template's blank): the file's name stands
 
     def where(self, path) -> tuple[int, str]:
         return self.source.line(path), path_str(path)
@@ -119,7 +120,9 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
                 raw[qid] = value
     if any(i.path in ("", FORMAT_KEY, "answers") for i in issues.items):
         issues.raise_if_any()     # no answers to check against a problem: stop here
-    return Submission(file, student, problem_file, raw, source, issues=list(issues.items))
+    blank = "student" in data and (data["student"] is None or (isinstance(data["student"], str)
+                                                               and not data["student"].strip()))
+    return Submission(file, student, problem_file, raw, source, issues=list(issues.items), blank_student=blank)
 
 
 def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
@@ -132,6 +135,10 @@ def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
         issues.error(("problem",), f"expected the path of the problem file, got {type_name(value)}")
         return None
     path = Path(file).parent / value
+    unusable = path_problem(str(path), value)
+    if unusable:
+        issues.error(("problem",), unusable)
+        return None
     try:
         mode = os.stat(path).st_mode
     except (OSError, ValueError):
@@ -151,7 +158,8 @@ def _student(issues: _Issues, data: dict, file: str) -> str:
     if isinstance(s, (str, int)) and not isinstance(s, bool) and str(s).strip():
         return str(s).strip()
     if not (isinstance(s, str) or s is None):
-        issues.error(("student",), f"expected the student's id, got {type_name(s)}")
+        issues.error(("student",), f"expected the student's id (a name or a number, such as s123456 "
+                     f"or \"Jo Smith\"), got {type_name(s)}")
     return Path(file).stem    # "" or ~: a template's blank (papers.md), the file's name stands
 
 

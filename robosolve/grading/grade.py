@@ -93,10 +93,11 @@ def prepare(files, problem=None, table=None, rtol=None, atol=None):
     return jobs, solve_jobs(jobs, problems, rtol, atol)
 
 
-def read_jobs(files, problem=None, table=None):
+def read_jobs(files, problem=None, table=None, warnings=None):
     """Read every submission and find its problem (nothing solved yet): (jobs, problems), where
     `problems` maps each resolved problem file to (its path, the submissions graded against it).
-    `table`: the VariantsTable of --variants (matching.py)."""
+    `table`: the VariantsTable of --variants (matching.py); `warnings` gets a line for each
+    blank `student:` (graded under the file's name)."""
     jobs, problems = [], {}
     common = None                 # with --problem, even an unreadable submission has its problem
     if problem is not None:
@@ -110,6 +111,10 @@ def read_jobs(files, problem=None, table=None):
         except InputError as exc:
             jobs.append(Job(i, str(f), _fallback_student(f), common, None, str(exc)))
             continue
+        if sub.blank_student and warnings is not None:
+            line, _ = sub.where(("student",))
+            warnings.append(f"{f}:{line}: student: empty; graded under the file's name, '{sub.student}' "
+                            "(write the student's id there to file it under that id)")
         refused = [str(x) for x in sub.issues if x.path == "problem"]
         if refused and problem is None and table is None:   # a device or folder as `problem:`
             jobs.append(Job(i, str(f), sub.student, None, None, "\n".join(refused)))
@@ -331,7 +336,7 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
         raise UsageError(missing_columns(lms, table))
     if not files:
         raise UsageError("\n".join([*warnings, "no answers files found (*.yaml, *.yml)"]))
-    jobs, problems = read_jobs(files, problem, table)
+    jobs, problems = read_jobs(files, problem, table, warnings)
     inputs += input_paths(files, problems)
     check_output_folder(Path(out), inputs)
     references = solve_jobs(jobs, problems, rtol, atol)

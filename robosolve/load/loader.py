@@ -13,12 +13,12 @@ import sympy as sp
 
 from robosolve.core.parameters import resolve_parameters
 from robosolve.core.symbols import TIME
-from robosolve.errors import InputError, InputIssue
+from robosolve.errors import InputError, InputIssue, InputWarning
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
     RESERVED, ExpressionError, Namespace, did_you_mean, size_issue, value_issue,
 )
-from robosolve.load.physical import inertia_issue, pseudo_inertia_issue
+from robosolve.load.physical import LUMPED_ROTOR, inertia_issue, pseudo_inertia_issue, triangle_issue
 from robosolve.load.problem import (
     PRISMATIC, REVOLUTE, Body, Force, Frame, Joint, Point, Problem,
 )
@@ -98,6 +98,7 @@ class Checker:
     def __init__(self, source: Source):
         self.src = source
         self.issues: list[InputIssue] = []
+        self.warnings: list[InputWarning] = []
         # numeric values of the parameters (set once they are read) and of the current
         # question's `at`: every expression read afterwards is checked with them
         self.values: dict | None = None
@@ -105,6 +106,10 @@ class Checker:
 
     def error(self, path, message: str):
         self.issues.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
+
+    def warn(self, path, message: str, subject: tuple = ()):
+        """Accepted, but maybe a mistake: said by the report and the CLI (Problem.warnings)."""
+        self.warnings.append(InputWarning(self.src.file, self.src.line(path), path_str(path), message, subject))
 
     # -- shapes ---------------------------------------------------------
     def mapping(self, path, value, allowed, required=(), what="keys") -> bool:
@@ -317,6 +322,7 @@ class _ProblemBuilder:
             parameters=self.parameters, joints=self.joints, frames=self.frames,
             points=self.points, gravity=gravity, gravity_given=gravity_given,
             bodies=bodies, forces=forces, questions=[], names=self.names, has_robot=has_robot,
+            warnings=chk.warnings,
         )
         self.problem.questions = qschema.load_questions(self, data.get("questions"))
         self.problem.grading = self._grading(data.get("grading"))
@@ -374,6 +380,7 @@ class _ProblemBuilder:
             issue = size_issue(e, known)
             if issue is not None:
                 chk.error(("parameters", n), issue)
+                raw[n] = None     # refused: its uses say nothing more (one mistake, one message)
                 continue
             v = e.xreplace(known)
             if v.free_symbols:
@@ -382,9 +389,11 @@ class _ProblemBuilder:
                 fv = complex(sp.N(v))
             except (TypeError, ValueError):
                 chk.error(("parameters", n), "value is not a finite number")
+                raw[n] = None
                 continue
             if abs(fv.imag) > 1e-12 or fv.real != fv.real or abs(fv.real) == float("inf"):
                 chk.error(("parameters", n), _not_real(value[n], fv))
+                raw[n] = None
                 continue
             numeric[n] = v
         # Final symbols: positive when the value is a positive number (helps sqrt/atan2).
@@ -799,6 +808,9 @@ class _ProblemBuilder:
                 elif not self._physical(path + ("inertia",), data["inertia"],
                                         lambda v: inertia_issue(v, triangle=False)):
                     data["inertia"] = None
+                elif name is not None and (values := self._numbers(data["inertia"])) is not None \
+                        and (why := triangle_issue(values)):
+                    chk.warn(path + ("inertia",), f"{why}; {LUMPED_ROTOR}", ("body", name))
             else:
                 data["J"] = chk.matrix(path + ("pseudo_inertia",), item["pseudo_inertia"], self.ns)
                 if data["J"] is not None and data["J"] != data["J"].T:
@@ -814,15 +826,22 @@ class _ProblemBuilder:
             out.append(Body(name, frame, mass, kind, data, line=chk.src.line(path)))
         return out
 
+    def _numbers(self, matrix) -> list | None:
+        """The rows of `matrix` as floats with the parameters' values, or None (a value unknown)."""
+        if matrix is None:
+            return None
+        values = [self.chk.number_value(sp.sympify(e)) for e in matrix]
+        if any(v is None for v in values):
+            return None
+        return [values[r * matrix.cols:(r + 1) * matrix.cols] for r in range(matrix.rows)]
+
     def _physical(self, path, matrix, issue) -> bool:
         """False (with the error at `path`) when the numeric values of `matrix` say no body has it
         (robosolve.load.physical); True when it can exist or a value is still unknown."""
-        if matrix is None:
+        values = self._numbers(matrix)
+        if values is None:
             return True
-        values = [self.chk.number_value(sp.sympify(e)) for e in matrix]
-        if any(v is None for v in values):
-            return True
-        why = issue([values[r * matrix.cols:(r + 1) * matrix.cols] for r in range(matrix.rows)])
+        why = issue(values)
         if why:
             self.chk.error(path, why)
         return why is None

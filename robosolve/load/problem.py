@@ -113,6 +113,7 @@ class Problem:
     grading: dict = field(default_factory=dict)   # {"rtol": float, "atol": float} when given
     variants: object = None          # robosolve.load.variants.VariantSpec, or None
     paper_at: dict = field(default_factory=dict)  # `paper: {at}`: the drawing's joint values (papers.md)
+    warnings: list = field(default_factory=list)  # errors.InputWarning: accepted data that may be a mistake
 
     @property
     def last_frame(self) -> str:

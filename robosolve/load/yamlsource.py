@@ -9,6 +9,7 @@ nesting are stopped by a node budget instead of exhausting memory, and
 from __future__ import annotations
 
 import codecs
+import errno
 import os
 import stat
 from dataclasses import dataclass, field
@@ -104,6 +105,41 @@ class _Converter:
             raise YamlProblem(line, f"invalid value {node.value[:40]!r}: {exc}") from None
 
 
+def path_problem(text: str, written: str | None = None) -> str | None:
+    """Why the system cannot even look up the path `text`, in words: a name longer than it
+    allows, a loop of symbolic links, no permission (None: it can, or the path does not exist,
+    or a part of it is a file: the caller says what it expected there). The message quotes
+    `written` (the path as the user wrote it) when given."""
+    shown = _shown(text if written is None else written)
+    try:
+        os.stat(text)
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        if exc.errno == errno.ENAMETOOLONG:
+            longest = max(len(part.encode("utf-8", "surrogateescape")) for part in text.split(os.sep))
+            limit = os.pathconf(os.sep, "PC_NAME_MAX") if hasattr(os, "pathconf") else 255
+            if longest > limit:
+                return (f"'{shown}': a name in this path has {longest} characters; "
+                        f"the system allows at most {limit}")
+            return f"'{shown}': the path is longer than the system allows"
+        if exc.errno == errno.ELOOP:
+            return f"'{shown}': the path goes round a loop of symbolic links"
+        if exc.errno == errno.ENOTDIR:  # a file used as a folder: the commands say it
+            return None
+        if exc.errno == errno.EACCES:
+            return f"'{shown}': permission denied"
+        return f"'{shown}': {exc.strerror or exc}"
+    except ValueError:              # a NUL character (YAML's "\0")
+        return f"'{shown}': a path cannot hold a NUL character"
+    return None
+
+
+def _shown(text: str, width: int = 60) -> str:
+    text = text.replace("\0", "\\0")
+    return text if len(text) <= width else text[:width // 2] + "…" + text[-width // 2:]
+
+
 def read_input_bytes(file, limit: int = MAX_FILE_BYTES, line: int = 0, what: str = "the file") -> bytes:
     """At most `limit` bytes of the regular file `file`: an InputError (at `line`) for a device,
     a pipe, a folder or a longer file. Never reads more than `limit` + 1 bytes, so that
@@ -149,9 +185,12 @@ def decode_utf8(raw: bytes, file, what: str = "the file", bom: bool = True) -> s
         line = raw.count(b"\n", 0, exc.start) + 1
         column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
         byte = raw[exc.start:exc.start + 1].hex()
-        raise InputError([InputIssue(str(file), line, "",
-                                     f"{what} is not UTF-8 text: byte 0x{byte} at column {column} "
-                                     "(save it as UTF-8)")]) from None
+        if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):   # Notepad's "Unicode"
+            message = f"{what} is UTF-16 text, not UTF-8 (save it as UTF-8)"
+            line = 1
+        else:
+            message = f"{what} is not UTF-8 text: byte 0x{byte} at column {column} (save it as UTF-8)"
+        raise InputError([InputIssue(str(file), line, "", message)]) from None
 
 
 def read_text_file(file, line: int = 0, what: str = "the file") -> str:

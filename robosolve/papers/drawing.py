@@ -9,10 +9,15 @@ A null parameter is drawn at 1 (the drawing only illustrates).
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import sympy as sp
 
+from robosolve.core.prose import PLAIN_NAME, name_plot
+
 PLANE_TOL = 1e-9
+IDENT = re.compile(r"[A-Za-z][A-Za-z0-9_]*")   # a name sympy's LaTeX writes as a symbol (F, F_1)
 
 
 def reference_configuration(problem) -> dict:
@@ -49,8 +54,17 @@ def _latex(sym) -> str:
     return sp.latex(sym)
 
 
-def _frame_sub(name: str) -> str:
-    return name if name.isdigit() else f"\\mathrm{{{name}}}"
+def _axis_labels(name: str) -> list[str]:
+    """The labels of a frame's x, y, z axes: x₁ as mathtext for a plain name (1, tool, B2),
+    else the name as written beside the axis letter (mathtext would misread or refuse it)."""
+    if PLAIN_NAME.fullmatch(name):
+        sub = name if name.isdigit() else f"\\mathrm{{{name}}}"
+        return [f"${a}_{{{sub}}}$" for a in "xyz"]
+    return [f"{a} ({name_plot(name)})" for a in "xyz"]
+
+
+def _force_label(name: str) -> str:
+    return f"${_latex(sp.Symbol(name))}$" if IDENT.fullmatch(name) else name_plot(name)
 
 
 def joint_places(model, chain, subs) -> list[dict]:
@@ -100,7 +114,7 @@ def force_arrows(problem, chain, subs) -> list[dict]:
                 r = chain.M0(f.in_frame)[:3, :3]
                 v = r @ np.array([float(sp.N(x.xreplace({**subs, **extra}))) for x in vec])
                 if np.linalg.norm(v) > 1e-12:
-                    out.append({"label": f"${_latex(sp.Symbol(f.name))}$", "at": [float(x) for x in p[:3]],
+                    out.append({"label": _force_label(f.name), "at": [float(x) for x in p[:3]],
                                 "direction": [float(x) for x in v / np.linalg.norm(v)], "kind": kind})
         except (TypeError, ValueError):
             continue
@@ -150,7 +164,7 @@ def paper_figure(problem, model):
         return None
     chain = NumericChain(model, subs)
     for f in drawing["frames"]:
-        f["label"] = _frame_sub(f["name"])
+        f["axis_labels"] = _axis_labels(f["name"])
     drawing["joints"] = joint_places(model, chain, subs)
     drawing["forces"] = force_arrows(problem, chain, subs)
     drawing["gravity"] = gravity_direction(problem, subs)
@@ -160,6 +174,6 @@ def paper_figure(problem, model):
     shown = ", ".join(f"{_latex(j.symbol)} = {_latex(config[j.symbol])}" for j in problem.joints)
     import textwrap
 
-    name = "\n".join(textwrap.wrap(problem.title or problem.name, 72)[:2])
+    name = name_plot("\n".join(textwrap.wrap(problem.title or problem.name, 72)[:2]))
     title = f"{name}\nat ${shown}$" if shown else name
     return FigureSpec("robot", "robot_paper", title, drawing)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import name_md
 from robosolve.load.paper import PLACEHOLDER
 from robosolve.papers.keys import graded_keys
 from robosolve.papers.template import form_text, key_unit, layout_text, marks_text
@@ -96,7 +97,7 @@ class Say:
         return f"point {question.point}"
 
     def frame(self, question) -> str:
-        return f"frame {question.frame}"
+        return f"frame {name_md(question.frame)}"
 
     def joints(self) -> str:
         return ", ".join(f"${self.tex(j.symbol)}$" for j in self.problem.joints)
@@ -151,7 +152,7 @@ def total_marks(problem) -> str:
 
 
 def header(problem, student: str | None, variant: str | None) -> list[str]:
-    out = [f"# {problem.title or problem.name}"]
+    out = [f"# {name_md(problem.title or problem.name)}"]
     who = f"**Student:** {student}" if student else "**Name:** ________________  **ID:** ________"
     lines = [who]
     if variant:
@@ -195,7 +196,7 @@ def render_paper(problem, model, student: str | None = None, variant: str | None
     out.append(conventions(problem))
     if figure:
         out.append(f"![The robot at its reference configuration]({FIGURE})")
-    out += render_data(problem, model, tex)
+    out += render_data(problem, model, tex, notes=False)
     out.append("## Questions")
     for i, q in enumerate(problem.questions, 1):
         out.append(f"### {i}. {question_title(q.type)} ({marks_text(q.marks)})")

@@ -33,8 +33,17 @@ def _statement(q, say) -> str:
 
 
 def notebook_cell(q, answer, problem):
-    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py). Without a
+    whole configuration in `at` (every joint, rate and acceleration) there are no numbers to
+    recompute: the cell shows the equations by Lagrange (a small arm) only."""
     actuators = [str(j.actuator) for j in problem.joints]
+    if not all(s in q.at for j in problem.joints for s in (j.symbol, j.dot, j.ddot)):
+        return lines(
+            f"at = {at_literal(q)}",
+            "# no whole configuration in `at`: the answers are symbolic (above)",
+            "if len(robot.joints) <= 2:                # the formulas of a small arm, by Lagrange",
+            "    show(*robot.lagrange(at)[:3])",
+        )
     return lines(
         f"at = {at_literal(q)}",
         "# M, c, g and the external forces' Q at the configuration (numbers along the chain)",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import name_md
 from robosolve.load import validators as V
 from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MAP_SET, TEXT, QuestionType, _k
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, text
@@ -55,7 +56,7 @@ def _statement(q, say) -> str:
     o = q.options
     if not isinstance(o["target"], list):       # a pose target (load/pose_target.py)
         t = o["target"]
-        where = f"the point {q.point}" if q.point_given else f"frame {q.frame}"
+        where = f"the point {q.point}" if q.point_given else f"frame {name_md(q.frame)}"
         return (f"Find every configuration ({say.joints()}) within the joint limits that puts {where} at the "
                 f"position ${say.tex(t.p)}$ with the orientation $R = {say.tex(t.R)}$ (none, if the pose "
                 "cannot be reached).")

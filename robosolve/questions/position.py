@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from robosolve.core.prose import name_tex
 from robosolve.questions.schema import MATRIX, MATRIX_LIST, VECTOR, QuestionType, _k
 from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
 
@@ -21,7 +22,7 @@ def notebook_cell(q, answer, problem):
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the question's point, frame and `at`."""
     at = say.at(q)
-    return (f"Compute the pose ${{}}^{{0}}M_{{{q.frame}}}$ of {say.frame(q)} in frame 0 as a function of the "
+    return (f"Compute the pose ${{}}^{{0}}M_{{{name_tex(q.frame)}}}$ of {say.frame(q)} in frame 0 as a function of the "
             f"joint variables ({say.joints()}), and the coordinates of {say.point(q)} in frame 0"
             + (f"; give the numbers {at}" if at else "") + ".")
 

@@ -44,8 +44,14 @@ def _converter():
 
 
 def latex_to_mathml(tex: str, display: bool) -> str:
+    """MathML of a formula; one latex2mathml cannot read (a teacher's description with a broken
+    formula) is shown as its source, escaped, instead of stopping the page."""
     convert = _converter()
-    out = convert(tex.strip(), display="block" if display else "inline")
+    try:
+        out = convert(tex.strip(), display="block" if display else "inline")
+    except Exception:                       # latex2mathml raises its own errors and others
+        return f'<code class="rs-tex">{html.escape(tex.strip())}</code>'
+
     out = out.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "", 1)   # implied in HTML5
     # stretchy fences around a matrix become CSS-drawn brackets on the table itself
     out = FENCED_MATRIX.sub(

@@ -85,7 +85,8 @@ def render_table(header, rows) -> str:
     return "\n".join(out)
 
 
-def render_data(problem, model, tex: Tex) -> list[str]:
+def render_data(problem, model, tex: Tex, notes: bool = True) -> list[str]:
+    """The data section; `notes`: with the loader's warnings under the data (not on a paper)."""
     out = ["## Data"]
     if problem.parameters:
         rows = [(f"${tex(s)}$", "null (symbolic)" if v is None else f"${tex(v)}$")
@@ -136,6 +137,7 @@ def render_data(problem, model, tex: Tex) -> list[str]:
                 dist = f"pseudo-inertia ${tex(d['J'])}$"
             rows.append((name_md(b.name), name_md(b.frame), f"${tex(b.mass)}$", dist))
         out += ["### Bodies", render_table(("body", "frame", "mass", "distribution"), rows)]
+    out += [data_note(w) for w in problem.warnings] if notes else []
     if problem.forces:
         rows = []
         for f in problem.forces:
@@ -146,6 +148,13 @@ def render_data(problem, model, tex: Tex) -> list[str]:
                 render_table(("name", "acts on frame", "at (in its frame)", "force", "torque",
                               "components in frame"), rows)]
     return out
+
+
+def data_note(warning) -> str:
+    """A warning of the loader (errors.InputWarning: accepted data that may be a mistake) as a
+    note under the data it is about."""
+    about = f"{warning.subject[0].capitalize()} {name_md(warning.subject[1])}: " if warning.subject else ""
+    return f"**Note on the data** (line {warning.line} of the problem file). {about}{warning.message}."
 
 
 def decimal_companion(value, tex: Tex) -> str | None:
@@ -243,7 +252,7 @@ def report_sections(report, figure_paths: dict) -> ReportSections:
     problem, model = report.problem, report.model
     names = symbol_latex(problem) if model is not None else {}
     tex = Tex(names, CompactTrig(problem))
-    head = [f"# {problem.title or problem.name}"]
+    head = [f"# {name_md(problem.title or problem.name)}"]
     if problem.description:
         head.append(problem.description.strip())
     head.append(f"Problem `{problem.name}`, solved by robosolve. Conventions: ${{}}^{{i}}M_{{j}}$ is the pose "

@@ -87,6 +87,10 @@ def check_output_file(path, inputs: Iterable = ()) -> None:
     path = Path(path)
     if path.is_dir():
         raise OutputFolderError(f"{path}: is a folder; give a file name (robosolve writes one JSON file)")
+    if path.exists() and not path.is_file():   # the write would replace the device or pipe itself
+        raise OutputFolderError(f"{path}: is a device, pipe or socket; robosolve writes a regular file "
+                                "(it replaces the file as a whole) and has touched nothing. Give a file "
+                                "name, or '-' for standard output")
     blocker = _first_non_folder(path.parent)
     if blocker is not None:
         raise OutputFolderError(f"{path}: {blocker} is a file, not a folder; give another file name")

@@ -269,6 +269,7 @@ class FileResult:
     messages: list = field(default_factory=list)
     files: dict = field(default_factory=dict)
     version: str | None = None
+    warnings: list = field(default_factory=list)    # the problem's warnings, as lines (Problem.warnings)
 
     @classmethod
     def unreadable(cls, file, message: str) -> "FileResult":
@@ -283,4 +284,4 @@ def solve_loaded(problem: Problem, formats=("md",), figures=None, split: bool = 
     failed = [f"{problem.file}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
     return FileResult(str(problem.file), problem.name, report.exit_status, len(report.answers) - len(failed),
                       len(report.answers), failed, render_files(report, tuple(formats), figures),
-                      robosolve.__version__)
+                      robosolve.__version__, [str(w) for w in problem.warnings])

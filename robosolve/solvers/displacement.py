@@ -25,7 +25,7 @@ from robosolve.geometry.helical import (
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, geometry_matrix, m_name
-from robosolve.core.prose import name_md
+from robosolve.core.prose import name_md, name_plot
 
 CASE_TEXT = {
     "general": "$0 < \\alpha < \\pi$: $\\sin\\alpha > 0$, so the axis comes from the skew-symmetric part, "
@@ -106,7 +106,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         steps[-1].text += " Case: " + CASE_TEXT[hn.case]
     ans.steps = steps
     ans.figures.append(FigureSpec(
-        "helical_axis", "helical_axis", f"Helical axis and the initial and final frames (in frame {expressed})",
+        "helical_axis", "helical_axis", f"Helical axis and the initial and final frames (in frame {name_plot(expressed)})",
         _figure_data(hn, m1n, m2n, mkn, expressed)))
     return ans
 

@@ -264,10 +264,10 @@ def _solutions_step(res, names, ik_joints) -> Step:
     for k, d in enumerate(res.all_solutions, 1):
         status = "inside" if id(d) not in rejected else "rejected: " + Text.join("; ", rejected[id(d)])
         rows.append([str(k)] + [_angle_text(d[j.name], j.revolute) for j in ik_joints] + [status])
-    text = ("Numerically, a multi-start Newton search (" + box + f") refined to machine precision finds "
-            f"{len(res.all_solutions)} distinct solution{'s' if len(res.all_solutions) != 1 else ''}, "
-            "each checked with the direct kinematics (residual below $10^{-9}$); angles wrapped into "
-            "(−π, π].")
+    n = len(res.all_solutions)
+    text = ("Numerically, a multi-start Newton search (" + box + ") refined to machine precision finds "
+            + (f"{n} distinct solution{'s' if n != 1 else ''}, each checked with the direct kinematics "
+               "(residual below $10^{-9}$); angles wrapped into (−π, π]." if n else "no solution."))
     if res.family is not None and len(res.family["free"]) == len(ik_joints) and not res.family["fixed"]:
         text = ("No joint appears in the equations: every configuration is a solution (a continuum); "
                 "the table lists one example.")

@@ -41,7 +41,11 @@ class CountedIds:
         self.n = n
         self.width = len(str(n))
 
-    def __len__(self) -> int:
+    def __len__(self) -> int:       # a count beyond sys.maxsize has no len(): see `asked`
+        return self.n
+
+    @property
+    def asked(self) -> int:
         return self.n
 
     def __iter__(self):

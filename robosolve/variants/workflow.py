@@ -139,11 +139,12 @@ def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
     spec = problem.variants
     checker = RequirementChecker(template_problem(data, problem), spec, problem.file)
     drawer = Drawer(spec, checker, seed, problem.file)
-    check_count(problem.file, spec, len(ids))
+    asked = getattr(ids, "asked", None) or len(ids)      # --count 10**19 has no len()
+    check_count(problem.file, spec, asked)
     step = progress.task("checking the conditions over the grid", checker.table_work()) if progress else None
     n_valid = drawer.count(step)
-    if n_valid is not None and n_valid < len(ids):
-        too_few(problem.file, spec, n_valid, len(ids), "meet `require`" if spec.require else "exist")
+    if n_valid is not None and n_valid < asked:
+        too_few(problem.file, spec, n_valid, asked, "meet `require`" if spec.require else "exist")
     plan = Plan(problem, spec, seed)
     step = progress.task("drawing", len(ids)) if progress else None
     for vid, student in ids:

@@ -100,6 +100,28 @@ def test_check_json_refuses_a_hard_link_to_an_input(tmp_path):
     assert snapshot(tmp_path) == before
 
 
+def test_check_json_never_replaces_a_device_or_a_pipe(tmp_path):
+    """`--json /dev/null` (or a FIFO) would be replaced by a regular file by the atomic write:
+    as root, the system's /dev/null itself. Refused, the special file left as it was."""
+    import os
+    import stat
+
+    (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    sub = _answers(tmp_path)
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    targets = [fifo]
+    if os.geteuid() == 0:                     # a device node of our own (never the system's)
+        os.mknod(tmp_path / "null", stat.S_IFCHR | 0o666, os.makedev(1, 3))
+        targets.append(tmp_path / "null")
+    for target in targets:
+        kind = stat.S_IFMT(os.lstat(target).st_mode)
+        r = runner.invoke(app, ["check", str(sub), "--json", str(target)])
+        assert r.exit_code == 2, r.output
+        assert "is a device, pipe or socket" in r.output and "'-' for standard output" in r.output
+        assert stat.S_IFMT(os.lstat(target).st_mode) == kind
+
+
 def test_check_json_writes_a_new_file_atomically(tmp_path):
     (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
     sub = _answers(tmp_path)

@@ -70,3 +70,17 @@ def test_missing_extras_are_said_at_once_with_both_install_forms(monkeypatch, tm
     assert "latex2mathml" in lines[0] and "nbformat" in lines[0]
     assert "pip install 'robosolve[html,notebook]'" in lines[0] and "pip install '.[html,notebook]'" in lines[0]
     assert not (tmp_path / "o").exists()
+
+
+def test_one_is_singular_in_what_the_commands_say(tmp_path):
+    """'ok (1 question)', 'paper of 1 question', '1 variant of': the plural of one (issue 22)."""
+    from tests.conftest import MINI
+
+    p = tmp_path / "p.yaml"
+    p.write_text(MINI + "variants:\n  parameters:\n    L: {choices: [1, 2]}\n", encoding="utf-8")
+    r = runner.invoke(app, ["validate", str(p)])
+    assert r.exit_code == 0 and f"{p}: ok (1 question)\n" in r.output, r.output
+    r = runner.invoke(app, ["paper", str(p), "--out", str(tmp_path / "paper")])
+    assert r.exit_code == 0 and "paper of 1 question ->" in r.output, r.output
+    r = runner.invoke(app, ["variants", str(p), "--count", "1", "--no-solve", "--out", str(tmp_path / "v")])
+    assert r.exit_code == 0 and "1 variant of mini" in r.output, r.output

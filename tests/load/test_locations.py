@@ -48,3 +48,14 @@ def test_deep_nesting_is_reported_where_it_gets_too_deep(deep):
     assert line >= 4 and m.endswith("nesting deeper than 40 levels"), m
     if deep.startswith("x:\n"):
         assert line == 4 + 40, m                                 # the first line past 40 levels
+
+
+@pytest.mark.parametrize("encoding", ["utf-16", "utf-16-le", "utf-16-be"])
+def test_a_utf16_file_is_said_to_be_utf16(tmp_path, encoding):
+    """Windows Notepad's "Unicode" (UTF-16 with its byte-order mark): named, not "byte 0xff"."""
+    p = tmp_path / "p.yaml"
+    text = HEAD + "joints: []\n"
+    p.write_bytes(("\ufeff" + text).encode(encoding) if encoding != "utf-16" else text.encode(encoding))
+    with pytest.raises(InputError) as exc:
+        load_problem(p)
+    assert str(exc.value) == f"{p}:1: the file is UTF-16 text, not UTF-8 (save it as UTF-8)"

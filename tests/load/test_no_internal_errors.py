@@ -126,3 +126,31 @@ def test_empty_student_id_stands_for_the_file_name(tmp_path):
 
     sub = read_answers_text('robosolve-answers: 1\nstudent: ""\nanswers: {q: {T: 1}}\n', "a.yaml")
     assert [str(i) for i in sub.issues] == [] and sub.student == "a"
+
+
+def test_grade_says_which_blank_student_ids_took_the_file_name(tmp_path):
+    """`student: ""` or `~` (a template's blank) is graded under the file's name, and `grade`
+    says so at the line, in the user's words, never "expected the student's id, got a string"."""
+    from tests.conftest import MINI
+
+    (tmp_path / "p.yaml").write_text(MINI, encoding="utf-8")
+    body = "robosolve-answers: 1\nproblem: p.yaml\nstudent: {}\nanswers:\n  position:\n    position: [1, 0, 0]\n"
+    for name, value in (("alice", '""'), ("bob", "~"), ("carl", '"  "'), ("dan", "s42")):
+        (tmp_path / f"{name}.yaml").write_text(body.format(value), encoding="utf-8")
+    result = runner.invoke(app, ["grade", *(str(tmp_path / f"{n}.yaml") for n in ("alice", "bob", "carl", "dan")),
+                                 "--out", str(tmp_path / "g"), "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    for name in ("alice", "bob", "carl"):
+        assert (f"{tmp_path / name}.yaml:3: student: empty; graded under the file's name, '{name}'"
+                in result.output), result.output
+    assert "dan.yaml:3" not in result.output and "got a string" not in result.output
+    assert sorted(p.stem for p in (tmp_path / "g").glob("*.json")) == ["alice", "bob", "carl", "s42"]
+
+
+def test_a_student_id_of_the_wrong_kind_says_what_an_id_is():
+    from robosolve.grading.answers import read_answers_text
+
+    sub = read_answers_text('robosolve-answers: 1\nstudent: [a]\nanswers: {q: {T: 1}}\n', "a.yaml")
+    assert [str(i) for i in sub.issues] == [
+        'a.yaml:2: student: expected the student\'s id (a name or a number, such as s123456 or "Jo Smith"), '
+        "got a list"]

@@ -95,3 +95,56 @@ def test_real_bodies_pass_and_their_impossible_neighbours_fail():
         assert "not positive semi-definite" in pseudo_inertia_issue(thin)
     # a thin rod (one moment 0) and a point mass (all 0) are bodies
     assert inertia_issue(np.diag([0.0, 1.0, 1.0])) is None and inertia_issue(np.zeros((3, 3))) is None
+
+
+# -- a broken triangle inequality: accepted (a rotor inertia lumped in), but said -------------
+
+LUMPED = "mass: m, com: [0, 0, 0], inertia: [[1, 0, 0], [0, 1, 0], [0, 0, J3]]"   # 1 + 1 < 3
+
+
+def test_a_broken_triangle_inequality_is_a_warning_with_the_body_and_its_line():
+    problem = load_problem_text(BASE % LUMPED, "p.yaml")
+    assert [str(w) for w in problem.warnings] == [
+        "p.yaml:8: bodies[0].inertia: warning: body 'link': the inertia tensor breaks the triangle "
+        "inequality Ixx + Iyy ≥ Izz (1 + 1 < 3); no rigid body alone has it, but a link that carries "
+        "its motor's rotor inertia (lumped in, as published data sets do) can; accepted: the tensor "
+        "is positive semi-definite, so M(q) keeps its sign"]
+    # a physical tensor, or a value still unknown: no warning
+    assert load_problem_text(BASE % LUMPED.replace("J3]]", "2]]"), "p.yaml").warnings == []
+    assert load_problem_text(BASE.replace("J3: 3", "J3: null") % LUMPED, "p.yaml").warnings == []
+
+
+def test_the_report_notes_it_under_the_bodies_and_the_paper_does_not():
+    from robosolve.papers.paper import render_paper
+    from robosolve.run.pipeline import render_files, solve_problem
+
+    from robosolve.model.chain import RobotModel
+
+    problem = load_problem_text(BASE % LUMPED, "p.yaml")
+    problem.questions = []          # the data section only
+    report = render_files(solve_problem(problem), ("md",))["report.md"].decode()
+    bodies = report.index("### Bodies")
+    note = report.index("**Note on the data** (line 8 of the problem file). Body link: the inertia "
+                        "tensor breaks the triangle inequality Ixx + Iyy ≥ Izz (1 + 1 < 3)")
+    assert bodies < note
+    assert "Note on the data" not in "\n".join(render_paper(problem, RobotModel(problem)))
+
+
+def test_the_cli_says_it_on_standard_error_and_exits_0(tmp_path):
+    from typer.testing import CliRunner
+
+    from robosolve.cli import app
+
+    (tmp_path / "p.yaml").write_text(BASE % LUMPED, encoding="utf-8")
+    r = CliRunner().invoke(app, ["validate", str(tmp_path / "p.yaml")])
+    assert r.exit_code == 0
+    assert f"{tmp_path / 'p.yaml'}:8: bodies[0].inertia: warning: body 'link': " in r.stderr
+    assert "warning" not in r.stdout
+
+
+def test_the_bundled_puma_data_is_accepted_with_its_two_notes():
+    from robosolve.load.loader import load_problem
+    from tests.conftest import PROBLEMS
+
+    problem = load_problem(PROBLEMS / "puma560-dynamics.yaml")
+    assert [(w.line, w.subject) for w in problem.warnings] == [(38, ("body", "link1")), (42, ("body", "link3"))]

@@ -81,3 +81,28 @@ def test_no_declare_g_when_g_or_gravity_is_given(params, gravity, message):
 def test_declare_g_still_said_when_it_is_missing():
     [m] = messages(DYN % ("a: 1", ""))
     assert "declare g in parameters" in m
+
+
+@pytest.mark.parametrize("value, use", [
+    ("a: sqrt(-1)", "Tx(L*a)"),             # used through an expression
+    ("a: sqrt(-1)", "Tx(a)"),               # used as it is
+    ("a: 1e400", "Tx(a)"),                  # too large
+    ("a: log(0)", "Tx(a)"),                 # not finite
+])
+def test_a_refused_parameter_is_one_message_not_one_more_per_use(value, use):
+    """One mistake, one message: the parameter's line, not again at every frame that uses it."""
+    found = messages(DYN.replace("Rz(q) Tx(L)", "Rz(q) " + use) % ("g: 9.81, " + value, ""))
+    assert len(found) == 1 and found[0].startswith("p.yaml:3: parameters.a: "), found
+
+
+def test_an_unreachable_numeric_search_finds_no_solution_in_words():
+    """Not "finds 0 distinct solutions, each checked with the direct kinematics"."""
+    from robosolve.run.pipeline import render_files, solve_problem
+
+    problem = load_problem_text(
+        "robosolve: 1\nname: z\njoints: [{name: q1, type: revolute}, {name: q2, type: revolute}]\n"
+        'frames: {"1": {pose: "Rz(q1)"}, "2": {pose: "Rz(q2)"}}\n'
+        "questions:\n  - {type: inverse_kinematics, target: {E.x: 1, E.y: 0}}\n", "z.yaml")
+    report = render_files(solve_problem(problem), ("md",))["report.md"].decode()
+    assert "refined to machine precision finds no solution." in report
+    assert "finds 0 distinct" not in report

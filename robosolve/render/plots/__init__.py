@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import gc
 import importlib
+import math
 
 _RC = {
     "figure.dpi": 100, "savefig.dpi": 100, "font.size": 10, "axes.grid": True,
@@ -22,6 +23,9 @@ _RC = {
     # titles at a fixed height: the automatic one measures the top axis' tick labels on every
     # draw; a figure with tick labels on top (a motion profile) gives its title a larger pad
     "axes.titley": 1.0,
+    # tick labels of at most five characters (the fixed left margin holds them and the axis
+    # label): values from 1e4 up, or below 1e-4, are written with a ×10ⁿ above the axis
+    "axes.formatter.limits": (-4, 4), "axes.formatter.use_mathtext": True,
 }
 PNG_OPTIONS = {"compress_level": 1}
 
@@ -102,6 +106,29 @@ def one_3d_box(width, height):
     ax = fig.add_subplot(projection="3d")
     fixed_layout(fig, left=0.1, right=0.1, top=0.4, bottom=0.1)
     return fig, ax
+
+
+_SUPERSCRIPTS = str.maketrans("-0123456789", "⁻⁰¹²³⁴⁵⁶⁷⁸⁹")
+
+
+def figure_number(x: float, digits: int = 4) -> str:
+    """A number written in a figure: `digits` significant digits, plain from 0.001 to below 10⁶
+    (123457, 1235, 0.0123), else as 1.235×10⁻⁹; the minus sign of the tick labels (−)."""
+    x = float(x)
+    if x == 0 or not math.isfinite(x):
+        return "0" if x == 0 else str(x)
+    exponent = math.floor(math.log10(abs(x)))
+    if -3 <= exponent < 6:
+        places = max(0, digits - 1 - exponent)
+        shown = f"{x:.{places}f}"
+        if "." in shown:
+            shown = shown.rstrip("0").rstrip(".")
+    else:
+        mantissa = f"{x / 10 ** exponent:.{digits - 1}f}".rstrip("0").rstrip(".")
+        if mantissa in ("10", "-10"):                 # 9.9996 rounded up
+            mantissa, exponent = mantissa[:-1], exponent + 1
+        shown = f"{mantissa}×10{str(exponent).translate(_SUPERSCRIPTS)}"
+    return shown.replace("-", "−", 1) if shown.startswith("-") else shown
 
 
 def time_panels(rows, cols=1, *, width, row_height, top, hgap=0.2, wgap=0.3):

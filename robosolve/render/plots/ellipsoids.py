@@ -26,7 +26,9 @@ COLORS = {"force": "#c0392b", "velocity": "#2471a3", "compliance": "#229954"}
 
 
 def _fmt(x):
-    return f"{x:.4g}"
+    from robosolve.render.plots import figure_number
+
+    return figure_number(x)
 
 
 def _scale(panel, robot_size):

@@ -5,7 +5,7 @@ Data: t, q, qd, label, rate_label, unit, rate_unit, max, t_max, min, t_min.
 
 from __future__ import annotations
 
-from robosolve.render.plots import fixed_layout, save, subplots
+from robosolve.render.plots import figure_number, fixed_layout, save, subplots
 from robosolve.render.plots.motion_profile import COLOURS
 
 
@@ -14,8 +14,8 @@ def draw(spec, path):
     fig, (ax, axr) = subplots(2, 1, figsize=(8, 5.6), sharex=True)
     fixed_layout(fig, 2, 1, top=0.5, hgap=0.2)
     ax.plot(d["t"], d["q"], color=COLOURS[0], lw=1.5, label=f"${d['label']}(t)$")
-    ax.plot([d["t_max"]], [d["max"]], "v", color="0.25", ms=6, label=f"max {d['max']:.6g} {d['unit']}")
-    ax.plot([d["t_min"]], [d["min"]], "^", color="0.55", ms=6, label=f"min {d['min']:.6g} {d['unit']}")
+    ax.plot([d["t_max"]], [d["max"]], "v", color="0.25", ms=6, label=f"max {figure_number(d['max'], 6)} {d['unit']}")
+    ax.plot([d["t_min"]], [d["min"]], "^", color="0.55", ms=6, label=f"min {figure_number(d['min'], 6)} {d['unit']}")
     ax.set_ylabel(f"${d['label']}$ ({d['unit']})")
     ax.legend(loc="best", fontsize=8)
     axr.plot(d["t"], d["qd"], color=COLOURS[1 % len(COLOURS)], lw=1.3, label=f"${d['rate_label']}(t)$")

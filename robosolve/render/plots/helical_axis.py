@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.render.plots import one_3d_box, save
+from robosolve.core.prose import name_plot
+from robosolve.render.plots import figure_number, one_3d_box, save
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 FRAME_STYLE = {"initial": ("-", 1.0), "final": ("--", 1.0)}
@@ -27,7 +28,7 @@ def draw(spec, path):
         key = tuple(np.round(np.array(fr["origin"], dtype=float), 9))
         labels[key] = (labels[key] + " = " if key in labels else "") + fr["name"]
     for key, text in labels.items():
-        ax.text(*key, f" {text}", fontsize=9)
+        ax.text(*key, f" {name_plot(text)}", fontsize=9)
     for k, fr in enumerate(d["frames"]):
         o = np.array(fr["origin"], dtype=float)
         style, lw = FRAME_STYLE.get(fr["name"], (":", 0.8))
@@ -44,14 +45,14 @@ def draw(spec, path):
         half = max(span, 1.0) * 0.9
         a, b = p + (t0 - half) * u, p + (t0 + half) * u
         ax.plot([a[0], b[0]], [a[1], b[1]], [a[2], b[2]], "-", color="black", lw=1.8,
-                label=f"helical axis: α = {d['alpha']:.4g} rad, h = {d['h']:.4g}")
+                label=f"helical axis: α = {figure_number(d['alpha'])} rad, h = {figure_number(d['h'])}")
         ax.quiver(*p, *(u * scale * 1.5), color="black", arrow_length_ratio=0.25)
         ax.scatter(*p, color="black", s=25, depthshade=False, label="P* (nearest the origin)")
         pts += [a, b, p]
     elif axis is not None:  # pure translation
         o1, o2 = origins[1], origins[2]
         ax.quiver(*o1, *(o2 - o1), color="black", arrow_length_ratio=0.1,
-                  label=f"pure translation: h = {d['h']:.4g}")
+                  label=f"pure translation: h = {figure_number(d['h'])}")
     _equal(ax, np.array(pts, dtype=float))
     ax.set_xlabel("x")
     ax.set_ylabel("y")

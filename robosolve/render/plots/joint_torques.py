@@ -6,7 +6,7 @@ unit, values, peak, t_peak}].
 
 from __future__ import annotations
 
-from robosolve.render.plots import save, time_panels
+from robosolve.render.plots import figure_number, save, time_panels
 from robosolve.render.plots.motion_profile import COLOURS, mark_switches
 
 
@@ -21,9 +21,11 @@ def draw(spec, path):
         ax.plot([a["t_peak"]], [a["peak"]], "o", color="k", ms=5)
         # to the left of a peak in the second half of the run: the text stays inside the axes
         right = a["t_peak"] > d["T"] / 2
-        ax.annotate(f"peak {a['peak']:.4g} {a['unit']} at t = {a['t_peak']:.4g} s", (a["t_peak"], a["peak"]),
+        ax.annotate(f"peak {figure_number(a['peak'])} {a['unit']} at t = {figure_number(a['t_peak'])} s",
+                    (a["t_peak"], a["peak"]),
                     textcoords="offset points", xytext=(-8 if right else 8, -12 if a["peak"] > 0 else 6),
-                    ha="right" if right else "left", fontsize=8)
+                    ha="right" if right else "left", fontsize=8,
+                    bbox=dict(boxstyle="round,pad=0.2", fc="white", ec="none", alpha=0.85))
         ax.set_ylabel(f"${a['label']}$ ({a['unit']})")
     axes[0, 0].set_title(spec.title)
     axes[-1, 0].set_xlabel("t (s)")

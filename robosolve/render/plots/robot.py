@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from robosolve.core.prose import name_plot
 from robosolve.render.plots import one_3d_box, save
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
@@ -58,7 +59,7 @@ def draw_robot_3d(ax, d, colour="0.25", label=None, frames=True, scale=None, alp
                 v = np.array(axis, dtype=float) * scale
                 ax.plot([o[0], o[0] + v[0]], [o[1], o[1] + v[1]], [o[2], o[2] + v[2]],
                         color=AXIS_COLOURS[c], lw=1.2, alpha=alpha)
-            ax.text(o[0], o[1], o[2], f" {f['name']}", fontsize=8, color="0.3")
+            ax.text(o[0], o[1], o[2], f" {name_plot(f['name'])}", fontsize=8, color="0.3")
     for p in d["points"]:
         x, y, z = p["at"]
         hl = p["name"] == d.get("highlight")

@@ -16,7 +16,6 @@ from robosolve.render.plots import fixed_layout, one_3d_box, save, subplots
 from robosolve.render.plots.robot import extent
 
 AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
-AXIS_NAMES = ("x", "y", "z")
 LINK = "0.3"
 FORCE = "tab:purple"
 NAMES = "xyz"
@@ -66,7 +65,7 @@ def _draw_2d(ax, d, size):
         o = np.array(f["origin"], dtype=float)
         for c, axis in enumerate(f["axes"]):
             a = np.array(axis, dtype=float)
-            label = f"${AXIS_NAMES[c]}_{{{f['label']}}}$"
+            label = f["axis_labels"][c]
             if abs(a[normal]) > 0.9:          # normal to the page: ⊙ / ⊗
                 towards = a[normal] > 0 if (h, v) != (0, 2) else a[normal] < 0
                 ax.plot([o[h]], [o[v]], "o", ms=7, mfc="white", mec=AXIS_COLOURS[c], mew=1.2, zorder=4)
@@ -146,7 +145,7 @@ def _draw_3d(ax, d, size) -> list:
         for c, axis in enumerate(f["axes"]):
             tip = o + np.array(axis, dtype=float) * s
             ax.plot([o[0], tip[0]], [o[1], tip[1]], [o[2], tip[2]], color=AXIS_COLOURS[c], lw=1.4)
-            labels.append((tip, f"${AXIS_NAMES[c]}_{{{f['label']}}}$", AXIS_COLOURS[c], 9, "normal"))
+            labels.append((tip, f["axis_labels"][c], AXIS_COLOURS[c], 9, "normal"))
     for p in d["points"]:
         ax.scatter(*[[x] for x in p["at"]], s=30, color="tab:orange", marker="s", depthshade=False)
         labels.append((p["at"], p["name"], "tab:orange", 12, "bold"))

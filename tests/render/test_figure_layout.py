@@ -1,0 +1,103 @@
+"""Nothing a figure writes is clipped (issue 22): every title, label and annotation of the
+joint-torque figure lies inside the figure, and each peak's "peak … at t = …" inside its panel,
+wherever the peak falls in the run and however long its numbers are. Measured on matplotlib's
+own renderer (the text's window extent against the figure's and the axes' boxes)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from robosolve.core.prose import Num, Text
+from robosolve.solvers.base import FigureSpec
+
+
+def drawn(monkeypatch, kind, spec, tmp_path):
+    """Draw `spec` with the plot module of `kind`; the Figure it saved (and the PNG on disk)."""
+    import importlib
+
+    from robosolve.render import plots
+
+    module = importlib.import_module(f"robosolve.render.plots.{kind}")
+    figures = []
+    real = module.save
+
+    def keep(fig, path):
+        figures.append(fig)
+        real(fig, path)
+
+    monkeypatch.setattr(module, "save", keep)
+    plots.draw(spec, tmp_path / f"{spec.name}.png")
+    return figures[0]
+
+
+def clipped(fig) -> list[str]:
+    """What `fig` draws outside itself (its tight box: only what is drawn, the ticks in view
+    included), and the annotations outside their axes."""
+    from matplotlib.text import Annotation, Text as MplText
+
+    renderer = fig.canvas.get_renderer()
+    out = []
+    tight = fig.get_tightbbox(renderer)                  # inches
+    w, h = fig.get_size_inches()
+    if tight.x0 < -0.01 or tight.y0 < -0.01 or tight.x1 > w + 0.01 or tight.y1 > h + 0.01:
+        box = fig.bbox
+        outside = [t.get_text() for t in fig.findobj(MplText) if t.get_visible() and t.get_text().strip()
+                   and box.x0 <= t.get_window_extent(renderer).x1 and t.get_window_extent(renderer).x0 <= box.x1
+                   and not box.contains(*t.get_window_extent(renderer).p0)]
+        out.append(f"outside the figure: the drawing spans {tuple(round(x, 2) for x in tight.bounds)} "
+                   f"of (0, 0, {w:g}, {h:g}) {outside}")
+    for t in fig.findobj(Annotation):
+        if not t.get_visible() or not t.get_text().strip() or t.axes is None:
+            continue
+        e, a = t.get_window_extent(renderer), t.axes.get_window_extent(renderer)
+        if e.x0 < a.x0 or e.x1 > a.x1 or e.y0 < a.y0 or e.y1 > a.y1:
+            out.append(f"outside its panel: {t.get_text()!r} {e.bounds} not in {a.bounds}")
+    return out
+
+
+def torques_spec(T, peaks, values):
+    t = list(np.linspace(0.0, T, len(values[0])))
+    acts = [{"name": f"C{k + 1}", "label": f"C_{{{k + 1}}}", "unit": "N·m", "values": list(v),
+             "peak": p, "t_peak": tp} for k, (v, (p, tp)) in enumerate(zip(values, peaks))]
+    return FigureSpec("torques", "joint_torques", Text("Actuators along the profile (T = ", Num(T), " s)"),
+                      {"t": t, "T": T, "switches": [T / 2], "actuators": acts})
+
+
+CASES = {
+    # peak near the end, at the top of the panel (the text goes left and below)
+    "late": (1.77857, lambda s: 40 * s ** 3, 1.0),
+    # peak at the very start
+    "early": (2.0, lambda s: 50 * (1 - s) ** 2 - 10, 0.0),
+    # peak in the middle, long numbers (-123456.789 N·m at t = 1234.5678 s)
+    "middle-long": (2469.1356, lambda s: -123456.789 * np.sin(np.pi * s), 0.5),
+    # a negative peak late, near the bottom (the text goes left and above)
+    "late-negative": (0.3, lambda s: -7.123456 * s ** 4 + 0.1, 1.0),
+    # just past the middle
+    "just-past-middle": (1.0, lambda s: 3 * np.exp(-80 * (s - 0.51) ** 2), 0.51),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_joint_torque_texts_are_inside_the_figure_and_their_panels(monkeypatch, tmp_path, case):
+    T, f, where = CASES[case]
+    s = np.linspace(0.0, 1.0, 201)
+    first = f(s)
+    k = int(round(where * 200))
+    second = 0.3 * first[::-1]
+    j = int(np.argmax(np.abs(second)))
+    spec = torques_spec(T, [(float(first[k]), where * T), (float(second[j]), float(s[j] * T))], [first, second])
+    fig = drawn(monkeypatch, "joint_torques", spec, tmp_path)
+    assert clipped(fig) == []
+
+
+def test_the_check_sees_a_clipped_text(monkeypatch, tmp_path):
+    """The measure can fail: a title pushed off the figure is found."""
+    T, f, where = CASES["late"]
+    s = np.linspace(0.0, 1.0, 201)
+    spec = torques_spec(T, [(float(f(s)[-1]), T)], [f(s)])
+    fig = drawn(monkeypatch, "joint_torques", spec, tmp_path)
+    fig.axes[0].title.set_position((1.4, 1.0))
+    assert any("outside the figure" in c for c in clipped(fig))
+    fig.axes[0].texts[0].set_position((400, 0))
+    assert any("outside its panel" in c for c in clipped(fig))
