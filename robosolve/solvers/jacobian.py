@@ -170,20 +170,44 @@ def _singularity_steps(ans, question, ctx, ts):
     ans.symbolic["singularities"] = [c.mapping() for c in conds]
     for note in res.notes:
         ans.note(note)
-    rows = []
+    rows, long_families = [], []
     for c in conds:
-        rows.append([f"${c.latex()}$" if (c.values or c.equations) else "every configuration",
+        rows.append([_condition_cell(c, long_families),
                      "; ".join(c.names) if c.names else "",
                      _within_limits(c, model, params)])
     if conds:
         text = intro + " " + _count_text(conds)
         ans.steps.append(Step("Singular configurations", text,
                               table=(["condition", "configuration", "within the joint limits"], rows)))
+        ans.steps.extend(_family_step(k, c) for k, c in enumerate(long_families, 1))
     else:
         ans.steps.append(Step("Singular configurations",
                               "No factor vanishes for any joint value: J never loses rank "
                               "(for generic, non-zero parameters)."))
     return True
+
+
+# A condition longer than this (LaTeX characters) is written below the table, one equation a
+# line, instead of in its cell: a wide Jacobian's family can be several long minors together.
+LONG_CONDITION = 600
+
+
+def _condition_cell(c, long_families: list) -> str:
+    if not (c.values or c.equations):
+        return "every configuration"
+    tex = c.latex()
+    if len(tex) <= LONG_CONDITION:
+        return f"${tex}$"
+    long_families.append(c)
+    k = len(long_families)
+    return f"family ({k}) below: {len(c.equations) + len(c.values)} conditions together"
+
+
+def _family_step(k: int, c) -> Step:
+    return Step(f"Singular family ({k})",
+                "All of these hold together (a minor's equation, or a joint's value):",
+                equations=[("0", e) for e in c.equations]
+                + [(sp.latex(q), v) for q, v in c.values])
 
 
 STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its settled form

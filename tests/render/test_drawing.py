@@ -143,7 +143,12 @@ def test_a_failing_figure_is_named_in_the_texts(reports):
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
-    report = copy.deepcopy(reports[0])
+    # a copy of the report whose answers' lists may change (the report holds the problem's
+    # model, read-only mappings included, which need no copy)
+    report = copy.copy(reports[0])
+    report.answers = [copy.copy(a) for a in report.answers]
+    for a in report.answers:
+        a.figures, a.notes = list(a.figures), list(a.notes)
     answer = next(a for a in report.answers if a.figures)
     good = [s for s in answer.figures]
     answer.figures.append(_broken_spec())
