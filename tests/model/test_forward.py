@@ -202,7 +202,7 @@ def test_the_body_frame_route_is_the_l_matrix_seen_in_the_body(puma, tangle):
 
 @pytest.mark.parametrize("algebra", ["trig", pytest.param("sympy", marks=pytest.mark.slow)])
 def test_the_chain_data_over_the_dynamics_engines_own_algebra(algebra):
-    """The route the dynamics engine can take (ListChainAlgebra over its own ring, or its
+    """The route the dynamics engine takes (ListChainAlgebra over its own ring, or its
     SympyAlgebra fallback, and its poses): ⁰M, ⁰L and the body-frame ᵇL of ChainData equal the
     engine's public M0, L0 and Lb at random numbers."""
     from support.robots import anthropomorphic_3r
