@@ -13,7 +13,8 @@ How it is kept compact (same formulas, other frame and order of operations):
 * The trace is invariant when every factor is moved to the body frame j:
   tr(⁰L ⁰J ⁰Lᵀ) = tr(ᵇL ʲJ ᵇLᵀ) with ᵇLᵢⱼ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ = M_fj⁻¹ (A_f⁻¹ ∂A_f/∂qᵢ) M_fj,
   which depends only on the joints between joint i and body j (small entries), and ʲJ is
-  the body's own pseudo-inertia (constant).
+  the body's own pseudo-inertia (constant). The relative poses and ᵇL come from the one
+  chain computation (core/chain/forward.py, its body-frame route), over the engine's algebra.
 * Every entry is a polynomial in cos qᵢ, sin qᵢ (and prismatic qᵢ) with the parameters as
   coefficients, kept reduced modulo cos² + sin² = 1 in a sympy sparse polynomial ring
   (core/trigring.py): exact, canonical, fast; no `trigsimp` in the derivation. The final
@@ -32,6 +33,8 @@ from typing import Mapping
 
 import sympy as sp
 
+from robosolve.core.chain.algebras import ListChainAlgebra
+from robosolve.core.chain.forward import forward
 from robosolve.core.matrices import action_matrix
 from robosolve.core.simplify import coefficient, congruence_entry
 from robosolve.core.transforms import skew, vex
@@ -120,6 +123,10 @@ class DynamicsEngine:
         if alg is None:
             alg = SympyAlgebra(self.q, exprs, simplify=self.simplify)
         self.alg = alg
+        # the one chain computation (core/chain/forward.py: relative poses, body twists, ᵇL),
+        # over this algebra, the engine its own description
+        local = {name: self._mat4(("A", name)) for name in self.order}
+        self.chain_data = forward(self, ListChainAlgebra(alg, local))
 
     def _elems(self, key, n):
         k = self._slot[key]
@@ -165,35 +172,19 @@ class DynamicsEngine:
                 return name
         return None
 
+    # -- the engine as the description of its chain (what core/chain/forward.py asks) ------
+    def parent(self, name: str) -> str | None:
+        return None if name == BASE else self.frames[name].parent
+
+    def chain(self, name: str) -> list[str]:
+        return self.path(name)
+
+    def moved_by(self, name: str) -> list[int]:
+        """Indices of the joints in frame `name`'s local pose."""
+        return self._cached(("moved_by", name), lambda: [
+            i for i in range(self.n) if self.local(name).has(self.q[i])])
+
     # ------------------------------------------------------------------ core (algebra)
-    def _rrel(self, a: str, b: str):
-        """ᵃM_b as algebra elements, `a` an ancestor of `b`."""
-        if a == b:
-            return self.alg.eye(4)
-        return self._cached(("rrel", a, b), lambda: self.alg.matmul(
-            self._rrel(a, self.frames[b].parent), self._mat4(("A", b))))
-
-    def _rS(self, name: str, i: int):
-        """A_f⁻¹ ∂A_f/∂qᵢ (joint i's L in the frame it moves)."""
-        def build():
-            a = self._mat4(("A", name))
-            return self.alg.matmul(self.alg.rigid_inverse(a), self.alg.mdiff(a, i))
-        return self._cached(("rS", name, i), build)
-
-    def _rLb(self, i: int, name: str):
-        """ᵇLᵢⱼ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ = Σ_f M_fj⁻¹ (A_f⁻¹ ∂A_f/∂qᵢ) M_fj."""
-        def build():
-            alg = self.alg
-            total = alg.zeros(4)
-            for f in self.path(name):
-                if not self.local(f).has(self.q[i]):
-                    continue
-                r = self._rrel(f, name)
-                term = alg.matmul(alg.matmul(alg.rigid_inverse(r), self._rS(f, i)), r)
-                total = alg.madd(total, term)
-            return [[alg.reduce(x) for x in row] for row in total]
-        return self._cached(("rLb", i, name), build)
-
     def _rbody_M(self, b: BodySpec):
         """Mass matrix of one body: tr(ᵇLᵢ ʲJ ᵇLₖᵀ)."""
         def build():
@@ -201,7 +192,7 @@ class DynamicsEngine:
             jm = self._mat4(("J", b.name))
             out = alg.zeros(self.n)
             idx = self.moving(b.frame)
-            lbs = {i: self._rLb(i, b.frame) for i in idx}
+            lbs = {i: self.chain_data.body_L(i, b.frame) for i in idx}
             # ᵇLᵢ J once per i, then the trace with ᵇLₖ
             lj = {i: alg.matmul(lbs[i], jm) for i in idx}
             for a_, i in enumerate(idx):
@@ -233,7 +224,7 @@ class DynamicsEngine:
             grav = self._elems(("grav",), 3)
             out = {}
             for b in self.bodies:
-                m0 = self._rrel(BASE, b.frame)
+                m0 = self.chain_data.relative(BASE, b.frame)
                 jm = self._mat4(("J", b.name))
                 acc = alg.zero
                 for r in range(3):
@@ -291,8 +282,8 @@ class DynamicsEngine:
             f, p, c = (self._elems((key, k), 3) for key in ("F", "P", "C"))
             src = ld.in_frame or ld.frame
             if src != ld.frame:
-                m_f = self._rrel(BASE, ld.frame)
-                m_s = self._rrel(BASE, src) if src != BASE else alg.eye(4)
+                m_f = self.chain_data.relative(BASE, ld.frame)
+                m_s = self.chain_data.relative(BASE, src) if src != BASE else alg.eye(4)
                 rot = [[alg.reduce(sum((m_f[t][r] * m_s[t][col] for t in range(3)), alg.zero))
                         for col in range(3)] for r in range(3)]
                 f = [alg.reduce(sum((rot[r][t] * f[t] for t in range(3)), alg.zero))
@@ -318,7 +309,7 @@ class DynamicsEngine:
     def _rext(self):
         """Generalized forces of the loads: Σ Φ_b ⊗ ᵇLᵢⱼ (frame invariant, course-notes#note-pseudo-scalar-product)."""
         def terms(i):
-            return ((self._rload_phi(k), self._rLb(i, ld.frame))
+            return ((self._rload_phi(k), self.chain_data.body_L(i, ld.frame))
                     for k, ld in enumerate(self.loads) if i in self.moving(ld.frame))
         return self._cached("rext", lambda: self._pseudo_scalar_sums(terms))
 
@@ -400,17 +391,17 @@ class DynamicsEngine:
 
     def rel(self, a: str, b: str) -> sp.Matrix:
         """ᵃM_b for `a` an ancestor of `b` (or a == b)."""
-        return self._view(("rel", a, b), self._rrel(a, b))
+        return self._view(("rel", a, b), self.chain_data.relative(a, b))
 
     def M0(self, name: str) -> sp.Matrix:
         return self.rel(BASE, name) if name != BASE else sp.eye(4)
 
     def twist_local(self, name: str, i: int) -> sp.Matrix:
-        return self._view(("S", name, i), self._rS(name, i))
+        return self._view(("S", name, i), self.chain_data.body_twist(name, i))
 
     def Lb(self, i: int, name: str) -> sp.Matrix:
         """ᵇLᵢⱼ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ, the L matrix of joint i seen in body frame `name`."""
-        return self._view(("Lb", i, name), self._rLb(i, name))
+        return self._view(("Lb", i, name), self.chain_data.body_L(i, name))
 
     def L0(self, i: int, name: str | None = None) -> sp.Matrix:
         """⁰Lᵢ = ∂M₀ⱼ/∂qᵢ·M₀ⱼ⁻¹ (frame j = the joint's own frame by default)."""
@@ -475,7 +466,7 @@ class DynamicsEngine:
         """⁰J = M₀ⱼ ʲJ M₀ⱼᵀ (for the report; energies use the body frame)."""
         def build():
             alg = self.alg
-            m = self._rrel(BASE, b.frame)
+            m = self.chain_data.relative(BASE, b.frame)
             mt = [list(r) for r in zip(*m)]
             return alg.matmul(alg.matmul(m, self._mat4(("J", b.name))), mt)
         ring = self._view(("J0", b.name), self._cached(("rJ0", b.name), build))
@@ -505,7 +496,7 @@ class DynamicsEngine:
         scaled so that Φ ⊗ L = actuator."""
         def build():
             name = self.joint_frame(i)
-            s = self.alg.to_matrix(self._rS(name, i))
+            s = self.alg.to_matrix(self.chain_data.body_twist(name, i))
             w = vex(s[:3, :3])
             a = self.joints[i].actuator
             if any(x != 0 for x in w):
@@ -551,7 +542,7 @@ class DynamicsEngine:
                     continue
                 phi = [[alg.from_expr(x) for x in row] for row in
                        self.actuator_action(i).tolist()]
-                m = self._rrel(BASE, f)
+                m = self.chain_data.relative(BASE, f)
                 add(f, m, phi, 1)
                 parent = self.frames[f].parent
                 parent_link = self.link_of(parent) if parent != BASE else None
@@ -560,7 +551,7 @@ class DynamicsEngine:
             for k, load in enumerate(self.loads):
                 link = self.link_of(load.frame)
                 if link is not None:
-                    add(link, self._rrel(BASE, load.frame), self._rload_phi(k), 1)
+                    add(link, self.chain_data.relative(BASE, load.frame), self._rload_phi(k), 1)
             order = {f: t for t, f in enumerate(self.order)}
             return {k: [[alg.reduce(x) for x in row] for row in out[k]]
                     for k in sorted(out, key=order.get)}
@@ -574,8 +565,8 @@ class DynamicsEngine:
     def _rL0(self, i: int, name: str):
         def build():
             alg = self.alg
-            m = self._rrel(BASE, name)
-            return alg.matmul(alg.matmul(m, self._rLb(i, name)), alg.rigid_inverse(m))
+            m = self.chain_data.M(name)
+            return alg.matmul(alg.matmul(m, self.chain_data.body_L(i, name)), alg.rigid_inverse(m))
         return self._cached(("rL0", i, name), build)
 
     def _rcourse_f(self):

@@ -156,8 +156,8 @@ class RingChain:
     """Poses ⁰Mf and ⁰Lᵢ of a serial chain in the trig ring, every product reduced
     (canonical: the entries of a serial arm's Jacobian come out multilinear, as compact
     as trigsimp would make them, in milliseconds): the one chain computation
-    (model/forward.py) over the ring, `model.ring_chain` (the model's
-    model/algebras.RingChainAlgebra over these frames)."""
+    (core/chain/forward.py) over the ring, `model.ring_chain` (the model's
+    core/chain/algebras.RingChainAlgebra over these frames)."""
 
     def __init__(self, model, frame: str, points=()):
         self.model = model

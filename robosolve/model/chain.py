@@ -2,8 +2,8 @@
 
 `RobotModel` is built once per problem and memoises everything it derives, so
 solvers share one chain product, one set of L matrices, and so on. It holds the problem's
-`ChainDescription` (model/description.py) and its chain data over sympy (model/forward.py
-with model/algebras.SympyChainAlgebra); the LaTeX names are render/chain_names.py's.
+`ChainDescription` (model/description.py) and its chain data over sympy (core/chain/forward.py
+with core/chain/algebras.SympyChainAlgebra); the LaTeX names are render/chain_names.py's.
 
 Conventions (spec §3; docs/course-notes.md: frame-notation, w-matrix, h-matrix, l-matrix): M_0j = M_01 M_12 ... ; W_0j = Mdot_0j M_0j^-1
 and H_0j = Mddot_0j M_0j^-1, both expressed in frame 0; the L matrix of joint i
@@ -19,14 +19,14 @@ from robosolve.core import matrices as mx
 from robosolve.core.simplify import tidy, tidy_matrix
 from robosolve.core.transforms import ELEMENTARY, rigid_inverse
 from robosolve.load.problem import Body, Problem
-from robosolve.model.algebras import RingChainAlgebra, SympyChainAlgebra
+from robosolve.core.chain.algebras import RingChainAlgebra, SympyChainAlgebra
 from robosolve.model.description import ChainDescription, elementary_factors
-from robosolve.model.forward import forward
+from robosolve.core.chain.forward import forward
 
 
 class RobotModel:
     """Symbolic kinematics and mass model of a problem's robot: the sympy user of the one
-    chain computation (model/forward.py over model/algebras.SympyChainAlgebra)."""
+    chain computation (core/chain/forward.py over core/chain/algebras.SympyChainAlgebra)."""
 
     def __init__(self, problem: Problem):
         self.problem = problem

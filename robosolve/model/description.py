@@ -7,7 +7,7 @@ the frame each joint moves, and the points. The symbolic inputs every algebra st
 derived from it once and memoised (it is the only state it keeps): the local pose A_f (the
 product of its factors, tidied), the local twist of each joint ᵖL = ∂A/∂qᵢ A⁻¹ (from the
 factors' structure when it applies), and the raw chain-rule derivatives Ȧ, Ä.
-`robosolve.model.forward` computes the chain data (M, L, W, H) from it over an algebra.
+`robosolve.core.chain.forward` computes the chain data (M, L, W, H) from it over an algebra.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 Only the small local inputs (each frame's pose in its parent, the joints' twists, Ä) are
 symbolic, evaluated once; the products, Rivals and Coriolis are the one chain computation
-(model/forward.py) over numpy (model/algebras.NumpyChainAlgebra). No simplified expression
+(core/chain/forward.py) over numpy (core/chain/algebras.NumpyChainAlgebra). No simplified expression
 built for the report is evaluated (simplifying H costs seconds and a number needs none of
 it), every numeric answer exists even when a symbolic product is too large, and this is an
 independent route to cross-check the symbolic one.
@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from robosolve.model.algebras import NumpyChainAlgebra, evaluate
-from robosolve.model.numpy_algebra import rigid_inverse
-from robosolve.model.forward import forward
+from robosolve.core.chain.algebras import NumpyChainAlgebra, evaluate
+from robosolve.core.chain.numpy_algebra import rigid_inverse
+from robosolve.core.chain.forward import forward
 
 __all__ = ["NumericChain", "evaluate", "rigid_inverse"]
 

@@ -20,21 +20,21 @@ import inspect
 
 import sympy as sp
 
-from robosolve.model import forward, numpy_algebra
+from robosolve.core.chain import forward, numpy_algebra
 from robosolve.questions.notebook_code import literal, text
 from robosolve.questions.registry import QUESTION_TYPES
 from robosolve.render import notebook_runtime
 
 
 def runtime_source() -> str:
-    """The runtime cell: robosolve's numeric chain computation (model/forward.py and
-    model/numpy_algebra.py: numpy only), then notebook_runtime.py without its two imports of them."""
+    """The runtime cell: robosolve's numeric chain computation (core/chain/forward.py and
+    core/chain/numpy_algebra.py: numpy only), then notebook_runtime.py without its two imports of them."""
     runtime = "".join(line for line in inspect.getsource(notebook_runtime).splitlines(keepends=True)
                       if not line.startswith("from robosolve."))
     parts = [inspect.getsource(forward).rstrip("\n"), inspect.getsource(numpy_algebra).rstrip("\n"),
              runtime.rstrip("\n")]
     return ("# The notebook's runtime (robosolve/render/notebook_runtime.py, after robosolve's chain\n"
-            "# computation model/forward.py and model/numpy_algebra.py, copied in): sympy, numpy and\n"
+            "# computation core/chain/forward.py and core/chain/numpy_algebra.py, copied in): sympy, numpy and\n"
             "# matplotlib only.\n" + "\n\n\n".join(parts))
 
 

@@ -3,7 +3,7 @@
 robosolve copies this module's source into the first code cell of every notebook it writes
 (robosolve/render/notebook.py, with `inspect.getsource`), so a notebook runs anywhere with only
 sympy, numpy and matplotlib installed: this module imports nothing else but robosolve's own
-numeric chain computation (robosolve/model/forward.py and model/numpy_algebra.py, which import
+numeric chain computation (robosolve/core/chain/forward.py and core/chain/numpy_algebra.py, which import
 nothing but numpy), whose sources the cell copies in before it, without the two import lines. The tests import it in-process and compare it with robosolve's engines
 (tests/render/test_notebook_runtime.py).
 
@@ -27,8 +27,8 @@ nothing but numpy), whose sources the cell copies in before it, without the two 
 import numpy as np
 import sympy as sp
 
-from robosolve.model.forward import ChainData  # the notebook: forward.py is copied in above
-from robosolve.model.numpy_algebra import NumpyOperations, rigid_inverse  # copied in above
+from robosolve.core.chain.forward import ChainData  # the notebook: forward.py is copied in above
+from robosolve.core.chain.numpy_algebra import NumpyOperations, rigid_inverse  # copied in above
 
 np.set_printoptions(precision=6, suppress=True)
 

@@ -346,3 +346,32 @@ def test_offsets_and_symbolic_angles_against_kane():
                            atol=1e-12)
         assert np.allclose(np.array((fk - rhs).xreplace(pt).evalf(), dtype=float), 0,
                            atol=1e-12)
+
+
+# ----------------------------------------------------------------- the one chain computation
+@pytest.mark.parametrize("algebra", ["trig", "sympy"])
+def test_engine_chain_is_the_one_chain_computation(algebra):
+    """The engine's relative poses and body-frame L come from core/chain/forward.py (the engine
+    its own description), and equal an independent route: the plain sympy product of the local
+    poses and ᵇLᵢ = M₀ⱼ⁻¹ ∂M₀ⱼ/∂qᵢ differentiated as a whole, at random numbers."""
+    from robosolve.core.chain.forward import ChainData
+
+    r = ex.planar_2r()
+    eng = DynamicsEngine(**r.engine_inputs(), algebra=algebra)
+    assert isinstance(eng.chain_data, ChainData) and eng.chain_data.description is eng
+    assert eng.parent(eng.order[0]) == "0" and eng.parent("0") is None
+    rng = np.random.default_rng(21)
+    subs = {**{k: sp.Float(v) for k, v in r.values.items()}, **dict(zip(eng.q, rng.uniform(-2, 2, eng.n)))}
+
+    def num(m):
+        return np.array(sp.Matrix(m).xreplace(subs).evalf(), dtype=float)
+
+    for frame in eng.order:
+        m0 = sp.eye(4)
+        for f in eng.path(frame):
+            m0 = m0 * eng.local(f)
+        np.testing.assert_allclose(num(eng.M0(frame)), num(m0), atol=1e-12)
+        m0_inv = num(m0.inv())
+        for i in eng.moving(frame):
+            np.testing.assert_allclose(num(eng.Lb(i, frame)), m0_inv @ num(m0.diff(eng.q[i])), atol=1e-12)
+            np.testing.assert_allclose(num(eng.L0(i, frame)), num(m0.diff(eng.q[i])) @ m0_inv, atol=1e-12)

@@ -1,4 +1,4 @@
-"""The one chain computation (model/description.py, model/forward.py, model/algebras.py)
+"""The one chain computation (model/description.py, core/chain/forward.py, core/chain/algebras.py)
 against independent references: Robotics Toolbox's `fkine` / `jacob0` of a standard-DH arm,
 finite differences of the poses along a motion for W = Ṁ M⁻¹ and H = M̈ M⁻¹, and the three
 algebras (sympy, trig ring, numpy) against each other."""
@@ -13,9 +13,9 @@ from conftest import PROBLEMS
 from robosolve.core.transforms import rigid_inverse
 from robosolve.load.loader import load_problem, load_problem_text
 from robosolve.model import RobotModel
-from robosolve.model.algebras import NumpyChainAlgebra, SympyChainAlgebra
+from robosolve.core.chain.algebras import NumpyChainAlgebra, SympyChainAlgebra
 from robosolve.model.description import ChainDescription
-from robosolve.model.forward import forward
+from robosolve.core.chain.forward import forward
 
 rtb = pytest.importorskip("roboticstoolbox")
 
@@ -202,12 +202,12 @@ def test_the_body_frame_route_is_the_l_matrix_seen_in_the_body(puma, tangle):
 
 @pytest.mark.parametrize("algebra", ["trig", pytest.param("sympy", marks=pytest.mark.slow)])
 def test_the_chain_data_over_the_dynamics_engines_own_algebra(algebra):
-    """The route the dynamics engine can take (ListChainAlgebra over its own ring, or its
+    """The route the dynamics engine takes (ListChainAlgebra over its own ring, or its
     SympyAlgebra fallback, and its poses): ⁰M, ⁰L and the body-frame ᵇL of ChainData equal the
     engine's public M0, L0 and Lb at random numbers."""
     from support.robots import anthropomorphic_3r
     from robosolve.dynamics.engine import DynamicsEngine
-    from robosolve.model.algebras import ListChainAlgebra
+    from robosolve.core.chain.algebras import ListChainAlgebra
 
     r = anthropomorphic_3r()
     eng = DynamicsEngine(**r.engine_inputs(), algebra=algebra)

@@ -14,7 +14,7 @@ import sympy as sp
 from robosolve.load.loader import load_problem
 from robosolve.model.chain import RobotModel
 from robosolve.render import notebook_runtime as rt
-from robosolve.model import forward, numpy_algebra
+from robosolve.core.chain import forward, numpy_algebra
 from robosolve.model.numeric import NumericChain
 from robosolve.render.notebook import data_cell, runtime_source
 from robosolve.questions.notebook_code import literal
@@ -63,15 +63,15 @@ def test_the_runtime_imports_only_sympy_numpy_and_matplotlib():
     before it, imports nothing of robosolve."""
     modules = _imported(inspect.getsource(rt))
     assert {m.split(".")[0] for m in modules} <= {"numpy", "sympy", "matplotlib", "IPython", "robosolve"}
-    assert {m for m in modules if m.startswith("robosolve")} == {"robosolve.model.forward",
-                                                                  "robosolve.model.numpy_algebra"}
+    assert {m for m in modules if m.startswith("robosolve")} == {"robosolve.core.chain.forward",
+                                                                  "robosolve.core.chain.numpy_algebra"}
     assert _imported(inspect.getsource(forward)) == set()
     assert _imported(inspect.getsource(numpy_algebra)) == {"numpy"}
     cell = runtime_source()
     assert {m.split(".")[0] for m in _imported(cell)} <= {"numpy", "sympy", "matplotlib", "IPython"}
     namespace = {}
     exec(compile(cell, "runtime cell", "exec"), namespace)      # runs without robosolve's modules
-    assert namespace["ChainData"].__module__ != "robosolve.model.forward"
+    assert namespace["ChainData"].__module__ != "robosolve.core.chain.forward"
     tree = ast.parse(cell)
     calls = {n.func.id for n in ast.walk(tree) if isinstance(n, ast.Call) and isinstance(n.func, ast.Name)}
     assert not calls & {"open", "exec", "eval", "__import__"}

@@ -28,8 +28,10 @@ Each quantity asks only for what it needs: an algebra without rates (the ring) s
 points and the body-frame L.
 
 The description needs `parent`, `chain`, `moved_by`, `joint_frame`, `constant_twist` and
-`point_frame` (robosolve.model.description.ChainDescription; the notebook's `Robot` chain). This module imports nothing, so
-that it can be copied into a notebook as it is.
+`point_frame` (robosolve.model.description.ChainDescription; the notebook's `Robot` chain); the
+body-frame route needs only `parent`, `chain` and `moved_by` (robosolve.dynamics.engine's
+DynamicsEngine, its own description). This module imports nothing, so that it can be copied
+into a notebook as it is.
 """
 
 BASE = "0"

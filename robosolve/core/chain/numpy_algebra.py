@@ -1,6 +1,6 @@
-"""The numpy operations of the chain computation (model/forward.py's algebra on floats).
+"""The numpy operations of the chain computation (core/chain/forward.py's algebra on floats).
 
-Self-contained (numpy only): robosolve's `NumericChain` (model/algebras.NumpyChainAlgebra adds
+Self-contained (numpy only): robosolve's `NumericChain` (core/chain/algebras.NumpyChainAlgebra adds
 the inputs evaluated from a ChainDescription) and the notebook's runtime (render/notebook.py
 copies this module and forward.py into report.ipynb) use the same source.
 """

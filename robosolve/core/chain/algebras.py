@@ -1,4 +1,4 @@
-"""The algebras `robosolve.model.forward` computes the chain in (its strategy objects).
+"""The algebras `robosolve.core.chain.forward` computes the chain in (its strategy objects).
 
 * `SympyChainAlgebra`: sympy matrices, every product tidied by core/simplify.py's chain
   variants (the report's M, L, W, H: RobotModel);
@@ -6,7 +6,7 @@
   reduced modulo sᵢ² + cᵢ² = 1, canonical (the structured determinant); `ListChainAlgebra`,
   which it extends, takes any list algebra with that interface and its poses (the dynamics
   engine's own ring, or its SympyAlgebra fallback);
-* `NumpyChainAlgebra`: floats at one configuration (the operations of model/numpy_algebra.py);
+* `NumpyChainAlgebra`: floats at one configuration (the operations of core/chain/numpy_algebra.py);
   only the small local inputs are symbolic and evaluated once (NumericChain).
 
 Each one turns the description's symbolic inputs (local pose, twist, Ä A⁻¹, joint rates,
@@ -23,8 +23,8 @@ from robosolve.core.simplify import tidy, tidy_matrix, tidy_products_matrix
 from robosolve.core.transforms import homogeneous, rigid_inverse
 from robosolve.core.trigring import TrigAlgebra
 from robosolve.errors import MissingValues
-from robosolve.model.numpy_algebra import NumpyOperations
-from robosolve.model.numpy_algebra import rigid_inverse as rigid_inverse_np
+from robosolve.core.chain.numpy_algebra import NumpyOperations
+from robosolve.core.chain.numpy_algebra import rigid_inverse as rigid_inverse_np
 
 __all__ = ["ListChainAlgebra", "NumpyChainAlgebra", "RingChainAlgebra", "SympyChainAlgebra", "evaluate"]
 
@@ -212,7 +212,7 @@ def evaluate(obj, subs) -> np.ndarray:
 
 class NumpyChainAlgebra(NumpyOperations):
     """Floats at the substitutions `subs`: the local inputs evaluated once each, the operations
-    of model/numpy_algebra.py."""
+    of core/chain/numpy_algebra.py."""
 
     def __init__(self, description, subs: dict):
         self.description = description
