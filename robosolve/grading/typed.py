@@ -14,25 +14,30 @@ class ArrayTextError(ValueError):
     """The text is not a matrix or vector in MATLAB or Python notation."""
 
 
-def _split(text: str, sep: str) -> list[str]:
-    """`text` split at `sep` outside brackets and parentheses."""
+def split_top_level(text: str, sep: str, strict: bool = True) -> list[str]:
+    """`text` split at `sep` outside brackets and parentheses; `strict`: unbalanced brackets
+    are an ArrayTextError (else the text is split as far as it goes)."""
     parts, depth, cur = [], 0, ""
     for ch in text:
         if ch in "([":
             depth += 1
         elif ch in ")]":
             depth -= 1
-            if depth < 0:
+            if depth < 0 and strict:
                 raise ArrayTextError("unbalanced brackets")
         if ch == sep and depth == 0:
             parts.append(cur)
             cur = ""
         else:
             cur += ch
-    if depth != 0:
+    if depth != 0 and strict:
         raise ArrayTextError("unbalanced brackets")
     parts.append(cur)
     return parts
+
+
+def _split(text: str, sep: str) -> list[str]:
+    return split_top_level(text, sep)
 
 
 def _words(row: str) -> list[str]:

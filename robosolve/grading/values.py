@@ -174,19 +174,9 @@ def _join(where: str, more: str) -> str:
 
 def _split_equations(text: str) -> list[str]:
     """'a = 0, theta2 = pi' -> ['a = 0', 'theta2 = pi'] (commas inside brackets kept)."""
-    parts, depth, cur = [], 0, ""
-    for ch in text:
-        if ch in "([":
-            depth += 1
-        elif ch in ")]":
-            depth -= 1
-        if ch == "," and depth == 0:
-            parts.append(cur)
-            cur = ""
-        else:
-            cur += ch
-    parts.append(cur)
-    return [p.strip() for p in parts if p.strip()]
+    from robosolve.grading.typed import split_top_level
+
+    return [p.strip() for p in split_top_level(text, ",", strict=False) if p.strip()]
 
 
 def map_leaves(tree, fn, is_leaf=lambda x: isinstance(x, sp.Basic)):
