@@ -84,9 +84,10 @@ def _check(ql, path, item, q):
 def _pose_cell(q, answer, problem, target):
     """A pose target: each of robosolve's solutions checked by the direct kinematics (a search
     over six joints is too long for a notebook cell)."""
-    names = [j.name for j in problem.joints]
     frame = problem.points[q.point].frame if q.point_given else q.frame
     want = {"solutions": answer.numeric.get("solutions") or []}
+    # the joints the solutions give (a joint that does not move the target frame is in none)
+    names = [j.name for j in problem.joints if any(j.name in s for s in want["solutions"])]
     R = [[text(target.R[i, k]) for k in range(3)] for i in range(3)]
     p = [text(v) for v in target.p]
     where = (f"(robot.pose({frame!r})[:3, :3].row_join(robot.point0({q.point!r})))" if q.point_given
