@@ -34,7 +34,7 @@ def batch(
 
     files = batch_mod.collect(source)
     if not files:
-        err(f"{source}: no problem files found")
+        err(f"{source}: {batch_mod.why_no_files(source)}")
         raise typer.Exit(ExitStatus.INPUT)
     if update and check is None:
         err("--update goes with --check GOLDEN_DIR")

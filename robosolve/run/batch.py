@@ -30,6 +30,21 @@ def collect(source: str) -> list[Path]:
     return sorted(files)
 
 
+def why_no_files(source: str) -> str:
+    """Why `collect(source)` found nothing, in the user's words: a device, pipe or socket is
+    not a problem file (`batch /dev/zero`); otherwise no *.yaml / *.yml matched."""
+    import stat
+
+    try:
+        mode = Path(source).stat().st_mode
+    except OSError:
+        mode = None
+    if mode is not None and not (stat.S_ISREG(mode) or stat.S_ISDIR(mode)):
+        return ("a device, pipe or socket, not a regular file: give a problem file, a folder "
+                "of them or a glob pattern")
+    return "no problem files found"
+
+
 def solve_one(path: str, formats=("md",)) -> dict:
     """Load, solve, render one problem file in this process: a summary and the files
     (relative path -> bytes); never raises on bad input. Writes nothing."""

@@ -84,3 +84,21 @@ def test_one_is_singular_in_what_the_commands_say(tmp_path):
     assert r.exit_code == 0 and "paper of 1 question ->" in r.output, r.output
     r = runner.invoke(app, ["variants", str(p), "--count", "1", "--no-solve", "--out", str(tmp_path / "v")])
     assert r.exit_code == 0 and "1 variant of mini" in r.output, r.output
+
+
+@pytest.mark.parametrize("special", ["/dev/zero", "fifo"])
+def test_batch_of_a_device_or_a_pipe_says_it_is_not_a_regular_file(tmp_path, special):
+    import os
+
+    if special == "fifo":
+        special = str(tmp_path / "pipe.yaml")
+        os.mkfifo(special)
+    r = runner.invoke(app, ["batch", special, "--out", str(tmp_path / "o")])
+    assert r.exit_code == 2
+    assert "not a regular file" in r.output and "no problem files found" not in r.output
+    assert not (tmp_path / "o").exists()
+
+
+def test_batch_of_a_folder_without_problems_says_none_found(tmp_path):
+    r = runner.invoke(app, ["batch", str(tmp_path), "--out", str(tmp_path / "o")])
+    assert r.exit_code == 2 and "no problem files found" in r.output
