@@ -8,7 +8,7 @@ import sympy as sp
 from robosolve.core.prose import name_tex
 from robosolve.core.simplify import exact_geometry
 from robosolve.errors import SymbolicTimeout
-from robosolve.solvers.base import Answer, MissingValues, SolveContext
+from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
 
 def frame_tex(name: str) -> str:
@@ -105,3 +105,15 @@ def geometry_matrix(ctx: SolveContext, m, seconds: float = 10.0):
             return m.applyfunc(lambda e: exact_geometry(e, ops))
     except SymbolicTimeout:
         return m
+
+
+def potential_step(eng, shown) -> Step:
+    """The gravity matrix and each body's potential energy U_j, written as `shown(body)` gives it
+    (the sympy route of the equations of motion, and the trig ring's of a big robot)."""
+    return Step(
+        "Gravity matrix and potential energy",
+        "${}^{0}H_g$ holds the gravity vector in its last column; "
+        "$U_j = -\\mathrm{tr}({}^{0}H_g\\,{}^{0}J_j)$ ($= m_j\\,g\\,z_{G}$ for gravity $(0, 0, -g)$).",
+        equations=[("{}^{0}H_g", eng.hg())]
+        + [(f"U_{{{name_tex(b.name, False)}}}", shown(b)) for b in eng.bodies],
+    )

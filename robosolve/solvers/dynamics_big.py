@@ -20,6 +20,7 @@ from robosolve.dynamics.engine import SHOW_TERMS
 from robosolve.dynamics.numeric import ChainDynamics
 from robosolve.core.prose import name_tex
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
+from robosolve.solvers.common import potential_step
 
 __all__ = ["solve_big"]
 
@@ -93,16 +94,7 @@ def _steps_energy(ans, eng, poly) -> None:
         kin.equations.append((f"T_{{{name_tex(b.name, False)}}}",
                               _kinetic(eng, poly["body_mass_matrices"][b.name])))
     ans.steps.append(kin)
-    pot = Step(
-        "Gravity matrix and potential energy",
-        "${}^{0}H_g$ holds the gravity vector in its last column; "
-        "$U_j = -\\mathrm{tr}({}^{0}H_g\\,{}^{0}J_j)$ ($= m_j\\,g\\,z_{G}$ for gravity $(0, 0, -g)$).",
-        equations=[("{}^{0}H_g", eng.hg())],
-    )
-    for b in eng.bodies:
-        pot.equations.append((f"U_{{{name_tex(b.name, False)}}}",
-                              _entry(eng, poly["potential_energy"][b.name])))
-    ans.steps.append(pot)
+    ans.steps.append(potential_step(eng, lambda b: _entry(eng, poly["potential_energy"][b.name])))
     m = poly["mass_matrix"]
     n = eng.n
     u = sum(poly["potential_energy"].values(), eng.alg.zero)

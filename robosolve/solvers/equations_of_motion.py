@@ -17,7 +17,7 @@ from robosolve.dynamics.bridge import numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
-from robosolve.solvers.common import frame_tex, m_name
+from robosolve.solvers.common import frame_tex, m_name, potential_step
 from robosolve.core.prose import name_tex
 
 # Largest expression (count_ops) written out in a report step; bigger ones are named only.
@@ -158,15 +158,7 @@ def _steps_energy(ans, model, eng, dyn):
     for b in eng.bodies:
         kin.equations.append((f"T_{{{name_tex(b.name, False)}}}", _show(dyn.kinetic_energy[b.name])))
     ans.steps.append(kin)
-    pot = Step(
-        "Gravity matrix and potential energy",
-        "${}^{0}H_g$ holds the gravity vector in its last column; "
-        "$U_j = -\\mathrm{tr}({}^{0}H_g\\,{}^{0}J_j)$ ($= m_j\\,g\\,z_{G}$ for gravity $(0, 0, -g)$).",
-        equations=[("{}^{0}H_g", eng.hg())],
-    )
-    for b in eng.bodies:
-        pot.equations.append((f"U_{{{name_tex(b.name, False)}}}", _show(dyn.potential_energy[b.name])))
-    ans.steps.append(pot)
+    ans.steps.append(potential_step(eng, lambda b: _show(dyn.potential_energy[b.name])))
     t_total = sp.Add(*dyn.kinetic_energy.values())
     u_total = sp.Add(*dyn.potential_energy.values())
     ans.steps.append(Step(
