@@ -8,6 +8,9 @@
   import floor, goal ≤ 1.3 (issue 26; 2.0 in issue 15);
 * PUMA 560 position + geometric 6×6 Jacobian + orientation + EOM
   (bench/problems/puma560-4q.yaml) vs the import floor, goal ≤ 2.0 (issue 26; 5.0 in issue 15);
+* the UR5 (problems/ur5.yaml: position, geometric 6×6 Jacobian with its singular families, the
+  flange's 3×6 position Jacobian with its rank conditions, IK of a pose, the equations of motion)
+  vs the import floor, goal ≤ 3.0 (issue 26);
 * the Franka Panda (problems/panda.yaml: position, 6×7 Jacobian, IK of frame 6's pose, the
   equations of motion of 7 point masses) vs the import floor, goal ≤ 8.0 (issue 26);
 * a batch of 14 problems (problems/*.yaml + the 3R bench problem) with `robosolve batch`
@@ -30,6 +33,8 @@ SINGLE = {
            "bench/problems/anthropomorphic-3r-5q.yaml", 1.3),
     "puma": ("PUMA 560: position, geometric 6×6 Jacobian, orientation, EOM",
              "bench/problems/puma560-4q.yaml", 2.0),
+    "ur5": ("UR5: position, geometric 6×6 Jacobian, flange 3×6 Jacobian, IK of a pose, EOM",
+            "problems/ur5.yaml", 3.0),
     "panda": ("Franka Panda: position, geometric 6×7 Jacobian, IK of a pose, EOM (7 joints)",
               "problems/panda.yaml", 8.0),
 }
