@@ -54,9 +54,21 @@ def _latex(sym) -> str:
     return sp.latex(sym)
 
 
+LABEL_CHARS = 10     # a longer name is cut in the drawing (the paper's text gives it whole)
+
+
+def _shown(name: str) -> str:
+    """A name as the drawing labels it: whole up to LABEL_CHARS characters, else its first
+    characters and an ellipsis, so that a long name cannot run past the drawing's edge."""
+    return name if len(name) <= LABEL_CHARS else name[:LABEL_CHARS - 1] + "…"
+
+
 def _axis_labels(name: str) -> list[str]:
     """The labels of a frame's x, y, z axes: x₁ as mathtext for a plain name (1, tool, B2),
-    else the name as written beside the axis letter (mathtext would misread or refuse it)."""
+    else the name as written beside the axis letter (mathtext would misread or refuse it);
+    a long name cut (`_shown`)."""
+    if len(name) > LABEL_CHARS:
+        return [f"{a} ({name_plot(_shown(name))})" for a in "xyz"]
     if PLAIN_NAME.fullmatch(name):
         sub = name if name.isdigit() else f"\\mathrm{{{name}}}"
         return [f"${a}_{{{sub}}}$" for a in "xyz"]
@@ -64,6 +76,8 @@ def _axis_labels(name: str) -> list[str]:
 
 
 def _force_label(name: str) -> str:
+    if len(name) > LABEL_CHARS:
+        return name_plot(_shown(name))
     return f"${_latex(sp.Symbol(name))}$" if IDENT.fullmatch(name) else name_plot(name)
 
 

@@ -101,3 +101,46 @@ def test_the_check_sees_a_clipped_text(monkeypatch, tmp_path):
     assert any("outside the figure" in c for c in clipped(fig))
     fig.axes[0].texts[0].set_position((400, 0))
     assert any("outside its panel" in c for c in clipped(fig))
+
+
+# -- the paper's drawing: long frame and force names stay inside the figure -------------------
+
+LONG_NAMES = """\
+robosolve: 1
+name: longnames
+parameters: {{L: 1, F: 3}}
+joints:
+  - {{name: q1, type: revolute}}
+  - {{name: q2, type: revolute}}
+  - {{name: q3, type: {third}}}
+frames:
+  "the frame of the upper arm, named at length $\\\\frac{{$ by a hostile teacher": {{parent: "0", pose: "Rz(q1) Tx(L)"}}
+  endeffectorframewithaverylongidentifiername: {{pose: "Rz(q2) Tx(L)"}}
+  "3": {{pose: "{pose3}"}}
+forces:
+  - {{name: "a force with a long, long, long name that goes on", frame: "3", at: [0, 0, 0], force: [0, -F, 0]}}
+questions:
+  - {{type: position, at: {{q1: 0.3, q2: 0.4, q3: 0.2}}}}
+"""
+
+
+@pytest.mark.parametrize("third,pose3", [("revolute", "Rz(q3) Tx(L)"), ("revolute", "Rx(q3) Tz(L)")],
+                         ids=["plane", "3-D"])
+def test_long_names_stay_inside_the_paper_drawing(monkeypatch, tmp_path, third, pose3):
+    from robosolve.load.loader import load_problem_text
+    from robosolve.model import RobotModel
+    from robosolve.papers.drawing import paper_figure
+
+    problem = load_problem_text(LONG_NAMES.format(third=third, pose3=pose3), "p.yaml")
+    spec = paper_figure(problem, RobotModel(problem))
+    assert bool(spec.data["plane"]) == (pose3.startswith("Rz"))
+    fig = drawn(monkeypatch, "robot_paper", spec, tmp_path)
+    from matplotlib.text import Annotation
+
+    renderer = fig.canvas.get_renderer()
+    box = fig.bbox
+    texts = [t for t in fig.findobj(Annotation) if t.get_visible() and t.get_text().strip()]
+    assert any("…" in t.get_text() for t in texts)                  # the long names are cut
+    outside = [(t.get_text(), t.get_window_extent(renderer).bounds) for t in texts
+               if t.get_window_extent(renderer).x0 < box.x0 - 1 or t.get_window_extent(renderer).x1 > box.x1 + 1]
+    assert not outside

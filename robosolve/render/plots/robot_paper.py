@@ -95,18 +95,50 @@ def _draw_2d(ax, d, size):
     ax.grid(True, color="0.92", lw=0.6)
 
 
-def _frame_limits(ax, d, size, box):
-    """Limits around the drawing with equal scales on both axes of the `box` (inches)."""
+def _frame_limits(ax, d, size, box, extra=(0.0, 0.0)):
+    """Limits around the drawing with equal scales on both axes of the `box` (inches); `extra`
+    widens the range to the left and right (room for long labels)."""
     h, v = d["plane"]
     pts = _points_2d(d, h, v)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     pad = 0.35 * size
     lo, hi = lo - pad, hi + pad
+    lo[0] -= extra[0]
+    hi[0] += extra[1]
     span = hi - lo
     per_inch = max(span[0] / box[0], span[1] / box[1])
     centre = (lo + hi) / 2
     ax.set_xlim(centre[0] - per_inch * box[0] / 2, centre[0] + per_inch * box[0] / 2)
     ax.set_ylim(centre[1] - per_inch * box[1] / 2, centre[1] + per_inch * box[1] / 2)
+
+
+def _label_overflow(ax) -> tuple[float, float]:
+    """How far (points) the labels run past the figure's left and right edges, their widths
+    estimated from their characters (no text is measured)."""
+    fig_width = ax.figure.get_figwidth() * 72
+    left = right = 0.0
+    for ann in ax.texts:
+        if not hasattr(ann, "xyann") or not ann.get_text():
+            continue
+        px = ax.transData.transform(ann.xy)[0] * 72 / ax.figure.dpi
+        x0 = px + ann.xyann[0]
+        right = max(right, x0 + _width(ann.get_text(), ann.get_fontsize()) - (fig_width - 6))
+        left = max(left, 6 - x0)
+    return left, right
+
+
+def _keep_inside_2d(ax, d, size, box) -> None:
+    """Widen the drawing's horizontal range until no label runs past the figure's edges (a
+    long frame or force name near the edge); the scales stay equal."""
+    extra = [0.0, 0.0]
+    for _ in range(4):
+        left, right = _label_overflow(ax)
+        if left <= 0 and right <= 0:
+            return
+        per_point = (ax.get_xlim()[1] - ax.get_xlim()[0]) / (box[0] * 72)
+        extra[0] += max(left, 0) * per_point * 1.05
+        extra[1] += max(right, 0) * per_point * 1.05
+        _frame_limits(ax, d, size, box, extra)
 
 
 def _gravity_2d(fig, d):
@@ -178,17 +210,19 @@ def _place_labels(ax, labels) -> None:
     from mpl_toolkits.mplot3d import proj3d
 
     m = ax.get_proj()
+    fig_width = ax.figure.get_figwidth() * 72
     boxes = []
     for xyz, text, colour, points, weight in labels:
         x2, y2, _ = proj3d.proj_transform(*[float(v) for v in xyz], m)
         px, py = ax.transData.transform((x2, y2)) * 72 / ax.figure.dpi      # in points
         w, h = _width(text, points), points * 1.1
-        for dx, dy in OFFSETS:
+        offsets = [o for o in OFFSETS if 4 <= px + o[0] and px + o[0] + w <= fig_width - 4] or OFFSETS
+        for dx, dy in offsets:
             box = (px + dx, py + dy, px + dx + w, py + dy + h)
             if not any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3] for b in boxes):
                 break
         else:
-            dx, dy = OFFSETS[0]
+            dx, dy = offsets[0]
             box = (px + dx, py + dy, px + dx + w, py + dy + h)
         boxes.append(box)
         ax.annotate(text, (x2, y2), xytext=(dx, dy), textcoords="offset points", fontsize=points,
@@ -216,7 +250,9 @@ def draw(spec, path):
         fig, ax = subplots(figsize=(6.4, 5.6))
         fixed_layout(fig, left=0.8, right=0.25, top=0.95, bottom=0.6)
         _draw_2d(ax, d, size)
-        _frame_limits(ax, d, size, (6.4 - 0.8 - 0.25, 5.6 - 0.95 - 0.6))
+        box = (6.4 - 0.8 - 0.25, 5.6 - 0.95 - 0.6)
+        _frame_limits(ax, d, size, box)
+        _keep_inside_2d(ax, d, size, box)
         _gravity_2d(fig, d)
         ax.set_title(spec.title, fontsize=11)
     else:
