@@ -67,18 +67,16 @@ def _axis_labels(name: str) -> list[str]:
     """The labels of a frame's x, y, z axes: x₁ as mathtext for a plain name (1, tool, B2),
     else the name as written beside the axis letter (mathtext would misread or refuse it);
     a long name cut (`_shown`)."""
-    if len(name) > LABEL_CHARS:
-        return [f"{a} ({name_plot(_shown(name))})" for a in "xyz"]
-    if PLAIN_NAME.fullmatch(name):
+    if PLAIN_NAME.fullmatch(name) and len(name) <= LABEL_CHARS:
         sub = name if name.isdigit() else f"\\mathrm{{{name}}}"
         return [f"${a}_{{{sub}}}$" for a in "xyz"]
-    return [f"{a} ({name_plot(name)})" for a in "xyz"]
+    return [f"{a} ({name_plot(_shown(name))})" for a in "xyz"]
 
 
 def _force_label(name: str) -> str:
-    if len(name) > LABEL_CHARS:
-        return name_plot(_shown(name))
-    return f"${_latex(sp.Symbol(name))}$" if IDENT.fullmatch(name) else name_plot(name)
+    if IDENT.fullmatch(name) and len(name) <= LABEL_CHARS:
+        return f"${_latex(sp.Symbol(name))}$"
+    return name_plot(_shown(name))
 
 
 def joint_places(model, chain, subs) -> list[dict]:
