@@ -21,6 +21,8 @@ from robosolve.errors import SymbolicTimeout
 
 _TIMER = getattr(signal, "ITIMER_PROF", None)
 _SIGNAL = getattr(signal, "SIGPROF", None)
+# CPU seconds after which an expiry that was swallowed is raised again
+_AGAIN = 0.05
 
 
 @contextlib.contextmanager
@@ -31,6 +33,10 @@ def time_limit(seconds: float, repeat: bool = False, what: str = "symbolic step"
     not an enclosing one, whose expiry must propagate). With `repeat`, the expiry is raised
     again every second until the block ends, so that code catching SymbolicTimeout without
     checking its token cannot swallow an outer budget (the pipeline's per-question net).
+    Without it the expiry is raised again after a short while too (`_AGAIN`), until the block
+    ends: the signal can land where Python ignores the exception (a weakref finaliser run
+    by the garbage collector, a sympy `except Exception`), and one such landing must not
+    let the block run on as if it had no limit.
     """
     token = object()
     usable = (seconds and seconds > 0 and hasattr(signal, "setitimer") and _TIMER is not None
@@ -40,8 +46,7 @@ def time_limit(seconds: float, repeat: bool = False, what: str = "symbolic step"
         return
 
     def on_alarm(signum, frame):
-        if repeat:
-            signal.setitimer(_TIMER, 1.0)
+        signal.setitimer(_TIMER, 1.0 if repeat else min(max(seconds, 1e-3), _AGAIN))
         raise SymbolicTimeout(f"{what} exceeded {seconds:g} s", token)
 
     previous = signal.signal(_SIGNAL, on_alarm)

@@ -273,3 +273,31 @@ def test_question_budget_cannot_be_swallowed(write_problem, monkeypatch):
     report = solve_problem(problem, Budgets(question_seconds=0.3))
     assert "exceeded its budget" in report.answers[0].error
     assert report.answers[1].error is None        # the next question is still answered
+
+
+def test_a_swallowed_expiry_is_raised_again():
+    """An expiry that lands where Python ignores it (a finaliser run by the garbage
+    collector, an `except Exception` inside sympy) must not let the block run on unlimited:
+    the limit raises again until the block ends (this let a 1 µs limit derive a whole
+    model once, and the numeric-only route was not taken)."""
+    import time
+
+    from robosolve.core.timing import time_limit
+    from robosolve.errors import SymbolicTimeout
+
+    swallowed = []
+    with pytest.raises(SymbolicTimeout):
+        with time_limit(0.01):
+            end = time.process_time() + 3.0
+            while time.process_time() < end:
+                try:
+                    while time.process_time() < end and not swallowed:
+                        pass
+                    if swallowed:
+                        while time.process_time() < end:
+                            pass
+                except SymbolicTimeout:
+                    if swallowed:
+                        raise
+                    swallowed.append(1)   # the first expiry is lost, as in a finaliser
+    assert swallowed
