@@ -125,7 +125,8 @@ def find_wrist(chain: _Chain):
     """(split, c_t, c_s): the first three joints in factors[:split], the last three after it,
     and a point c_t of the target frame (c_s in frame `split`) that they do not move; or None."""
     q = chain.q
-    if len(q) != 6 or not all(j.revolute for j in chain.joints):
+    # the wrist's three joints revolute; the arm's may be prismatic (the Stanford arm)
+    if len(q) != 6 or not all(j.revolute for j in chain.joints[3:]):
         return None
     split = next((s for s in range(1, len(chain.factors))
                   if chain.joints_of(0, s) == set(q[:3]) and chain.joints_of(s, len(chain.factors)) == set(q[3:])),
@@ -201,7 +202,8 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
     res.method, res.wrist_centre, res.centre_in_frame = "decoupling", [float(v) for v in w], list(c_t)
     head = chain.product(0, split)
     W = list(head * sp.Matrix([*c_s, 1]))[:3]
-    arm_joints = [IKJoint(j.symbol, True, None) for j in chain.joints[:3]]
+    # a prismatic arm joint keeps its limits: they set the box of the numeric search
+    arm_joints = [IKJoint(j.symbol, j.revolute, None if j.revolute else j.limits) for j in chain.joints[:3]]
     arm = solve_ik([(sp.expand(W[k]), W_SYMS[k]) for k in range(3)], arm_joints,
                    dict(zip(W_SYMS, map(float, w))), closed_form=True, time_limit_s=time_limit_s,
                    target_symbols=W_SYMS, latex_names=names, tex=tex)
@@ -353,9 +355,11 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
         v2.update({j.symbol: sol[j.name] for j in first})
         if planar:
             v2 = dict(zip(B_SYMS, map(float, bf(*v2.values()))))
-        st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and k == 0, time_limit_s=time_limit_s,
+        # the closed form from the first branch whose planar arm reaches (an unreachable branch
+        # stops before deriving it)
+        st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and cf2 is None, time_limit_s=time_limit_s,
                        target_symbols=set(v2), latex_names=names, tex=tex)
-        if k == 0 and st2.closed_form is not None:
+        if cf2 is None and st2.closed_form is not None:
             cf2 = st2
         if st2.status == "unreachable" and st2.reason:
             reasons.append(str(st2.reason))
