@@ -439,7 +439,8 @@ def _numeric(res, chain, R, p, no_wrist):
     M = chain.product(0, len(chain.factors))
     target = np.hstack([R, p[:, None]])
     eqs = [(M[i, j], float(target[i, j])) for i in range(3) for j in range(4)]
-    r = solve_ik(eqs, [IKJoint(j.symbol, j.revolute, None) for j in chain.joints], {}, closed_form=False)
+    r = solve_ik(eqs, [IKJoint(j.symbol, j.revolute, None) for j in chain.joints], {}, closed_form=False,
+                 subsets=False)
     res.method = "numeric"
     res.notes += list(r.notes)
     if no_wrist:
@@ -450,7 +451,7 @@ def _numeric(res, chain, R, p, no_wrist):
         "are solved by a deterministic multi-start Newton search over every joint's range."))
     if r.status == "unreachable" or not r.all_solutions:
         res.status = "unreachable"
-        res.reason = _numeric_reason(r)
+        res.reason = _numeric_reason(r, chain, M, p)
         return []
     return [([d[j.name] for j in chain.joints], False) for d in r.all_solutions]
 
@@ -481,10 +482,41 @@ def parallel_axes(chain) -> bool:
     return all(np.linalg.norm(np.cross(axes[0], a)) < 1e-4 for a in axes[1:])
 
 
-def _numeric_reason(r) -> str:
-    if r.reason:
-        return "the pose is beyond the reach or its orientation is not attainable: " + str(r.reason)
-    return "the pose is beyond the reach or its orientation is not attainable (no configuration found)"
+def _numeric_reason(r, chain, M, p) -> str:
+    """Why the 12 equations have no solution: too few joints for a pose, the position beyond the
+    reach, or the position reached but never with this orientation; the closest miss found."""
+    n = len(chain.q)
+    lead = ("no configuration reaches the pose" if n >= 6 else
+            f"the arm has {n} joint{'s' if n != 1 else ''}, fewer than the 6 coordinates of a pose: the poses "
+            f"it reaches form a {n}-dimensional set, and this one is not in it")
+    gap = _position_gap(chain, M, p)
+    if gap is None:
+        why = ""
+    elif gap > 1e-7 * max(1.0, float(np.max(np.abs(p)))):
+        why = f"; the position itself is beyond the reach (it stays {gap:.4g} away from it)"
+    else:
+        why = "; the position alone is reachable, but not with this orientation (it is not attainable there)"
+    miss = f" (the closest configuration found misses an entry of the pose by {r.nearest_residual:.3g})" \
+        if r.nearest_residual is not None and math.isfinite(r.nearest_residual) else ""
+    return lead + why + miss
+
+
+def _position_gap(chain, M, p):
+    """The smallest distance from the frame's origin to p over the configurations (a multi-start
+    least-squares search on the 3 position equations), or None."""
+    from robosolve.ik.numeric import _lm_batch, lambdify_system, refine, start_points
+
+    boxes = [(-math.pi, math.pi) if j.revolute else
+             (tuple(j.limits) if j.limits is not None else (-3.0, 3.0)) for j in chain.joints]
+    system = lambdify_system([M[i, 3] - float(p[i]) for i in range(3)], chain.q,
+                             [j.revolute for j in chain.joints])
+    Q, cost = _lm_batch(system, start_points(boxes, 256))
+    best = None
+    for i in np.argsort(cost, kind="stable")[:8]:
+        q, _ = refine(system, Q[i])
+        d = float(np.linalg.norm(system.residual(q[None])[0]))
+        best = d if best is None else min(best, d)
+    return best
 
 
 def _verify(res, fk, raw, target, chain):

@@ -167,3 +167,33 @@ def test_stanford_arm_is_decoupled_at_its_wrist(limits, count):
     assert len(inside) == count
     for r in inside:
         assert any(_close([s[n] for n in names], r, kinds, 1e-6) for s in res.solutions)
+
+
+# -- fewer joints than a pose has coordinates: unreachable, with the reason, and fast ---------------
+
+ARM5 = [(0.0, 0.3, 0.1, PI / 2), (0.0, 0.0, 0.45, 0.0), (0.0, 0.05, 0.0, PI / 2), (0.0, 0.4, 0.0, -PI / 2),
+        (0.0, 0.0, 0.0, PI / 2)]
+
+
+def test_five_joint_arm_reaches_the_pose_of_one_of_its_configurations():
+    kinds = "RRRRR"
+    q0 = [0.5, -0.7, 1.1, 0.3, -1.2]
+    T = fk(ARM5, "standard", kinds, q0)
+    res, names = _solve(ARM5, "standard", kinds, T)
+    _check(res, names, ARM5, "standard", kinds, T, q0)
+
+
+@pytest.mark.parametrize("scale, words", [(1.0, "not with this orientation"), (5.0, "beyond the reach")])
+def test_five_joint_arm_unreachable_pose_says_why(scale, words):
+    """A random orientation at a reachable position (or a position 5 times as far): no solution. The
+    reason says the arm has too few joints for a pose, and whether the position itself is reachable
+    (not the over-determined system's 'choose 5 of the 12 equations', which solved 20 subsets)."""
+    kinds = "RRRRR"
+    T = _rz(0.7) @ _rx(2.1) @ _rz(-1.3)
+    T[:3, 3] = scale * fk(ARM5, "standard", kinds, [0.2, 0.4, -0.9, 1.0, 0.6])[:3, 3]
+    ref = reference_solutions(ARM5, "standard", kinds, T, [(-PI, PI)] * 5, starts=100)
+    assert ref == []
+    res, _ = _solve(ARM5, "standard", kinds, T)
+    assert res.status == "unreachable" and res.solutions == []
+    assert "5 joints" in res.reason and words in res.reason, res.reason
+    assert "Choose" not in res.reason
