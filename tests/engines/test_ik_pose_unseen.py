@@ -197,3 +197,31 @@ def test_five_joint_arm_unreachable_pose_says_why(scale, words):
     assert res.status == "unreachable" and res.solutions == []
     assert "5 joints" in res.reason and words in res.reason, res.reason
     assert "Choose" not in res.reason
+
+
+# -- the UR5 at its wrist singularity: the other branch of q1 has 4 isolated solutions ---------------
+
+UR5 = [(0.0, 0.089159, 0.0, PI / 2), (0.0, 0.0, -0.425, 0.0), (0.0, 0.0, -0.39225, 0.0),
+       (0.0, 0.10915, 0.0, PI / 2), (0.0, 0.09465, 0.0, -PI / 2), (0.0, 0.0823, 0.0, 0.0)]
+
+
+@pytest.mark.parametrize("q5", [0.0, PI])
+def test_ur5_wrist_singularity_keeps_the_isolated_solutions_of_the_other_q1(q5):
+    """At q5 = 0 (or pi) on one branch of q1 the pose is reached along a continuum; on the other
+    branch q5 is not 0 and there are 4 isolated solutions, which the reference finds too. They were
+    lost (one point of the continuum only, from the numeric fallback)."""
+    kinds = "RRRRRR"
+    q0 = [0.4, -1.1, 1.3, -0.8, q5, 0.5]
+    T = fk(UR5, "standard", kinds, q0)
+    res, names = _solve(UR5, "standard", kinds, T)
+    assert res.status == "ok" and res.method == "three parallel axes"
+    for s in res.solutions:
+        assert np.max(np.abs(fk(UR5, "standard", kinds, [s[n] for n in names])[:3] - T[:3])) < 1e-9
+    ref = reference_solutions(UR5, "standard", kinds, T, [(-PI, PI)] * 6, starts=120)
+    isolated = [r for r in ref if abs(wrap_angle(r[0] - 0.4)) > 1e-3]
+    assert len(isolated) == 4
+    for r in isolated:
+        assert any(_close([s[n] for n in names], r, kinds, 1e-6) for s in res.solutions), r
+    singular = [s for s, f in zip(res.all_solutions, res.wrist_singular) if f]
+    assert len(singular) == 2 and all(s["q6"] == 0.0 and abs(s["q1"] - 0.4) < 1e-9 for s in singular)
+    assert len(res.solutions) == 6 and any("continuum" in n for n in res.notes)
