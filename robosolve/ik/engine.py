@@ -66,6 +66,7 @@ class IKResult:
     family: dict | None = None          # a continuum: free joints, parametrization
     subsets: list[dict] = field(default_factory=list)   # over-determined: each choice of n equations
     nearest: dict | None = None         # unreachable: the closest configuration found
+    nearest_residual: float | None = None   # its largest equation residual (over-determined)
     angular: list[bool] = field(default_factory=list)
 
 
@@ -296,11 +297,15 @@ def solve_ik(
     budget: int | None = None,
     tex=None,
     labels: list[str] | None = None,
+    subsets: bool = True,
 ) -> IKResult:
     """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring.
 
     The counts decide: equations involving fewer joints than there are, fewer equations than
     joints (redundant), more (over-determined), or a square system (closed form, then numbers).
+    An over-determined system with no solution has each choice of n equations solved unless
+    `subsets` is false (a pose's 12 equations: the choices mean nothing there); `nearest` is then
+    the closest configuration found.
     """
     res = IKResult()
     names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
@@ -323,7 +328,8 @@ def solve_ik(
         res.status = "redundant"
         _redundant(res, exprs, joints, values, names, time_limit_s, tex)
     elif m > n:
-        _overdetermined(res, exprs, joints, values, names, select, closed_form, time_limit_s, budget, tex)
+        _overdetermined(res, exprs, joints, values, names, select, closed_form, time_limit_s, budget, tex,
+                        subsets)
     else:
         _square(res, equations, exprs, joints, values, names, select, closed_form, time_limit_s,
                 set(target_symbols), budget, tex)
@@ -390,7 +396,8 @@ def _overdetermined_with_free_joints(res, exprs, used, unused, values, budget):
     _solve_subsets(res, exprs, used, values, budget)
 
 
-def _overdetermined(res, exprs, joints, values, names, select, closed_form, time_limit_s, budget, tex):
+def _overdetermined(res, exprs, joints, values, names, select, closed_form, time_limit_s, budget, tex,
+                    subsets=True):
     """More equations than joints: solved together when they are consistent here, else each
     choice of n of them is solved."""
     n, m = len(joints), len(exprs)
@@ -410,6 +417,12 @@ def _overdetermined(res, exprs, joints, values, names, select, closed_form, time
         _finish(res, num, cf_sols, joints, values, select, system)
         return
     res.status = "overdetermined"
+    if not subsets:
+        if num.best_q is not None:
+            res.nearest = {j.name: (wrap_angle(v) if j.revolute else v) for j, v in zip(joints, num.best_q)}
+            res.nearest_residual = float(num.best_residual)
+        res.reason = f"{m} equations for {n} unknown joints: no configuration satisfies all of them"
+        return
     res.reason = (f"{m} equations for {n} unknown joints: no configuration satisfies all of "
                   f"them. Choose {n} of the {m} equations (each choice is solved below).")
     _solve_subsets(res, exprs, joints, values, budget)

@@ -125,7 +125,8 @@ def find_wrist(chain: _Chain):
     """(split, c_t, c_s): the first three joints in factors[:split], the last three after it,
     and a point c_t of the target frame (c_s in frame `split`) that they do not move; or None."""
     q = chain.q
-    if len(q) != 6 or not all(j.revolute for j in chain.joints):
+    # the wrist's three joints revolute; the arm's may be prismatic (the Stanford arm)
+    if len(q) != 6 or not all(j.revolute for j in chain.joints[3:]):
         return None
     split = next((s for s in range(1, len(chain.factors))
                   if chain.joints_of(0, s) == set(q[:3]) and chain.joints_of(s, len(chain.factors)) == set(q[3:])),
@@ -201,7 +202,8 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
     res.method, res.wrist_centre, res.centre_in_frame = "decoupling", [float(v) for v in w], list(c_t)
     head = chain.product(0, split)
     W = list(head * sp.Matrix([*c_s, 1]))[:3]
-    arm_joints = [IKJoint(j.symbol, True, None) for j in chain.joints[:3]]
+    # a prismatic arm joint keeps its limits: they set the box of the numeric search
+    arm_joints = [IKJoint(j.symbol, j.revolute, None if j.revolute else j.limits) for j in chain.joints[:3]]
     arm = solve_ik([(sp.expand(W[k]), W_SYMS[k]) for k in range(3)], arm_joints,
                    dict(zip(W_SYMS, map(float, w))), closed_form=True, time_limit_s=time_limit_s,
                    target_symbols=W_SYMS, latex_names=names, tex=tex)
@@ -211,25 +213,34 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
         res.status = "unreachable"
         res.reason = "the wrist centre is beyond the reach of the arm: " + str(arm.reason)
         return []
-    if arm.status != "ok":
+    arm_sols, shoulder = arm.all_solutions, False
+    if arm.status == "family":
+        arm_sols = _arm_representatives(arm, arm_joints, W, w)
+        if arm_sols:
+            shoulder = True
+            free = arm.family["free"][0]
+            res.notes.append(f"shoulder singularity: the wrist centre lies on the axis of {free}, which then "
+                             "does not move it; the pose is reached along a continuum, and the representatives "
+                             f"with {free} = 0 are given (the wrist takes up the rotation)")
+    if arm.status != "ok" and not shoulder:
         res.notes.append("the first three joints do not have isolated solutions for this wrist centre: "
                          "searched numerically on the 12 pose equations")
         return None
-    arm_cf = _arm_closed_form(res, arm, wc, names)
+    arm_cf = _arm_closed_form(res, arm, wc, names) if not shoulder else None
     R3 = head[:3, :3]
     tail = chain.product(split, len(chain.factors))[:3, :3]
     wrist_joints = [IKJoint(j.symbol, True, None) for j in chain.joints[3:]]
     A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{i + 1}{j + 1}"))
     raw, wrist_cf, singular_seen = [], None, False
     R3f = sp.lambdify(chain.q[:3], R3, modules=numpy_modules())
-    for sol in arm.all_solutions:
+    for sol in arm_sols:
         q123 = [sol[j.name] for j in arm_joints]
         a = np.array(R3f(*q123), dtype=float).T @ R
         ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, wrist_cf is None)
         singular_seen |= singular
         if cf is not None and wrist_cf is None:
             wrist_cf = cf
-        raw += [(q123 + list(wq), singular) for wq in ws]
+        raw += [(q123 + list(wq), singular or ("shoulder" if shoulder else False)) for wq in ws]
     res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen))
     if wrist_cf is not None and arm_cf is not None:
         sub = {A[i, j]: (R3.T * R_SYMS)[i, j] for i in range(3) for j in range(3)}
@@ -239,6 +250,21 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
         res.status = "unreachable"
         res.reason = "the orientation is not attainable: the wrist cannot give ³R₆ = (⁰R₃)ᵀ·R"
     return raw
+
+
+def _arm_representatives(arm, arm_joints, W, w):
+    """A continuum of the arm's solutions (the wrist centre on the axis of its first free joint):
+    that joint at 0 and the other two from the wrist centre, or [] when they are not isolated then."""
+    free = (arm.family or {}).get("free") or []
+    fixed = next((j for j in arm_joints if j.name in free), None)
+    if fixed is None:
+        return []
+    rest = [j for j in arm_joints if j is not fixed]
+    eqs = [(sp.expand(W[k].xreplace({fixed.symbol: 0})), W_SYMS[k]) for k in range(3)]
+    r = solve_ik(eqs, rest, dict(zip(W_SYMS, map(float, w))), closed_form=False, target_symbols=W_SYMS)
+    if r.status != "ok":
+        return []
+    return [{fixed.name: 0.0, **d} for d in r.all_solutions]
 
 
 def _arm_closed_form(res, arm, wc, names):
@@ -338,30 +364,41 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     if st1.status == "unreachable":
         res.status, res.reason = "unreachable", "the pose is beyond the reach or its orientation is not attainable: " + str(st1.reason)
         return []
+    firsts = [(sol, False) for sol in st1.all_solutions]
     if st1.status != "ok":
-        res.notes.append("three parallel axes: q1, q5, q6 are not isolated at this pose (a singularity); "
-                         "searched numerically on the 12 pose equations")
-        return None
+        # a singular wrist (sin q5 = 0) on one branch of q1 at least: q1 alone first, then q5, q6 on
+        # each branch, q6 = 0 as the representative where the row leaves it free
+        firsts = _first_joints_stepwise(eqs1, first, vals, q)
+        if firsts is None:
+            res.notes.append("three parallel axes: q1, q5, q6 are not isolated at this pose (a singularity); "
+                             "searched numerically on the 12 pose equations")
+            return None
+        if not firsts:
+            res.status = "unreachable"
+            res.reason = "the pose is beyond the reach or its orientation is not attainable: no q1, q5, q6 fit it"
+            return []
     for stp in (st1.closed_form.steps if st1.closed_form is not None else []):
         res.steps.append(PoseStep("q1, q5, q6: " + stp.title, stp.text, list(stp.equations)))
     rest = [IKJoint(q[k], True, None) for k in (1, 2, 3)]
     eqs2, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
     bf = sp.lambdify([*vals, *(j.symbol for j in first)], planar, modules=numpy_modules()) if planar else None
     raw, cf2, reasons = [], None, []
-    for k, sol in enumerate(st1.all_solutions):
+    for k, (sol, singular) in enumerate(firsts):
         v2 = dict(vals)
         v2.update({j.symbol: sol[j.name] for j in first})
         if planar:
             v2 = dict(zip(B_SYMS, map(float, bf(*v2.values()))))
-        st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and k == 0, time_limit_s=time_limit_s,
+        # the closed form from the first branch whose planar arm reaches (an unreachable branch
+        # stops before deriving it)
+        st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and cf2 is None, time_limit_s=time_limit_s,
                        target_symbols=set(v2), latex_names=names, tex=tex)
-        if k == 0 and st2.closed_form is not None:
+        if cf2 is None and st2.closed_form is not None:
             cf2 = st2
         if st2.status == "unreachable" and st2.reason:
             reasons.append(str(st2.reason))
         for d in st2.all_solutions:
             raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
-                        False))
+                        singular))
     if not raw:
         res.status = "unreachable"
         res.reason = ("the pose is beyond the reach: for every value of q1, q5, q6 the planar arm of joints "
@@ -374,6 +411,40 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
         res.closed_form = [{**{str(k): v for k, v in a.items()}, **{str(k): v.xreplace(bsub) for k, v in b.items()}}
                            for a in st1.closed_form_branches for b in cf2.closed_form_branches]
     return raw
+
+
+def _first_joints_stepwise(eqs1, first, vals, q):
+    """q1, q5, q6 one after the other where they are not isolated together: q1 from the position
+    equation (free of q5, q6), then q5 and q6 from the three rotation equations of the row on each
+    branch of q1; where those leave q6 free (sin q5 = 0: the axes of joints 2, 3, 4 and 6 parallel)
+    the representative q6 = 0. A list of ({joint: value}, singular), or None when the row does not
+    split this way."""
+    q1, q5, q6 = (j.symbol for j in first)
+    pos = eqs1[3][0]
+    if pos.free_symbols & set(q) != {q1}:
+        return None
+    r1 = solve_ik([eqs1[3]], [first[0]], vals, closed_form=False, target_symbols=set(vals))
+    if r1.status == "unreachable":
+        return []
+    if r1.status != "ok":
+        return None
+    out = []
+    for s1 in r1.all_solutions:
+        v = dict(vals)
+        v[q1] = s1[q1.name]
+        rows = [(e.xreplace({q1: v[q1]}), rhs) for e, rhs in eqs1[:3]]
+        r56 = solve_ik(rows, list(first[1:]), v, closed_form=False, target_symbols=set(v))
+        if r56.status == "ok":
+            out += [({q1.name: v[q1], q5.name: d[q5.name], q6.name: d[q6.name]}, False) for d in r56.all_solutions]
+            continue
+        if r56.status == "unreachable" or r56.status == "overdetermined":
+            continue
+        rows0 = [(sp.expand(e.xreplace({q6: 0})), rhs) for e, rhs in rows]
+        r5 = solve_ik(rows0, [first[1]], v, closed_form=False, target_symbols=set(v))
+        if r5.status != "ok":
+            return None
+        out += [({q1.name: v[q1], q5.name: d[q5.name], q6.name: 0.0}, True) for d in r5.all_solutions]
+    return out
 
 
 def _planar_equations(chain, split, Q, lhs, rhs, Msym, q):
@@ -435,7 +506,8 @@ def _numeric(res, chain, R, p, no_wrist):
     M = chain.product(0, len(chain.factors))
     target = np.hstack([R, p[:, None]])
     eqs = [(M[i, j], float(target[i, j])) for i in range(3) for j in range(4)]
-    r = solve_ik(eqs, [IKJoint(j.symbol, j.revolute, None) for j in chain.joints], {}, closed_form=False)
+    r = solve_ik(eqs, [IKJoint(j.symbol, j.revolute, None) for j in chain.joints], {}, closed_form=False,
+                 subsets=False)
     res.method = "numeric"
     res.notes += list(r.notes)
     if no_wrist:
@@ -446,7 +518,7 @@ def _numeric(res, chain, R, p, no_wrist):
         "are solved by a deterministic multi-start Newton search over every joint's range."))
     if r.status == "unreachable" or not r.all_solutions:
         res.status = "unreachable"
-        res.reason = _numeric_reason(r)
+        res.reason = _numeric_reason(r, chain, M, p)
         return []
     return [([d[j.name] for j in chain.joints], False) for d in r.all_solutions]
 
@@ -477,10 +549,41 @@ def parallel_axes(chain) -> bool:
     return all(np.linalg.norm(np.cross(axes[0], a)) < 1e-4 for a in axes[1:])
 
 
-def _numeric_reason(r) -> str:
-    if r.reason:
-        return "the pose is beyond the reach or its orientation is not attainable: " + str(r.reason)
-    return "the pose is beyond the reach or its orientation is not attainable (no configuration found)"
+def _numeric_reason(r, chain, M, p) -> str:
+    """Why the 12 equations have no solution: too few joints for a pose, the position beyond the
+    reach, or the position reached but never with this orientation; the closest miss found."""
+    n = len(chain.q)
+    lead = ("no configuration reaches the pose" if n >= 6 else
+            f"the arm has {n} joint{'s' if n != 1 else ''}, fewer than the 6 coordinates of a pose: the poses "
+            f"it reaches form a {n}-dimensional set, and this one is not in it")
+    gap = _position_gap(chain, M, p)
+    if gap is None:
+        why = ""
+    elif gap > 1e-7 * max(1.0, float(np.max(np.abs(p)))):
+        why = f"; the position itself is beyond the reach (it stays {gap:.4g} away from it)"
+    else:
+        why = "; the position alone is reachable, but not with this orientation (it is not attainable there)"
+    miss = f" (the closest configuration found misses an entry of the pose by {r.nearest_residual:.3g})" \
+        if r.nearest_residual is not None and math.isfinite(r.nearest_residual) else ""
+    return lead + why + miss
+
+
+def _position_gap(chain, M, p):
+    """The smallest distance from the frame's origin to p over the configurations (a multi-start
+    least-squares search on the 3 position equations), or None."""
+    from robosolve.ik.numeric import _lm_batch, lambdify_system, refine, start_points
+
+    boxes = [(-math.pi, math.pi) if j.revolute else
+             (tuple(j.limits) if j.limits is not None else (-3.0, 3.0)) for j in chain.joints]
+    system = lambdify_system([M[i, 3] - float(p[i]) for i in range(3)], chain.q,
+                             [j.revolute for j in chain.joints])
+    Q, cost = _lm_batch(system, start_points(boxes, 256))
+    best = None
+    for i in np.argsort(cost, kind="stable")[:8]:
+        q, _ = refine(system, Q[i])
+        d = float(np.linalg.norm(system.residual(q[None])[0]))
+        best = d if best is None else min(best, d)
+    return best
 
 
 def _verify(res, fk, raw, target, chain):
@@ -498,9 +601,14 @@ def _verify(res, fk, raw, target, chain):
         flags.append(singular)
     order = sort_solutions(list(range(len(kept))), get=lambda i: [kept[i][j.name] for j in chain.joints])
     res.all_solutions = [kept[i] for i in order]
-    res.wrist_singular = [flags[i] for i in order]
+    res.wrist_singular = [bool(flags[i]) for i in order]
     res.joints = chain.joints
-    if any(flags):
+    flags = [f is True for f in flags]          # "shoulder": noted where it was found
+    if any(flags) and res.method == "three parallel axes":
+        n5, n6 = chain.joints[4].name, chain.joints[5].name
+        res.notes.append(f"wrist singularity: where sin {n5} = 0 the axes of joints 2, 3, 4 and 6 are parallel "
+                         f"and the pose is reached along a continuum; the representatives with {n6} = 0 are given")
+    elif any(flags):
         res.notes.append("wrist singularity: the wrist's first and last axes are aligned, only their sum "
                          "(or difference) is determined; the representative with the last wrist angle 0 is given")
 
