@@ -281,6 +281,9 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
                 e1 = sp.numer(sp.together(e1))
             work.spend(e1)
         e2 = factored_determinant(e1) if fixed else e
+        if fixed and e2.has(sp.Abs):
+            e3 = _signed_abs(e2, sample)
+            e2 = factored_determinant(e3) if e3 is not e2 else e2
         if e2 == 0:
             continue
         if not any(e2.has(q) for q in joints):
@@ -307,6 +310,26 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
                 results.append(Condition(values=cond.values, equations=cond.equations,
                                          factor=cond.factor if cond.factor is not None else fac))
     return results
+
+
+def _signed_abs(expr, params):
+    """|p| of a parameter p written ±p by the sign of p's given value: a joint value such as
+    acos(-a4/sqrt(a4² + dt²)) (its branch chosen with the given parameters) brings sin = |dt|/r
+    into the other minors, and the factoring cannot split a factor through |dt| (a family lost)."""
+    if not expr.has(sp.Abs):
+        return expr
+    rep = {}
+    for a in expr.atoms(sp.Abs):
+        p = a.args[0]
+        val = params.get(p) if p.is_Symbol else None
+        if val is not None:
+            try:
+                x = float(val)
+            except (TypeError, ValueError):
+                continue
+            if x != 0:
+                rep[a] = p if x > 0 else -p
+    return expr.xreplace(rep) if rep else expr
 
 
 def _multiple_of(expr, fac) -> bool:
