@@ -275,7 +275,7 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
     live = []
     for e in exprs:
         if fixed:
-            e1 = sp.sympify(e).subs(fixed)
+            e1 = _clean_values(sp.sympify(e).subs(fixed), sample)
             if not e1.is_polynomial():
                 # a joint value with a denominator of parameters: the zeros are the numerator's
                 e1 = sp.numer(sp.together(e1))
@@ -312,23 +312,52 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
     return results
 
 
+_INVERSE_TRIG = (sp.acos, sp.asin, sp.atan, sp.atan2)
+
+
+def _clean_values(expr, params):
+    """After a joint value is substituted: sin/cos of a sum holding an inverse trig function
+    (sin(q2 + acos(x))) expanded and evaluated, the roots split and the |·| of the parameters
+    resolved (`_signed_abs`) before the factoring, which otherwise writes sin(acos x) as a
+    nested root it cannot factor (PolynomialError: the whole search lost)."""
+    if expr.has(*_INVERSE_TRIG):
+        expr = expr.replace(lambda x: isinstance(x, (sp.sin, sp.cos)) and x.args[0].is_Add
+                            and x.args[0].has(*_INVERSE_TRIG), lambda x: sp.expand_trig(x))
+    if expr.has(sp.Pow, sp.Abs):
+        expr = _signed_abs(expr, params)
+    return expr
+
+
+def _split_root(root, params):
+    """√(N/D) (or its inverse) with N/D factored, as √N/√D when D > 0 with the given parameters
+    (so that the root leaves the denominators: numer(together(·)) is then a polynomial)."""
+    num, den = sp.fraction(sp.factor(sp.together(root.base)))
+    if den != 1 and not (den.free_symbols - set(params)):
+        val = _numeric(den, dict(params))
+        if val is not None and abs(val.imag) < 1e-12 and val.real > 0:
+            return sp.Pow(num, root.exp) / sp.Pow(den, root.exp)
+    return sp.Pow(num / den, root.exp)
+
+
 def _signed_abs(expr, params):
-    """|p| of a parameter p written ±p by the sign of p's given value: a joint value such as
-    acos(-a4/sqrt(a4² + dt²)) (its branch chosen with the given parameters) brings sin = |dt|/r
-    into the other minors, and the factoring cannot split a factor through |dt| (a family lost)."""
+    """|x| of a parameter expression x written ±x by the sign of its value with the given
+    parameters, and the square roots' arguments factored first (√(1 − a²/(a² + b²)) is |b|/√(a² + b²)):
+    a joint value such as acos(-a4/sqrt(a4² + dt²)) (its branch chosen with the given
+    parameters) brings sin = |dt|/r into the other minors, and the factoring cannot split a
+    factor through |dt| or a nested root (a family lost, or the search stopped)."""
+    if expr.has(sp.Pow):
+        expr = expr.replace(lambda x: x.is_Pow and x.exp in (sp.S.Half, -sp.S.Half) and bool(x.base.free_symbols),
+                            lambda x: _split_root(x, params))
     if not expr.has(sp.Abs):
         return expr
     rep = {}
     for a in expr.atoms(sp.Abs):
-        p = a.args[0]
-        val = params.get(p) if p.is_Symbol else None
-        if val is not None:
-            try:
-                x = float(val)
-            except (TypeError, ValueError):
-                continue
-            if x != 0:
-                rep[a] = p if x > 0 else -p
+        arg = a.args[0]
+        if arg.free_symbols - set(params):
+            continue
+        val = _numeric(arg, dict(params))
+        if val is not None and abs(val.imag) < 1e-12 and val.real != 0:
+            rep[a] = arg if val.real > 0 else -arg
     return expr.xreplace(rep) if rep else expr
 
 

@@ -40,3 +40,32 @@ def test_negative_tool_offset_keeps_both_roots_of_the_offset_angle():
     assert any(satisfies(c, case, q) for c in conds), conds
     assert all(isinstance(c, dict) for c in conds), [c for c in conds if not isinstance(c, dict)]
     assert check_answer(case, ans, np.random.default_rng(3), starts=25) == []
+
+
+def test_flange_of_a_spherical_wrist_arm_substitutes_acos_values_without_nested_roots():
+    """The 3×6 position Jacobian of a 6R flange (spherical wrist, d6 ≠ 0): a minor solved for
+    q3 = acos(-a3/√(a3² + (d4 − d6)²)) and substituted left sin(q2 + acos(x)) unexpanded; the
+    factoring wrote sin(acos x) as a nested root and raised PolynomialError, so the whole search
+    was lost (σ_min only). Engine level: the structured minors and the search, against jacob0."""
+    from robosolve.kinematics.singularities import SearchBudget, find_singularities
+    from robosolve.kinematics.wide_rank import wide_minors
+    from robosolve.load.loader import load_problem_text
+    from robosolve.model import RobotModel
+    from tests.support.singular_probe import yaml_text
+
+    case = Case("probe-flange6-1", "flange6", [
+        Row("R", alpha=PI2), Row("R", a=-0.3183), Row("R", a=-0.3523, alpha=PI2),
+        Row("R", d=-0.3308, alpha=-PI2), Row("R", alpha=PI2, theta=-PI2), Row("R", d=0.1619)],
+        geometric=False, at=[-1.098, -0.074, 2.404, 2.308, 1.124, 0.206])
+    problem = load_problem_text(yaml_text(case), "probe.yaml")
+    model = RobotModel(problem)
+    pframe, plocal = model.point_local("E")
+    wide = wide_minors(model, pframe, plocal, problem.last_frame, False, 3000)
+    res = find_singularities(None, model.q, {j.symbol: j.kind for j in problem.joints},
+                             dict(problem.parameters), minors=wide.minors, work=SearchBudget(5000))
+    conds = [c.mapping() for c in res.conditions]
+    assert len(conds) > 4
+    ans = {"symbolic": {"singularities": conds},
+           "numeric": {"J": reference(case)(case.at).tolist(),
+                       "manipulability": float(np.prod(np.linalg.svd(reference(case)(case.at), compute_uv=False)))}}
+    assert check_answer(case, ans, np.random.default_rng(4), starts=20) == []
