@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.angles import wrap_angle
-from robosolve.core.simplify import (bounded_full, determinant_factors, factored_determinant, full, is_zero,
+from robosolve.core.simplify import (bounded_full, determinant_factors, factored, factored_determinant, full, is_zero,
                                      jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
 
@@ -331,7 +331,7 @@ def _clean_values(expr, params):
 def _split_root(root, params):
     """√(N/D) (or its inverse) with N/D factored, as √N/√D when D > 0 with the given parameters
     (so that the root leaves the denominators: numer(together(·)) is then a polynomial)."""
-    num, den = sp.fraction(sp.factor(sp.together(root.base)))
+    num, den = sp.fraction(factored(sp.together(root.base)))
     if den != 1 and not (den.free_symbols - set(params)):
         val = _numeric(den, dict(params))
         if val is not None and abs(val.imag) < 1e-12 and val.real > 0:
