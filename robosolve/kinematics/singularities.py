@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.angles import wrap_angle
-from robosolve.core.simplify import (bounded_full, determinant_factors, factored_determinant, full, is_zero,
+from robosolve.core.simplify import (bounded_full, determinant_factors, factored, factored_determinant, full, is_zero,
                                      jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
 
@@ -275,12 +275,15 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
     live = []
     for e in exprs:
         if fixed:
-            e1 = sp.sympify(e).subs(fixed)
+            e1 = _clean_values(sp.sympify(e).subs(fixed), sample)
             if not e1.is_polynomial():
                 # a joint value with a denominator of parameters: the zeros are the numerator's
                 e1 = sp.numer(sp.together(e1))
             work.spend(e1)
         e2 = factored_determinant(e1) if fixed else e
+        if fixed and e2.has(sp.Abs):
+            e3 = _signed_abs(e2, sample)
+            e2 = factored_determinant(e3) if e3 is not e2 else e2
         if e2 == 0:
             continue
         if not any(e2.has(q) for q in joints):
@@ -307,6 +310,55 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
                 results.append(Condition(values=cond.values, equations=cond.equations,
                                          factor=cond.factor if cond.factor is not None else fac))
     return results
+
+
+_INVERSE_TRIG = (sp.acos, sp.asin, sp.atan, sp.atan2)
+
+
+def _clean_values(expr, params):
+    """After a joint value is substituted: sin/cos of a sum holding an inverse trig function
+    (sin(q2 + acos(x))) expanded and evaluated, the roots split and the |·| of the parameters
+    resolved (`_signed_abs`) before the factoring, which otherwise writes sin(acos x) as a
+    nested root it cannot factor (PolynomialError: the whole search lost)."""
+    if expr.has(*_INVERSE_TRIG):
+        expr = expr.replace(lambda x: isinstance(x, (sp.sin, sp.cos)) and x.args[0].is_Add
+                            and x.args[0].has(*_INVERSE_TRIG), lambda x: sp.expand_trig(x))
+    if expr.has(sp.Pow, sp.Abs):
+        expr = _signed_abs(expr, params)
+    return expr
+
+
+def _split_root(root, params):
+    """√(N/D) (or its inverse) with N/D factored, as √N/√D when D > 0 with the given parameters
+    (so that the root leaves the denominators: numer(together(·)) is then a polynomial)."""
+    num, den = sp.fraction(factored(sp.together(root.base)))
+    if den != 1 and not (den.free_symbols - set(params)):
+        val = _numeric(den, dict(params))
+        if val is not None and abs(val.imag) < 1e-12 and val.real > 0:
+            return sp.Pow(num, root.exp) / sp.Pow(den, root.exp)
+    return sp.Pow(num / den, root.exp)
+
+
+def _signed_abs(expr, params):
+    """|x| of a parameter expression x written ±x by the sign of its value with the given
+    parameters, and the square roots' arguments factored first (√(1 − a²/(a² + b²)) is |b|/√(a² + b²)):
+    a joint value such as acos(-a4/sqrt(a4² + dt²)) (its branch chosen with the given
+    parameters) brings sin = |dt|/r into the other minors, and the factoring cannot split a
+    factor through |dt| or a nested root (a family lost, or the search stopped)."""
+    if expr.has(sp.Pow):
+        expr = expr.replace(lambda x: x.is_Pow and x.exp in (sp.S.Half, -sp.S.Half) and bool(x.base.free_symbols),
+                            lambda x: _split_root(x, params))
+    if not expr.has(sp.Abs):
+        return expr
+    rep = {}
+    for a in expr.atoms(sp.Abs):
+        arg = a.args[0]
+        if arg.free_symbols - set(params):
+            continue
+        val = _numeric(arg, dict(params))
+        if val is not None and abs(val.imag) < 1e-12 and val.real != 0:
+            rep[a] = arg if val.real > 0 else -arg
+    return expr.xreplace(rep) if rep else expr
 
 
 def _multiple_of(expr, fac) -> bool:
