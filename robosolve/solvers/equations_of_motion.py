@@ -13,7 +13,7 @@ import sympy as sp
 
 from robosolve.core.course_notes import note_link
 from robosolve.core.printing import SharedStrPrinter
-from robosolve.dynamics.bridge import numeric_energies, numeric_for
+from robosolve.dynamics.bridge import NUMERIC_ONLY_NOTE, numeric_energies, numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
@@ -293,7 +293,7 @@ def _numeric_only(question, ctx, ans):
     except ValueError as exc:
         ans.note(f"numeric answers omitted: {exc}")
         return ans
-    if note:
+    if note and note != NUMERIC_ONLY_NOTE:     # the first note already says the derivation was cut
         ans.note(note)
     missing = [s.name for s in model.q if s not in subs]
     if missing:

@@ -116,6 +116,7 @@ def test_numeric_only_path_gives_the_energies():
     problem = load_problem_text(problem_yaml(case, at_of(q, qd, qdd)), "cut.yaml")
     ans = solve_problem(problem, Budgets(dynamics_seconds=1e-6)).answers[0]
     assert ans.error is None and any("numerically" in n for n in ans.notes)
+    assert sum("too long" in n or "took longer" in n for n in ans.notes) == 1, ans.notes
     robot = rtb_twin(case)
     assert _close(ans.numeric["mass_matrix"], robot.inertia(q))
     kinetic = ans.numeric["kinetic_energy"]
