@@ -16,11 +16,12 @@ import weakref
 
 from robosolve.core.timing import time_limit
 from robosolve.dynamics.api import derive_dynamics, numeric_dynamics
+from robosolve.dynamics.engine import DynamicsEngine
 from robosolve.dynamics.numeric import ChainDynamics, NumericDynamics, lambdify_dynamics
 from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
 from robosolve.errors import SymbolicTimeout
 
-__all__ = ["engine_inputs", "dynamics_for", "numeric_for", "simulation_dynamics",
+__all__ = ["engine_inputs", "dynamics_for", "numeric_for", "numeric_energies", "simulation_dynamics",
            "DYNAMICS_SECONDS"]
 
 # Budget of the symbolic derivation before the numeric-only path takes over. The PUMA 560
@@ -137,6 +138,14 @@ def numeric_for(model, subs: dict, seconds: float | None = DYNAMICS_SECONDS
         out = (numeric_dynamics(**engine_inputs(model), subs=subs), NUMERIC_ONLY_NOTE)
     store[key] = out
     return out
+
+
+def numeric_energies(model, subs: dict, q, qd) -> dict:
+    """{kinetic_energy, potential_energy}: per body and `total`, at (q, q̇), from numeric code
+    (ChainDynamics, no symbolic derivation): the energies of the numeric-only path."""
+    out = ChainDynamics(DynamicsEngine(**engine_inputs(model)), _joint_free(model, subs)).evaluate(q, qd)
+    return {key: {**out[key], "total": float(sum(out[key].values()))}
+            for key in ("kinetic_energy", "potential_energy")}
 
 
 def simulation_dynamics(model, subs: dict, seconds: float | None = DYNAMICS_SECONDS

@@ -13,7 +13,7 @@ import sympy as sp
 
 from robosolve.core.course_notes import note_link
 from robosolve.core.printing import SharedStrPrinter
-from robosolve.dynamics.bridge import numeric_for
+from robosolve.dynamics.bridge import NUMERIC_ONLY_NOTE, numeric_energies, numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
@@ -293,7 +293,7 @@ def _numeric_only(question, ctx, ans):
     except ValueError as exc:
         ans.note(f"numeric answers omitted: {exc}")
         return ans
-    if note:
+    if note and note != NUMERIC_ONLY_NOTE:     # the first note already says the derivation was cut
         ans.note(note)
     missing = [s.name for s in model.q if s not in subs]
     if missing:
@@ -307,6 +307,10 @@ def _numeric_only(question, ctx, ans):
     ans.numeric["gravity_terms"] = nd.gravity(q).tolist()
     tau = nd.actuators(q, qd, qdd)
     ans.numeric["actuators"] = {j.actuator.name: float(t) for j, t in zip(model.joints, tau)}
+    try:
+        ans.numeric.update(numeric_energies(model, params, q, qd))
+    except ValueError as exc:
+        ans.note(f"numeric energies omitted: {exc}")
     ans.steps.append(Step("Numeric values", "From the numeric-only path.",
                           equations=[("M", ans.numeric["mass_matrix"]),
                                      ("c", ans.numeric["velocity_terms"]),
