@@ -8,6 +8,11 @@ The limits count the process's CPU time (ITIMER_PROF: user + system), not the wa
 clock: on a machine shared with other jobs a wall-clock limit expires early and the
 same problem gets a different (numeric-only) answer; CPU time is what the step costs,
 whatever else runs, so the outputs stay the same.
+
+Every limited block also starts from the same state of sympy's pseudo-random generator
+(sympy seeds it from the operating system when it is imported; its multivariate factorisation,
+Wang's algorithm, draws evaluation points from it): the work a step does, and so whether its
+limit fires, then depends on the step alone, not on the process or on what it solved before.
 """
 
 from __future__ import annotations
@@ -23,6 +28,15 @@ _TIMER = getattr(signal, "ITIMER_PROF", None)
 _SIGNAL = getattr(signal, "SIGPROF", None)
 # CPU seconds after which an expiry that was swallowed is raised again
 _AGAIN = 0.05
+# the seed of sympy's pseudo-random generator at the start of every limited block
+SYMPY_SEED = 0
+
+
+def reseed_sympy() -> None:
+    """sympy's generator (and its assumptions' shuffler) in their fixed starting state."""
+    from sympy.core.random import seed
+
+    seed(SYMPY_SEED)
 
 
 @contextlib.contextmanager
@@ -39,6 +53,7 @@ def time_limit(seconds: float, repeat: bool = False, what: str = "symbolic step"
     let the block run on as if it had no limit.
     """
     token = object()
+    reseed_sympy()
     usable = (seconds and seconds > 0 and hasattr(signal, "setitimer") and _TIMER is not None
               and threading.current_thread() is threading.main_thread())
     if not usable:

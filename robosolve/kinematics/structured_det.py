@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from robosolve.core.ring_factor import factor_list_by_contents
 from robosolve.core.simplify import tidy_products
 from robosolve.core.trigring import TrigAlgebra
 
@@ -87,7 +88,7 @@ def _permutation_sign(order) -> int:
 def _factored(alg, p, joints):
     """coefficient × Π tidy(factor)^k of a ring polynomial; factors free of the joints
     after tidying (sᵢ² + cᵢ² = 1, parameters) go into the coefficient."""
-    coeff, factors = p.factor_list()
+    coeff, factors = factor_list_by_contents(p)
     out = alg.ring.domain.to_sympy(coeff)
     for f, k in factors:
         reduced = alg.reduce(f)               # sᵢ² + cᵢ² is 1: such factors become constants

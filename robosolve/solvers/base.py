@@ -48,6 +48,10 @@ class Budgets:
     # so a 7-joint arm's rank conditions are answered by the numeric distance from singularity).
     rank_terms: int = 3000
     rank_nodes: int = 5000
+    # The safety net around that counted search (CPU s): within rank_nodes it needs 2-3 s here
+    # (a UR5 flange's 3×6: 1.7 s); the net is wide so that only a runaway step meets it, never
+    # a slow or busy machine (a 30 s net was once met in CI, where the same step takes 1.7 s).
+    rank_search_seconds: float = 120.0
     # Whole-question and whole-file wall-clock safety nets (s), covering the numeric route and
     # rendering too: past them a question is answered with an error, and the remaining
     # questions of the file are not attempted (each says why).

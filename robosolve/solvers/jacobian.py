@@ -136,8 +136,9 @@ def _singularity_steps(ans, question, ctx, ts):
     else:
         from robosolve.kinematics.jacobian_math import tidy
 
-        gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
-        manip = sp.sqrt(gram if gram is not None else res.measure)
+        if wide is None:
+            gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
+            manip = sp.sqrt(gram if gram is not None else res.measure)
         shape = "wide (redundant)" if m < n else "tall"
         minors = [mi for mi in res.minors]
         if wide is not None:
@@ -255,7 +256,7 @@ def _wide_search(ctx, model, kinds, params, wide):
     from robosolve.kinematics.singularities import SearchBudget, SearchTooLong
 
     try:
-        with ctx.time_limit(ctx.budgets.symbolic_seconds) as token:
+        with ctx.time_limit(ctx.budgets.rank_search_seconds) as token:
             return find_singularities(None, model.q, kinds, params, minors=wide.minors,
                                       work=SearchBudget(ctx.budgets.rank_nodes)), None
     except SearchTooLong as exc:
