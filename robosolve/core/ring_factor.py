@@ -13,7 +13,7 @@ By unique factorisation the result is the same as `p.factor_list()`: the same ir
 factors, each normalised by sympy as it normalises them (primitive, positive leading
 coefficient), with the same multiplicities and the same constant. Only the order of the list
 may differ; callers multiply the factors (a sympy Mul: the order does not show).
-`tests/engines/test_ring_factor.py` compares both on random products and on the bundled arms.
+`tests/engines/test_ring_factor.py` compares both on random products and on the UR5's det J.
 """
 
 from __future__ import annotations
@@ -113,8 +113,4 @@ def _content_in(f, i: int):
         g = g * ring.gens[i] ** low
     if g.is_ground:
         return None
-    return g if domain_positive(g) else -g
-
-
-def domain_positive(g) -> bool:
-    return g.ring.domain.is_positive(g.LC)
+    return g if ring.domain.is_positive(g.LC) else -g

@@ -32,7 +32,7 @@ _AGAIN = 0.05
 SYMPY_SEED = 0
 
 
-def reseed_sympy() -> None:
+def _reseed_sympy() -> None:
     """sympy's generator (and its assumptions' shuffler) in their fixed starting state."""
     from sympy.core.random import seed
 
@@ -53,7 +53,7 @@ def time_limit(seconds: float, repeat: bool = False, what: str = "symbolic step"
     let the block run on as if it had no limit.
     """
     token = object()
-    reseed_sympy()
+    _reseed_sympy()
     usable = (seconds and seconds > 0 and hasattr(signal, "setitimer") and _TIMER is not None
               and threading.current_thread() is threading.main_thread())
     if not usable:

@@ -136,9 +136,6 @@ def _singularity_steps(ans, question, ctx, ts):
     else:
         from robosolve.kinematics.jacobian_math import tidy
 
-        if wide is None:
-            gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
-            manip = sp.sqrt(gram if gram is not None else res.measure)
         shape = "wide (redundant)" if m < n else "tall"
         minors = [mi for mi in res.minors]
         if wide is not None:
@@ -146,6 +143,8 @@ def _singularity_steps(ans, question, ctx, ts):
             manip = "\\sqrt{" + " + ".join(f"\\Delta_{{{k + 1}}}^2" for k, mi in enumerate(minors) if mi != 0) + "}"
             ans.steps.append(_wide_step(wide, ts))
         else:
+            gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
+            manip = sp.sqrt(gram if gram is not None else res.measure)
             ans.symbolic["manipulability"] = manip
         ans.steps.append(Step(
             "Manipulability",
