@@ -332,9 +332,9 @@ def determinant_factors(expr) -> list:
     """Factors of expr (with multiplicity dropped): factor the raw expression, tidy each
     factor (trig identities may reveal products, as in det J of a 2R arm), factor again."""
     out = []
-    _, raw = sp.factor_list(sp.factor(expr))
+    _, raw = _factor_list(expr)
     for fac, _mult in raw:
-        _, again = sp.factor_list(sp.factor(jacobian_entry(fac)))
+        _, again = _factor_list(jacobian_entry(fac))
         for f2, _m2 in again:
             if f2.could_extract_minus_sign():
                 f2 = -f2
@@ -343,11 +343,37 @@ def determinant_factors(expr) -> list:
     return out
 
 
+def _factor_list(expr):
+    """sympy's factor_list of factor(expr); when sympy cannot build the polynomial (it fails on
+    products of roots such as √(d6 − d4)·√(d4 + d6), PolificationFailed), the roots are named
+    first and put back in the factors."""
+    from sympy.polys.polyerrors import PolificationFailed
+
+    try:
+        return sp.factor_list(sp.factor(expr))
+    except PolificationFailed:
+        roots = sorted((x for x in expr.atoms(sp.Pow) if not x.exp.is_Integer), key=sp.default_sort_key)
+        if not roots:
+            raise
+        # plain symbols with fixed names (not Dummy, whose numbering depends on the process)
+        names = {r: sp.Symbol(f"_root{i}") for i, r in enumerate(roots)}
+        back = {v: k for k, v in names.items()}
+        coeff, raw = sp.factor_list(sp.factor(expr.xreplace(names)))
+        out = []
+        for fac, mult in raw:
+            fac = fac.xreplace(back)
+            if fac.free_symbols:
+                out.append((fac, mult))
+            else:
+                coeff *= fac ** mult
+        return coeff, out
+
+
 @memoised
 def factored_determinant(expr, max_ops: int = DEFAULT_BUDGETS.factor_ops):
     """expr as a product of tidied factors (for display); a factor of more than `max_ops`
     operations is kept as factor() gave it."""
-    coeff, raw = sp.factor_list(sp.factor(expr))
+    coeff, raw = _factor_list(expr)
     out = coeff
     for fac, mult in raw:
         out *= (sp.factor(jacobian_entry(fac)) if sp.count_ops(fac) <= max_ops else fac) ** mult

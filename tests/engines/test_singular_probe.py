@@ -69,3 +69,37 @@ def test_flange_of_a_spherical_wrist_arm_substitutes_acos_values_without_nested_
            "numeric": {"J": reference(case)(case.at).tolist(),
                        "manipulability": float(np.prod(np.linalg.svd(reference(case)(case.at), compute_uv=False)))}}
     assert check_answer(case, ans, np.random.default_rng(4), starts=20) == []
+
+
+def test_factoring_a_product_of_roots_that_sympy_cannot_polify():
+    """After q3's value (with √(d6 − d4), not real for these d4, d6) is substituted, a minor reads
+    −a2·√(d6 − d4)·√(d4 + d6)·(a1 + (a2 − d4) sin q2): sympy's factor_list raises
+    PolificationFailed on it (the whole search was lost: σ_min only). The roots are named before
+    the factoring; the product of the factors is the expression (checked by sympy's expand)."""
+    import sympy as sp
+
+    from robosolve.core.simplify import factored_determinant
+
+    a1, a2 = sp.symbols("a1 a2", real=True)
+    d4, d6 = sp.symbols("d4 d6", positive=True)
+    q2 = sp.Symbol("q2", real=True)
+    expr = -a2 * sp.sqrt(d6 - d4) * sp.sqrt(d4 + d6) * (a1 + a2 * sp.sin(q2) - d4 * sp.sin(q2))
+    with pytest.raises(sp.polys.polyerrors.PolificationFailed):
+        sp.factor_list(expr)          # the sympy behaviour the fallback is for
+    out = factored_determinant(expr)
+    assert sp.expand(out - expr) == 0
+    assert any(f.has(q2) and not f.has(sp.sqrt(d6 - d4)) for f in sp.Mul.make_args(out))
+
+
+def test_flange_whose_search_meets_a_product_of_roots():
+    """The probe's seed-3 6R flange (3×6 position Jacobian): the case behind the test above,
+    solved through the whole pipeline; every condition sound and the independent singular
+    configurations covered (against jacob0)."""
+    case = Case("probe-flange6-3", "flange6", [
+        Row("R", a=-0.1802, d=0.1018, alpha=PI2), Row("R", a=-0.2118, theta=-PI2),
+        Row("R", alpha=PI2), Row("R", d=0.6165, alpha=-PI2), Row("R", alpha=PI2), Row("R", d=0.0508)],
+        geometric=False, at=[-1.008, -0.93, 1.959, 0.426, -0.143, 1.366])
+    ans = solve_case(case)
+    conds = _conditions(ans)
+    assert len(conds) > 4
+    assert check_answer(case, ans, np.random.default_rng(5), starts=25) == []
