@@ -191,6 +191,9 @@ def _solve_revolute(f, q, sample):
         return None
     g = sp.together(g)
     g = sp.numer(g)
+    linear = _solve_linear_trig(g, c, s, sample)
+    if linear is not None:
+        return linear
     if sp.count_ops(g) > SOLVE_OPS:
         return None          # kept as an equation: solve's radicals of a long factor take minutes
     try:
@@ -203,6 +206,65 @@ def _solve_revolute(f, q, sample):
             return None      # a free branch: f vanishes identically along a family
         out.append(wrap_angle(_pretty_atan2(d[s], d[c], sample)))
     return out
+
+
+def _in_range(value, sample):
+    """value, or value ∓ 2π, in (−π, π] with the given parameters (value unchanged when it
+    cannot be evaluated)."""
+    val = _numeric(value, _sample_params(value.free_symbols, sample))
+    if val is None or abs(val.imag) > 1e-12:
+        return value
+    if val.real > math.pi + 1e-12:
+        return value - 2 * sp.pi
+    if val.real <= -math.pi + 1e-12:
+        return value + 2 * sp.pi
+    return value
+
+
+def _solve_linear_trig(g, c, s, sample):
+    """The roots of A cos q + B sin q + K = 0 (g in c = cos q, s = sin q, of degree 1) in closed
+    form, the course's way: tan q = −A/B when K = 0; sin q = −K/B when A = 0; cos q = −K/A when
+    B = 0; else q = atan2(B, A) ± acos(−K/√(A² + B²)). None when g is not of that form or a
+    coefficient the formula divides by vanishes for the given parameters. (sympy's solve of the
+    system with c² + s² = 1 spends seconds on such an equation when A, B hold roots, and writes
+    its roots nested.)"""
+    try:
+        poly = sp.Poly(g, c, s)
+    except sp.PolynomialError:
+        return None
+    if poly.total_degree() != 1:
+        return None
+    a, b = poly.coeff_monomial(c), poly.coeff_monomial(s)
+    k = poly.coeff_monomial(1)
+
+    def nonzero(x):
+        val = _numeric(x, _sample_params(x.free_symbols, sample))
+        return val is not None and abs(val) > 1e-12
+
+    if k == 0:
+        if b == 0:
+            return [-sp.pi / 2, sp.pi / 2] if nonzero(a) else None
+        if not nonzero(b):
+            return None
+        first = sp.atan(sp.factor(-a / b))
+        return [first, _in_range(first + sp.pi, sample)]
+    if a == 0:
+        if not nonzero(b):
+            return None
+        first = sp.asin(sp.factor(-k / b))
+        return [first, _in_range(sp.pi - first, sample)]
+    if b == 0:
+        if not nonzero(a):
+            return None
+        first = sp.acos(sp.factor(-k / a))
+        return [first, -first]
+    r = sp.sqrt(sp.factor(a**2 + b**2))
+    if not nonzero(r):
+        return None
+    phi, delta = sp.atan2(b, a), sp.acos(sp.factor(-k / r))
+    if delta == 0 or delta == sp.pi:         # |K| = √(A² + B²): one (double) root
+        return [_in_range(phi + delta, sample)]
+    return [_in_range(phi + delta, sample), _in_range(phi - delta, sample)]
 
 
 def _solve_prismatic(f, q):
@@ -361,6 +423,38 @@ def _signed_abs(expr, params):
     return expr.xreplace(rep) if rep else expr
 
 
+def _never_zero(expr, joints, kinds, params) -> bool:
+    """True when expr (a polynomial in sines and cosines of revolute joints) cannot vanish for
+    the given parameters: |constant term| > Σ |coefficient| of the other terms, each term a
+    product of sines and cosines, at most 1 in size. A sufficient test only (False: unknown)."""
+    expr = sp.sympify(expr)
+    if not expr.free_symbols or expr.free_symbols - set(joints) - set(params):
+        return False
+    values = {s: v for s, v in params.items() if v is not None and s in expr.free_symbols}
+    if len(values) < len(expr.free_symbols - set(joints)):
+        return False
+    qs = [q for q in joints if expr.has(q)]
+    if any(kinds.get(q) != "revolute" for q in qs):
+        return False
+    const, bound = 0.0, 0.0
+    for term in sp.Add.make_args(sp.expand(expr.xreplace(values))):
+        coeff, rest = term.as_independent(*qs, as_Add=False)
+        try:
+            coeff = complex(coeff)
+        except TypeError:
+            return False
+        if rest == 1:
+            const += coeff.real
+            continue
+        trig = all(isinstance(f, (sp.sin, sp.cos)) or (f.is_Pow and isinstance(f.base, (sp.sin, sp.cos))
+                                                         and f.exp.is_Integer and f.exp > 0)
+                   for f in sp.Mul.make_args(rest))
+        if not trig or abs(coeff.imag) > 1e-12:
+            return False
+        bound += abs(coeff.real)
+    return abs(const) > bound * (1 + 1e-9) + 1e-12
+
+
 def _multiple_of(expr, fac) -> bool:
     """expr is fac times something (expr a product of factors, one of them ±fac)."""
     return any(is_zero(f - fac) or is_zero(f + fac) for f in sp.Mul.make_args(expr)
@@ -457,6 +551,13 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
         if bad:
             notes.append("no real configuration for the given parameters: "
                          + ", ".join(f"{q} = {sp.sstr(v)}" for q, v in bad))
+            continue
+        never = [e for e in c.equations if _never_zero(e, joints, kinds, params)]
+        if never:
+            notes.append("no real configuration for the given parameters: "
+                         + ", ".join(f"{sp.sstr(e)} = 0" for e in never)
+                         + " (its constant term exceeds the sum of the other terms' coefficients, "
+                         "each multiplying sines and cosines)")
             continue
         kept.append(c)
     kept.sort(key=lambda c: _order_key(c, joints, params))
