@@ -230,7 +230,7 @@ def _shortest_trig_form(canonical):
         return canonical
     candidates = [canonical]
     if canonical.has(sp.sin, sp.cos):
-        candidates.append(TR10i(sp.expand(TR8(canonical))))
+        candidates.append(_addition_formulas(sp.expand(TR8(canonical))))
     candidates += [sp.factor_terms(canonical), sp.factor(canonical)]
 
     def negated_sum(c):

@@ -53,38 +53,54 @@ class _Geometry:
         pt = sp.Matrix(list(point)).subs(sub)
         self._p = sp.lambdify([self.joints], pt, numpy_modules())
         if l_matrices is not None:
-            self._l = sp.lambdify([self.joints], mats, numpy_modules())
+            every = sp.lambdify([self.joints], mats, numpy_modules())
+            self._l = every
+            self._l_one = lambda q, i: every(q)[i]
         else:
             m0 = sp.lambdify([self.joints], mats, numpy_modules())
             self._l = lambda q: self._fd_l(m0, q)
+            self._l_one = lambda q, i: self._fd_l_one(m0, q, i, m0(np.asarray(q, dtype=float)))
 
-    def _fd_l(self, m0, q, eps=1e-6):
+    def _fd_l(self, m0, q):
+        base = m0(np.asarray(q, dtype=float))
+        return [self._fd_l_one(m0, q, i, base) for i in range(len(q))]
+
+    @staticmethod
+    def _fd_l_one(m0, q, i, base, eps=1e-6):
+        """Lᵢ = ∂Mᵢ/∂qᵢ·Mᵢ⁻¹ by a central difference in qᵢ alone (base: the poses at q)."""
         q = np.asarray(q, dtype=float)
-        out = []
-        base = m0(q)
-        for i in range(len(q)):
-            dq = np.zeros(len(q))
-            dq[i] = eps
-            mp = np.asarray(m0(q + dq)[i], dtype=float)
-            mm = np.asarray(m0(q - dq)[i], dtype=float)
-            out.append((mp - mm) / (2 * eps) @ np.linalg.inv(np.asarray(base[i], dtype=float)))
-        return out
+        dq = np.zeros(len(q))
+        dq[i] = eps
+        mp = np.asarray(m0(q + dq)[i], dtype=float)
+        mm = np.asarray(m0(q - dq)[i], dtype=float)
+        return (mp - mm) / (2 * eps) @ np.linalg.inv(np.asarray(base[i], dtype=float))
+
+    def _axis_of(self, i, m):
+        m = np.asarray(m, dtype=float)
+        if self.kinds[self.joints[i]] != "revolute":
+            return None
+        u = np.array([m[2, 1], m[0, 2], m[1, 0]])
+        n = np.linalg.norm(u)
+        if n < 1e-12:
+            return None
+        u = u / n
+        t = m[:3, 3] / n
+        return u, np.cross(u, t)
 
     def axes(self, q):
         """(joint index, unit direction, a point on the axis) of each revolute joint."""
         out = []
         for i, m in enumerate(self._l(q)):
-            m = np.asarray(m, dtype=float)
-            if self.kinds[self.joints[i]] != "revolute":
-                continue
-            u = np.array([m[2, 1], m[0, 2], m[1, 0]])
-            n = np.linalg.norm(u)
-            if n < 1e-12:
-                continue
-            u = u / n
-            t = m[:3, 3] / n
-            out.append((i, u, np.cross(u, t)))
+            axis = self._axis_of(i, m)
+            if axis is not None:
+                out.append((i, *axis))
         return out
+
+    def axis(self, q, i):
+        """(unit direction, a point on the axis) of joint i, or None (prismatic, or no axis)."""
+        if self.kinds[self.joints[i]] != "revolute":
+            return None
+        return self._axis_of(i, self._l_one(q, i))
 
     def point(self, q):
         return np.asarray(self._p(q), dtype=float).reshape(3)
@@ -154,25 +170,27 @@ def _bisect(f, lo: float, hi: float) -> float:
     return (lo + hi) / 2
 
 
-def _far_point(geo, q, k, prev):
+def _far_point(geo, q, k, prev, prev_axis=None):
     """The point whose distance to the axis of joint `prev` measures the reach at joint k:
-    the next revolute axis when it is parallel to that axis (planar chains), else the point."""
-    axes = {i: (u, a) for i, u, a in geo.axes(q)}
-    u_prev, a_prev = axes[prev]
-    later = [i for i in sorted(axes) if i > k]
-    if later and abs(abs(np.dot(axes[later[0]][0], u_prev)) - 1) < 1e-9:
-        return axes[later[0]][1], u_prev, a_prev
+    the next revolute axis when it is parallel to that axis (planar chains), else the point.
+    `prev_axis`: that axis, when known (it does not depend on joint k > prev)."""
+    u_prev, a_prev = prev_axis if prev_axis is not None else geo.axis(q, prev)
+    # the first revolute axis after joint k (only that one: each axis costs a difference)
+    later = next((ax for ax in (geo.axis(q, i) for i in range(k + 1, len(geo.joints))) if ax is not None), None)
+    if later is not None and abs(abs(np.dot(later[0], u_prev)) - 1) < 1e-9:
+        return later[1], u_prev, a_prev
     return geo.point(q), u_prev, a_prev
 
 
 def _stretch(geo, qv, k, prev, scale):
     grid = np.linspace(-math.pi, math.pi, 121)
+    prev_axis = geo.axis(qv, prev)       # the same at every value of joint k > prev
     dists = []
     for x in grid:
         q2 = list(qv)
         q2[k] = x
-        dists.append(_dist_point_line(*_far_point(geo, q2, k, prev)))
-    d0 = _dist_point_line(*_far_point(geo, qv, k, prev))
+        dists.append(_dist_point_line(*_far_point(geo, q2, k, prev, prev_axis)))
+    d0 = _dist_point_line(*_far_point(geo, qv, k, prev, prev_axis))
     lo, hi = min(dists), max(dists)
     if hi - lo < 1e-7 * scale:
         return []

@@ -65,6 +65,17 @@ def test_addition_formulas_group_by_group_is_tr10i():
         assert S._addition_formulas(e) == TR10i(e)
 
 
+def test_addition_formulas_on_products_turned_into_sums_is_tr10i():
+    """The shortest-form candidate TR10i(expand(TR8(e))) is computed group by group: the same
+    expression as TR10i's own (TR8 brings halves and sums of angles into the groups)."""
+    from sympy.simplify.fu import TR8
+
+    rng = random.Random(17)
+    for _ in range(30):
+        e = sp.expand(TR8(_random_trig_sum(rng, terms=rng.randint(2, 9))))
+        assert S._addition_formulas(e) == TR10i(e)
+
+
 def test_chain_entries_keep_their_value():
     rng = random.Random(3)
     for _ in range(12):
