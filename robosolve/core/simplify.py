@@ -343,12 +343,60 @@ def determinant_factors(expr) -> list:
     return out
 
 
+def _polynomial_factor_list(expr):
+    """factor_list(factor(expr)) for a product of powers of polynomials (in symbols, sines,
+    cosines and roots, exact coefficients): each piece factored as sympy's factor_list factors
+    it, without the two passes of together() over the whole expression that factor and
+    factor_list make first (most of their time on a substituted minor, where nothing is over a
+    denominator). The same factors, multiplicities and coefficient; the order of the list may
+    differ (callers multiply the factors or sort them). None for anything else (floats,
+    denominators, fractional powers of a piece, I): sympy's own route then."""
+    from sympy.polys.polyerrors import GeneratorsNeeded, PolynomialError
+
+    if expr.atoms(sp.Float) or expr.has(sp.I, sp.exp) or any(p.exp.is_negative for p in expr.atoms(sp.Pow)):
+        return None
+    coeff, merged = sp.S.One, {}
+    for arg in sp.Mul.make_args(expr):
+        if arg.is_Number:
+            coeff *= arg
+            continue
+        base, exp = arg.args if arg.is_Pow else (arg, sp.S.One)
+        if not (exp.is_Integer and exp > 0) or base.is_Number:
+            return None
+        try:
+            poly = sp.Poly(base)
+        except (GeneratorsNeeded, PolynomialError):
+            return None
+        if not (poly.domain.is_ZZ or poly.domain.is_QQ):
+            return None
+        c, factors = poly.factor_list()
+        coeff *= poly.domain.to_sympy(c) ** exp
+        for f, k in factors:
+            e = f.as_expr()
+            merged[e] = merged.get(e, 0) + k * int(exp)
+    # sympy's order (its _sorted_factors, each factor a polynomial in its own generators): the
+    # callers multiply the list out, and sympy's Mul distributes a numeric coefficient over the
+    # first sum it meets, so the order shows in the product (-L1(-L2 s2 - L3 s23) or not)
+    # (ties kept in the order of the arguments of sympy's product of the factors, as there)
+    from functools import cmp_to_key
+
+    items = sorted(merged.items(), key=cmp_to_key(lambda x, y: sp.Basic.compare(x[0] ** x[1], y[0] ** y[1])))
+    polys = [(sp.Poly(e), k) for e, k in items]
+    polys.sort(key=lambda fk: (len(fk[0].rep.to_list()), len(fk[0].gens), fk[1], str(fk[0].domain),
+                               fk[0].rep.to_list()))
+    return coeff, [(f.as_expr(), k) for f, k in polys]
+
+
 def _factor_list(expr):
-    """sympy's factor_list of factor(expr); when sympy cannot build the polynomial (it fails on
-    products of roots such as √(d6 − d4)·√(d4 + d6), PolificationFailed), the roots are named
-    first and put back in the factors."""
+    """sympy's factor_list of factor(expr) (by `_polynomial_factor_list` where it applies); when
+    sympy cannot build the polynomial (it fails on products of roots such as
+    √(d6 − d4)·√(d4 + d6), PolificationFailed), the roots are named first and put back in the
+    factors."""
     from sympy.polys.polyerrors import PolificationFailed
 
+    fast = _polynomial_factor_list(expr)
+    if fast is not None:
+        return fast
     try:
         return sp.factor_list(sp.factor(expr))
     except PolificationFailed:

@@ -51,15 +51,23 @@ class SearchTooLong(Exception):
 
 
 class SearchBudget:
-    """The count of the search's work: the expression nodes of every expression it factors.
-    `nodes=None`: unbounded (the count is still kept)."""
+    """The count of the search's work: the expression nodes of every distinct expression it
+    factors (up to sign: the branches q = 0 and q = π often leave the same minors, which the
+    memo of the factoring answers at once). `nodes=None`: unbounded (the count is still kept).
+    The count depends only on the search's own history, never on what an earlier problem left
+    in the memo, so the outcome is the same on every machine and in every batch."""
 
     def __init__(self, nodes: int | None = None):
         self.nodes, self.spent = nodes, 0
+        self._seen: set = set()
 
     def spend(self, expr):
         from robosolve.core.simplify import expression_nodes
 
+        expr = sp.sympify(expr)
+        if expr in self._seen or -expr in self._seen:
+            return
+        self._seen.add(expr)
         self.spent += expression_nodes(expr)
         if self.nodes is not None and self.spent > self.nodes:
             raise SearchTooLong(f"the search for the rank conditions needs more than {self.nodes:,} expression "

@@ -93,3 +93,52 @@ def test_the_ur5_determinant_factors_as_sympy_factors_it():
     assert big, "the UR5's det J should be one large ring polynomial"
     for p in big:
         assert _same(factor_list_by_contents(p), p.factor_list())
+
+
+@pytest.mark.parametrize("seed", range(16))
+def test_polynomial_factor_list_is_sympys_factor_list_of_factor(seed):
+    """core/simplify's factoring of a substituted minor piece by piece, without sympy's passes of
+    together(): exactly sympy's factor_list(factor(e)) — the same coefficient and the same list in
+    the same order (the order shows in the product: sympy's Mul distributes a number over the
+    first sum) — on random products of sums in sines, cosines, parameters and a root, some
+    factors repeated, some pieces multiplied out."""
+    import sympy as sp
+
+    from robosolve.core.simplify import _polynomial_factor_list
+
+    rng = random.Random(seed)
+    a, b, d = sp.symbols("a b d", real=True)
+    q2, q3 = sp.symbols("q2 q3", real=True)
+    atoms = [a, b, d, sp.sin(q2), sp.cos(q2), sp.sin(q2 + q3), sp.cos(q3), sp.sqrt(a**2 + d**2)]
+
+    def piece():
+        out = 0
+        for _ in range(rng.randint(1, 4)):
+            t = rng.choice([1, -1, 2, -3, sp.Rational(1, 2)])
+            for _ in range(rng.randint(1, 3)):
+                t *= rng.choice(atoms)
+            out += t
+        return out
+
+    factors = [piece() ** rng.choice([1, 1, 2]) for _ in range(rng.randint(1, 4))]
+    expr = rng.choice([-1, 1, 6, sp.Rational(-2, 3)]) * sp.Mul(*factors)
+    if rng.random() < 0.5:
+        expr = sp.expand(expr)
+    fast = _polynomial_factor_list(expr)
+    if fast is None:
+        # a root as a factor of its own (sympy lists it as (a² + d², 1/2)): left to sympy
+        assert any(f.is_Pow and not f.exp.is_Integer for f in sp.Mul.make_args(expr))
+        return
+    assert fast == sp.factor_list(sp.factor(expr))
+
+
+def test_polynomial_factor_list_leaves_the_rest_to_sympy():
+    """Floats, denominators and fractional powers of a piece: None (sympy's route)."""
+    import sympy as sp
+
+    from robosolve.core.simplify import _polynomial_factor_list
+
+    a, b = sp.symbols("a b", real=True)
+    assert _polynomial_factor_list(0.5 * a + b) is None
+    assert _polynomial_factor_list(a / b + 1) is None
+    assert _polynomial_factor_list(sp.sqrt(a + b) * a) is None
