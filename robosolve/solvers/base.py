@@ -43,12 +43,13 @@ class Budgets:
     symbolic_nodes: int = 800          # a 6R arm's Jacobian has ~1000 (its det search never ends)
     # The rank conditions of a wide Jacobian (kinematics/wide_rank.py, singularities.py): the ring
     # terms of its maximal minors and sub-minors (a UR5 flange's 3×6: 390, a Panda's 6×7: 479),
-    # then the expression nodes the search may factor (the UR5 flange's 3×6: about 1,300; a
-    # Panda's 6×7: about 16,000, ten seconds of factoring for families nobody can check by hand,
-    # so a 7-joint arm's rank conditions are answered by the numeric distance from singularity).
+    # then the distinct expression nodes the search may factor: the UR5 flange's 3×6 about 1,300;
+    # the flanges of random spherical-wrist 6R arms (tests/support/singular_probe.py) 2,400–8,200;
+    # the Panda's 6×7 8,500 (its 24 mapped families checked singular by Robotics Toolbox's jacob0);
+    # a random 7-joint arm up to 17,000 (past it: the numeric distance from singularity).
     rank_terms: int = 3000
-    rank_nodes: int = 5000
-    # The safety net around that counted search (CPU s): within rank_nodes it needs 2-3 s here
+    rank_nodes: int = 10000
+    # The safety net around that counted search (CPU s): within rank_nodes it needs 1-7 s here
     # (a UR5 flange's 3×6: 1.7 s); the net is wide so that only a runaway step meets it, never
     # a slow or busy machine (a 30 s net was once met in CI, where the same step takes 1.7 s).
     rank_search_seconds: float = 120.0

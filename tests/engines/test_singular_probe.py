@@ -103,3 +103,61 @@ def test_flange_whose_search_meets_a_product_of_roots():
     conds = _conditions(ans)
     assert len(conds) > 4
     assert check_answer(case, ans, np.random.default_rng(5), starts=25) == []
+
+
+def test_the_pandas_rank_conditions_lose_rank_in_robotics_toolbox():
+    """The bundled Franka Panda (problems/panda.yaml, modified DH, 6×7 geometric Jacobian): the
+    search finishes within its counted budget, and every condition it reports — the joint-value
+    families and the families of equations together (met by a least-squares solve from random
+    starts) — makes Robotics Toolbox's jacob0 of models.DH.Panda (the same kinematics) lose rank,
+    while a random configuration does not."""
+    import sympy as sp
+    from scipy.optimize import least_squares
+
+    import roboticstoolbox as rtb
+    from robosolve.kinematics.singularities import SearchBudget, find_singularities
+    from robosolve.kinematics.wide_rank import wide_minors
+    from robosolve.load.loader import load_problem
+    from robosolve.model import RobotModel
+    from robosolve.solvers.base import Budgets
+    from tests.support.singular_probe import _split
+
+    problem = load_problem("problems/panda.yaml")
+    model = RobotModel(problem)
+    question = next(q for q in problem.questions if q.type == "jacobian")
+    pframe, plocal = model.point_local(question.point)
+    wide = wide_minors(model, pframe, plocal, question.frame or problem.last_frame, True, Budgets().rank_terms)
+    res = find_singularities(None, model.q, {j.symbol: j.kind for j in problem.joints},
+                             dict(problem.parameters), minors=wide.minors,
+                             work=SearchBudget(Budgets().rank_nodes))
+    conds = [c.mapping() for c in res.conditions]
+    assert len(conds) > 20
+    robot = rtb.models.DH.Panda()
+    rng = np.random.default_rng(2)
+
+    def ratio(q):
+        s = np.linalg.svd(robot.jacob0(q), compute_uv=False)
+        return s[-1] / s[0]
+
+    assert ratio(rng.uniform(-2, 2, 7)) > 1e-4
+    qs = list(model.q)
+    names = {str(q): q for q in qs}
+    values = {s: float(v) for s, v in problem.parameters.items() if v is not None}
+    loc = {**names, **{str(s): s for s in values}}
+    for cond in conds:
+        items = cond.items() if isinstance(cond, dict) else [p.split("=", 1) for p in _split(cond)]
+        exprs = []
+        for lhs, rhs in items:
+            e = (sp.sympify(lhs.strip(), locals=loc) - sp.sympify(rhs, locals=loc)).xreplace(values)
+            exprs.append(2 * sp.sin(e / 2) if lhs.strip() in names else e)
+        f = sp.lambdify([qs], exprs, "numpy")
+        met = 0
+        for _ in range(30):
+            sol = least_squares(lambda x: np.asarray(f(x), dtype=float), rng.uniform(-np.pi, np.pi, 7),
+                                xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            if np.max(np.abs(f(sol.x))) < 1e-11:
+                assert ratio(sol.x) < 1e-8, (cond, sol.x)
+                met += 1
+                if met == 2:
+                    break
+        assert met, cond
