@@ -103,4 +103,3 @@ def test_flange_whose_search_meets_a_product_of_roots():
     conds = _conditions(ans)
     assert len(conds) > 4
     assert check_answer(case, ans, np.random.default_rng(5), starts=25) == []
-
