@@ -346,8 +346,9 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
     for e in exprs:
         if fixed:
             e1 = _clean_values(sp.sympify(e).subs(fixed), sample)
-            if not e1.is_polynomial():
+            if not e1.is_polynomial() and any(p.exp.is_negative for p in e1.atoms(sp.Pow)):
                 # a joint value with a denominator of parameters: the zeros are the numerator's
+                # (only then: together() on a long sum with roots costs more than its factoring)
                 e1 = sp.numer(sp.together(e1))
             work.spend(e1)
         e2 = factored_determinant(e1) if fixed else e
@@ -465,8 +466,25 @@ def _never_zero(expr, joints, kinds, params) -> bool:
 
 def _multiple_of(expr, fac) -> bool:
     """expr is fac times something (expr a product of factors, one of them ±fac)."""
-    return any(is_zero(f - fac) or is_zero(f + fac) for f in sp.Mul.make_args(expr)
+    return any(_same_up_to_sign(f, fac) for f in sp.Mul.make_args(expr)
                if not f.is_number and f.free_symbols >= fac.free_symbols)
+
+
+# a point where two different factors differ (rational, so that its value is exact enough)
+_PROBE = (sp.Rational(3, 7), sp.Rational(-5, 11), sp.Rational(7, 13), sp.Rational(2, 17), sp.Rational(-9, 19))
+
+
+def _same_up_to_sign(f, fac) -> bool:
+    """f = ±fac, proved by is_zero; f − fac and f + fac both non-zero at one point settles it
+    at once (then neither is identically zero), which is most pairs."""
+    if f == fac or f == -fac:
+        return True
+    point = {s: _PROBE[i % len(_PROBE)] + i for i, s in enumerate(sorted(f.free_symbols | fac.free_symbols,
+                                                                          key=sp.default_sort_key))}
+    minus, plus = _numeric(f - fac, point), _numeric(f + fac, point)
+    if minus is not None and plus is not None and abs(minus) > 1e-12 and abs(plus) > 1e-12:
+        return False
+    return is_zero(f - fac) or is_zero(f + fac)
 
 
 def _maximal_minors(j: sp.Matrix):
