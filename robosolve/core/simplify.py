@@ -62,6 +62,11 @@ class SimplifyBudgets:
     root_ops: int = 40              # above: a root is shown as solve gave it
     factor_ops: int = 160           # above: a determinant's factor is kept as factor() gave it (TR10i
                                     # on a 7-joint arm's minors takes minutes)
+    product_to_sum_ops: int = 120   # above: the shortest trig form has no product-to-sum candidate
+                                    # (TR8 makes 2^(k-1) terms of a product of k sines and cosines:
+                                    # 10 s on a 4-joint arm's minor of 4,000 ops; it is the shortest
+                                    # only on short entries, sin θ cos θ -> sin(2θ)/2, 20 ops at most
+                                    # on the bundled problems and benchmarks)
 
 
 DEFAULT_BUDGETS = SimplifyBudgets()
@@ -229,7 +234,7 @@ def _shortest_trig_form(canonical):
         # shorter, nor a sum of products (TR8 doubles the terms), nor a factored form
         return canonical
     candidates = [canonical]
-    if canonical.has(sp.sin, sp.cos):
+    if canonical.has(sp.sin, sp.cos) and sp.count_ops(canonical) <= DEFAULT_BUDGETS.product_to_sum_ops:
         candidates.append(_addition_formulas(sp.expand(TR8(canonical))))
     candidates += [sp.factor_terms(canonical), sp.factor(canonical)]
 

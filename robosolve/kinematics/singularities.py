@@ -545,8 +545,11 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
         kind, measure = "det", det
     elif minors is not None:
         kind, measure = "gram", None      # the sum of the minors' squares, below
-    else:
+    elif j.shape[0] == j.shape[1]:
         kind, measure = rank_measure(j)
+    else:
+        # det(J Jᵀ) itself is not needed: the sum of the minors' squares below is the measure
+        kind, measure = "gram", None
     notes: list[str] = []
     given, minors = minors, []
     if kind == "det":

@@ -16,6 +16,7 @@ import sympy as sp
 
 from robosolve.core.numpy_code import numpy_modules
 from robosolve.core.prose import Num, Text, name_md, name_tex
+from robosolve.core.simplify import DEFAULT_BUDGETS
 from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
@@ -143,7 +144,11 @@ def _singularity_steps(ans, question, ctx, ts):
             manip = "\\sqrt{" + " + ".join(f"\\Delta_{{{k + 1}}}^2" for k, mi in enumerate(minors) if mi != 0) + "}"
             ans.steps.append(_wide_step(wide, ts))
         else:
-            gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
+            # tidied only when short once expanded (a count, not the clock: a 4-joint arm's sum
+            # of squared minors expands to 1,200 operations, and trigsimp spent 30 s on it)
+            gram = None
+            if sp.count_ops(sp.expand(res.measure)) <= DEFAULT_BUDGETS.chain_ops:
+                gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
             manip = sp.sqrt(gram if gram is not None else res.measure)
             ans.symbolic["manipulability"] = manip
         ans.steps.append(Step(
@@ -219,9 +224,9 @@ def _rank_conditions(ans, question, ctx, ts, kinds, params):
     det, det_parts = _structured_det_steps(ans, question, ctx, ts)
     wide, err = _wide_minors(question, ctx, ts)
     if wide is not None:
-        res, err = _wide_search(ctx, ctx.model, kinds, params, wide)
+        res, err = _counted_search(ctx, ctx.model, kinds, params, minors=wide.minors)
     elif err is None:
-        res, err = limited(ctx, ctx.step_seconds, find_singularities, ts.J, ctx.model.q, kinds, params, det)
+        res, err = _counted_search(ctx, ctx.model, kinds, params, j=ts.J, det=det)
     else:
         res = None
     return res, err, wide, det_parts
@@ -246,17 +251,25 @@ def _wide_minors(question, ctx, ts):
                       "every machine")
 
 
-def _wide_search(ctx, model, kinds, params, wide):
-    """The search on the structured minors, within its counted budget (`Budgets.rank_nodes`);
-    the time limit around it is a safety net only. (result, None) or (None, why)."""
+def _counted_search(ctx, model, kinds, params, j=None, det=None, minors=None):
+    """The search for the rank conditions (on J and its det by structure, or on a wide J's
+    structured minors), within its counted budget (`Budgets.rank_nodes`) after the input's
+    (`Budgets.symbolic_nodes`); the time limit around it is a safety net only, so the answer is
+    the same on every machine. (result, None) or (None, why)."""
     from sympy.polys.polyerrors import BasePolynomialError
 
+    from robosolve.core.simplify import expression_nodes
     from robosolve.errors import SymbolicTimeout
     from robosolve.kinematics.singularities import SearchBudget, SearchTooLong
 
+    if j is not None:
+        limit, size = ctx.budgets.symbolic_nodes, expression_nodes((j, model.q, kinds, params, det))
+        if size > limit:
+            return None, (f"its input has {size:,} expression nodes, above the budget of {limit:,}: "
+                          "a count, so the outcome is the same on every machine")
     try:
         with ctx.time_limit(ctx.budgets.rank_search_seconds) as token:
-            return find_singularities(None, model.q, kinds, params, minors=wide.minors,
+            return find_singularities(j, model.q, kinds, params, det, minors=minors,
                                       work=SearchBudget(ctx.budgets.rank_nodes)), None
     except SearchTooLong as exc:
         return None, str(exc)
