@@ -20,7 +20,7 @@ solve context carries one: `ctx.budgets.simplify`); engines use the defaults.
 | `ik_fraction` | IK closed forms: one fraction, numerator expanded, no -(...) around a sum | none |
 | `determinant_factors`, `factored_determinant` | factors of det J and of the minors of a wide J (trig identities may reveal products) | `factor_ops` (a factor above it is not tidied) |
 | `coefficient` | parameter coefficients of the equations of motion: factored when small | `coefficient_ops` |
-| `factored` | a polynomial shown factored (profile derivatives, radicands) | none |
+| `factored` | a polynomial shown factored (profile derivatives, radicands, the ratios of a singular value in closed form) | none |
 | `radicals` | exact numbers with radicals: the shortest of expand / sqrtdenest / radsimp | none |
 | `eigenvalue` | an exact eigenvalue: simplify, then radicals collected | none |
 | `rational` | a float written as the rational it stands for (nsimplify) | none |
@@ -546,7 +546,8 @@ def common_factors(e):
 
 @memoised
 def factored(e):
-    """A polynomial shown factored (profile derivatives, the radicand of a distance)."""
+    """A polynomial shown factored (profile derivatives, the radicand of a distance, the ratios
+    of a singular joint value in closed form)."""
     return sp.factor(e)
 
 

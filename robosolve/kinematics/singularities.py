@@ -254,22 +254,22 @@ def _solve_linear_trig(g, c, s, sample):
             return [-sp.pi / 2, sp.pi / 2] if nonzero(a) else None
         if not nonzero(b):
             return None
-        first = sp.atan(sp.factor(-a / b))
+        first = sp.atan(factored(-a / b))
         return [first, _in_range(first + sp.pi, sample)]
     if a == 0:
         if not nonzero(b):
             return None
-        first = sp.asin(sp.factor(-k / b))
+        first = sp.asin(factored(-k / b))
         return [first, _in_range(sp.pi - first, sample)]
     if b == 0:
         if not nonzero(a):
             return None
-        first = sp.acos(sp.factor(-k / a))
+        first = sp.acos(factored(-k / a))
         return [first, -first]
-    r = sp.sqrt(sp.factor(a**2 + b**2))
+    r = sp.sqrt(factored(a**2 + b**2))
     if not nonzero(r):
         return None
-    phi, delta = sp.atan2(b, a), sp.acos(sp.factor(-k / r))
+    phi, delta = sp.atan2(b, a), sp.acos(factored(-k / r))
     if delta == 0 or delta == sp.pi:         # |K| = √(A² + B²): one (double) root
         return [_in_range(phi + delta, sample)]
     return [_in_range(phi + delta, sample), _in_range(phi - delta, sample)]

@@ -110,8 +110,6 @@ def _geometric_steps(ans, question, ctx, ts):
 
 def _singularity_steps(ans, question, ctx, ts):
     model = ctx.model
-    J = ts.J
-    m, n = J.shape
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
@@ -135,37 +133,7 @@ def _singularity_steps(ans, question, ctx, ts):
         intro = ("Each factor of $\\det J$ that contains a joint is set to zero and solved "
                  "for a joint (every value in $(-\\pi, \\pi]$ for a revolute joint):")
     else:
-        from robosolve.kinematics.jacobian_math import tidy
-
-        shape = "wide (redundant)" if m < n else "tall"
-        minors = [mi for mi in res.minors]
-        if wide is not None:
-            # the minors by structure: w as the root of their squares (written out it is pages long)
-            manip = "\\sqrt{" + " + ".join(f"\\Delta_{{{k + 1}}}^2" for k, mi in enumerate(minors) if mi != 0) + "}"
-            ans.steps.append(_wide_step(wide, ts))
-        else:
-            # tidied only when short once expanded (a count, not the clock: a 4-joint arm's sum
-            # of squared minors expands to 1,200 operations, and trigsimp spent 30 s on it)
-            gram = None
-            if sp.count_ops(sp.expand(res.measure)) <= DEFAULT_BUDGETS.chain_ops:
-                gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
-            manip = sp.sqrt(gram if gram is not None else res.measure)
-            ans.symbolic["manipulability"] = manip
-        ans.steps.append(Step(
-            "Manipulability",
-            f"J is {m}×{n} ({shape}), so it has no determinant. Its manipulability is the product "
-            "of its singular values, $w = \\sqrt{\\det(J J^T)}$ "
-            + ("" if m < n else "(here $\\sqrt{\\det(J^T J)}$) ")
-            + "and by the Cauchy–Binet formula $\\det(J J^T)$ is the sum of the squares of the "
-              f"maximal ({min(m, n)}×{min(m, n)}) minors of J"
-            + (":" if len(minors) <= 6 else
-               f" ({len(minors)} minors, {sum(1 for x in minors if x != 0)} not identically zero; "
-               "the first six of these are shown):"),
-            equations=([(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors)]
-                       if len(minors) <= 6 else
-                       [(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors) if mi != 0][:6])
-            + [("w", manip)],
-        ))
+        _manipulability_steps(ans, ctx, res, wide, ts)
         intro = ("J loses rank where all its maximal minors vanish together: a factor of one "
                  "minor is solved for a joint and substituted into the others:")
     conds = name_conditions(res.conditions, model.q, kinds, None,
@@ -190,6 +158,43 @@ def _singularity_steps(ans, question, ctx, ts):
                               "No factor vanishes for any joint value: J never loses rank "
                               "(for generic, non-zero parameters)."))
     return True
+
+
+def _manipulability_steps(ans, ctx, res, wide, ts):
+    """The minors of a non-square J (shown) and its manipulability w, the root of the sum of
+    their squares (Cauchy–Binet)."""
+    from robosolve.kinematics.jacobian_math import tidy
+
+    m, n = ts.J.shape
+    shape = "wide (redundant)" if m < n else "tall"
+    minors = [mi for mi in res.minors]
+    if wide is not None:
+        # the minors by structure: w as the root of their squares (written out it is pages long)
+        manip = "\\sqrt{" + " + ".join(f"\\Delta_{{{k + 1}}}^2" for k, mi in enumerate(minors) if mi != 0) + "}"
+        ans.steps.append(_wide_step(wide, ts))
+    else:
+        # tidied only when short once expanded (a count, not the clock: a 4-joint arm's sum
+        # of squared minors expands to 1,200 operations, and trigsimp spent 30 s on it)
+        gram = None
+        if sp.count_ops(sp.expand(res.measure)) <= DEFAULT_BUDGETS.chain_ops:
+            gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
+        manip = sp.sqrt(gram if gram is not None else res.measure)
+        ans.symbolic["manipulability"] = manip
+    ans.steps.append(Step(
+        "Manipulability",
+        f"J is {m}×{n} ({shape}), so it has no determinant. Its manipulability is the product "
+        "of its singular values, $w = \\sqrt{\\det(J J^T)}$ "
+        + ("" if m < n else "(here $\\sqrt{\\det(J^T J)}$) ")
+        + "and by the Cauchy–Binet formula $\\det(J J^T)$ is the sum of the squares of the "
+          f"maximal ({min(m, n)}×{min(m, n)}) minors of J"
+        + (":" if len(minors) <= 6 else
+           f" ({len(minors)} minors, {sum(1 for x in minors if x != 0)} not identically zero; "
+           "the first six of these are shown):"),
+        equations=([(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors)]
+                   if len(minors) <= 6 else
+                   [(f"\\Delta_{{{k + 1}}}", mi) for k, mi in enumerate(minors) if mi != 0][:6])
+        + [("w", manip)],
+    ))
 
 
 # A condition longer than this (LaTeX characters) is written below the table, one equation a
