@@ -353,11 +353,8 @@ def _polynomial_factor_list(expr):
     cosines and roots, exact coefficients): each piece factored as sympy's factor_list factors
     it, without the two passes of together() over the whole expression that factor and
     factor_list make first (most of their time on a substituted minor, where nothing is over a
-    denominator). The same factors, multiplicities and coefficient; the order of the list may
-    differ (callers multiply the factors or sort them). None for anything else (floats,
-    denominators, fractional powers of a piece, I): sympy's own route then."""
-    from sympy.polys.polyerrors import GeneratorsNeeded, PolynomialError
-
+    denominator). The same factors, multiplicities, coefficient and order. None for anything
+    else (floats, denominators, fractional powers of a piece, I): sympy's own route then."""
     if expr.atoms(sp.Float) or expr.has(sp.I, sp.exp) or any(p.exp.is_negative for p in expr.atoms(sp.Pow)):
         return None
     coeff, merged = sp.S.One, {}
@@ -368,16 +365,12 @@ def _polynomial_factor_list(expr):
         base, exp = arg.args if arg.is_Pow else (arg, sp.S.One)
         if not (exp.is_Integer and exp > 0) or base.is_Number:
             return None
-        try:
-            poly = sp.Poly(base)
-        except (GeneratorsNeeded, PolynomialError):
+        piece = _piece_factors(base)
+        if piece is None:
             return None
-        if not (poly.domain.is_ZZ or poly.domain.is_QQ):
-            return None
-        c, factors = poly.factor_list()
-        coeff *= poly.domain.to_sympy(c) ** exp
-        for f, k in factors:
-            e = f.as_expr()
+        c, factors = piece
+        coeff *= c ** exp
+        for e, k in factors:
             merged[e] = merged.get(e, 0) + k * int(exp)
     # sympy's order (its _sorted_factors, each factor a polynomial in its own generators): the
     # callers multiply the list out, and sympy's Mul distributes a numeric coefficient over the
@@ -390,6 +383,33 @@ def _polynomial_factor_list(expr):
     polys.sort(key=lambda fk: (len(fk[0].rep.to_list()), len(fk[0].gens), fk[1], str(fk[0].domain),
                                fk[0].rep.to_list()))
     return coeff, [(f.as_expr(), k) for f, k in polys]
+
+
+# the factors of one piece, by the piece: the rank search meets the same pieces again and again
+# (the same minor after q = 0 and q = π, a factored minor taken apart to pick its factors: 255
+# of the Panda's 301 factorisations); a pure function, so the memo changes no result
+_PIECES: dict = {}
+
+
+def _piece_factors(base):
+    """(coefficient, [(factor as an expression, multiplicity)]) of one polynomial piece over
+    ZZ or QQ, as its Poly's factor_list; None when it is not one."""
+    from sympy.polys.polyerrors import GeneratorsNeeded, PolynomialError
+
+    hit = _PIECES.get(base)
+    if hit is not None:
+        return hit
+    try:
+        poly = sp.Poly(base)
+    except (GeneratorsNeeded, PolynomialError):
+        return None
+    if not (poly.domain.is_ZZ or poly.domain.is_QQ):
+        return None
+    c, factors = poly.factor_list()
+    out = (poly.domain.to_sympy(c), tuple((f.as_expr(), k) for f, k in factors))
+    if len(_PIECES) < _MEMO_SIZE:
+        _PIECES[base] = out
+    return out
 
 
 def _factor_list(expr):
