@@ -14,6 +14,15 @@ def _check(ql, path, item, q):
         ql.chk.error(path + ("geometric",), "geometric: true cannot be combined with coordinates")
 
 
+def _cost_factor(question, joints: int) -> float:
+    """A wide J of 5+ joints (a 6R flange's 3×6, a 7-joint arm's 6×7) costs about four times a
+    square one: its rank conditions come from the search over its many minors (measured: the
+    UR5 flange's 3.6 s CPU against its 6×6 geometric Jacobian's 1.0 s, the Panda's 6×7 6.7 s)."""
+    options = getattr(question, "options", None) or {}
+    rows = 6 if options.get("geometric") else len(options.get("coordinates") or ()) or 3
+    return 4.0 if rows < joints and joints >= 5 else 1.0
+
+
 def _paper_keys(options: dict, joints: int) -> tuple:
     """J and its singularities, with det J when J is square, else the manipulability."""
     rows = 6 if options.get("geometric") else len(options.get("coordinates") or ()) or 3
@@ -72,7 +81,7 @@ TYPE = QuestionType(
         _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N)),
     ),
     paper_keys=_paper_keys,
-    cost=0.5, cost_growth=2,
+    cost=0.5, cost_growth=2, cost_factor=_cost_factor,
     check=_check, has_jacobian=True,
     notebook_cells=notebook_cell,
 )

@@ -115,11 +115,13 @@ class QuestionType:
     principal_for: Callable[[dict], tuple] | None = None
     # What splitting a problem's questions between two processes needs (split_solve.py):
     # `cost`, a rough CPU time of one question on a 3-joint robot (relative: only the balance
-    # counts), times (joints / 3) ** `cost_growth`; `unit`, a name shared by the types whose
-    # questions must be solved in one process (they share a derivation or results: the
-    # dynamics, a motion profile and the torques along it).
+    # counts), times (joints / 3) ** `cost_growth`, times `cost_factor(question, joints)` where
+    # the question's options change it (a wide Jacobian's rank search); `unit`, a name shared by
+    # the types whose questions must be solved in one process (they share a derivation or
+    # results: the dynamics, a motion profile and the torques along it).
     cost: float = 0.2
     cost_growth: float = 1.0
+    cost_factor: Callable | None = None
     unit: str | None = None
     # The type's own cross-field checks, called by the question loader after the options are
     # parsed: check(ql, path, item, question) reports with ql.chk.error (load/questions.py).
@@ -156,9 +158,13 @@ class QuestionType:
     # (papers.md: the template's placeholders, the paper's "what to give")
     paper_layout: Callable | None = None
 
-    def split_cost(self, joints: int) -> float:
-        """The `cost` of one question of this type on a robot with `joints` joints."""
-        return self.cost * (max(joints, 1) / 3) ** self.cost_growth
+    def split_cost(self, joints: int, question=None) -> float:
+        """The `cost` of one question of this type on a robot with `joints` joints (of this
+        question, when given and the type has a `cost_factor`)."""
+        base = self.cost * (max(joints, 1) / 3) ** self.cost_growth
+        if self.cost_factor is not None and question is not None:
+            base *= self.cost_factor(question, joints)
+        return base
 
     @property
     def doc_page(self) -> str:

@@ -31,7 +31,7 @@ def question_cost(question, joints: int) -> float:
     from robosolve.questions.registry import QUESTION_TYPES
 
     qt = QUESTION_TYPES.get(question.type)
-    return 0.0 if qt is None else qt.split_cost(joints)
+    return 0.0 if qt is None else qt.split_cost(joints, question)
 
 
 def units(questions) -> dict:

@@ -134,3 +134,22 @@ def test_a_unit_is_solved_again_whole():
     assert to_solve_again(qs, {0, 1, 3, 4}) == [1, 2]
     assert to_solve_again(qs, {0, 1, 2, 4}) == [3]
     assert to_solve_again(qs, {0, 1, 2, 3, 4}) == []
+
+
+def test_a_wide_jacobian_weighs_its_rank_search():
+    """A 6R flange's 3×6 position Jacobian costs more than the arm's 6×6 geometric one (its rank
+    conditions come from a search over many minors); the bundled Panda's 6×7 Jacobian goes to one
+    process and its equations of motion and IK to the other (they took 2.6 + 9.1 s CPU split the
+    other way, and the Jacobian's 6.7 s alone is the shortest a split can make it)."""
+    from robosolve.load.loader import load_problem
+
+    wide = SimpleNamespace(type="jacobian", options={"geometric": False})
+    square = SimpleNamespace(type="jacobian", options={"geometric": True})
+    assert question_cost(wide, 6) > 2 * question_cost(square, 6)
+    assert question_cost(wide, 3) == question_cost(square, 3)
+    problem = load_problem("problems/panda.yaml")
+    helper = plan(problem.questions, len(problem.joints))
+    kinds = lambda side: {problem.questions[i].type for i in side}  # noqa: E731
+    parent = [i for i in range(len(problem.questions)) if i not in helper]
+    jac_side = helper if "jacobian" in kinds(helper) else parent
+    assert kinds(jac_side) <= {"jacobian", "position"}
