@@ -77,6 +77,41 @@ def _rows_in(ring, rows, k, geometric, point):
     return out
 
 
+def _rows_in_every_frame(ring, rows, geometric, point):
+    """`_rows_in` for frame 0 and every frame of the chain, each from the one before by its local
+    pose: rows_{k+1} = ᵏR_{k+1}ᵀ (rows_k, the linear ones moved by ω × ᵏt_{k+1} when geometric).
+    The local rotation has the entries of one joint, so each step is cheap where ⁰R_k·rows costs a
+    product of long polynomials; in the ring's normal form (reduced modulo sᵢ² + cᵢ² = 1, unique
+    for exact coefficients) the rows are the same elements. Decimal coefficients, whose sums would
+    round in another order, take `_rows_in` frame by frame."""
+    alg = ring.alg
+    frames = ["0"] + list(ring.chain)
+    if not (alg.ring.domain.is_Exact and all(f in ring.data.algebra.local for f in frames[1:])):
+        return [_rows_in(ring, rows, k, geometric, point) for k in frames]
+    current = _rows_in(ring, rows, "0", geometric, point)
+    out = [current]
+    n = len(rows[0])
+    for frame in frames[1:]:
+        local = ring.data.algebra.local[frame]
+        rot = [[local[r][c] for c in range(3)] for r in range(3)]
+        lin = [list(r) for r in current[:3]]
+        if geometric:
+            t, w = [local[r][3] for r in range(3)], current[3:]
+            for c in range(n):
+                cross = (w[1][c] * t[2] - w[2][c] * t[1], w[2][c] * t[0] - w[0][c] * t[2],
+                         w[0][c] * t[1] - w[1][c] * t[0])
+                for r in range(3):
+                    lin[r][c] = lin[r][c] + cross[r]
+        blocks = [lin] + ([current[3:]] if geometric else [])
+        current = []
+        for block in blocks:
+            for r in range(3):
+                current.append([alg.reduce(sum((rot[i][r] * block[i][c] for i in range(3)), alg.zero))
+                                for c in range(n)])
+        out.append(current)
+    return out
+
+
 class _Counter:
     def __init__(self, budget):
         self.budget, self.total = budget, 0
@@ -128,7 +163,7 @@ def wide_minors(model, point_frame: str, point_local, frame: str, geometric: boo
     l_point = [ring.l0(i, point_frame) for i in range(n)]
     l_frame = [ring.l0(i, frame) for i in range(n)] if geometric else l_point
     rows = ring.columns(l_point, l_frame, w)[:m]
-    candidates = [_rows_in(ring, rows, k, geometric, w) for k in ["0"] + list(ring.chain)]
+    candidates = _rows_in_every_frame(ring, rows, geometric, w)
     sizes = [sum(_terms(x) for row in cand for x in row) for cand in candidates]
     best = min(range(len(candidates)), key=lambda i: (sizes[i], i))
     chosen, name = candidates[best], (["0"] + list(ring.chain))[best]

@@ -140,3 +140,27 @@ def test_a_tiny_term_budget_stops_the_minors():
     pframe, plocal = model.point_local("E")
     with pytest.raises(OverBudget):
         wide_minors(model, pframe, plocal, problem.last_frame, False, 50)
+
+
+@pytest.mark.parametrize("name, geometric", [("ur5", False), ("ur5", True), ("panda", True)])
+def test_rows_frame_by_frame_are_the_rows_in_each_frame(name, geometric):
+    """The Jacobian's rows in every frame of the chain, each from the one before by its local pose
+    (wide_rank._rows_in_every_frame), are the same ring elements as ⁰R_kᵀ·rows computed for each
+    frame k (_rows_in): the normal form modulo sᵢ² + cᵢ² = 1 is unique (a self-check of two
+    routes; the minors themselves are checked against Robotics Toolbox above)."""
+    from robosolve.kinematics import wide_rank as W
+    from robosolve.kinematics.structured_det import RingChain
+
+    problem = load_problem(ROOT / "problems" / f"{name}.yaml")
+    model = RobotModel(problem)
+    pframe, plocal = model.point_local("E")
+    frame = problem.last_frame
+    top = frame if geometric and pframe in model.chain(frame) + ["0"] else pframe
+    ring = RingChain(model, top, points=[list(plocal)])
+    n, m = len(model.q), 6 if geometric else 3
+    w = ring.point0(pframe, ring.points[0])
+    l_point = [ring.l0(i, pframe) for i in range(n)]
+    l_frame = [ring.l0(i, frame) for i in range(n)] if geometric else l_point
+    rows = ring.columns(l_point, l_frame, w)[:m]
+    direct = [W._rows_in(ring, rows, k, geometric, w) for k in ["0"] + list(ring.chain)]
+    assert W._rows_in_every_frame(ring, rows, geometric, w) == direct
