@@ -236,7 +236,7 @@ def _shortest_trig_form(canonical):
     candidates = [canonical]
     if canonical.has(sp.sin, sp.cos) and sp.count_ops(canonical) <= DEFAULT_BUDGETS.product_to_sum_ops:
         candidates.append(_addition_formulas(sp.expand(TR8(canonical))))
-    candidates += [sp.factor_terms(canonical), sp.factor(canonical)]
+    candidates += [sp.factor_terms(canonical), _memo_factor(canonical)]
 
     def negated_sum(c):
         return c.is_Mul and len(c.args) == 2 and c.args[0] == -1 and c.args[1].is_Add
@@ -311,6 +311,13 @@ def tidy_products_matrix(m: sp.Matrix, seconds: float | None = None) -> sp.Matri
 # ---------------------------------------------------------------------------- kinematics
 
 @memoised
+def _memo_factor(expr):
+    """sympy's factor, memoised: a Jacobian entry's tidy form is factored inside jacobian_entry and
+    again by the determinant routes that take it (the same expression, the same result)."""
+    return sp.factor(expr)
+
+
+@memoised
 def jacobian_entry(expr):
     """Light, predictable simplification of one Jacobian entry: trigsimp, then factor if
     shorter (the singularity search meets the same factors many times)."""
@@ -327,7 +334,7 @@ def jacobian_entry(expr):
         out = None
     if out is None:
         out = sp.trigsimp(expr)
-    fac = sp.factor(out)
+    fac = _memo_factor(out)
     if sp.count_ops(fac) < sp.count_ops(out):
         out = fac
     return out
@@ -449,7 +456,7 @@ def factored_determinant(expr, max_ops: int = DEFAULT_BUDGETS.factor_ops):
     coeff, raw = _factor_list(expr)
     out = coeff
     for fac, mult in raw:
-        out *= (sp.factor(jacobian_entry(fac)) if sp.count_ops(fac) <= max_ops else fac) ** mult
+        out *= (_memo_factor(jacobian_entry(fac)) if sp.count_ops(fac) <= max_ops else fac) ** mult
     return out
 
 
