@@ -392,20 +392,14 @@ def _polynomial_factor_list(expr):
     return coeff, [(f.as_expr(), k) for f, k in polys]
 
 
-# the factors of one piece, by the piece: the rank search meets the same pieces again and again
-# (the same minor after q = 0 and q = π, a factored minor taken apart to pick its factors: 255
-# of the Panda's 301 factorisations); a pure function, so the memo changes no result
-_PIECES: dict = {}
-
-
+@memoised
 def _piece_factors(base):
     """(coefficient, [(factor as an expression, multiplicity)]) of one polynomial piece over
-    ZZ or QQ, as its Poly's factor_list; None when it is not one."""
+    ZZ or QQ, as its Poly's factor_list; None when it is not one. Memoised: the rank search meets
+    the same pieces again and again (the same minor after q = 0 and q = π, a factored minor taken
+    apart to pick its factors: 255 of the Panda's 301 factorisations)."""
     from sympy.polys.polyerrors import GeneratorsNeeded, PolynomialError
 
-    hit = _PIECES.get(base)
-    if hit is not None:
-        return hit
     try:
         poly = sp.Poly(base)
     except (GeneratorsNeeded, PolynomialError):
@@ -413,10 +407,7 @@ def _piece_factors(base):
     if not (poly.domain.is_ZZ or poly.domain.is_QQ):
         return None
     c, factors = poly.factor_list()
-    out = (poly.domain.to_sympy(c), tuple((f.as_expr(), k) for f, k in factors))
-    if len(_PIECES) < _MEMO_SIZE:
-        _PIECES[base] = out
-    return out
+    return poly.domain.to_sympy(c), tuple((f.as_expr(), k) for f, k in factors)
 
 
 def _factor_list(expr):
