@@ -54,14 +54,18 @@ def _terms(p) -> int:
 
 def _rows_in(ring, rows, k, geometric, point):
     """The Jacobian's rows in the axes of frame k (velocity at k's origin when geometric)."""
-    alg = ring.alg
     m0 = ring.M0(k)
     rot = [[m0[r][c] for c in range(3)] for r in range(3)]
+    return _moved(ring.alg, rows, rot, [m0[r][3] - point[r] for r in range(3)], geometric)
+
+
+def _moved(alg, rows, rot, d, geometric):
+    """Rows (3 linear, then 3 angular when geometric) written in axes rotated by `rot`, the
+    linear ones first moved by ω × d (the velocity at a point d further, when geometric)."""
     n = len(rows[0])
     lin = [list(r) for r in rows[:3]]
     if geometric:
-        # v_k = v_P + ω × (o_k − P): P's position is the geometric rows' reference
-        d = [m0[r][3] - point[r] for r in range(3)]
+        # v_k = v_P + ω × (o_k − P)
         w = rows[3:]
         for c in range(n):
             cross = (w[1][c] * d[2] - w[2][c] * d[1], w[2][c] * d[0] - w[0][c] * d[2],
@@ -88,27 +92,11 @@ def _rows_in_every_frame(ring, rows, geometric, point):
     frames = ["0"] + list(ring.chain)
     if not (alg.ring.domain.is_Exact and all(f in ring.data.algebra.local for f in frames[1:])):
         return [_rows_in(ring, rows, k, geometric, point) for k in frames]
-    current = _rows_in(ring, rows, "0", geometric, point)
-    out = [current]
-    n = len(rows[0])
+    out = [_rows_in(ring, rows, "0", geometric, point)]
     for frame in frames[1:]:
         local = ring.data.algebra.local[frame]
         rot = [[local[r][c] for c in range(3)] for r in range(3)]
-        lin = [list(r) for r in current[:3]]
-        if geometric:
-            t, w = [local[r][3] for r in range(3)], current[3:]
-            for c in range(n):
-                cross = (w[1][c] * t[2] - w[2][c] * t[1], w[2][c] * t[0] - w[0][c] * t[2],
-                         w[0][c] * t[1] - w[1][c] * t[0])
-                for r in range(3):
-                    lin[r][c] = lin[r][c] + cross[r]
-        blocks = [lin] + ([current[3:]] if geometric else [])
-        current = []
-        for block in blocks:
-            for r in range(3):
-                current.append([alg.reduce(sum((rot[i][r] * block[i][c] for i in range(3)), alg.zero))
-                                for c in range(n)])
-        out.append(current)
+        out.append(_moved(alg, out[-1], rot, [local[r][3] for r in range(3)], geometric))
     return out
 
 
