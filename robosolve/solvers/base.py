@@ -46,10 +46,11 @@ class Budgets:
     # then the distinct expression nodes the search may factor: the UR5 flange's 3×6 about 1,300;
     # the flanges of random spherical-wrist 6R arms (tests/support/singular_probe.py) 2,400–8,200;
     # the Panda's 6×7 8,500 (its 24 mapped families checked singular by Robotics Toolbox's jacob0);
-    # a random 7-joint arm up to 17,000 (past it: the numeric distance from singularity).
+    # random 7-joint arms (a spherical arm plus a joint) 550–17,400; past it: the numeric distance
+    # from singularity. 20,000 nodes are about 9 s of factoring here.
     rank_terms: int = 3000
-    rank_nodes: int = 10000
-    # The safety net around that counted search (CPU s): within rank_nodes it needs 1-7 s here
+    rank_nodes: int = 20000
+    # The safety net around that counted search (CPU s): within rank_nodes it needs 1-9 s here
     # (a UR5 flange's 3×6: 1.7 s); the net is wide so that only a runaway step meets it, never
     # a slow or busy machine (a 30 s net was once met in CI, where the same step takes 1.7 s).
     rank_search_seconds: float = 120.0
