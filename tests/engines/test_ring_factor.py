@@ -66,6 +66,40 @@ def test_parameters_in_the_coefficients(seed):
         assert _same(ring_factor._over_polynomial_domain(p), p.factor_list())
 
 
+@pytest.mark.parametrize("seed", range(16))
+def test_a_polynomial_linear_in_a_generator_is_proved_irreducible_as_sympy_finds_it(seed):
+    """ring_factor._certified_irreducible: a trig-ring polynomial (each sine of degree at most 1),
+    a product of such pieces or one alone, over ZZ, QQ and QQ[parameters]: exactly sympy's
+    factor_list (the same constant, factors and multiplicities), whether the gcd proves it
+    irreducible or splits off a common factor."""
+    rng = random.Random(300 + seed)
+    domain = (ZZ, QQ, QQ)[seed % 3]
+    if seed % 3 == 2:
+        pring, *params = ring("a2,a3,d5", QQ)
+        r, *gens = ring("s1,c1,s2,c2,s3", pring.to_domain())
+        coeffs = [r(x) for x in params] + [r(1), r(2), r(QQ(1, 2))]
+    else:
+        r, *gens = ring("s1,c1,s2,c2,s3", domain)
+        coeffs = [r(1), r(-1), r(2), r(3)] + ([r(QQ(1, 3))] if domain is QQ else [])
+    sines = (0, 2, 4)
+
+    def piece():
+        out = r(0)
+        for _ in range(rng.randint(2, 6)):
+            mono = rng.choice(coeffs)
+            for i, g in enumerate(gens):
+                mono *= g ** rng.choice((0, 1) if i in sines else (0, 1, 2))
+            out += mono
+        return out
+
+    p = piece()
+    for _ in range(rng.randint(0, 2)):
+        p *= piece()
+    if p.is_ground:
+        return
+    assert _same(factor_list_by_contents(p), p.factor_list())
+
+
 def test_the_ur5_determinant_factors_as_sympy_factors_it():
     """The UR5's 6×6 det J (420 ring terms): the content route and sympy's give the same factors."""
     from pathlib import Path
