@@ -21,7 +21,7 @@ from robosolve.kinematics.jacobian_math import numeric_manipulability
 from robosolve.kinematics.naming import name_conditions
 from robosolve.kinematics.singularities import find_singularities
 from robosolve.solvers.task_space import (
-    joint_kinds, joint_l0, limited, task_space, tidy_limited)
+    joint_kinds, joint_l0, limited, over_input_budget, task_space, tidy_limited)
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
 
@@ -263,15 +263,12 @@ def _counted_search(ctx, model, kinds, params, j=None, det=None, minors=None):
     the same on every machine. (result, None) or (None, why)."""
     from sympy.polys.polyerrors import BasePolynomialError
 
-    from robosolve.core.simplify import expression_nodes
     from robosolve.errors import SymbolicTimeout
     from robosolve.kinematics.singularities import SearchBudget, SearchTooLong
 
-    if j is not None:
-        limit, size = ctx.budgets.symbolic_nodes, expression_nodes((j, model.q, kinds, params, det))
-        if size > limit:
-            return None, (f"its input has {size:,} expression nodes, above the budget of {limit:,}: "
-                          "a count, so the outcome is the same on every machine")
+    why = over_input_budget(ctx, (j, model.q, kinds, params, det)) if j is not None else None
+    if why is not None:
+        return None, why
     try:
         with ctx.time_limit(ctx.budgets.rank_search_seconds) as token:
             return find_singularities(j, model.q, kinds, params, det, minors=minors,

@@ -13,8 +13,8 @@ import sympy as sp
 
 from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian, tidy
 
-__all__ = ["TaskSpace", "task_space", "limited", "tidy_limited", "coordinate_latex",
-           "joint_kinds", "position_axes", "joint_l0"]
+__all__ = ["TaskSpace", "task_space", "limited", "over_input_budget", "tidy_limited",
+           "coordinate_latex", "joint_kinds", "position_axes", "joint_l0"]
 
 
 @dataclass
@@ -32,18 +32,28 @@ def joint_kinds(model) -> dict:
     return {j.symbol: j.kind for j in model.joints}
 
 
-def limited(ctx, seconds, fn, *args, **kwargs):
-    """Run fn under the context's time limit; (result, None) or (None, why it stopped)."""
-    from sympy.polys.polyerrors import BasePolynomialError
-
+def over_input_budget(ctx, args) -> str | None:
+    """Why a symbolic step on `args` is not attempted (more expression nodes than the context's
+    `Budgets.symbolic_nodes`: a count, the same on every machine), or None."""
     from robosolve.core.simplify import expression_nodes
-    from robosolve.errors import SymbolicTimeout
 
     limit = getattr(getattr(ctx, "budgets", None), "symbolic_nodes", None)
     size = expression_nodes(args) if limit else 0
     if limit and size > limit:
-        return None, (f"its input has {size:,} expression nodes, above the budget of {limit:,}: "
-                      "a count, so the outcome is the same on every machine")
+        return (f"its input has {size:,} expression nodes, above the budget of {limit:,}: "
+                "a count, so the outcome is the same on every machine")
+    return None
+
+
+def limited(ctx, seconds, fn, *args, **kwargs):
+    """Run fn under the context's time limit; (result, None) or (None, why it stopped)."""
+    from sympy.polys.polyerrors import BasePolynomialError
+
+    from robosolve.errors import SymbolicTimeout
+
+    why = over_input_budget(ctx, args)
+    if why is not None:
+        return None, why
     try:
         with ctx.time_limit(seconds):
             return fn(*args, **kwargs), None
