@@ -124,8 +124,13 @@ def start_points(boxes: list[tuple[float, float]], budget: int = 4096) -> np.nda
 # iterations
 
 def _lm_batch(system: NumericSystem, Q, iters=80, deflate=None):
-    """Batched Levenberg-Marquardt on |r(Q)|^2 (optionally deflated)."""
+    """Batched Levenberg-Marquardt on |r(Q)|^2 (optionally deflated).
+
+    A start whose cost is below 1e-28 has converged and leaves the batch: the rest iterate on
+    their own (each row's arithmetic is independent of the others, so the rows still moving get
+    the same steps as in the full batch; the converged ones would only move by rounding)."""
     N, n = Q.shape
+    Q = np.array(Q, dtype=float)
     lam = np.full(N, 1e-3)
     rev = np.array(system.revolute, dtype=bool)
 
@@ -141,22 +146,26 @@ def _lm_batch(system: NumericSystem, Q, iters=80, deflate=None):
     r = eval_r(Q)
     cost = np.einsum("ij,ij->i", r, r)
     eye = np.eye(n)
+    live = np.flatnonzero(~(cost < 1e-28))
     for _ in range(iters):
+        if not live.size:
+            break
+        Ql, rl, cl, laml = Q[live], r[live], cost[live], lam[live]
         if deflate is not None and len(deflate):
             # numerical Jacobian of the deflated residual (cheap: n is small)
             h = 1e-7
-            J = np.empty((N, r.shape[1], n))
+            J = np.empty((live.size, rl.shape[1], n))
             for k in range(n):
-                Qh = Q.copy()
+                Qh = Ql.copy()
                 Qh[:, k] += h
-                J[:, :, k] = (eval_r(Qh) - r) / h
+                J[:, :, k] = (eval_r(Qh) - rl) / h
         else:
-            J = system.jac(Q)
+            J = system.jac(Ql)
         JT = np.transpose(J, (0, 2, 1))
         A = JT @ J
-        g = np.einsum("imn,im->in", J, r)
+        g = np.einsum("imn,im->in", J, rl)
         diag = np.einsum("ijj->ij", A)
-        Ad = A + lam[:, None, None] * (eye[None] * (diag[:, None, :] + 1e-9))
+        Ad = A + laml[:, None, None] * (eye[None] * (diag[:, None, :] + 1e-9))
         try:
             step = -np.linalg.solve(Ad, g[:, :, None])[:, :, 0]
         except np.linalg.LinAlgError:
@@ -164,20 +173,18 @@ def _lm_batch(system: NumericSystem, Q, iters=80, deflate=None):
         step = np.nan_to_num(step, nan=0.0, posinf=0.0, neginf=0.0)
         # cap the step so the iteration stays in the region of the starts
         norm = np.linalg.norm(step, axis=1)
-        cap = 1.0 * max(1.0, 1.0)
-        big = norm > cap
-        step[big] *= (cap / norm[big])[:, None]
-        Qn = Q + step
+        big = norm > 1.0
+        step[big] *= (1.0 / norm[big])[:, None]
+        Qn = Ql + step
         Qn[:, rev] = wrap_array(Qn[:, rev])
         rn = eval_r(Qn)
         cn = np.einsum("ij,ij->i", rn, rn)
-        ok = np.isfinite(cn) & (cn < cost)
-        Q = np.where(ok[:, None], Qn, Q)
-        r = np.where(ok[:, None], rn, r)
-        cost = np.where(ok, cn, cost)
-        lam = np.where(ok, lam / 3.0, np.minimum(lam * 4.0, 1e12))
-        if np.all(cost < 1e-28):
-            break
+        ok = np.isfinite(cn) & (cn < cl)
+        Q[live] = np.where(ok[:, None], Qn, Ql)
+        r[live] = np.where(ok[:, None], rn, rl)
+        cost[live] = np.where(ok, cn, cl)
+        lam[live] = np.where(ok, laml / 3.0, np.minimum(laml * 4.0, 1e12))
+        live = live[~(cost[live] < 1e-28)]
     return Q, cost
 
 
