@@ -37,6 +37,7 @@ R_SYMS = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}"))
 P_SYMS = sp.Matrix(sp.symbols("px py pz"))
 W_SYMS = sp.symbols("w_x w_y w_z")
 B_SYMS = sp.symbols("b_11 b_21 b_x b_y")       # ¹M₄'s entries in the planar 3R of the UR family
+BETA = sp.Symbol("beta")                        # its angle about z, atan2(b_21, b_11)
 
 
 @dataclass
@@ -360,7 +361,9 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     st1 = solve_ik(eqs1, first, vals, closed_form=True, time_limit_s=time_limit_s,
                    target_symbols=set(vals), latex_names=names, tex=tex)
     res.method = "three parallel axes"
-    res.steps.append(_parallel_step(zrow, lhs, split, names))
+    eqs2, known, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
+    angle = next((lhs_ for lhs_, rhs_ in eqs2 if rhs_ == BETA), None)
+    res.steps.append(_parallel_step(zrow, lhs, split, [names[x] for x in q], angle))
     if st1.status == "unreachable":
         res.status, res.reason = "unreachable", "the pose is beyond the reach or its orientation is not attainable: " + str(st1.reason)
         return []
@@ -380,14 +383,13 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     for stp in (st1.closed_form.steps if st1.closed_form is not None else []):
         res.steps.append(PoseStep("q1, q5, q6: " + stp.title, stp.text, list(stp.equations)))
     rest = [IKJoint(q[k], True, None) for k in (1, 2, 3)]
-    eqs2, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
     bf = sp.lambdify([*vals, *(j.symbol for j in first)], planar, modules=numpy_modules()) if planar else None
     raw, cf2, reasons = [], None, []
     for k, (sol, singular) in enumerate(firsts):
         v2 = dict(vals)
         v2.update({j.symbol: sol[j.name] for j in first})
         if planar:
-            v2 = dict(zip(B_SYMS, map(float, bf(*v2.values()))))
+            v2 = dict(zip(known, map(float, bf(*v2.values()))))
         # the closed form from the first branch whose planar arm reaches (an unreachable branch
         # stops before deriving it)
         st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and cf2 is None, time_limit_s=time_limit_s,
@@ -407,7 +409,7 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
         for stp in cf2.closed_form.steps:
             res.steps.append(PoseStep("q2, q3, q4: " + stp.title, stp.text, list(stp.equations)))
     if st1.closed_form is not None and cf2 is not None:
-        bsub = dict(zip(B_SYMS, planar))
+        bsub = dict(zip(known, planar))
         res.closed_form = [{**{str(k): v for k, v in a.items()}, **{str(k): v.xreplace(bsub) for k, v in b.items()}}
                            for a in st1.closed_form_branches for b in cf2.closed_form_branches]
     return raw
@@ -448,18 +450,75 @@ def _first_joints_stepwise(eqs1, first, vals, q):
 
 
 def _planar_equations(chain, split, Q, lhs, rhs, Msym, q):
-    """The planar 3R of q2, q3, q4: ¹M₄ = ¹M₆·(⁴M₆)⁻¹ (x, y rows of the rotation's first column and
-    of the position), when the chain splits after q4; else the first two rows of ¹M₆."""
+    """The planar 3R of q2, q3, q4 as (equations, the known quantities' symbols, their expressions
+    in the target's symbols, or None when the equations are written in those symbols directly).
+
+    When the chain splits after q4, ¹M₄ = ¹M₆·(⁴M₆)⁻¹ is known: its position's x, y rows
+    (b_x, b_y), and, as the course writes it, the angle of its rotation about the parallel axes,
+    a sum ±q2 ± q3 ± q4 (+ a constant) equal to β = atan2(b_21, b_11); where that angle is not
+    such a sum, the two entries b_11, b_21 of the rotation's first column. Otherwise the first two
+    rows of ¹M₆."""
     from robosolve.core.transforms import rigid_inverse
     n = len(chain.factors)
     s2 = next((k for k in range(split + 1, n) if chain.joints_of(split, k) == set(q[1:4])
                and chain.joints_of(k, n) == set(q[4:])), None)
     if s2 is None:
-        return [(sp.expand(rhs[i, j] - lhs[i, j]), 0) for i in (0, 1) for j in range(4)], None
+        return [(sp.expand(rhs[i, j] - lhs[i, j]), 0) for i in (0, 1) for j in range(4)], (), None
     mid = (Q * chain.product(split, s2)).applyfunc(sp.expand)
     target = (lhs * rigid_inverse(chain.product(s2, n))).applyfunc(sp.expand)
     keys = [(i, j) for j in (0, 3) for i in (0, 1)]
-    return [(mid[i, j], B_SYMS[k]) for k, (i, j) in enumerate(keys)], [target[i, j] for i, j in keys]
+    angle = _angle_sum(mid[0, 0], mid[1, 0], q[1:4])
+    if angle is not None:
+        known = [target[0, 3], target[1, 3], sp.atan2(_pythagoras(target[1, 0], q), _pythagoras(target[0, 0], q))]
+        return ([(mid[0, 3], B_SYMS[2]), (mid[1, 3], B_SYMS[3]), (angle, BETA)], (B_SYMS[2], B_SYMS[3], BETA),
+                [_pythagoras(e, q) for e in known[:2]] + known[2:])
+    return ([(mid[i, j], B_SYMS[k]) for k, (i, j) in enumerate(keys)], B_SYMS,
+            [_pythagoras(target[i, j], q) for i, j in keys])
+
+
+def _pythagoras(expr, joints):
+    """sin² q + cos² q = 1 applied where it shortens `expr` (an expanded product of the chain's
+    matrices has c5² r33 + s5² r33 where the course writes r33)."""
+    for x in joints:
+        s, c = sp.sin(x), sp.cos(x)
+        if not (expr.has(s ** 2) and expr.has(c ** 2)):
+            continue
+        cands = [expr, sp.expand(expr.subs(s ** 2, 1 - c ** 2)), sp.expand(expr.subs(c ** 2, 1 - s ** 2))]
+        expr = min(cands, key=sp.count_ops)
+    return expr
+
+
+def _angle_sum(c, s, joints):
+    """k·q + c0 with (c, s) = (cos, sin) of it for every q (k_i in -1, 0, 1; c0 a multiple of
+    π/12, else a decimal), or None. Read off numerically at one point, then checked at others."""
+    f = sp.lambdify(joints, [c, s], modules=numpy_modules())
+
+    def theta(x):
+        cv, sv = (float(v) for v in f(*x))
+        return math.atan2(sv, cv)
+
+    base = [0.31, -0.47, 0.73]
+    t0 = theta(base)
+    k = []
+    for i in range(len(joints)):
+        x = list(base)
+        x[i] += 0.1
+        d = wrap_angle(theta(x) - t0) / 0.1
+        if abs(d - round(d)) > 1e-6 or abs(round(d)) > 1:
+            return None
+        k.append(int(round(d)))
+    if not any(k):
+        return None
+    c0 = wrap_angle(t0 - sum(ki * xi for ki, xi in zip(k, base)))
+    twelfths = c0 * 12 / math.pi
+    c0e = sp.pi * sp.Rational(int(round(twelfths)), 12) if abs(twelfths - round(twelfths)) < 1e-9 \
+        else sp.Float(c0, 15)
+    expr = sum((ki * qi for ki, qi in zip(k, joints)), sp.Integer(0)) + c0e
+    g = sp.lambdify(joints, [c - sp.cos(expr), s - sp.sin(expr)], modules=numpy_modules())
+    for x in ((1.1, 0.2, -2.3), (-0.8, 2.6, 0.4), (2.9, -1.7, 1.5)):
+        if max(abs(float(v)) for v in g(*x)) > 1e-10:
+            return None
+    return expr
 
 
 def _first_equations(zrow, lhs, q):
@@ -486,18 +545,26 @@ def _independent_of(rhs, zrow, q) -> bool:
     return True
 
 
-def _parallel_step(zrow, lhs, split, names) -> PoseStep:
+def _parallel_step(zrow, lhs, split, names, angle) -> PoseStep:
+    """The split of the UR way, in the chain's joint names (`names`: LaTeX, in joint order)."""
+    n1, n2, n3, n4, n5, n6 = names
+    if angle is not None:
+        planar = (f"its rotation is about $z$ by the angle ${sp.latex(angle)} = \\beta$, "
+                  "$\\beta = \\operatorname{atan2}(b_{21}, b_{11})$ from the first column of the rotation, "
+                  "and its position gives $b_x, b_y$: the planar 3R with its orientation, two elbow branches")
+    else:
+        planar = ("its entries $b_{11}, b_{21}$ (the first column of the rotation) and $b_x, b_y$ (the position) "
+                  "give two elbow branches")
     return PoseStep(
         "Three parallel axes: the row along them",
         f"The axes of joints 2, 3 and 4 are parallel (the UR family). Written in frame {split} (axes turned so "
         "that they lie along $z$), ${}^{1}M_{6} = ({}^{0}M_{1})^{-1} M$; rotations about $z$ leave the $z$ row "
-        "unchanged, so the third row of ${}^{1}M_{6}$ depends on $q_5$, $q_6$ only: four equations for "
-        "$q_1$, $q_5$, $q_6$. The first two rows are then a planar 3R problem for $q_2$, $q_3$, $q_4$: "
-        "${}^{1}M_{4} = {}^{1}M_{6}\\,({}^{4}M_{6})^{-1}$ is known, its entries $b_{11}, b_{21}$ (the first "
-        "column of the rotation, the angle $q_2 + q_3 + q_4$) and $b_x, b_y$ (the position) give two "
-        "elbow branches. The wrist is not spherical: where $\\sin q_5 = 0$ the axes of joints 4 and 6 are "
-        "parallel (with those of joints 2 and 3), not aligned; the row then does not determine $q_6$, and "
-        "such a pose is reached along a continuum of configurations, or not at all.",
+        f"unchanged, so the third row of ${{}}^{{1}}M_{{6}}$ depends on ${n5}$, ${n6}$ only: four equations for "
+        f"${n1}$, ${n5}$, ${n6}$. The first two rows are then a planar 3R problem for ${n2}$, ${n3}$, ${n4}$: "
+        "${}^{1}M_{4} = {}^{1}M_{6}\\,({}^{4}M_{6})^{-1}$ is known; " + planar + ". The wrist is not "
+        f"spherical: where $\\sin {n5} = 0$ the axes of joints 4 and 6 are parallel (with those of joints 2 "
+        f"and 3), not aligned; the row then does not determine ${n6}$, and such a pose is reached along a "
+        "continuum of configurations, or not at all.",
         [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), ("[({}^{0}M_{1})^{-1} M]_{3}", sp.Matrix([list(lhs[2, :])]))])
 
 

@@ -225,3 +225,41 @@ def test_ur5_wrist_singularity_keeps_the_isolated_solutions_of_the_other_q1(q5):
     singular = [s for s, f in zip(res.all_solutions, res.wrist_singular) if f]
     assert len(singular) == 2 and all(s["q6"] == 0.0 and abs(s["q1"] - 0.4) < 1e-9 for s in singular)
     assert len(res.solutions) == 6 and any("continuum" in n for n in res.notes)
+
+
+# -- the UR family: the planar 3R with its orientation angle, the course's way --------------------
+
+UR_FLIPPED = [(0.0, 0.1625, 0.0, PI / 2), (0.0, 0.0, -0.425, PI), (0.0, 0.0, -0.3922, PI),
+              (0.0, 0.1333, 0.0, PI / 2), (0.0, 0.0997, 0.0, -PI / 2), (0.0, 0.0996, 0.0, 0.0)]
+
+
+@pytest.mark.parametrize("rows", [UR_FLIPPED, UR_MDH], ids=["flipped-axes", "modified-dh"])
+def test_ur_family_planar_arm_solved_from_its_angle(rows):
+    """The rotation of ¹M₄ about the parallel axes is one angle ±q2 ± q3 ± q4 (joint axes turned
+    by π count with a minus sign): q4 comes from it linearly, then the planar 2R; every solution
+    against the independent reference."""
+    conv = "modified" if rows is UR_MDH else "standard"
+    kinds = "RRRRRR"
+    q0 = [0.5, -0.9, 1.2, -0.4, 0.8, -1.3]
+    T = fk(rows, conv, kinds, q0)
+    res, names = _solve(rows, conv, kinds, T)
+    assert res.method == "three parallel axes"
+    _check(res, names, rows, conv, kinds, T, q0)
+    assert any("appears linearly" in s.title for s in res.steps), [s.title for s in res.steps]
+    ref = reference_solutions(rows, conv, kinds, T, [(-PI, PI)] * 6)
+    assert len(res.solutions) == len(ref)
+    for r in ref:
+        assert any(_close([s[n] for n in names], r, kinds, 1e-6) for s in res.solutions)
+
+
+def test_angle_sum_is_read_with_its_signs_and_constant():
+    from robosolve.ik.pose import _angle_sum
+
+    q2, q3, q4 = sp.symbols("q2 q3 q4")
+    theta = q2 - q3 + q4 + sp.pi / 2
+    c, s = sp.expand(sp.expand_trig(sp.cos(theta))), sp.expand(sp.expand_trig(sp.sin(theta)))
+    got = _angle_sum(c, s, [q2, q3, q4])
+    assert got is not None and sp.simplify(got - theta) == 0
+    # not one angle: cos(2 q2) and the cosine of a sum with a non-unit coefficient
+    assert _angle_sum(sp.cos(2 * q2), sp.sin(2 * q2), [q2, q3, q4]) is None
+    assert _angle_sum(sp.cos(q2) * sp.cos(q3), sp.sin(q2), [q2, q3, q4]) is None
