@@ -127,7 +127,9 @@ def _solutions_step(res, joints) -> Step:
         status = "inside" if id(d) not in rejected else "rejected: " + Text.join("; ", rejected[id(d)])
         rows.append([str(k)] + [Text(Num(d[j.name]), " (", Num(math.degrees(d[j.name])), "°)") if j.revolute
                                 else Text(Num(d[j.name])) for j in joints] + [status])
-    how = ("kinematic decoupling" if res.method == "decoupling" else "a multi-start Newton search on the 12 equations")
+    how = {"decoupling": "kinematic decoupling",
+           "three parallel axes": "the row along the parallel axes and the planar 3R"}.get(
+        res.method, "a multi-start Newton search on the 12 equations")
     text = (f"By {how}, {len(res.all_solutions)} distinct solution{'s' if len(res.all_solutions) != 1 else ''}, "
             "each polished by Newton's method on the 12 equations and checked with the direct kinematics "
             "(every entry of ${}^{0}M$ within $10^{-9}$); angles wrapped into (−π, π].")
