@@ -90,16 +90,46 @@ class _Chain:
 # forward kinematics and Newton on the 12 equations
 
 class _FK:
+    """The forward kinematics ⁰M(q) and the Jacobian of its 12 entries, numerically, as the
+    product of the chain's local matrices (each lambdified with its own derivatives: no
+    symbolic product of the whole chain and no symbolic differentiation of it)."""
+
     def __init__(self, chain: _Chain):
-        M = chain.product(0, len(chain.factors))
-        entries = [M[i, j] for i in range(3) for j in range(4)]
-        self.f = sp.lambdify(chain.q, entries, modules=numpy_modules(), cse=True)
-        self.jac = sp.lambdify(chain.q, list(sp.Matrix(entries).jacobian(chain.q)),
-                               modules=numpy_modules(), cse=True)
         self.n = len(chain.q)
+        self.parts = []
+        for F in chain.factors:
+            moved = [i for i, qi in enumerate(chain.q) if qi in F.free_symbols]
+            value = sp.lambdify(chain.q, F, modules=numpy_modules())
+            derivatives = [(i, sp.lambdify(chain.q, F.diff(chain.q[i]), modules=numpy_modules())) for i in moved]
+            self.parts.append((value, derivatives))
+
+    def _product(self, mats):
+        m = np.eye(4)
+        for a in mats:
+            m = m @ a
+        return m
+
+    def _local(self, q):
+        return [np.array(value(*q), dtype=float) for value, _ in self.parts]
 
     def residual(self, q, target):
-        return np.array(self.f(*q), dtype=float) - target
+        return self._product(self._local(q))[:3, :].reshape(12) - target
+
+    def jac(self, *q):
+        """The 12 x n Jacobian, row-major entries of ⁰M's first three rows."""
+        mats = self._local(q)
+        before = [np.eye(4)]
+        for a in mats:
+            before.append(before[-1] @ a)
+        after = [np.eye(4)]
+        for a in reversed(mats):
+            after.append(a @ after[-1])
+        after.reverse()
+        J = np.zeros((12, self.n))
+        for k, (_, derivatives) in enumerate(self.parts):
+            for i, d in derivatives:
+                J[:, i] += (before[k] @ np.array(d(*q), dtype=float) @ after[k + 1])[:3, :].reshape(12)
+        return J
 
     def polish(self, q, target, iters=30):
         q = np.array(q, dtype=float)

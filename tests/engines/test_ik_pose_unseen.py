@@ -263,3 +263,24 @@ def test_angle_sum_is_read_with_its_signs_and_constant():
     # not one angle: cos(2 q2) and the cosine of a sum with a non-unit coefficient
     assert _angle_sum(sp.cos(2 * q2), sp.sin(2 * q2), [q2, q3, q4]) is None
     assert _angle_sum(sp.cos(q2) * sp.cos(q3), sp.sin(q2), [q2, q3, q4]) is None
+
+
+def test_forward_kinematics_of_the_polish_against_the_reference_and_finite_differences():
+    """The polish's ⁰M(q) (a numeric product of the local matrices) against the numpy reference
+    of this file, and its Jacobian against central differences of it."""
+    from robosolve.ik.pose import _FK, _Chain
+
+    for rows, conv in ((UR_FLIPPED, "standard"), (UR_MDH, "modified"), (STANFORD, "standard")):
+        kinds = "RRPRRR" if rows is STANFORD else "RRRRRR"
+        F, qs = _factors(rows, conv, kinds)
+        fk_ = _FK(_Chain([sp.Matrix(f) for f in F], [IKJoint(q, k == "R", None) for q, k in zip(qs, kinds)], list(qs)))
+        q = np.array([0.3, -1.2, 0.8, 2.1, -0.4, 1.7])
+        ref = fk(rows, conv, kinds, list(q))[:3, :].reshape(12)
+        assert np.max(np.abs(fk_.residual(q, np.zeros(12)) - ref)) < 1e-12
+        J = fk_.jac(*q)
+        h = 1e-6
+        for i in range(6):
+            e = np.zeros(6)
+            e[i] = h
+            fd = (fk(rows, conv, kinds, list(q + e))[:3, :] - fk(rows, conv, kinds, list(q - e))[:3, :]).reshape(12) / (2 * h)
+            assert np.max(np.abs(J[:, i] - fd)) < 1e-8, (conv, i)
