@@ -298,6 +298,7 @@ def solve_ik(
     tex=None,
     labels: list[str] | None = None,
     subsets: bool = True,
+    derived=None,
 ) -> IKResult:
     """Solve ``lhs_k(q) = rhs_k`` for the joints. See the module docstring.
 
@@ -305,7 +306,8 @@ def solve_ik(
     joints (redundant), more (over-determined), or a square system (closed form, then numbers).
     An over-determined system with no solution has each choice of n equations solved unless
     `subsets` is false (a pose's 12 equations: the choices mean nothing there); `nearest` is then
-    the closest configuration found.
+    the closest configuration found. `derived`: the closed form of these same (square) equations,
+    derived before for other values of the known symbols, evaluated instead of derived again.
     """
     res = IKResult()
     names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
@@ -332,7 +334,7 @@ def solve_ik(
                         subsets)
     else:
         _square(res, equations, exprs, joints, values, names, select, closed_form, time_limit_s,
-                set(target_symbols), budget, tex)
+                set(target_symbols), budget, tex, derived)
     return res
 
 
@@ -402,7 +404,7 @@ def _overdetermined(res, exprs, joints, values, names, select, closed_form, time
     choice of n of them is solved."""
     n, m = len(joints), len(exprs)
     system = _numeric_system(exprs, joints, values, res.angular)
-    num = solve_all(system, _boxes(joints, _scale(values)), budget)
+    num = solve_all(system, _boxes(joints, _scale(values)), budget, deflation=False)
     if num.solutions:
         res.notes.append(f"{m} equations for {n} unknowns: they are consistent here, "
                          f"so the solutions satisfy all of them.")
@@ -414,6 +416,8 @@ def _overdetermined(res, exprs, joints, values, names, select, closed_form, time
                 res.closed_form_branches = cf.branches()
                 cf_sols, _, _ = _cf_solutions(cf, values, joints, system)
                 res.closed_form_values = cf_sols
+        if not _confirmed(num, cf_sols, joints):
+            num = solve_all(system, _boxes(joints, _scale(values)), budget)
         _finish(res, num, cf_sols, joints, values, select, system)
         return
     res.status = "overdetermined"
@@ -429,20 +433,38 @@ def _overdetermined(res, exprs, joints, values, names, select, closed_form, time
 
 
 def _square(res, equations, exprs, joints, values, names, select, closed_form, time_limit_s,
-            target_syms, budget, tex):
+            target_syms, budget, tex, derived=None):
     """As many equations as joints: closed form first (under a time limit), then numbers; the
     two sets are merged, and an unreachable target gets its reason."""
-    cf = _square_closed_form(res, exprs, joints, names, time_limit_s, tex) if closed_form else None
+    if derived is not None:
+        cf = res.closed_form = derived
+        res.closed_form_branches = cf.branches()
+    else:
+        cf = _square_closed_form(res, exprs, joints, names, time_limit_s, tex) if closed_form else None
     system = _numeric_system(exprs, joints, values, res.angular)
-    num = solve_all(system, _boxes(joints, _scale(values)), budget)
     cf_fail, cf_partial = None, {}
     if cf is not None:
         cf_fail, cf_partial = _evaluate_closed_form(res, cf, values, joints, system, tex)
+    boxes = _boxes(joints, _scale(values))
+    num = solve_all(system, boxes, budget, deflation=False) if cf is not None else None
+    if not _confirmed(num, res.closed_form_values if cf is not None else None, joints):
+        num = solve_all(system, boxes, budget)
     _finish(res, num, res.closed_form_values if cf is not None else None, joints, values, select, system)
     if res.status == "unreachable" and res.reason is None:
         _unreachable_reason(res, cf, cf_fail, cf_partial, equations, joints, values, names, target_syms, tex)
     if res.reason_tex is None:
         res.reason_tex = res.reason
+
+
+def _confirmed(num, cf_sols, joints) -> bool:
+    """The solutions from the numeric search's starts are exactly the closed form's verified ones
+    (at least one, no continuum): two independent methods agree, and the deflation pass that
+    looks for solutions the starts missed is not needed."""
+    if num is None or not cf_sols or num.family or len(num.solutions) != len(cf_sols):
+        return False
+    found = [{j.name: v for j, v in zip(joints, s.q)} for s in num.solutions]
+    return (all(any(_same(c, d, joints) for d in found) for c in cf_sols)
+            and all(any(_same(c, d, joints) for c in cf_sols) for d in found))
 
 
 def _square_closed_form(res, exprs, joints, names, time_limit_s, tex):

@@ -422,8 +422,10 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
             v2 = dict(zip(known, map(float, bf(*v2.values()))))
         # the closed form from the first branch whose planar arm reaches (an unreachable branch
         # stops before deriving it)
+        # (the later branches evaluate it: the same equations, other values of the known entries)
         st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and cf2 is None, time_limit_s=time_limit_s,
-                       target_symbols=set(v2), latex_names=names, tex=tex)
+                       target_symbols=set(v2), latex_names=names, tex=tex,
+                       derived=cf2.closed_form if cf2 is not None and len(eqs2) == len(rest) else None)
         if cf2 is None and st2.closed_form is not None:
             cf2 = st2
         if st2.status == "unreachable" and st2.reason:
