@@ -34,6 +34,16 @@ def json_number(x, digits: int | None = None):
     return 0.0 if r == 0 else r
 
 
+def json_angle(x, digits: int | None = None):
+    """`json_number` for an angle wrapped into (−π, π] (or [0, π]): rounding to 12 digits must not
+    carry a value next to ±π out of its interval (π = 3.14159265358979… rounds up to
+    3.14159265359 > π), so such a value is written as π itself, the interval's end."""
+    r = json_number(x, digits)
+    if isinstance(r, float) and abs(r) > math.pi and abs(abs(float(x)) - math.pi) < 1e-9:
+        return math.pi
+    return r
+
+
 def text(v, math: bool = False) -> str:
     """Prose with its numbers formatted: `Text` pieces joined, each `Num` as `prose_number`
     (or `report_number` when the prose sits in a formula: `math=True`)."""

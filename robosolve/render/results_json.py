@@ -8,7 +8,7 @@ import sympy as sp
 
 from robosolve.core.prose import Num, Text
 from robosolve.questions.registry import QUESTION_TYPES
-from robosolve.render.numbers import json_number, text
+from robosolve.render.numbers import json_angle, json_number, text
 from robosolve.render.printers import SharedStrPrinter
 
 
@@ -38,6 +38,8 @@ def numeric_value(v, key=None):
         return v
     if isinstance(v, (Num, Text)):
         return text(v)
+    if key is not None and key.angle:
+        return json_angle(v, key.digits)
     return json_number(v, key.digits if key is not None else None)
 
 
