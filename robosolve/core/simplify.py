@@ -40,6 +40,7 @@ from sympy.simplify.fu import TR8, TR10i
 from robosolve.core.timing import time_limit
 from robosolve.core.trigring import pythagorean_reduced
 from robosolve.errors import SymbolicTimeout
+from robosolve.core.opcount import count_ops
 
 __all__ = [
     "SimplifyBudgets", "DEFAULT_BUDGETS", "chain_product", "tidy", "tidy_matrix", "jacobian_entry",
@@ -149,7 +150,7 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
     and points re-tidy the same entries many times: memoised, fixed points included."""
     if expr.is_Atom or not expr.has(sp.sin, sp.cos):
         return sp.expand(expr) if expr.is_Add or expr.is_Mul else expr
-    if sp.count_ops(expr) > max_ops:
+    if count_ops(expr) > max_ops:
         return expr
     floats, back = _float_placeholders(expr)
     if floats:
@@ -159,20 +160,20 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
     try:
         with time_limit(seconds) as token:
             expanded = sp.expand(expr)
-            large = sp.count_ops(expanded) > DEFAULT_BUDGETS.canonical_ops
+            large = count_ops(expanded) > DEFAULT_BUDGETS.canonical_ops
             # A large entry: its canonical form first (TR10i on the unreduced sum, which
             # may be 10x longer, costs more than the ring reduction).
             canonical = _canonical_trig(expanded) if large else None
-            if canonical is not None and sp.count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
+            if canonical is not None and count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
                 return canonical
             # Addition formulas first (c1 c2 - s1 s2 -> cos(q1 + q2)): fast, and it
             # leaves trigsimp, slow on long chains, little or nothing to do.
             collapsed = _addition_formulas(expanded)
-            if not _has_trig_products(collapsed) or sp.count_ops(collapsed) > max_ops:
+            if not _has_trig_products(collapsed) or count_ops(collapsed) > max_ops:
                 return collapsed
             if not large:
                 canonical = _canonical_trig(expanded)
-                if canonical is not None and sp.count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
+                if canonical is not None and count_ops(canonical) > DEFAULT_BUDGETS.canonical_ops:
                     return canonical
             if canonical is not None:
                 return _shortest_trig_form(canonical)
@@ -234,7 +235,7 @@ def _shortest_trig_form(canonical):
         # shorter, nor a sum of products (TR8 doubles the terms), nor a factored form
         return canonical
     candidates = [canonical]
-    if canonical.has(sp.sin, sp.cos) and sp.count_ops(canonical) <= DEFAULT_BUDGETS.product_to_sum_ops:
+    if canonical.has(sp.sin, sp.cos) and count_ops(canonical) <= DEFAULT_BUDGETS.product_to_sum_ops:
         candidates.append(_addition_formulas(sp.expand(TR8(canonical))))
     candidates += [sp.factor_terms(canonical), _memo_factor(canonical)]
 
@@ -242,7 +243,7 @@ def _shortest_trig_form(canonical):
         return c.is_Mul and len(c.args) == 2 and c.args[0] == -1 and c.args[1].is_Add
 
     def size(c):
-        return sp.count_ops(c), sum(1 for a in sp.preorder_traversal(c) if isinstance(a, (sp.sin, sp.cos)))
+        return count_ops(c), sum(1 for a in sp.preorder_traversal(c) if isinstance(a, (sp.sin, sp.cos)))
 
     return min([c for c in candidates if not negated_sum(c)] or [canonical], key=size)
 
@@ -281,7 +282,7 @@ def congruence_entry(canonical, product):
     (the entry of the product of the tidied factors, which holds the compact squares:
     d² m s1², m (L1 s1 + L2 s12)²). The shorter by count_ops; `canonical` on a tie."""
     expanded = sp.expand(product)
-    return expanded if sp.count_ops(expanded) < sp.count_ops(canonical) else canonical
+    return expanded if count_ops(expanded) < count_ops(canonical) else canonical
 
 
 def _has_trig_squares(expr) -> bool:
@@ -330,12 +331,12 @@ def jacobian_entry(expr):
     expanded = sp.expand(expr)
     canonical = _canonical_trig(expanded)
     out = None if canonical is None else _shortest_trig_form(canonical)
-    if out is not None and expr != expanded and sp.count_ops(out) > sp.count_ops(expr):
+    if out is not None and expr != expanded and count_ops(out) > count_ops(expr):
         out = None
     if out is None:
         out = sp.trigsimp(expr)
     fac = _memo_factor(out)
-    if sp.count_ops(fac) < sp.count_ops(out):
+    if count_ops(fac) < count_ops(out):
         out = fac
     return out
 
@@ -447,7 +448,7 @@ def factored_determinant(expr, max_ops: int = DEFAULT_BUDGETS.factor_ops):
     coeff, raw = _factor_list(expr)
     out = coeff
     for fac, mult in raw:
-        out *= (_memo_factor(jacobian_entry(fac)) if sp.count_ops(fac) <= max_ops else fac) ** mult
+        out *= (_memo_factor(jacobian_entry(fac)) if count_ops(fac) <= max_ops else fac) ** mult
     return out
 
 
@@ -479,7 +480,7 @@ def exact_geometry(e, max_ops: int = DEFAULT_BUDGETS.geometry_ops):
         return sp.simplify(e)
     if isinstance(e, sp.atan2):
         return sp.atan2(*(exact_geometry(a, max_ops) for a in e.args))
-    if sp.count_ops(e) > max_ops:
+    if count_ops(e) > max_ops:
         return e
     return sp.trigsimp(sp.expand(e))
 
@@ -494,7 +495,7 @@ def full(e):
 def bounded_full(e, max_ops: int = DEFAULT_BUDGETS.root_ops):
     """`full` below `max_ops`, else the expression as it is."""
     e = sp.sympify(e)
-    return full(e) if sp.count_ops(e) < max_ops else e
+    return full(e) if count_ops(e) < max_ops else e
 
 
 def is_zero(e) -> bool:
@@ -554,7 +555,7 @@ def ik_fraction(e):
 def coefficient(coef, small: bool = True, max_ops: int = DEFAULT_BUDGETS.coefficient_ops):
     """A parameter coefficient of the equations of motion: factored when the robot is small
     and the coefficient within `max_ops`, else its common factors taken out."""
-    return sp.factor(coef) if small and sp.count_ops(coef) <= max_ops else sp.factor_terms(coef)
+    return sp.factor(coef) if small and count_ops(coef) <= max_ops else sp.factor_terms(coef)
 
 
 def common_factors(e):
@@ -573,7 +574,7 @@ def factored(e):
 def radicals(x):
     """Exact numbers with radicals: the shortest of expand / sqrtdenest / radsimp."""
     cands = [x, sp.expand(x), sp.sqrtdenest(x), sp.expand(sp.sqrtdenest(x)), sp.radsimp(x)]
-    return min(cands, key=lambda c: (sp.count_ops(c), sp.default_sort_key(c)))
+    return min(cands, key=lambda c: (count_ops(c), sp.default_sort_key(c)))
 
 
 @memoised

@@ -28,6 +28,7 @@ import sympy as sp
 from sympy.polys.domains import QQ
 from sympy.polys.rings import ring as poly_ring
 from sympy.polys.rings import sring
+from robosolve.core.opcount import count_ops
 
 __all__ = ["TrigAlgebra", "eliminate_cos_squared", "fourier_dict", "fourier_terms",
            "product_terms", "pythagorean_basis", "pythagorean_reduced"]
@@ -249,7 +250,7 @@ def pythagorean_reduced(expr, expanded: bool = False):
             continue            # nothing to eliminate: both normal forms are poly itself
         options = [poly.rem(pythagorean_basis([(s, c)])), eliminate_cos_squared(poly, s, c)]
         exprs = [p.as_expr() for p in options]
-        ops = [sp.count_ops(e) for e in exprs]
+        ops = [count_ops(e) for e in exprs]
         # fewer operations, then the text (only compared on a tie)
         pick = 0 if ops[0] < ops[1] or (ops[0] == ops[1] and str(exprs[0]) <= str(exprs[1])) else 1
         poly = options[pick]

@@ -41,6 +41,7 @@ from robosolve.core.transforms import skew, vex
 from robosolve.core.trigring import TrigAlgebra, fourier_terms, product_terms
 from robosolve.dynamics.sympy_algebra import SympyAlgebra
 from robosolve.dynamics.types import BodySpec, Dynamics, FrameSpec, JointSpec, LoadSpec
+from robosolve.core.opcount import count_ops
 
 __all__ = ["DynamicsEngine"]
 
@@ -378,7 +379,7 @@ class DynamicsEngine:
             if self.n <= COMPACT_MAX_JOINTS:
                 cands.append(self._group(fourier_terms(alg, p)))
             cands.append(self._group(product_terms(alg, p)))
-        best = min(cands, key=sp.count_ops)
+        best = min(cands, key=count_ops)
         self._cache[key] = best
         return best
 

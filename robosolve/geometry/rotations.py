@@ -37,6 +37,7 @@ import sympy as sp
 
 from robosolve.core.angles import wrap_angle
 from robosolve.core.simplify import exact_geometry, is_zero
+from robosolve.core.opcount import count_ops
 
 __all__ = [
     "SINGULAR_TOL", "ZERO_TOL",
@@ -238,7 +239,7 @@ def axis_angle_symbolic(m, simplify: Callable = _default_simplify) -> AxisAngle:
     s = simplify(sp.sqrt(s2))
     alpha = _sym_angle(s, c, simplify)
     if not r.free_symbols:  # alpha in [0, pi]: acos(cos alpha) is as valid; keep the shorter
-        alpha = min((alpha, sp.acos(c)), key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
+        alpha = min((alpha, sp.acos(c)), key=lambda e: (count_ops(e), sp.default_sort_key(e)))
     u = [simplify(x / s) for x in v]
     case = "generic" if r.free_symbols else "general"
     return AxisAngle(u, alpha, case, c, s)

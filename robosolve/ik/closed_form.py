@@ -34,6 +34,7 @@ from typing import NamedTuple
 import sympy as sp
 
 from robosolve.core.simplify import common_factors, ik_fraction, memoised
+from robosolve.core.opcount import count_ops
 
 
 class NoClosedForm(Exception):
@@ -563,7 +564,7 @@ class _Elimination:
         e = sp.expand(e)
         unk = set(self._unknown_now())
         known = sp.Add(*[t for t in sp.Add.make_args(e) if not (t.free_symbols & unk)])
-        if not ((known.free_symbols & solved) and sp.count_ops(known) > 2 and known != e
+        if not ((known.free_symbols & solved) and count_ops(known) > 2 and known != e
                 and len(_unknowns_in(e, list(unk))) > 1):
             return e
         sign = -1 if known.could_extract_minus_sign() else 1

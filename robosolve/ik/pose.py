@@ -31,6 +31,7 @@ from robosolve.core.prose import Num, Text
 from robosolve.ik.engine import IKJoint, in_limits, solve_ik
 from robosolve.core.angles import wrap_angle
 from robosolve.ik.numeric import DEDUPE_TOL, sort_solutions
+from robosolve.core.opcount import count_ops
 
 FK_TOL = 1e-9
 R_SYMS = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}"))
@@ -516,7 +517,7 @@ def _pythagoras(expr, joints):
         if not (expr.has(s ** 2) and expr.has(c ** 2)):
             continue
         cands = [expr, sp.expand(expr.subs(s ** 2, 1 - c ** 2)), sp.expand(expr.subs(c ** 2, 1 - s ** 2))]
-        expr = min(cands, key=sp.count_ops)
+        expr = min(cands, key=count_ops)
     return expr
 
 

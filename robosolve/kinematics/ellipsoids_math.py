@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from robosolve.core.simplify import collected_radicals, eigenvalue, radicals, rational
+from robosolve.core.opcount import count_ops
 
 __all__ = ["EllipsoidAxes", "EllipsoidResult", "ellipsoids", "eig_sorted", "joint_rates", "exact_values",
            "ZERO_TOL"]
@@ -233,7 +234,7 @@ def exact_values(j_exact, kf=1, kv=1, ka=1, kq=None, max_ops: int = 80):
         vals = []
         for val, mult in mat.eigenvals().items():
             val = eigenvalue(val)
-            if sp.count_ops(val) > max_ops or val.free_symbols:
+            if count_ops(val) > max_ops or val.free_symbols:
                 return None
             vals += [val] * mult
         return sorted(vals, key=lambda v: (float(sp.re(v.evalf(30))), sp.default_sort_key(v)))

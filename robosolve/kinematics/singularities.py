@@ -36,6 +36,7 @@ from robosolve.core.angles import wrap_angle
 from robosolve.core.simplify import (bounded_full, determinant_factors, factored, factored_determinant, full, is_zero,
                                      jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
+from robosolve.core.opcount import count_ops
 
 __all__ = ["Condition", "SearchBudget", "SearchTooLong", "SingularityResult", "find_singularities",
            "wrap_angle"]
@@ -202,7 +203,7 @@ def _solve_revolute(f, q, sample):
     linear = _solve_linear_trig(g, c, s, sample)
     if linear is not None:
         return linear
-    if sp.count_ops(g) > SOLVE_OPS:
+    if count_ops(g) > SOLVE_OPS:
         return None          # kept as an equation: solve's radicals of a long factor take minutes
     try:
         sols = sp.solve([g, c**2 + s**2 - 1], [c, s], dict=True)
@@ -335,7 +336,7 @@ def _joint_factors(expr, joints, work=None):
     if work is not None:
         work.spend(expr)
     out = [f for f in determinant_factors(expr) if any(f.has(q) for q in joints)]
-    return sorted(out, key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
+    return sorted(out, key=lambda e: (count_ops(e), sp.default_sort_key(e)))
 
 
 def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
@@ -362,7 +363,7 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
         live.append(e2)
     if not live:
         return [Condition(values=tuple(fixed.items()))]
-    live.sort(key=lambda e: (sp.count_ops(e), sp.default_sort_key(e)))
+    live.sort(key=lambda e: (count_ops(e), sp.default_sort_key(e)))
     first, rest = live[0], live[1:]
     free = [q for q in joints if q not in fixed]
     results = []

@@ -19,6 +19,7 @@ from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 from robosolve.solvers.common import frame_tex, m_name, potential_step
 from robosolve.core.prose import name_tex
+from robosolve.core.opcount import count_ops
 
 # Largest expression (count_ops) written out in a report step; bigger ones are named only.
 SHOW_OPS = 400
@@ -26,28 +27,9 @@ SHOW_OPS = 400
 BIG_JOINTS = 4
 
 
-# count_ops of each expression shown, once: M is shown twice (the Lagrangian's step and the
-# matrix form), and its entries are counted again inside other matrices' totals.
-_OPS_MEMO: dict = {}
-
-
-def _ops(expr) -> int:
-    """sp.count_ops(expr); a matrix's is the sum of its entries' (count_ops walks them so)."""
-    if isinstance(expr, sp.MatrixBase):
-        return sum(_ops(e) for e in expr)
-    if not isinstance(expr, sp.Basic):
-        return sp.count_ops(expr)
-    hit = _OPS_MEMO.get(expr)
-    if hit is None:
-        hit = sp.count_ops(expr)
-        if len(_OPS_MEMO) < 4096:
-            _OPS_MEMO[expr] = hit
-    return hit
-
-
 def _show(expr, limit: int = SHOW_OPS):
     """The expression, or a LaTeX note when it is too long to be useful in a report."""
-    ops = _ops(expr)
+    ops = count_ops(expr)       # a matrix: the sum of its entries' (each node counted once)
     if ops <= limit:
         return expr
     return f"\\text{{(long: {ops} operations; see results.json)}}"

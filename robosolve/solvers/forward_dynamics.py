@@ -18,6 +18,7 @@ from robosolve.load.problem import Question
 from robosolve.core.prose import Num, Text
 from robosolve.core.symbols import TIME
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
+from robosolve.core.opcount import count_ops
 
 T = TIME
 # The run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio); 10 digits keep it,
@@ -198,7 +199,7 @@ def _closed_form_work(model, st, params, start, final):
         f = sp.sympify(st.forces[i]).xreplace(params)
         if f.free_symbols - {j.symbol}:
             return None
-        if sp.count_ops(f) > WORK_OPS:
+        if count_ops(f) > WORK_OPS:
             return None
         prim = sp.integrate(f, j.symbol)
         if prim.has(sp.Integral):

@@ -23,6 +23,7 @@ from robosolve.kinematics.singularities import find_singularities
 from robosolve.solvers.task_space import (
     joint_kinds, joint_l0, limited, over_input_budget, task_space, tidy_limited)
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
+from robosolve.core.opcount import count_ops
 
 
 def _col(labels):
@@ -176,7 +177,7 @@ def _manipulability_steps(ans, ctx, res, wide, ts):
         # tidied only when short once expanded (a count, not the clock: a 4-joint arm's sum
         # of squared minors expands to 1,200 operations, and trigsimp spent 30 s on it)
         gram = None
-        if sp.count_ops(sp.expand(res.measure)) <= DEFAULT_BUDGETS.chain_ops:
+        if count_ops(sp.expand(res.measure)) <= DEFAULT_BUDGETS.chain_ops:
             gram, _err = limited(ctx, ctx.step_seconds, tidy, res.measure)
         manip = sp.sqrt(gram if gram is not None else res.measure)
         ans.symbolic["manipulability"] = manip
