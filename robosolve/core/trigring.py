@@ -61,6 +61,10 @@ class TrigAlgebra:
             self._back[syms[s]] = sp.sin(q[i])
             self._back[syms[c]] = sp.cos(q[i])
         self.elements = elements
+        # the ring's generators as the expressions they stand for (sin qᵢ, cos qᵢ, the others
+        # themselves): an element is written out in them directly, not written in the ring's
+        # symbols and substituted afterwards (the same expression, built once)
+        self._gens_back = tuple(self._back.get(g, g) for g in ring.symbols)
 
     @classmethod
     def from_inputs(cls, q, exprs):
@@ -207,7 +211,7 @@ class TrigAlgebra:
 
     # ---------------------------------------------------------------- conversion
     def to_expr(self, p):
-        return p.as_expr().xreplace(self._back)
+        return p.as_expr(*self._gens_back)
 
     def to_matrix(self, m):
         return sp.Matrix([[self.to_expr(x) for x in row] for row in m])
