@@ -52,6 +52,9 @@ class _Geometry:
         mats = [sp.Matrix(m).subs(sub) for m in mats_in]
         pt = sp.Matrix(list(point)).subs(sub)
         self._p = sp.lambdify([self.joints], pt, numpy_modules())
+        self._mats, self._pt = mats, pt
+        self._flat = None                   # the same matrices for many configurations, on demand
+        self._given_l = l_matrices is not None
         if l_matrices is not None:
             every = sp.lambdify([self.joints], mats, numpy_modules())
             self._l = every
@@ -104,6 +107,38 @@ class _Geometry:
 
     def point(self, q):
         return np.asarray(self._p(q), dtype=float).reshape(3)
+
+    # -- many configurations at once (rows of Q) ---------------------------------------------
+    def _many(self, Q):
+        """(the matrices, N x k x 4 x 4; the point, N x 3) at the rows of Q."""
+        if self._flat is None:
+            entries = [e for m in self._mats for e in m] + list(self._pt)
+            self._flat = sp.lambdify([self.joints], entries, numpy_modules())
+        N = Q.shape[0]
+        vals = self._flat([Q[:, j] for j in range(Q.shape[1])])
+        cols = np.stack([np.broadcast_to(np.asarray(v, dtype=float), (N,)) for v in vals], axis=1)
+        k = len(self._mats)
+        return cols[:, :16 * k].reshape(N, k, 4, 4), cols[:, 16 * k:]
+
+    def axis_many(self, Q, i, eps=1e-6):
+        """(directions, points), N x 3 each, of revolute joint i's axis at the rows of Q (None:
+        prismatic), as `axis` computes it row by row."""
+        if self.kinds[self.joints[i]] != "revolute":
+            return None
+        if self._given_l:
+            m = self._many(Q)[0][:, i]
+        else:
+            dq = np.zeros(Q.shape[1])
+            dq[i] = eps
+            mp, mm, base = self._many(Q + dq)[0][:, i], self._many(Q - dq)[0][:, i], self._many(Q)[0][:, i]
+            m = (mp - mm) / (2 * eps) @ np.linalg.inv(base)
+        u = np.stack([m[:, 2, 1], m[:, 0, 2], m[:, 1, 0]], axis=1)
+        n = np.linalg.norm(u, axis=1)[:, None]
+        u = u / n
+        return u, np.cross(u, m[:, :3, 3] / n)
+
+    def point_many(self, Q):
+        return self._many(Q)[1]
 
 
 def _dist_point_line(p, u, a):
@@ -182,14 +217,25 @@ def _far_point(geo, q, k, prev, prev_axis=None):
     return geo.point(q), u_prev, a_prev
 
 
+def _far_distances(geo, Q, k, prev_axis):
+    """`_far_point`'s distance at every row of Q (joint k moving), in one pass."""
+    u_prev, a_prev = prev_axis
+    later = next((i for i in range(k + 1, len(geo.joints)) if geo.kinds[geo.joints[i]] == "revolute"), None)
+    far = geo.point_many(Q)
+    if later is not None:
+        u_l, a_l = geo.axis_many(Q, later)
+        parallel = np.abs(np.abs(u_l @ u_prev) - 1) < 1e-9
+        far = np.where(parallel[:, None], a_l, far)
+    d = far - a_prev
+    return np.linalg.norm(d - (d @ u_prev)[:, None] * u_prev[None, :], axis=1)
+
+
 def _stretch(geo, qv, k, prev, scale):
     grid = np.linspace(-math.pi, math.pi, 121)
     prev_axis = geo.axis(qv, prev)       # the same at every value of joint k > prev
-    dists = []
-    for x in grid:
-        q2 = list(qv)
-        q2[k] = x
-        dists.append(_dist_point_line(*_far_point(geo, q2, k, prev, prev_axis)))
+    Q = np.tile(np.asarray(qv, dtype=float), (len(grid), 1))
+    Q[:, k] = grid
+    dists = _far_distances(geo, Q, k, prev_axis)
     d0 = _dist_point_line(*_far_point(geo, qv, k, prev, prev_axis))
     lo, hi = min(dists), max(dists)
     if hi - lo < 1e-7 * scale:
