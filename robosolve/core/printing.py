@@ -14,8 +14,25 @@ import sympy as sp
 from sympy.printing.str import StrPrinter
 
 
+# The order of a sum's terms (sympy sorts them for every printer, the str of results.json and
+# the LaTeX of the report alike): by the sum and the order asked for, kept for every printer.
+_ORDERED_TERMS: dict = {}
+_MAX_ORDERED = 100_000
+
+
 class PrintsEachOnce:
     """The memo of the shared printers; `_key` is what the text of an expression depends on."""
+
+    def _as_ordered_terms(self, expr, order=None):
+        key = (expr, order or self.order)       # the order sympy's printer would use
+        if key[1] == "old":                      # sorted by this printer's own comparison
+            return super()._as_ordered_terms(expr, order=order)
+        hit = _ORDERED_TERMS.get(key)
+        if hit is None:
+            hit = super()._as_ordered_terms(expr, order=order)
+            if len(_ORDERED_TERMS) < _MAX_ORDERED:
+                _ORDERED_TERMS[key] = hit
+        return list(hit)
 
     def _key(self, expr):
         return expr

@@ -74,3 +74,17 @@ def test_results_json_strings_are_str_of_every_expression():
     m = sp.Matrix([[sp.Float(1.0), q1 * sp.Float(2.0)], [exprs[3], exprs[4]]])
     assert symbolic_value({"M": m, "v": [exprs[5], sp.Float(3.0)]}, printer) == {
         "M": [[str(x) for x in m.row(i)] for i in range(2)], "v": [str(exprs[5]), str(sp.Float(3.0))]}
+
+
+def test_the_term_order_kept_across_printers_prints_as_sympy_prints():
+    """Sums printed by the str printer first, then by the LaTeX one (which reuses the terms'
+    order the first computed), and in the other order: each as sympy prints it."""
+    from robosolve.core.printing import SharedStrPrinter
+
+    rng = random.Random(17)
+    exprs = [sum(_random_expr(rng) for _ in range(4)) for _ in range(40)]
+    printer, tex = SharedStrPrinter(), Tex(NAMES)
+    for e in exprs[:20]:
+        assert printer.doprint(e) == str(e) and tex(e) == sp.latex(_report_decimals(e), symbol_names=NAMES), e
+    for e in exprs[20:]:
+        assert tex(e) == sp.latex(_report_decimals(e), symbol_names=NAMES) and printer.doprint(e) == str(e), e
