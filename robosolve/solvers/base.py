@@ -8,6 +8,7 @@ It does no I/O: the derivation is returned as `Step`s, figures as `FigureSpec`s
 from __future__ import annotations
 
 import contextlib
+import math
 from dataclasses import dataclass, field
 import sympy as sp
 
@@ -275,22 +276,30 @@ def _free_symbols(obj) -> set:
     return set()
 
 
-def _to_float(obj, subs):
+def _to_float(obj, subs, memo=None):
+    memo = {} if memo is None else memo
     if isinstance(obj, dict):
-        return {k: _to_float(v, subs) for k, v in obj.items()}
+        return {k: _to_float(v, subs, memo) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_to_float(v, subs) for v in obj]
+        return [_to_float(v, subs, memo) for v in obj]
     if isinstance(obj, sp.MatrixBase):
-        return [[_scalar(e, subs) for e in obj.row(i)] for i in range(obj.rows)]
+        return [[_scalar(e, subs, memo) for e in obj.row(i)] for i in range(obj.rows)]
     if obj is None:
         return None
-    return _scalar(obj, subs)
+    return _scalar(obj, subs, memo)
 
 
-def _scalar(e, subs) -> float:
+def _scalar(e, subs, memo=None) -> float:
     if isinstance(e, (int, float)):
         return float(e)
-    v = sp.sympify(e).xreplace(subs).evalf(17)
+    e = sp.sympify(e)
+    try:
+        v = _float_value(e, subs, {} if memo is None else memo)
+        if math.isfinite(v):
+            return _clean(v)
+    except (_NotFloat, ValueError, TypeError, OverflowError, ZeroDivisionError):
+        pass
+    v = e.xreplace(subs).evalf(17)
     try:
         return _clean(float(v))
     except TypeError:
@@ -298,6 +307,58 @@ def _scalar(e, subs) -> float:
         if abs(c.imag) > 1e-9 * max(1.0, abs(c.real)):
             raise ValueError(f"complex value {c}") from None
         return _clean(c.real)
+
+
+class _NotFloat(Exception):
+    """An expression (or a value substituted) the float evaluation does not handle."""
+
+
+_FLOAT_FUNCTIONS = {"sin": math.sin, "cos": math.cos, "tan": math.tan, "exp": math.exp, "log": math.log,
+                    "asin": math.asin, "acos": math.acos, "atan": math.atan, "atan2": math.atan2,
+                    "sinh": math.sinh, "cosh": math.cosh, "tanh": math.tanh, "Abs": abs}
+
+
+def _float_value(e, subs, memo) -> float:
+    """The value of e at `subs` in double precision, node by node (each node once: the entries of
+    a report's matrices share their subexpressions), without building the substituted sympy
+    expression. Anything else than numbers, symbols with a numeric value, sums, products,
+    powers with a real result and the elementary functions raises _NotFloat: such an
+    expression is evaluated by sympy's evalf instead."""
+    hit = memo.get(e)
+    if hit is not None:
+        return hit
+    if e.is_Number or e.is_NumberSymbol:
+        v = float(e)
+    elif e.is_Symbol:
+        if e not in subs:
+            raise _NotFloat(e)
+        x = subs[e]
+        if not isinstance(x, (int, float)) and not (isinstance(x, sp.Basic) and x.is_number):
+            raise _NotFloat(e)
+        c = complex(x)
+        if c.imag:
+            raise _NotFloat(e)
+        v = c.real
+    elif e.is_Add:
+        v = math.fsum(_float_value(a, subs, memo) for a in e.args)
+    elif e.is_Mul:
+        v = 1.0
+        for a in e.args:
+            v *= _float_value(a, subs, memo)
+    elif e.is_Pow:
+        b, x = _float_value(e.base, subs, memo), _float_value(e.exp, subs, memo)
+        if b < 0 and x != int(x):
+            raise _NotFloat(e)
+        v = b ** x
+    else:
+        f = _FLOAT_FUNCTIONS.get(type(e).__name__) if e.is_Function else None
+        if f is None:
+            raise _NotFloat(e)
+        v = f(*(_float_value(a, subs, memo) for a in e.args))
+    if isinstance(v, complex):
+        raise _NotFloat(e)
+    memo[e] = v
+    return v
 
 
 def _clean(x: float) -> float:
