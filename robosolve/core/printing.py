@@ -20,6 +20,12 @@ _ORDERED_TERMS: dict = {}
 _MAX_ORDERED = 100_000
 
 
+# The str printer's texts, for every SharedStrPrinter of the process (bounded: a batch of many
+# problems keeps at most this many per printer memo).
+_STR_PRINTED: dict = {}
+_MAX_PRINTED = 200_000
+
+
 class PrintsEachOnce:
     """The memo of the shared printers; `_key` is what the text of an expression depends on."""
 
@@ -43,7 +49,9 @@ class PrintsEachOnce:
         key = self._key(expr)
         out = self._printed.get(key)
         if out is None:
-            out = self._printed[key] = super()._print(expr)
+            out = super()._print(expr)
+            if len(self._printed) < _MAX_PRINTED:
+                self._printed[key] = out
         return out
 
 
@@ -54,7 +62,10 @@ class SharedStrPrinter(PrintsEachOnce, StrPrinter):
 
     def __init__(self):
         super().__init__({"order": None})       # what Basic.__str__ asks for
-        self._printed: dict = {}
+        # one memo for every instance: the text depends only on the expression and the level,
+        # and the equations of motion printed by their solver share their entries with the
+        # matrices results.json prints afterwards
+        self._printed = _STR_PRINTED
 
     def _key(self, expr):
         return expr, self._print_level == 0

@@ -198,14 +198,16 @@ def solve_file(path) -> Report:
     return solve_problem(load_problem(path))
 
 
-def render_files(report: Report, formats=("md",), figures=None) -> dict[str, bytes]:
+def render_files(report: Report, formats=("md",), figures=None, parallel: bool = False) -> dict[str, bytes]:
     """results.json, figures/*.png and the reports of `formats` (robosolve.render.formats:
     md -> report.md, html -> report.html, ipynb -> report.ipynb) as relative path -> bytes.
     The PNGs come from `figures` (robosolve.render.drawing; drawn here when None).
 
     results.json and the Markdown are printed before the PNGs are collected, for figures drawn
     in the background are still being drawn meanwhile; they name every figure, so they are
-    printed again in the rare case one could not be drawn (its answer then carries a note)."""
+    printed again in the rare case one could not be drawn (its answer then carries a note).
+    With `parallel` (the `solve` command on two cores or more) a forked helper prints
+    results.json while this process prints the Markdown: the same texts."""
     from robosolve.render.drawing import FigureFailed, InlineFigures
     from robosolve.render.formats import FORMATS
 
@@ -214,7 +216,7 @@ def render_files(report: Report, formats=("md",), figures=None) -> dict[str, byt
     for answer in report.answers:
         for spec in answer.figures:
             planned.setdefault(answer.id, []).append(f"figures/{answer.id}-{spec.name}.png")
-    texts = _texts(report, planned)
+    texts = _texts(report, planned, parallel)
     files: dict[str, bytes] = {}
     figure_paths: dict[str, list[str]] = {}
     for answer in report.answers:
@@ -236,11 +238,23 @@ def render_files(report: Report, formats=("md",), figures=None) -> dict[str, byt
     return files
 
 
-def _texts(report: Report, figure_paths: dict) -> tuple[str, str]:
-    """(results.json, report.md) of the report with these figures."""
+def _texts(report: Report, figure_paths: dict, parallel: bool = False) -> tuple[str, str]:
+    """(results.json, report.md) of the report with these figures; with `parallel`, results.json
+    printed by a forked helper meanwhile (robosolve.run.split_solve.TextHelper; printed here
+    when no helper can be forked or it fails)."""
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
+    if parallel:
+        from robosolve.core.processes import usable_cores
+        from robosolve.run.split_solve import TextHelper
+
+        helper = TextHelper(lambda: render_results_json(report, figure_paths)) if usable_cores() >= 2 else None
+        markdown = render_report(report, figure_paths)
+        results = helper.text() if helper is not None else None
+        if results is None:
+            results = render_results_json(report, figure_paths)
+        return results, markdown
     return render_results_json(report, figure_paths), render_report(report, figure_paths)
 
 
@@ -283,5 +297,5 @@ def solve_loaded(problem: Problem, formats=("md",), figures=None, split: bool = 
     report = solve_problem(problem, figures=figures, split=split)
     failed = [f"{problem.file}: {a.id}: {a.error}" for a in report.answers if a.error is not None]
     return FileResult(str(problem.file), problem.name, report.exit_status, len(report.answers) - len(failed),
-                      len(report.answers), failed, render_files(report, tuple(formats), figures),
+                      len(report.answers), failed, render_files(report, tuple(formats), figures, parallel=split),
                       robosolve.__version__, [str(w) for w in problem.warnings])

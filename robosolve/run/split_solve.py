@@ -14,6 +14,9 @@
   was built, not simplified again, so the report is byte-identical to a solve in one process
   (tested on every bundled problem). An answer that cannot be pickled, or a helper that dies,
   only means that the parent solves that question itself afterwards.
+* Once every question is answered, `TextHelper` prints results.json in a fork while the parent
+  prints the Markdown report (pipeline.render_files(parallel=True)); a helper that fails only
+  means that the parent prints it too.
 
 The helper follows robosolve.core.processes' rules (never outlives the command, no files).
 """
@@ -147,3 +150,46 @@ class QuestionHelper:
         stop(self._process)
         self._results.close()
         self._process = None
+
+
+def _serve_text(results, parent_ends, render) -> None:
+    """The text helper: print one text, send it (None when printing failed)."""
+    from robosolve.core.processes import child_setup
+
+    child_setup(parent_ends)
+    try:
+        data = render().encode("utf-8")
+    except Exception:   # printed again by the parent
+        data = None
+    try:
+        results.send(data)
+    except OSError:     # the parent is gone
+        return
+
+
+class TextHelper:
+    """A forked helper printing one text with `render() -> str` (results.json, while the parent
+    prints the Markdown report: both need every answer, so they start once the questions are
+    answered). `text()` is the text, or None when no helper could be forked or it failed."""
+
+    def __init__(self, render):
+        from robosolve.core.processes import fork_helper, pipe
+
+        self._results, results = pipe()
+        self._process = fork_helper(_serve_text, (results, (self._results,), render))
+        results.close()
+        if self._process is None:
+            self._results.close()
+
+    def text(self) -> str | None:
+        if self._process is None:
+            return None
+        try:
+            data = self._results.recv()
+        except (EOFError, OSError):
+            data = None
+        finally:
+            self._results.close()
+            self._process.join()
+            self._process = None
+        return None if data is None else data.decode("utf-8")

@@ -106,6 +106,15 @@ def test_a_split_solve_writes_the_same_files(whole_files):
     problem = load_problem(PROBLEM)
     assert plan(problem.questions, len(problem.joints)) is not None
     assert render_files(solve_problem(problem, split=True), ("md", "html")) == whole_files
+    # results.json printed by a forked helper while the Markdown is printed here
+    assert render_files(solve_problem(problem, split=True), ("md", "html"), parallel=True) == whole_files
+
+
+def test_a_text_helper_that_fails_leaves_the_text_to_the_parent():
+    from robosolve.run.split_solve import TextHelper
+
+    assert TextHelper(lambda: "é" * 3).text() == "ééé"
+    assert TextHelper(lambda: 1 / 0).text() is None
 
 
 def test_a_question_the_helper_does_not_send_is_solved_by_the_parent(monkeypatch, whole_files):
