@@ -1,10 +1,11 @@
 """Every solution of f(q) = 0 by deterministic multi-start Levenberg-Marquardt.
 
 The starts are a full grid for up to three unknowns and a fixed Halton set
-beyond; all starts iterate together (numpy batches), the converged ones are
-refined one by one with Newton/Gauss-Newton to machine precision, wrapped,
+beyond; all starts iterate together (numpy batches; a start leaves the batch once
+converged), the converged ones are refined one by one with Newton/Gauss-Newton to machine precision, wrapped,
 deduplicated and verified.  A second pass deflates the solutions already found
-so that starts are pushed away from them towards the ones still missing.
+so that starts are pushed away from them towards the ones still missing (the IK
+engine skips it when a closed form's verified solutions confirm the set).
 Revolute angles are wrapped into (-pi, pi]; an equation flagged `angular`
 (a sum of angles = an orientation) is compared modulo 2 pi.
 """
