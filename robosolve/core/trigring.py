@@ -213,6 +213,22 @@ class TrigAlgebra:
     def to_expr(self, p):
         return p.as_expr(*self._gens_back)
 
+    def expanded_expr(self, p):
+        """sp.expand(self.to_expr(p)), written out term by term: with coefficients that are
+        polynomials in the parameters, each trig monomial times each of its coefficient's terms
+        (what expand's distribution makes, without building the product first and walking it);
+        other coefficient domains go through expand."""
+        inner = getattr(self.ring.domain, "ring", None)
+        if inner is None or not hasattr(inner, "symbols"):
+            return sp.expand(self.to_expr(p))
+        to_sympy, psyms, gens = inner.domain.to_sympy, inner.symbols, self._gens_back
+        terms = []
+        for monom, coef in p.items():
+            trig = [sp.Pow(g, e) for g, e in zip(gens, monom) if e]
+            for pm, c in coef.items():
+                terms.append(sp.Mul(to_sympy(c), *[sp.Pow(x, e) for x, e in zip(psyms, pm) if e], *trig))
+        return sp.Add(*terms)
+
     def to_matrix(self, m):
         return sp.Matrix([[self.to_expr(x) for x in row] for row in m])
 

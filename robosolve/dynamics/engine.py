@@ -369,10 +369,10 @@ class DynamicsEngine:
         if light:  # report matrices: the product form, coefficients with common factors out
             best = self._group(product_terms(alg, p), factor=False) if alg.trig else \
                 self._group([t.as_independent(sp.sin, sp.cos) for t in
-                             sp.Add.make_args(sp.expand(alg.to_expr(p)))], factor=False)
+                             sp.Add.make_args(alg.expanded_expr(p))], factor=False)
             self._cache[key] = best
             return best
-        expr = sp.expand(alg.to_expr(p))
+        expr = alg.expanded_expr(p)
         cands = [self._group([term.as_independent(sp.sin, sp.cos)
                               for term in sp.Add.make_args(expr)])]
         if alg.trig and any(alg.depends(p, i) for i in alg.trig):
