@@ -70,13 +70,27 @@ def answer_record(answer, figure_paths: list[str], printer: SharedStrPrinter | N
     return rec
 
 
+def planned_figures(answer) -> list[str]:
+    """The paths of the answer's figures in the output folder (when every one is drawn)."""
+    return [f"figures/{answer.id}-{spec.name}.png" for spec in answer.figures]
+
+
 def results_document(report, figure_paths: dict) -> dict:
     printer = SharedStrPrinter()
     return {
         "format": 1,
         "problem": report.problem.name,
-        "answers": {a.id: answer_record(a, figure_paths.get(a.id, []), printer) for a in report.answers},
+        "answers": {a.id: _record(a, figure_paths.get(a.id, []), printer) for a in report.answers},
     }
+
+
+def _record(answer, paths: list[str], printer) -> dict:
+    """The answer's record; one a question helper printed already (run/split_solve) when it was
+    printed with these figure paths (a figure that could not be drawn adds a note: printed again)."""
+    printed = getattr(answer, "printed_record", None)
+    if printed is not None and printed[0] == paths:
+        return printed[1]
+    return answer_record(answer, paths, printer)
 
 
 def dumps(value, indent: int = 0) -> str:

@@ -212,10 +212,9 @@ def render_files(report: Report, formats=("md",), figures=None, parallel: bool =
     from robosolve.render.formats import FORMATS
 
     figures = figures or InlineFigures()
-    planned: dict[str, list[str]] = {}
-    for answer in report.answers:
-        for spec in answer.figures:
-            planned.setdefault(answer.id, []).append(f"figures/{answer.id}-{spec.name}.png")
+    from robosolve.render.results_json import planned_figures
+
+    planned = {answer.id: planned_figures(answer) for answer in report.answers if answer.figures}
     texts = _texts(report, planned, parallel)
     files: dict[str, bytes] = {}
     figure_paths: dict[str, list[str]] = {}

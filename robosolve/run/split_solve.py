@@ -86,9 +86,22 @@ def _serve(results, parent_ends, indices, solve_one) -> None:
         except Exception:       # not picklable: the parent solves it again
             data = None
         try:
-            results.send((i, data))
+            results.send((i, data, _printed_record(answer) if data is not None else None))
         except OSError:         # the parent is gone
             return
+
+
+def _printed_record(answer):
+    """(figure paths, the answer's results.json record printed with them), printed here while
+    the parent still solves (the helper's answers would otherwise be printed after every
+    question, on the parent's time); None when printing fails (the parent prints it)."""
+    from robosolve.render.results_json import answer_record, planned_figures
+
+    try:
+        paths = planned_figures(answer)
+        return paths, answer_record(answer, paths)
+    except Exception:
+        return None
 
 
 def _unpickled(data):
@@ -130,13 +143,15 @@ class QuestionHelper:
         got: dict = {}
         while self._process is not None and (wait or self._results.poll()):
             try:
-                i, data = self._results.recv()
+                i, data, record = self._results.recv()
             except (EOFError, OSError):
                 self.close()
                 break
             self._pending -= 1
             answer = _unpickled(data)
             if answer is not None:
+                if record is not None:
+                    answer.printed_record = record      # render/results_json uses it as it is
                 got[i] = answer
             if not self._pending:
                 self.close()

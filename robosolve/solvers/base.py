@@ -106,6 +106,9 @@ class Answer:
     notes: list = field(default_factory=list)
     extra: dict = field(default_factory=dict)     # keys beside `type` (e.g. unreachable, reason)
     error: str | None = None
+    # (figure paths, results.json record) when a question helper printed the record already
+    # (run/split_solve); a plain attribute, not a field: not part of the answer itself
+    printed_record = None
 
     def note(self, text: str):
         if text not in self.notes:
