@@ -14,6 +14,9 @@
   was built, not simplified again, so the report is byte-identical to a solve in one process
   (tested on every bundled problem). An answer that cannot be pickled, or a helper that dies,
   only means that the parent solves that question itself afterwards.
+* The helper also prints each of its answers' results.json record (with the figure paths
+  planned) and sends it beside the answer: results.json uses it when the figures are the ones
+  planned, so the helper's answers are not printed on the parent's time after the questions.
 * Once every question is answered, `TextHelper` prints results.json in a fork while the parent
   prints the Markdown report (pipeline.render_files(parallel=True)); a helper that fails only
   means that the parent prints it too.
