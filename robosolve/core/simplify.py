@@ -218,9 +218,37 @@ def _addition_formulas(expanded):
         return TR10i(expanded)
     groups: dict = {}
     for term in expanded.args:
-        outside, _ = term.as_independent(sp.sin, sp.cos, as_Add=False)
-        groups.setdefault(-outside if outside.could_extract_minus_sign() else outside, []).append(term)
-    return sp.Add(*[TR10i(sp.Add(*g)) if len(g) > 1 else g[0] for g in groups.values()])
+        outside, trig = term.as_independent(sp.sin, sp.cos, as_Add=False)
+        groups.setdefault(-outside if outside.could_extract_minus_sign() else outside, []).append((term, trig))
+    out = []
+    for members in groups.values():
+        if len(members) == 1:
+            out.append(members[0][0])
+            continue
+        keys = [_trig_arguments(trig) for _term, trig in members]
+        if any(k is None for k in keys):        # not all plain products: TR10i on them all
+            out.append(TR10i(sp.Add(*[t for t, _ in members])))
+            continue
+        by_args: dict = {}
+        for (term, _trig), k in zip(members, keys):
+            by_args.setdefault(k, []).append(term)
+        out += [TR10i(sp.Add(*g)) if len(g) > 1 else g[0] for g in by_args.values()]
+    return sp.Add(*out)
+
+
+def _trig_arguments(trig):
+    """The arguments of a product of sines and cosines with their multiplicities (sorted), or
+    None for another factor. The terms TR10i pairs (cos a cos b·X with sin a sin b·X, sin a cos b·X
+    with cos a sin b·X) have the same, and so have the sums it makes (cos(a + b)·X from those),
+    so terms with the same factor outside need TR10i only among those with the same."""
+    args = []
+    for f in sp.Mul.make_args(trig):
+        base, exp = f.as_base_exp()
+        if isinstance(base, (sp.sin, sp.cos)) and exp.is_Integer and exp > 0:
+            args += [base.args[0]] * int(exp)
+        elif f != 1:
+            return None
+    return tuple(sorted(args, key=sp.default_sort_key))
 
 
 def _shortest_trig_form(canonical):

@@ -121,3 +121,28 @@ def test_entries_with_float_coefficients_keep_their_value_and_lose_their_product
     # a float inside an angle stays there (trigsimp's route, as before)
     offset = sp.expand(sp.sin(q1 + sp.Float(0.3)) * L1 + sp.Float(0.5) * sp.cos(q2))
     assert _equal_at_random_points(offset, S.chain_product(offset))
+
+
+def test_addition_formulas_by_groups_are_tr10i_of_the_whole_sum():
+    """core/simplify._addition_formulas applies TR10i to groups of terms (the same factor
+    outside, the same sines' and cosines' arguments) and adds them: sympy's TR10i on the whole
+    sum is the reference, on random sums of expanded products (chain-like: angle sums expanded,
+    coefficients shared and not)."""
+    import random
+
+    from sympy.simplify.fu import TR10i
+
+    from robosolve.core.simplify import _addition_formulas
+
+    qs = sp.symbols("q1:5")
+    a, b = sp.symbols("a b", positive=True)
+    rng = random.Random(41)
+    for _ in range(60):
+        e = 0
+        for _ in range(rng.randint(1, 4)):
+            k = rng.sample(qs, rng.randint(1, 3))
+            f = rng.choice([sp.cos, sp.sin])(sum(k))
+            g = rng.choice([1, sp.cos(rng.choice(qs)), sp.sin(rng.choice(qs))])
+            e += rng.choice([1, -1, a, 2 * b, a * b, sp.Rational(1, 2)]) * f * g
+        expanded = sp.expand(sp.expand_trig(e))
+        assert _addition_formulas(expanded) == TR10i(expanded), e
