@@ -342,7 +342,8 @@ def tidy_products_matrix(m: sp.Matrix, seconds: float | None = None) -> sp.Matri
 @memoised
 def _memo_factor(expr):
     """sympy's factor, memoised: a Jacobian entry's tidy form is factored inside jacobian_entry and
-    again by the determinant routes that take it (the same expression, the same result)."""
+    again by the determinant routes that take it (the same expression, the same result); also
+    `factored`'s."""
     return sp.factor(expr)
 
 
@@ -591,11 +592,10 @@ def common_factors(e):
     return sp.factor_terms(e)
 
 
-@memoised
 def factored(e):
     """A polynomial shown factored (profile derivatives, the radicand of a distance, the ratios
-    of a singular joint value in closed form)."""
-    return sp.factor(e)
+    of a singular joint value in closed form): sympy's factor, through the one memoised table."""
+    return _memo_factor(e)
 
 
 @memoised

@@ -404,7 +404,8 @@ def _overdetermined(res, exprs, joints, values, names, select, closed_form, time
     choice of n of them is solved."""
     n, m = len(joints), len(exprs)
     system = _numeric_system(exprs, joints, values, res.angular)
-    num = solve_all(system, _boxes(joints, _scale(values)), budget, deflation=False)
+    boxes = _boxes(joints, _scale(values))
+    num = solve_all(system, boxes, budget, deflation=False)
     if num.solutions:
         res.notes.append(f"{m} equations for {n} unknowns: they are consistent here, "
                          f"so the solutions satisfy all of them.")
@@ -417,7 +418,7 @@ def _overdetermined(res, exprs, joints, values, names, select, closed_form, time
                 cf_sols, _, _ = _cf_solutions(cf, values, joints, system)
                 res.closed_form_values = cf_sols
         if not _confirmed(num, cf_sols, joints):
-            num = solve_all(system, _boxes(joints, _scale(values)), budget)
+            num = solve_all(system, boxes, budget)
         _finish(res, num, cf_sols, joints, values, select, system)
         return
     res.status = "overdetermined"

@@ -499,19 +499,19 @@ def _planar_equations(chain, split, Q, lhs, rhs, Msym, q):
         return [(sp.expand(rhs[i, j] - lhs[i, j]), 0) for i in (0, 1) for j in range(4)], (), None
     mid = (Q * chain.product(split, s2)).applyfunc(sp.expand)
     target = (lhs * rigid_inverse(chain.product(s2, n))).applyfunc(sp.expand)
-    keys = [(i, j) for j in (0, 3) for i in (0, 1)]
+    b = {(i, j): _pythagoras(target[i, j], q) for j in (0, 3) for i in (0, 1)}     # b_11, b_21, b_x, b_y
     angle = _angle_sum(mid[0, 0], mid[1, 0], q[1:4])
     if angle is not None:
-        known = [target[0, 3], target[1, 3], sp.atan2(_pythagoras(target[1, 0], q), _pythagoras(target[0, 0], q))]
         return ([(mid[0, 3], B_SYMS[2]), (mid[1, 3], B_SYMS[3]), (angle, BETA)], (B_SYMS[2], B_SYMS[3], BETA),
-                [_pythagoras(e, q) for e in known[:2]] + known[2:])
-    return ([(mid[i, j], B_SYMS[k]) for k, (i, j) in enumerate(keys)], B_SYMS,
-            [_pythagoras(target[i, j], q) for i, j in keys])
+                [b[0, 3], b[1, 3], sp.atan2(b[1, 0], b[0, 0])])
+    return [(mid[key], sym) for key, sym in zip(b, B_SYMS)], B_SYMS, list(b.values())
 
 
 def _pythagoras(expr, joints):
     """sin² q + cos² q = 1 applied where it shortens `expr` (an expanded product of the chain's
-    matrices has c5² r33 + s5² r33 where the course writes r33)."""
+    matrices has c5² r33 + s5² r33 where the course writes r33). Not core/trigring's
+    pythagorean_reduced: that one leaves decimal coefficients alone (its ring would add round-off
+    terms), and a datasheet arm's entries have them; here equal coefficients cancel exactly."""
     for x in joints:
         s, c = sp.sin(x), sp.cos(x)
         if not (expr.has(s ** 2) and expr.has(c ** 2)):

@@ -79,16 +79,10 @@ class _Geometry:
         return (mp - mm) / (2 * eps) @ np.linalg.inv(np.asarray(base[i], dtype=float))
 
     def _axis_of(self, i, m):
-        m = np.asarray(m, dtype=float)
         if self.kinds[self.joints[i]] != "revolute":
             return None
-        u = np.array([m[2, 1], m[0, 2], m[1, 0]])
-        n = np.linalg.norm(u)
-        if n < 1e-12:
-            return None
-        u = u / n
-        t = m[:3, 3] / n
-        return u, np.cross(u, t)
+        u, a, n = _axis_from_l(np.asarray(m, dtype=float))
+        return None if n < 1e-12 else (u, a)
 
     def axes(self, q):
         """(joint index, unit direction, a point on the axis) of each revolute joint."""
@@ -132,13 +126,20 @@ class _Geometry:
             dq[i] = eps
             mp, mm, base = self._many(Q + dq)[0][:, i], self._many(Q - dq)[0][:, i], self._many(Q)[0][:, i]
             m = (mp - mm) / (2 * eps) @ np.linalg.inv(base)
-        u = np.stack([m[:, 2, 1], m[:, 0, 2], m[:, 1, 0]], axis=1)
-        n = np.linalg.norm(u, axis=1)[:, None]
-        u = u / n
-        return u, np.cross(u, m[:, :3, 3] / n)
+        u, a, _n = _axis_from_l(m)
+        return u, a
 
     def point_many(self, Q):
         return self._many(Q)[1]
+
+
+def _axis_from_l(m):
+    """(unit direction, a point on the axis, the direction's norm) of a joint's ⁰L (..., 4, 4:
+    one matrix or a stack): the direction is the vector of its skew part, the point u × t/|ω|."""
+    u = np.stack([m[..., 2, 1], m[..., 0, 2], m[..., 1, 0]], axis=-1)
+    n = np.linalg.norm(u, axis=-1)
+    u = u / n[..., None]
+    return u, np.cross(u, m[..., :3, 3] / n[..., None]), n
 
 
 def _dist_point_line(p, u, a):
