@@ -210,17 +210,15 @@ def render_files(report: Report, formats=("md",), figures=None, parallel: bool =
     results.json while this process prints the Markdown: the same texts."""
     from robosolve.render.drawing import FigureFailed, InlineFigures
     from robosolve.render.formats import FORMATS
-
-    figures = figures or InlineFigures()
     from robosolve.render.results_json import planned_figures
 
+    figures = figures or InlineFigures()
     planned = {answer.id: planned_figures(answer) for answer in report.answers if answer.figures}
     texts = _texts(report, planned, parallel)
     files: dict[str, bytes] = {}
     figure_paths: dict[str, list[str]] = {}
     for answer in report.answers:
-        for spec in answer.figures:
-            rel = f"figures/{answer.id}-{spec.name}.png"
+        for spec, rel in zip(answer.figures, planned.get(answer.id, [])):
             try:
                 files[rel] = figures.png(spec)
             except FigureFailed as exc:  # a figure that fails must not lose the answers
