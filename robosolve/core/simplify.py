@@ -41,6 +41,7 @@ from robosolve.core.timing import time_limit
 from robosolve.core.trigring import pythagorean_reduced
 from robosolve.errors import SymbolicTimeout
 from robosolve.core.opcount import count_ops
+from robosolve.core.linear_factors import factor_list_zz
 
 __all__ = [
     "SimplifyBudgets", "DEFAULT_BUDGETS", "chain_product", "tidy", "tidy_matrix", "jacobian_entry",
@@ -436,7 +437,7 @@ def _piece_factors(base):
         return None
     if not (poly.domain.is_ZZ or poly.domain.is_QQ):
         return None
-    c, factors = poly.factor_list()
+    c, factors = factor_list_zz(poly)
     return poly.domain.to_sympy(c), tuple((f.as_expr(), k) for f, k in factors)
 
 
