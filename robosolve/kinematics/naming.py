@@ -49,34 +49,38 @@ class _Geometry:
         syms -= set(self.joints)
         self.params = _sample_params(syms, params)
         sub = {k: v for k, v in self.params.items()}
-        mats = [sp.Matrix(m).subs(sub) for m in mats_in]
-        pt = sp.Matrix(list(point)).subs(sub)
-        self._p = sp.lambdify([self.joints], pt, numpy_modules())
+        # numbers for symbols: xreplace builds the same expressions as subs, without its search
+        mats = [sp.Matrix(m).xreplace(sub) for m in mats_in]
+        pt = sp.Matrix(list(point)).xreplace(sub)
+
+        # the matrices and the point are evaluated by one function of a stack of configurations,
+        # generated on first use (`_many`): generating code costs more than evaluating it
         self._mats, self._pt = mats, pt
-        self._flat = None                   # the same matrices for many configurations, on demand
+        self._flat = None
         self._given_l = l_matrices is not None
-        if l_matrices is not None:
-            every = sp.lambdify([self.joints], mats, numpy_modules())
-            self._l = every
-            self._l_one = lambda q, i: every(q)[i]
-        else:
-            m0 = sp.lambdify([self.joints], mats, numpy_modules())
-            self._l = lambda q: self._fd_l(m0, q)
-            self._l_one = lambda q, i: self._fd_l_one(m0, q, i, m0(np.asarray(q, dtype=float)))
 
-    def _fd_l(self, m0, q):
-        base = m0(np.asarray(q, dtype=float))
-        return [self._fd_l_one(m0, q, i, base) for i in range(len(q))]
+    def _l(self, q):
+        """Every joint's ⁰Lᵢ at q (given, or by central differences)."""
+        if self._given_l:
+            return list(self._many(np.asarray(q, dtype=float)[None, :])[0][0])
+        return self._fd_l(q, range(len(q)))
 
-    @staticmethod
-    def _fd_l_one(m0, q, i, base, eps=1e-6):
-        """Lᵢ = ∂Mᵢ/∂qᵢ·Mᵢ⁻¹ by a central difference in qᵢ alone (base: the poses at q)."""
+    def _l_one(self, q, i):
+        if self._given_l:
+            return self._many(np.asarray(q, dtype=float)[None, :])[0][0][i]
+        return self._fd_l(q, [i])[0]
+
+    def _fd_l(self, q, joints, eps=1e-6):
+        """Lᵢ = ∂Mᵢ/∂qᵢ·Mᵢ⁻¹ of the given joints at q, each by a central difference in qᵢ alone:
+        the poses at q and at q ± eps in each joint evaluated in one pass over the stack."""
         q = np.asarray(q, dtype=float)
-        dq = np.zeros(len(q))
-        dq[i] = eps
-        mp = np.asarray(m0(q + dq)[i], dtype=float)
-        mm = np.asarray(m0(q - dq)[i], dtype=float)
-        return (mp - mm) / (2 * eps) @ np.linalg.inv(np.asarray(base[i], dtype=float))
+        i = np.asarray(list(joints), dtype=int)
+        k = len(i)
+        steps = np.zeros((k, len(q)))
+        steps[np.arange(k), i] = eps
+        poses = self._many(np.vstack([q[None, :], q + steps, q - steps]))[0]
+        j = np.arange(k)
+        return list((poses[1 + j, i] - poses[1 + k + j, i]) / (2 * eps) @ np.linalg.inv(poses[0, i]))
 
     def _axis_of(self, i, m):
         if self.kinds[self.joints[i]] != "revolute":
@@ -100,7 +104,7 @@ class _Geometry:
         return self._axis_of(i, self._l_one(q, i))
 
     def point(self, q):
-        return np.asarray(self._p(q), dtype=float).reshape(3)
+        return self._many(np.asarray(q, dtype=float)[None, :])[1][0]
 
     # -- many configurations at once (rows of Q) ---------------------------------------------
     def _many(self, Q):

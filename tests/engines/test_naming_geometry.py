@@ -43,3 +43,27 @@ def test_many_configurations_equal_row_by_row_for_both_routes():
         d = _far_distances(geo, Q, 1, prev_axis)
         for r in range(len(Q)):
             assert abs(d[r] - _dist_point_line(*_far_point(geo, list(Q[r]), 1, 0, prev_axis))) < 1e-9
+
+
+def test_axes_by_central_differences_match_the_exact_l_matrices():
+    """Every joint's axis from the stacked central differences against the axis read off the
+    exact ⁰Lᵢ = ∂⁰Mᵢ/∂qᵢ·⁰Mᵢ⁻¹ (sympy, evaluated at the configuration): direction and the
+    distance of its point from the exact line."""
+    q, frames = _arm()
+    kinds = {s: "revolute" for s in q}
+    geo = _Geometry(q, kinds, None, list(frames[-1][:3, 3]), {}, frames)
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        qv = rng.uniform(-3, 3, size=4)
+        at = dict(zip(q, qv))
+        axes = geo.axes(list(qv))
+        assert [i for i, _u, _a in axes] == [0, 1, 2, 3]
+        for i, u, a in axes:
+            exact = np.array((frames[i].diff(q[i]) * frames[i].inv()).subs(at).evalf(), dtype=float)
+            w = np.array([exact[2, 1], exact[0, 2], exact[1, 0]])
+            w_unit = w / np.linalg.norm(w)
+            point = np.cross(w_unit, exact[:3, 3] / np.linalg.norm(w))
+            assert abs(abs(np.dot(u, w_unit)) - 1) < 1e-9
+            assert _dist_point_line(a, w_unit, point) < 1e-7
+            single = geo.axis(list(qv), i)
+            assert np.allclose(single[0], u, atol=1e-12) and np.allclose(single[1], a, atol=1e-12)
