@@ -177,8 +177,9 @@ def _config(cond: Condition, geo: _Geometry):
             return None
         grid = np.linspace(-math.pi, math.pi, 721)
         for var in reversed(present):
-            g = sp.lambdify(var, f.subs({**geo.params,
-                                         **{s: q[s] for s in geo.joints if s != var}}), numpy_modules())
+            values = {**geo.params, **{s: q[s] for s in geo.joints if s != var}}
+            sub = f.xreplace({k: sp.sympify(v) for k, v in values.items()})     # = f.subs(values)
+            g = sp.lambdify(var, sub, numpy_modules())
             vals = np.array([float(g(x)) for x in grid])
             idx = np.where(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)[0]
             if len(idx):
