@@ -248,10 +248,39 @@ class ReportSections:
         return self.head + [b for _, blocks in self.answers for b in blocks] + self.notes
 
 
-def report_sections(report, figure_paths: dict) -> ReportSections:
+class MarkdownPrinter:
+    """The Markdown of one problem's report, answer by answer. An answer's blocks depend only on
+    the answer, its section number, its figures' paths and the problem (the LaTeX printer's memo
+    and the compact cᵢ, sᵢ names it records only grow, and the notation is read off the finished
+    text), so they can be printed as soon as the answer is known: the split solve prints them
+    while it waits for its helper (pipeline.solve_problem), and `report_sections` uses the blocks
+    printed for the same answer object with the same paths."""
+
+    def __init__(self, problem, model):
+        self.problem = problem
+        self.names = symbol_latex(problem) if model is not None else {}
+        self.tex = Tex(self.names, CompactTrig(problem))
+        self._questions = {q.id: q for q in problem.questions}
+        self._printed: dict = {}         # (section, answer id, paths) -> (answer, blocks)
+
+    def answer_blocks(self, index: int, answer, paths) -> list[str]:
+        key = (index, answer.id, tuple(paths))
+        hit = self._printed.get(key)
+        if hit is not None and hit[0] is answer:
+            return hit[1]
+        q = self._questions.get(answer.id)
+        config = configuration_text(q, self.problem, self.tex) if q is not None else None
+        blocks = render_answer(index, answer, list(paths), self.tex, config)
+        self._printed[key] = (answer, blocks)
+        return blocks
+
+
+def report_sections(report, figure_paths: dict, printer: MarkdownPrinter | None = None) -> ReportSections:
+    """The report's parts; `printer`: one that may hold answers' blocks printed already (for the
+    same problem), else a new one."""
     problem, model = report.problem, report.model
-    names = symbol_latex(problem) if model is not None else {}
-    tex = Tex(names, CompactTrig(problem))
+    printer = printer if printer is not None and printer.problem is problem else MarkdownPrinter(problem, model)
+    names, tex = printer.names, printer.tex
     head = [f"# {name_md(problem.title or problem.name)}"]
     if problem.description:
         head.append(problem.description.strip())
@@ -259,12 +288,9 @@ def report_sections(report, figure_paths: dict) -> ReportSections:
                 "of frame $j$ in frame $i$; $W$ and $H$ are expressed in frame 0; angles in radians, SI units.")
     notation_at = len(head)
     head += render_data(problem, model, tex)
-    questions = {q.id: q for q in problem.questions}
     answers = []
     for i, answer in enumerate(report.answers, 1):
-        q = questions.get(answer.id)
-        config = configuration_text(q, problem, tex) if q is not None else None
-        answers.append((answer.id, render_answer(i, answer, figure_paths.get(answer.id, []), tex, config)))
+        answers.append((answer.id, printer.answer_blocks(i, answer, figure_paths.get(answer.id, []))))
     body = head + [b for _, blocks in answers for b in blocks]
     notes = render_course_notes(body)
     notation = tex.compact.definitions("\n".join(body + notes), names)
@@ -273,8 +299,8 @@ def report_sections(report, figure_paths: dict) -> ReportSections:
     return ReportSections(head, answers, notes)
 
 
-def render_report(report, figure_paths: dict) -> str:
-    return "\n\n".join(report_sections(report, figure_paths).blocks()) + "\n"
+def render_report(report, figure_paths: dict, printer: MarkdownPrinter | None = None) -> str:
+    return "\n\n".join(report_sections(report, figure_paths, printer).blocks()) + "\n"
 
 
 def render_course_notes(blocks: list[str]) -> list[str]:

@@ -21,6 +21,8 @@ class Report:
     problem: Problem
     model: object
     answers: list = field(default_factory=list)
+    # render.markdown.MarkdownPrinter holding answers' blocks printed during the solve, or None
+    printer: object = field(default=None, repr=False, compare=False)
 
     @property
     def exit_status(self) -> int:
@@ -98,10 +100,15 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
         if figures is not None:
             figures.submit(answer.figures)
 
+    printer = _EarlyMarkdown(problem, model, answers) if helper.indices else None
     try:
         for i in range(len(questions)):
             if i not in helper.indices:
                 add(i, answer_for(i))
+            for j, answer in helper.arrived().items():
+                add(j, answer)
+        # while the helper still solves: the Markdown of the answers known, one at a time
+        while helper.pending and printer is not None and printer.print_one():
             for j, answer in helper.arrived().items():
                 add(j, answer)
         for j, answer in helper.arrived(wait=True).items():
@@ -115,7 +122,37 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
             add(i, answer_for(i))
     report = Report(problem, model)
     report.answers = [answers[i] for i in range(len(questions))]
+    report.printer = printer.printer if printer is not None else None
     return report
+
+
+class _EarlyMarkdown:
+    """The Markdown blocks of the answers known so far, printed one by one while the parent
+    waits for its question helper (render.markdown.MarkdownPrinter: the blocks the report then
+    uses, with the figures' planned paths — printed again only for an answer whose figure
+    fails)."""
+
+    def __init__(self, problem, model, answers: dict):
+        from robosolve.render.markdown import MarkdownPrinter
+
+        self.printer = MarkdownPrinter(problem, model)
+        self._answers = answers
+        self._done: set = set()
+
+    def print_one(self) -> bool:
+        """Print one answer not printed yet (question order); False when there is none."""
+        from robosolve.render.results_json import planned_figures
+
+        for i in sorted(self._answers):
+            if i not in self._done:
+                self._done.add(i)
+                answer = self._answers[i]
+                try:
+                    self.printer.answer_blocks(i + 1, answer, planned_figures(answer) if answer.figures else [])
+                except Exception:       # printed again, with its error, when the report is
+                    pass
+                return True
+        return False
 
 
 def may_draw(problem: Problem) -> bool:
@@ -247,12 +284,12 @@ def _texts(report: Report, figure_paths: dict, parallel: bool = False) -> tuple[
         from robosolve.run.split_solve import TextHelper
 
         helper = TextHelper(lambda: render_results_json(report, figure_paths)) if usable_cores() >= 2 else None
-        markdown = render_report(report, figure_paths)
+        markdown = render_report(report, figure_paths, report.printer)
         results = helper.text() if helper is not None else None
         if results is None:
             results = render_results_json(report, figure_paths)
         return results, markdown
-    return render_results_json(report, figure_paths), render_report(report, figure_paths)
+    return render_results_json(report, figure_paths), render_report(report, figure_paths, report.printer)
 
 
 def write_outputs(report: Report, out_dir, formats=("md",), inputs=(), figures=None) -> Path:

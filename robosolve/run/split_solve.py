@@ -88,8 +88,11 @@ def _serve(results, parent_ends, indices, solve_one) -> None:
             data = pickle.dumps(answer, protocol=pickle.HIGHEST_PROTOCOL)
         except Exception:       # not picklable: the parent solves it again
             data = None
+        # the last answer's record is left to the parent's results.json printer (TextHelper),
+        # which prints it beside the Markdown: here it would delay the answer on the critical path
+        last = i == indices[-1]
         try:
-            results.send((i, data, _printed_record(answer) if data is not None else None))
+            results.send((i, data, _printed_record(answer) if data is not None and not last else None))
         except OSError:         # the parent is gone
             return
 
@@ -159,6 +162,11 @@ class QuestionHelper:
             if not self._pending:
                 self.close()
         return got
+
+    @property
+    def pending(self) -> bool:
+        """Some answers are still to come."""
+        return self._process is not None and self._pending > 0
 
     def close(self) -> None:
         if self._process is None:

@@ -162,3 +162,42 @@ def test_a_wide_jacobian_weighs_its_rank_search():
     parent = [i for i in range(len(problem.questions)) if i not in helper]
     jac_side = helper if "jacobian" in kinds(helper) else parent
     assert kinds(jac_side) <= {"jacobian", "position"}
+
+
+def test_markdown_printed_early_is_the_report_s(monkeypatch, whole_files):
+    """Answers' blocks printed before the report, in another order, by render.markdown's
+    MarkdownPrinter: the report uses them (no answer printed again) and writes the same files."""
+    import robosolve.render.markdown as markdown
+    from robosolve.render.results_json import planned_figures
+
+    report = solve_problem(load_problem(PROBLEM))
+    printer = markdown.MarkdownPrinter(report.problem, report.model)
+    for i, answer in reversed(list(enumerate(report.answers, 1))):
+        printer.answer_blocks(i, answer, planned_figures(answer) if answer.figures else [])
+    report.printer = printer
+    calls = []
+    real = markdown.render_answer
+    monkeypatch.setattr(markdown, "render_answer", lambda *a, **k: calls.append(a[1].id) or real(*a, **k))
+    assert render_files(report, ("md", "html")) == whole_files
+    assert calls == []
+
+
+def test_the_parent_prints_while_the_helper_still_solves(monkeypatch, whole_files):
+    """A slow helper: the parent prints the Markdown of the answers it has meanwhile, and the
+    files are the same."""
+    import robosolve.run.pipeline as pipeline
+
+    parent, real = os.getpid(), pipeline._solve_question
+
+    def slow_in_helper(q, ctx, seconds):
+        if os.getpid() != parent:
+            time.sleep(0.3)
+        return real(q, ctx, seconds)
+
+    printed = []
+    real_one = pipeline._EarlyMarkdown.print_one
+    monkeypatch.setattr(pipeline, "_solve_question", slow_in_helper)
+    monkeypatch.setattr(pipeline._EarlyMarkdown, "print_one", lambda self: printed.append(1) or real_one(self))
+    report = solve_problem(load_problem(PROBLEM), split=True)
+    assert printed and report.printer is not None
+    assert render_files(report, ("md", "html"), parallel=True) == whole_files
