@@ -17,6 +17,10 @@
 * The helper also prints each of its answers' results.json record (with the figure paths
   planned) and sends it beside the answer: results.json uses it when the figures are the ones
   planned, so the helper's answers are not printed on the parent's time after the questions.
+  Its last answer goes without: nothing is solved after it, and the record is printed by the
+  parent's results.json helper beside the Markdown instead of before the answer leaves.
+* A parent done with its own questions prints the Markdown of the answers it has while it waits
+  (pipeline._EarlyMarkdown, render.markdown.MarkdownPrinter): the report uses those blocks.
 * Once every question is answered, `TextHelper` prints results.json in a fork while the parent
   prints the Markdown report (pipeline.render_files(parallel=True)); a helper that fails only
   means that the parent prints it too.
