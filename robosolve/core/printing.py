@@ -26,16 +26,99 @@ _STR_PRINTED: dict = {}
 _MAX_PRINTED = 200_000
 
 
+# `ordered_terms` follows sympy's code of these versions (tested equal to it); other versions
+# sort with sympy's own
+_SAME_AS_TERMS = tuple(int(x) for x in sp.__version__.split(".")[:2]) in ((1, 12), (1, 13), (1, 14))
+
+# default_sort_key of the generators of sums (sin q₂, m₁, sin(q₂ + q₃)): a sum's sort key sorts
+# its terms again, and the same generators occur in most sums of a report
+_SORT_KEYS: dict = {}
+
+
+def _sort_key(e):
+    hit = _SORT_KEYS.get(e)
+    if hit is None:
+        hit = sp.default_sort_key(e)
+        if len(_SORT_KEYS) < _MAX_ORDERED:
+            _SORT_KEYS[e] = hit
+    return hit
+
+
+def _as_terms(expr):
+    """sympy's Expr.as_terms (1.14) line for line, with the sort keys of the generators kept
+    (`_sort_key`) and a rational or decimal coefficient converted by float() (what complex()
+    gives for it, without evalf)."""
+    from sympy.core.exprtools import decompose_power
+
+    gens, terms = set(), []
+    for term in sp.Add.make_args(expr):
+        coeff, rest = term.as_coeff_Mul()
+        coeff = complex(float(coeff)) if isinstance(coeff, (sp.Rational, sp.Float)) else complex(coeff)
+        cpart, ncpart = {}, []
+        if rest is not sp.S.One:
+            for factor in sp.Mul.make_args(rest):
+                if factor.is_number:
+                    try:
+                        coeff *= complex(factor)
+                    except (TypeError, ValueError):
+                        pass
+                    else:
+                        continue
+                if factor.is_commutative:
+                    base, exp = decompose_power(factor)
+                    cpart[base] = exp
+                    gens.add(base)
+                else:
+                    ncpart.append(factor)
+        terms.append((term, ((coeff.real, coeff.imag), cpart, tuple(ncpart))))
+    gens = sorted(gens, key=_sort_key)
+    indices = {g: i for i, g in enumerate(gens)}
+    result = []
+    for term, (coeff, cpart, ncpart) in terms:
+        monom = [0] * len(gens)
+        for base, exp in cpart.items():
+            monom[indices[base]] = exp
+        result.append((term, (coeff, tuple(monom), ncpart)))
+    return result, gens
+
+
+def ordered_terms(expr, order=None) -> list:
+    """expr.as_ordered_terms(order) (sympy 1.14's, line for line, through `_as_terms`): the order
+    the str and LaTeX printers print a sum's terms in."""
+    from sympy.core.numbers import Number, NumberSymbol
+
+    if order is None and expr.is_Add:
+        def key(x):
+            return not isinstance(x, (Number, NumberSymbol))
+
+        add_args = sorted(sp.Add.make_args(expr), key=key)
+        if (len(add_args) == 2 and isinstance(add_args[0], (Number, NumberSymbol))
+                and isinstance(add_args[1], sp.Mul)):
+            mul_args = sorted(sp.Mul.make_args(add_args[1]), key=key)
+            if (len(mul_args) == 2 and isinstance(mul_args[0], Number)
+                    and add_args[0].is_positive and mul_args[0].is_negative):
+                return add_args
+    key, reverse = sp.Expr._parse_order(order)
+    terms, _gens = _as_terms(expr)
+    if not any(term.is_Order for term, _ in terms):
+        ordered = sorted(terms, key=key, reverse=reverse)
+    else:
+        plain = [(t, r) for t, r in terms if not t.is_Order]
+        big_o = [(t, r) for t, r in terms if t.is_Order]
+        ordered = sorted(plain, key=key, reverse=True) + sorted(big_o, key=key, reverse=True)
+    return [term for term, _ in ordered]
+
+
 class PrintsEachOnce:
     """The memo of the shared printers; `_key` is what the text of an expression depends on."""
 
     def _as_ordered_terms(self, expr, order=None):
         key = (expr, order or self.order)       # the order sympy's printer would use
-        if key[1] == "old":                      # sorted by this printer's own comparison
+        if key[1] in ("old", "none") or not isinstance(expr, sp.Expr):   # the printer's own ways
             return super()._as_ordered_terms(expr, order=order)
         hit = _ORDERED_TERMS.get(key)
         if hit is None:
-            hit = super()._as_ordered_terms(expr, order=order)
+            hit = ordered_terms(expr, key[1]) if _SAME_AS_TERMS else super()._as_ordered_terms(expr, order=order)
             if len(_ORDERED_TERMS) < _MAX_ORDERED:
                 _ORDERED_TERMS[key] = hit
         return list(hit)
