@@ -274,6 +274,16 @@ class MarkdownPrinter:
         self._printed[key] = (answer, blocks)
         return blocks
 
+    def adopt(self, index: int, answer, paths, blocks, names: dict, meaning: dict) -> None:
+        """Blocks printed by another copy of this printer (a question helper's, forked from it),
+        with the compact symbols that copy met: the notation then defines those it uses."""
+        self._printed[(index, answer.id, tuple(paths))] = (answer, list(blocks))
+        compact = self.tex.compact
+        for sym, name in names.items():
+            if sym not in compact.names:
+                compact.names[sym] = name
+                compact.meaning[sym] = meaning[sym]
+
 
 def report_sections(report, figure_paths: dict, printer: MarkdownPrinter | None = None) -> ReportSections:
     """The report's parts; `printer`: one that may hold answers' blocks printed already (for the

@@ -92,15 +92,20 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
 
     if figures is not None and _may_draw(questions):
         figures.expect()
-    helper = _question_helper(problem, model, answer_for, clock, split)
     answers: dict = {}
+    printer = _EarlyMarkdown(problem, model, answers) if split else None
+    helper = _question_helper(problem, model, answer_for, clock, split,
+                              printer.print_in_helper if printer is not None else None)
+    if not helper.indices:
+        printer = None
 
     def add(i: int, answer) -> None:
         answers[i] = ctx.answers[questions[i].id] = answer
+        if printer is not None:
+            printer.adopt(i, answer)
         if figures is not None:
             figures.submit(answer.figures)
 
-    printer = _EarlyMarkdown(problem, model, answers) if helper.indices else None
     try:
         for i in range(len(questions)):
             if i not in helper.indices:
@@ -138,6 +143,24 @@ class _EarlyMarkdown:
         self.printer = MarkdownPrinter(problem, model)
         self._answers = answers
         self._done: set = set()
+
+    def print_in_helper(self, i: int, answer):
+        """In the question helper: the answer's blocks, printed by the helper's copy of the
+        printer, as `adopt` takes them."""
+        from robosolve.render.results_json import planned_figures
+
+        paths = planned_figures(answer) if answer.figures else []
+        blocks = self.printer.answer_blocks(i + 1, answer, paths)
+        compact = self.printer.tex.compact
+        return paths, blocks, dict(compact.names), dict(compact.meaning)
+
+    def adopt(self, i: int, answer) -> None:
+        """An answer from the helper with its blocks printed there: kept as printed here."""
+        printed = getattr(answer, "printed_markdown", None)
+        if printed is not None:
+            paths, blocks, names, meaning = printed
+            self.printer.adopt(i + 1, answer, paths, blocks, names, meaning)
+            self._done.add(i)
 
     def print_one(self) -> bool:
         """Print one answer not printed yet (question order); False when there is none."""
@@ -188,7 +211,7 @@ class _FileClock:
         self._before_fork = self.spent()
 
 
-def _question_helper(problem, model, answer_for, clock, split: bool):
+def _question_helper(problem, model, answer_for, clock, split: bool, print_markdown=None):
     """A QuestionHelper for the questions `split_solve.plan` gives it (with `split`, on two cores
     or more), else one that owns no question."""
     from robosolve.core.processes import usable_cores
@@ -201,7 +224,7 @@ def _question_helper(problem, model, answer_for, clock, split: bool):
         for frame in model.frames:      # computed once, before the fork: both processes use them
             model.M0(frame)
     clock.mark_fork()
-    return QuestionHelper(indices, answer_for)
+    return QuestionHelper(indices, answer_for, print_markdown)
 
 
 def _solve_question(q, ctx, seconds: float):
@@ -279,7 +302,7 @@ def _texts(report: Report, figure_paths: dict, parallel: bool = False) -> tuple[
     from robosolve.render.markdown import render_report
     from robosolve.render.results_json import render_results_json
 
-    if parallel:
+    if parallel and report.printer is None:     # after a split, the helper's answers come printed
         from robosolve.core.processes import usable_cores
         from robosolve.run.split_solve import TextHelper
 

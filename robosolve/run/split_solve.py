@@ -17,13 +17,15 @@
 * The helper also prints each of its answers' results.json record (with the figure paths
   planned) and sends it beside the answer: results.json uses it when the figures are the ones
   planned, so the helper's answers are not printed on the parent's time after the questions.
-  Its last answer goes without: nothing is solved after it, and the record is printed by the
-  parent's results.json helper beside the Markdown instead of before the answer leaves.
-* A parent done with its own questions prints the Markdown of the answers it has while it waits
-  (pipeline._EarlyMarkdown, render.markdown.MarkdownPrinter): the report uses those blocks.
-* Once every question is answered, `TextHelper` prints results.json in a fork while the parent
-  prints the Markdown report (pipeline.render_files(parallel=True)); a helper that fails only
-  means that the parent prints it too.
+* The helper prints its answers' Markdown blocks too (its copy of the parent's
+  render.markdown.MarkdownPrinter, forked with it) and sends them with the compact cᵢ, sᵢ names
+  they use; a parent done with its own questions prints the Markdown of the answers it has while
+  it waits (pipeline._EarlyMarkdown). The report uses those blocks.
+* Once every question is answered, the parent prints what is left: itself after a split (the
+  helper's answers come printed, and forking the grown process costs more than printing the
+  records of the parent's own answers); else `TextHelper` prints results.json in a fork while the
+  parent prints the Markdown report (pipeline.render_files(parallel=True)); a helper that fails
+  only means that the parent prints it too.
 
 The helper follows robosolve.core.processes' rules (never outlives the command, no files).
 """
@@ -81,8 +83,9 @@ def plan(questions, joints: int) -> list[int] | None:
     return sorted(sets[light])
 
 
-def _serve(results, parent_ends, indices, solve_one) -> None:
-    """The helper: solve each question of `indices`, send (index, pickled answer or None)."""
+def _serve(results, parent_ends, indices, solve_one, print_markdown=None) -> None:
+    """The helper: solve each question of `indices`, send (index, pickled answer or None, its
+    results.json record, its Markdown) — the last two printed here, or None."""
     from robosolve.core.processes import child_setup
 
     child_setup(parent_ends)
@@ -92,11 +95,17 @@ def _serve(results, parent_ends, indices, solve_one) -> None:
             data = pickle.dumps(answer, protocol=pickle.HIGHEST_PROTOCOL)
         except Exception:       # not picklable: the parent solves it again
             data = None
-        # the last answer's record is left to the parent's results.json printer (TextHelper),
-        # which prints it beside the Markdown: here it would delay the answer on the critical path
-        last = i == indices[-1]
+        # printed here, where the answer's expressions are the ones just printed by its solver (the
+        # memos hold them); the parent's copy, rebuilt from the pickle, is printed from scratch
+        record = _printed_record(answer) if data is not None else None
+        markdown = None
+        if data is not None and print_markdown is not None:
+            try:
+                markdown = print_markdown(i, answer)
+            except Exception:   # printed by the parent
+                markdown = None
         try:
-            results.send((i, data, _printed_record(answer) if data is not None and not last else None))
+            results.send((i, data, record, markdown))
         except OSError:         # the parent is gone
             return
 
@@ -132,7 +141,7 @@ class QuestionHelper:
     Without indices, or when no fork is possible, it is no helper: it owns no question and
     sends nothing."""
 
-    def __init__(self, indices=(), solve_one=None):
+    def __init__(self, indices=(), solve_one=None, print_markdown=None):
         from robosolve.core.processes import fork_helper, pipe
 
         self.indices = list(indices)
@@ -141,7 +150,7 @@ class QuestionHelper:
         if not self.indices:
             return
         self._results, results = pipe()
-        self._process = fork_helper(_serve, (results, (self._results,), self.indices, solve_one))
+        self._process = fork_helper(_serve, (results, (self._results,), self.indices, solve_one, print_markdown))
         results.close()
         if self._process is None:
             self._results.close()
@@ -153,7 +162,7 @@ class QuestionHelper:
         got: dict = {}
         while self._process is not None and (wait or self._results.poll()):
             try:
-                i, data, record = self._results.recv()
+                i, data, record, markdown = self._results.recv()
             except (EOFError, OSError):
                 self.close()
                 break
@@ -162,6 +171,8 @@ class QuestionHelper:
             if answer is not None:
                 if record is not None:
                     answer.printed_record = record      # render/results_json uses it as it is
+                if markdown is not None:
+                    answer.printed_markdown = markdown  # the report's printer adopts it
                 got[i] = answer
             if not self._pending:
                 self.close()

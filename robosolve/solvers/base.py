@@ -109,6 +109,8 @@ class Answer:
     # (figure paths, results.json record) when a question helper printed the record already
     # (run/split_solve); a plain attribute, not a field: not part of the answer itself
     printed_record = None
+    # (figure paths, Markdown blocks, compact names) when a question helper printed them already
+    printed_markdown = None
 
     def note(self, text: str):
         if text not in self.notes:

@@ -183,8 +183,8 @@ def test_markdown_printed_early_is_the_report_s(monkeypatch, whole_files):
 
 
 def test_the_parent_prints_while_the_helper_still_solves(monkeypatch, whole_files):
-    """A slow helper: the parent prints the Markdown of the answers it has meanwhile, and the
-    files are the same."""
+    """A slow helper: it prints its answers' Markdown, the parent prints the Markdown of its own
+    answers meanwhile, the report prints none again, and the files are the same."""
     import robosolve.run.pipeline as pipeline
 
     parent, real = os.getpid(), pipeline._solve_question
@@ -198,6 +198,18 @@ def test_the_parent_prints_while_the_helper_still_solves(monkeypatch, whole_file
     real_one = pipeline._EarlyMarkdown.print_one
     monkeypatch.setattr(pipeline, "_solve_question", slow_in_helper)
     monkeypatch.setattr(pipeline._EarlyMarkdown, "print_one", lambda self: printed.append(1) or real_one(self))
+    import robosolve.render.markdown as markdown
+
+    calls = []
+    real_answer = markdown.render_answer
+    monkeypatch.setattr(markdown, "render_answer", lambda *a, **k: calls.append(a[1].id) or real_answer(*a, **k))
     report = solve_problem(load_problem(PROBLEM), split=True)
     assert printed and report.printer is not None
+    # the helper's answers came with their blocks, the parent printed its own while it waited
+    helper_ids = {report.answers[i].id for i in plan(report.problem.questions, len(report.problem.joints))}
+    assert all(report.answers[i].printed_markdown is not None for i, a in enumerate(report.answers)
+               if a.id in helper_ids)
+    assert not helper_ids & set(calls)
+    calls.clear()
     assert render_files(report, ("md", "html"), parallel=True) == whole_files
+    assert calls == []
