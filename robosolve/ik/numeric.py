@@ -340,6 +340,15 @@ def polish_singular(system: NumericSystem, q, iters=30):
 DEFAULT_BUDGET = {1: 64, 2: 576, 3: 4096}
 
 
+def _plain_batch(system: NumericSystem, starts):
+    """`_lm_batch` from these starts, kept on the system: `solve_all` without and then with
+    deflation runs the same deterministic batch first, and the second time reads it back."""
+    key = (starts.shape, starts.tobytes())
+    if key not in system.batches:
+        system.batches[key] = _lm_batch(system, starts)
+    return system.batches[key]
+
+
 def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation: bool = True) -> NumericResult:
     """Every isolated solution of the system reached from starts in `boxes`."""
     n = len(boxes)
@@ -388,10 +397,7 @@ def solve_all(system: NumericSystem, boxes, budget: int | None = None, deflation
                 return True
         return False
 
-    key = (starts.shape, starts.tobytes())
-    if key not in system.batches:
-        system.batches[key] = _lm_batch(system, starts)
-    Q, cost = system.batches[key]
+    Q, cost = _plain_batch(system, starts)
     overflow = harvest(Q, cost)
     if deflation and found and not overflow:
         sub = starts[:: max(1, len(starts) // 512)]
