@@ -112,12 +112,12 @@ def solve_problem(problem: Problem, budgets=None, figures=None, split: bool = Fa
                 add(i, answer_for(i))
             for j, answer in helper.arrived().items():
                 add(j, answer)
-        # while the helper still solves: the Markdown of the answers known, one at a time
-        while helper.pending and printer is not None and printer.print_one():
-            for j, answer in helper.arrived().items():
+        # while the helper still solves: the Markdown of the answers known, one at a time, else
+        # the next message waited for
+        while helper.pending:
+            idle = printer is None or not printer.print_one()
+            for j, answer in helper.arrived(one=idle).items():
                 add(j, answer)
-        for j, answer in helper.arrived(wait=True).items():
-            add(j, answer)
     finally:
         helper.close()
     if len(answers) < len(questions):    # the helper did not send some back: solved here

@@ -17,7 +17,8 @@
 * The helper also prints each of its answers' results.json record (with the figure paths
   planned) and sends it beside the answer: results.json uses it when the figures are the ones
   planned, so the helper's answers are not printed on the parent's time after the questions.
-* The helper prints its answers' Markdown blocks too (its copy of the parent's
+  The last answer leaves first and its record follows: the parent prints its Markdown meanwhile.
+* The helper prints its answers' Markdown blocks too, but the last one's (its copy of the parent's
   render.markdown.MarkdownPrinter, forked with it) and sends them with the compact cᵢ, sᵢ names
   they use; a parent done with its own questions prints the Markdown of the answers it has while
   it waits (pipeline._EarlyMarkdown). The report uses those blocks.
@@ -85,7 +86,9 @@ def plan(questions, joints: int) -> list[int] | None:
 
 def _serve(results, parent_ends, indices, solve_one, print_markdown=None) -> None:
     """The helper: solve each question of `indices`, send (index, pickled answer or None, its
-    results.json record, its Markdown) — the last two printed here, or None."""
+    results.json record, its Markdown) — the last two printed here, or None. The last answer
+    leaves at once, its Markdown left to the parent (idle by then, or it would not wait for it),
+    and its record follows as (index, None, record, None)."""
     from robosolve.core.processes import child_setup
 
     child_setup(parent_ends)
@@ -95,17 +98,20 @@ def _serve(results, parent_ends, indices, solve_one, print_markdown=None) -> Non
             data = pickle.dumps(answer, protocol=pickle.HIGHEST_PROTOCOL)
         except Exception:       # not picklable: the parent solves it again
             data = None
+        last = i == indices[-1]
         # printed here, where the answer's expressions are the ones just printed by its solver (the
         # memos hold them); the parent's copy, rebuilt from the pickle, is printed from scratch
-        record = _printed_record(answer) if data is not None else None
+        record = _printed_record(answer) if data is not None and not last else None
         markdown = None
-        if data is not None and print_markdown is not None:
+        if data is not None and print_markdown is not None and not last:
             try:
                 markdown = print_markdown(i, answer)
             except Exception:   # printed by the parent
                 markdown = None
         try:
             results.send((i, data, record, markdown))
+            if last:
+                results.send((i, None, _printed_record(answer) if data is not None else None, None))
         except OSError:         # the parent is gone
             return
 
@@ -146,7 +152,8 @@ class QuestionHelper:
 
         self.indices = list(indices)
         self._process = None
-        self._pending = len(self.indices)
+        self._pending = len(self.indices) + 1       # the answers, and the last one's record
+        self._received: dict = {}
         if not self.indices:
             return
         self._results, results = pipe()
@@ -156,24 +163,30 @@ class QuestionHelper:
             self._results.close()
             self.indices = []
 
-    def arrived(self, wait: bool = False) -> dict:
-        """index -> Answer of the answers sent since the last call: those already there, or,
-        with `wait`, all the others (the helper is then stopped)."""
+    def arrived(self, wait: bool = False, one: bool = False) -> dict:
+        """index -> Answer of the answers sent since the last call: those already there; with
+        `one`, at least one message waited for first; with `wait`, all the others (the helper is
+        then stopped). A record sent after its answer is put on the answer received before."""
         got: dict = {}
-        while self._process is not None and (wait or self._results.poll()):
+        while self._process is not None and (wait or one or self._results.poll()):
+            one = False
             try:
                 i, data, record, markdown = self._results.recv()
             except (EOFError, OSError):
                 self.close()
                 break
             self._pending -= 1
-            answer = _unpickled(data)
-            if answer is not None:
+            if data is None and i in self._received:     # the last answer's record
                 if record is not None:
-                    answer.printed_record = record      # render/results_json uses it as it is
-                if markdown is not None:
-                    answer.printed_markdown = markdown  # the report's printer adopts it
-                got[i] = answer
+                    self._received[i].printed_record = record
+            else:
+                answer = _unpickled(data)
+                if answer is not None:
+                    if record is not None:
+                        answer.printed_record = record      # render/results_json uses it as it is
+                    if markdown is not None:
+                        answer.printed_markdown = markdown  # the report's printer adopts it
+                    got[i] = self._received[i] = answer
             if not self._pending:
                 self.close()
         return got
