@@ -229,6 +229,27 @@ class TrigAlgebra:
                 terms.append(sp.Mul(to_sympy(c), *[sp.Pow(x, e) for x, e in zip(psyms, pm) if e], *trig))
         return sp.Add(*terms)
 
+    def expanded_pairs(self, p):
+        """[(coefficient, trig factor)] of the terms of `expanded_expr(p)`, as each term's
+        as_independent(sin, cos) splits it (read off the ring's monomials instead: each term is
+        one trig monomial times one term of its coefficient); None for other coefficient
+        domains."""
+        inner = getattr(self.ring.domain, "ring", None)
+        if inner is None or not hasattr(inner, "symbols"):
+            return None
+        to_sympy, psyms, gens = inner.domain.to_sympy, inner.symbols, self._gens_back
+        if p == 0:
+            return [(sp.S.Zero, sp.S.Zero)]              # as 0.as_independent(sin, cos)
+        is_trig = [isinstance(g, (sp.sin, sp.cos)) for g in gens]
+        pairs = []
+        for monom, coef in p.items():
+            # a prismatic joint's variable is a generator of the ring but not a trig factor
+            trig = sp.Mul(*[sp.Pow(g, e) for g, e, t in zip(gens, monom, is_trig) if e and t])
+            joint = [sp.Pow(g, e) for g, e, t in zip(gens, monom, is_trig) if e and not t]
+            for pm, c in coef.items():
+                pairs.append((sp.Mul(to_sympy(c), *[sp.Pow(x, e) for x, e in zip(psyms, pm) if e], *joint), trig))
+        return pairs
+
     def to_matrix(self, m):
         return sp.Matrix([[self.to_expr(x) for x in row] for row in m])
 

@@ -372,9 +372,10 @@ class DynamicsEngine:
                              sp.Add.make_args(alg.expanded_expr(p))], factor=False)
             self._cache[key] = best
             return best
-        expr = alg.expanded_expr(p)
-        cands = [self._group([term.as_independent(sp.sin, sp.cos)
-                              for term in sp.Add.make_args(expr)])]
+        pairs = alg.expanded_pairs(p)
+        if pairs is None:
+            pairs = [term.as_independent(sp.sin, sp.cos) for term in sp.Add.make_args(alg.expanded_expr(p))]
+        cands = [self._group(pairs)]
         if alg.trig and any(alg.depends(p, i) for i in alg.trig):
             if self.n <= COMPACT_MAX_JOINTS:
                 cands.append(self._group(fourier_terms(alg, p)))

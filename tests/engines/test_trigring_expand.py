@@ -35,3 +35,23 @@ def test_expanded_expr_is_expand_of_to_expr():
             p = alg.element(k)
             for x in (p, alg.reduce(p * p), alg.reduce(p + alg.element((k + 1) % len(exprs)))):
                 assert alg.expanded_expr(x) == sp.expand(alg.to_expr(x))
+
+
+def test_expanded_pairs_are_the_terms_split_by_as_independent():
+    """expanded_pairs against each term of sympy's expand split by as_independent(sin, cos): a
+    prismatic joint's variable (a generator of the ring, not a trig factor) on the coefficient's
+    side, as sympy puts it."""
+    from collections import Counter
+
+    d = sp.Symbol("d")
+    rng = random.Random(5)
+    for decimal in (False, True):
+        exprs = [_random_poly(rng, decimal) * d ** rng.randint(0, 2) + rng.randint(0, 2) * d
+                 for _ in range(20)]
+        alg = TrigAlgebra.from_inputs(list(q) + [d], exprs)
+        assert alg is not None
+        for k in range(len(exprs)):
+            p = alg.element(k)
+            for x in (p, alg.reduce(p * alg.element((k + 3) % len(exprs))), alg.zero):
+                ref = [t.as_independent(sp.sin, sp.cos) for t in sp.Add.make_args(sp.expand(alg.to_expr(x)))]
+                assert Counter(alg.expanded_pairs(x)) == Counter(ref)
