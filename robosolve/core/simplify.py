@@ -344,8 +344,30 @@ def tidy_products_matrix(m: sp.Matrix, seconds: float | None = None) -> sp.Matri
 def _memo_factor(expr):
     """sympy's factor, memoised: a Jacobian entry's tidy form is factored inside jacobian_entry and
     again by the determinant routes that take it (the same expression, the same result); also
-    `factored`'s."""
-    return sp.factor(expr)
+    `factored`'s. A polynomial over ZZ goes through `_integer_polynomial_factor`."""
+    fast = _integer_polynomial_factor(expr)
+    return fast if fast is not None else sp.factor(expr)
+
+
+def _integer_polynomial_factor(expr):
+    """sp.factor(expr) for a sum that is a polynomial over ZZ (in symbols, sines and cosines):
+    what sympy's factor makes of it — the coefficient kept in front of the product of the factors
+    of Poly(expr).factor_list() (`_keep_coeff`), the factors by core.linear_factors (the same as
+    sympy's). None for anything else (floats, denominators, roots, I, a product): sympy's own."""
+    from sympy.core.mul import _keep_coeff
+    from sympy.polys.polyerrors import GeneratorsNeeded, PolynomialError
+
+    if not expr.is_Add or expr.atoms(sp.Float) or expr.has(sp.I, sp.exp) or any(
+            not (p.exp.is_Integer and p.exp > 0) for p in expr.atoms(sp.Pow)):
+        return None
+    try:
+        poly = sp.Poly(expr)
+    except (GeneratorsNeeded, PolynomialError):
+        return None
+    if not poly.domain.is_ZZ:
+        return None
+    coeff, factors = factor_list_zz(poly)
+    return _keep_coeff(poly.domain.to_sympy(coeff), sp.Mul(*[f.as_expr() ** k for f, k in factors]))
 
 
 @memoised

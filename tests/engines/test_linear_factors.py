@@ -57,3 +57,26 @@ def test_irreducible_linear_and_monomial_cases():
 def test_other_domains_go_to_sympy():
     poly = sp.Poly(sp.Rational(1, 2) * GENS[0] + GENS[1], GENS[0], GENS[1])
     assert factor_list_zz(poly) == poly.factor_list()
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_sympy_factor_of_an_integer_polynomial(seed):
+    """simplify._integer_polynomial_factor (what _memo_factor uses for a sum over ZZ) against
+    sympy's factor: the same expression, node for node."""
+    from robosolve.core.simplify import _integer_polynomial_factor
+
+    rng = random.Random(100 + seed)
+    expr = sp.Integer(rng.choice([1, -1, 2, -6]))
+    for _ in range(rng.randint(1, 3)):
+        expr *= _random_poly(rng, rng.randint(1, 4), rng.choice([1, 2])) ** rng.choice([1, 1, 2])
+    e = sp.expand(expr)
+    fast = _integer_polynomial_factor(e)
+    if e.is_Add:
+        assert fast is not None
+        assert sp.srepr(fast) == sp.srepr(sp.factor(e))
+    else:
+        assert fast is None
+    # not over ZZ, or not a polynomial: left to sympy
+    assert _integer_polynomial_factor(e / 2 + GENS[0] / 3) is None
+    assert _integer_polynomial_factor(sp.Float(0.5) * GENS[0] + GENS[1]) is None
+    assert _integer_polynomial_factor(sp.sqrt(GENS[-1]) + GENS[1]) is None
