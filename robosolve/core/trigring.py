@@ -140,7 +140,7 @@ class TrigAlgebra:
         if not self._basis or p == 0:
             return p
         if not self.term_by_term:
-            return p.rem(self._basis)
+            return _division_remainder(p, self._basis)
         slots = self._slots
         if all(m[si] < 2 for m in p for si, _ in slots):
             return p
@@ -252,6 +252,52 @@ class TrigAlgebra:
 
     def to_matrix(self, m):
         return sp.Matrix([[self.to_expr(x) for x in row] for row in m])
+
+
+def _division_remainder(p, basis):
+    """p.rem(basis), sympy's division algorithm step for step — the same subtractions of the same
+    coefficients in the same order, the remainder's terms in the same order (decimal coefficients
+    round the same) — with the terms left kept in a heap instead of searched for the leading one at
+    every step (the division of a long polynomial is quadratic in sympy). The leading term of
+    what is left only decreases: a step replaces it by smaller terms (sᵢ² by cᵢ² and 1, sᵢ before
+    cᵢ in the lex order), so a term sent to the remainder never returns."""
+    import heapq
+    from sympy.polys.orderings import lex
+
+    ring = p.ring
+    if ring.order != lex or not basis:
+        return p.rem(basis)
+    zero = ring.domain.zero
+    monomial_mul = ring.monomial_mul
+    term_div = p._term_div()
+    divisors = [(g.LT, list(g.iterterms())) for g in basis]
+    left = dict(p)
+    heap = [tuple(-e for e in m) for m in left]
+    heapq.heapify(heap)
+    r = ring.zero
+    while heap:
+        m = tuple(-e for e in heapq.heappop(heap))
+        if m not in left:
+            continue            # cancelled, or pushed again and already done
+        lt = (m, left[m])
+        for g_lt, g_terms in divisors:
+            tq = term_div(lt, g_lt)
+            if tq is not None:
+                mq, c = tq
+                for mg, cg in g_terms:
+                    m1 = monomial_mul(mg, mq)
+                    c1 = left.get(m1, zero) - c * cg
+                    if not c1:
+                        del left[m1]
+                    else:
+                        if m1 not in left:
+                            heapq.heappush(heap, tuple(-e for e in m1))
+                        left[m1] = c1
+                break
+        else:
+            r[m] = lt[1]
+            del left[m]
+    return r
 
 
 def _eliminate_sin_squared(monom, coef, si: int, ci: int):

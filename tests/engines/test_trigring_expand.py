@@ -55,3 +55,22 @@ def test_expanded_pairs_are_the_terms_split_by_as_independent():
             for x in (p, alg.reduce(p * alg.element((k + 3) % len(exprs))), alg.zero):
                 ref = [t.as_independent(sp.sin, sp.cos) for t in sp.Add.make_args(sp.expand(alg.to_expr(x)))]
                 assert Counter(alg.expanded_pairs(x)) == Counter(ref)
+
+
+def test_division_remainder_is_sympys_rem_term_for_term():
+    """trigring._division_remainder against PolyElement.rem (the reference): the same terms, the
+    same decimal coefficients to the last bit, in the same order, on random products of decimal
+    trig polynomials with parameters."""
+    from robosolve.core.trigring import _division_remainder
+
+    rng = random.Random(11)
+    exprs = [_random_poly(rng, True) for _ in range(12)]
+    alg = TrigAlgebra.from_inputs(list(q), exprs)
+    assert alg is not None and not alg.term_by_term
+    for k in range(len(exprs)):
+        p = alg.element(k) * alg.element((k + 5) % len(exprs)) * alg.element((k + 7) % len(exprs))
+        got = _division_remainder(p, alg._basis)
+        want = p.rem(alg._basis)
+        assert list(got.items()) == list(want.items())
+        assert all(list(a.items()) == list(b.items()) if hasattr(a, "items") else a == b
+                   for a, b in zip(got.values(), want.values()))
