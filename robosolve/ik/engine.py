@@ -617,8 +617,11 @@ def _finish(res: IKResult, num, cf_sols, joints, values, select, system):
             if all(_same({j.name: v}, {j.name: vals[0]}, [j], 1e-6) for v in vals):
                 fixed[j.name] = vals[0]
         res.family = {"free": free, "fixed": fixed, "example": numeric[0] if numeric else None}
-        res.notes.append("infinitely many solutions: the target is reached along a continuum"
-                         + (f" ({', '.join(free)} can take any value" if free else "")
+        # one joint moving along the continuum takes any value; several move together (a curve of
+        # configurations, not every combination of their values)
+        moving = (f" ({free[0]} can take any value" if len(free) == 1 else
+                  f" (along it {', '.join(free[:-1])} and {free[-1]} change together" if free else "")
+        res.notes.append("infinitely many solutions: the target is reached along a continuum" + moving
                          + (", with " + Text.join(", ", [Text(f"{k} = ", Num(v)) for k, v in fixed.items()])
                             if fixed else "")
                          + (")" if free else "") + ".")

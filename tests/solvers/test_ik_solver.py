@@ -117,3 +117,36 @@ def test_equation_without_joints():
                     "  - {type: inverse_kinematics, id: z1, target: {E.x: 0.7, E.y: 0.4, E.z: 1}}\n")
     assert len(ans["z0"]["numeric"]["solutions"]) == 1 and any("E.z holds" in n for n in ans["z0"]["notes"])
     assert ans["z1"]["unreachable"] is True and ans["z1"]["reason"].startswith("E.z is 0 whatever the joints")
+
+
+# joints 3 to 6 with parallel axes (α = 0): a planar 4R for a 3-dof planar task, a curve of solutions
+PARALLEL_4R_ARM = """robosolve: 1
+name: rand6-32-9
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+  - {name: q3, type: revolute}
+  - {name: q4, type: revolute}
+  - {name: q5, type: revolute}
+  - {name: q6, type: revolute}
+dh:
+  convention: standard
+  rows:
+    - {theta: 'q1', d: '-0.2938595152767076', a: 0.08400136931478663, alpha: 0.0}
+    - {theta: 'q2', d: '0.0', a: 0.10904040540509663, alpha: -1.5707963267948966}
+    - {theta: 'q3', d: '0.0', a: 0.2905874517252588, alpha: 0.0}
+    - {theta: 'q4', d: '0.07953496067565125', a: 0.16339922202752422, alpha: 0.0}
+    - {theta: 'q5', d: '0.0', a: 0.3461061921780233, alpha: 0.0}
+    - {theta: 'q6', d: '0.0', a: 0.09771383277748674, alpha: 0.0}
+questions:
+"""
+
+
+def test_a_continuum_where_several_joints_move_together():
+    """On a curve of solutions the joints that move change together: the note does not say they
+    each take any value (found by the pose-IK probe, bench/ikprobe, on a random 6R arm)."""
+    _, ans = _solve('  - {type: inverse_kinematics, target: {position: [0.21565129889392934, -0.10218063765613887, -0.6096644259428934], zyz: [1.0704950002832516, 1.5707963267948966, 3.0940031042816227]}}\n', PARALLEL_4R_ARM)
+    a = ans["inverse_kinematics"]
+    notes = [n for n in a["notes"] if "continuum" in n]
+    assert notes and "can take any value" not in notes[0]
+    assert "q3, q4, q5 and q6 change together" in notes[0]
