@@ -22,10 +22,12 @@ Nothing here calls a simplifier (core/simplify.py owns the policy and imports th
 
 from __future__ import annotations
 
+import heapq
 import math
 
 import sympy as sp
 from sympy.polys.domains import QQ
+from sympy.polys.orderings import lex
 from sympy.polys.rings import ring as poly_ring
 from sympy.polys.rings import sring
 from robosolve.core.opcount import count_ops
@@ -214,29 +216,18 @@ class TrigAlgebra:
         return p.as_expr(*self._gens_back)
 
     def expanded_expr(self, p):
-        """sp.expand(self.to_expr(p)), written out term by term: with coefficients that are
-        polynomials in the parameters, each trig monomial times each of its coefficient's terms
-        (what expand's distribution makes, without building the product first and walking it);
-        other coefficient domains go through expand."""
-        inner = getattr(self.ring.domain, "ring", None)
-        if inner is None or not hasattr(inner, "symbols"):
-            return sp.expand(self.to_expr(p))
-        to_sympy, psyms, gens = inner.domain.to_sympy, inner.symbols, self._gens_back
-        terms = []
-        for monom, coef in p.items():
-            trig = [sp.Pow(g, e) for g, e in zip(gens, monom) if e]
-            for pm, c in coef.items():
-                terms.append(sp.Mul(to_sympy(c), *[sp.Pow(x, e) for x, e in zip(psyms, pm) if e], *trig))
-        return sp.Add(*terms)
+        """sp.expand(self.to_expr(p)), built from its terms (`expanded_pairs`)."""
+        return sp.Add(*[c * t for c, t in self.expanded_pairs(p)])
 
     def expanded_pairs(self, p):
-        """[(coefficient, trig factor)] of the terms of `expanded_expr(p)`, as each term's
-        as_independent(sin, cos) splits it (read off the ring's monomials instead: each term is
-        one trig monomial times one term of its coefficient); None for other coefficient
-        domains."""
+        """[(coefficient, trig factor)] of the terms of sp.expand(self.to_expr(p)), as each term's
+        as_independent(sin, cos) splits it. With coefficients that are polynomials in the
+        parameters, read off the ring's monomials (each term is one trig monomial times one term
+        of its coefficient: what expand's distribution makes, without building the product first
+        and walking it); other coefficient domains go through expand."""
         inner = getattr(self.ring.domain, "ring", None)
         if inner is None or not hasattr(inner, "symbols"):
-            return None
+            return [t.as_independent(sp.sin, sp.cos) for t in sp.Add.make_args(sp.expand(self.to_expr(p)))]
         to_sympy, psyms, gens = inner.domain.to_sympy, inner.symbols, self._gens_back
         if p == 0:
             return [(sp.S.Zero, sp.S.Zero)]              # as 0.as_independent(sin, cos)
@@ -261,9 +252,6 @@ def _division_remainder(p, basis):
     every step (the division of a long polynomial is quadratic in sympy). The leading term of
     what is left only decreases: a step replaces it by smaller terms (sᵢ² by cᵢ² and 1, sᵢ before
     cᵢ in the lex order), so a term sent to the remainder never returns."""
-    import heapq
-    from sympy.polys.orderings import lex
-
     ring = p.ring
     if ring.order != lex or not basis:
         return p.rem(basis)

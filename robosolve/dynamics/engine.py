@@ -367,15 +367,10 @@ class DynamicsEngine:
         if key in self._cache:
             return self._cache[key]
         if light:  # report matrices: the product form, coefficients with common factors out
-            best = self._group(product_terms(alg, p), factor=False) if alg.trig else \
-                self._group([t.as_independent(sp.sin, sp.cos) for t in
-                             sp.Add.make_args(alg.expanded_expr(p))], factor=False)
+            best = self._group(product_terms(alg, p) if alg.trig else alg.expanded_pairs(p), factor=False)
             self._cache[key] = best
             return best
-        pairs = alg.expanded_pairs(p)
-        if pairs is None:
-            pairs = [term.as_independent(sp.sin, sp.cos) for term in sp.Add.make_args(alg.expanded_expr(p))]
-        cands = [self._group(pairs)]
+        cands = [self._group(alg.expanded_pairs(p))]
         if alg.trig and any(alg.depends(p, i) for i in alg.trig):
             if self.n <= COMPACT_MAX_JOINTS:
                 cands.append(self._group(fourier_terms(alg, p)))

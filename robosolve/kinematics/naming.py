@@ -60,27 +60,27 @@ class _Geometry:
         self._given_l = l_matrices is not None
 
     def _l(self, q):
-        """Every joint's ⁰Lᵢ at q (given, or by central differences)."""
-        if self._given_l:
-            return list(self._many(np.asarray(q, dtype=float)[None, :])[0][0])
-        return self._fd_l(q, range(len(q)))
+        """Every joint's ⁰Lᵢ at q."""
+        n = len(q)
+        return list(self._l_at(np.tile(np.asarray(q, dtype=float), (n, 1)), range(n)))
 
     def _l_one(self, q, i):
-        if self._given_l:
-            return self._many(np.asarray(q, dtype=float)[None, :])[0][0][i]
-        return self._fd_l(q, [i])[0]
+        return self._l_at(np.asarray(q, dtype=float)[None, :], [i])[0]
 
-    def _fd_l(self, q, joints, eps=1e-6):
-        """Lᵢ = ∂Mᵢ/∂qᵢ·Mᵢ⁻¹ of the given joints at q, each by a central difference in qᵢ alone:
-        the poses at q and at q ± eps in each joint evaluated in one pass over the stack."""
-        q = np.asarray(q, dtype=float)
+    def _l_at(self, Q, joints, eps=1e-6):
+        """⁰Lᵢ at each row of Q for that row's joint i (`joints`: one index per row): given, or
+        Lᵢ = ∂Mᵢ/∂qᵢ·Mᵢ⁻¹ by a central difference in qᵢ alone — the poses at the rows and at the
+        rows ± eps in their joint evaluated in one pass over the stack."""
+        Q = np.asarray(Q, dtype=float)
         i = np.asarray(list(joints), dtype=int)
+        r = np.arange(len(i))
+        if self._given_l:
+            return self._many(Q)[0][r, i]
+        steps = np.zeros_like(Q)
+        steps[r, i] = eps
+        poses = self._many(np.vstack([Q, Q + steps, Q - steps]))[0]
         k = len(i)
-        steps = np.zeros((k, len(q)))
-        steps[np.arange(k), i] = eps
-        poses = self._many(np.vstack([q[None, :], q + steps, q - steps]))[0]
-        j = np.arange(k)
-        return list((poses[1 + j, i] - poses[1 + k + j, i]) / (2 * eps) @ np.linalg.inv(poses[0, i]))
+        return (poses[k + r, i] - poses[2 * k + r, i]) / (2 * eps) @ np.linalg.inv(poses[r, i])
 
     def _axis_of(self, i, m):
         if self.kinds[self.joints[i]] != "revolute":
@@ -118,19 +118,12 @@ class _Geometry:
         k = len(self._mats)
         return cols[:, :16 * k].reshape(N, k, 4, 4), cols[:, 16 * k:]
 
-    def axis_many(self, Q, i, eps=1e-6):
+    def axis_many(self, Q, i):
         """(directions, points), N x 3 each, of revolute joint i's axis at the rows of Q (None:
         prismatic), as `axis` computes it row by row."""
         if self.kinds[self.joints[i]] != "revolute":
             return None
-        if self._given_l:
-            m = self._many(Q)[0][:, i]
-        else:
-            dq = np.zeros(Q.shape[1])
-            dq[i] = eps
-            mp, mm, base = self._many(Q + dq)[0][:, i], self._many(Q - dq)[0][:, i], self._many(Q)[0][:, i]
-            m = (mp - mm) / (2 * eps) @ np.linalg.inv(base)
-        u, a, _n = _axis_from_l(m)
+        u, a, _n = _axis_from_l(self._l_at(Q, [i] * len(Q)))
         return u, a
 
     def point_many(self, Q):

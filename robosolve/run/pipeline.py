@@ -149,7 +149,7 @@ class _EarlyMarkdown:
         printer, as `adopt` takes them."""
         from robosolve.render.results_json import planned_figures
 
-        paths = planned_figures(answer) if answer.figures else []
+        paths = planned_figures(answer)
         blocks = self.printer.answer_blocks(i + 1, answer, paths)
         compact = self.printer.tex.compact
         return paths, blocks, dict(compact.names), dict(compact.meaning)
@@ -171,7 +171,7 @@ class _EarlyMarkdown:
                 self._done.add(i)
                 answer = self._answers[i]
                 try:
-                    self.printer.answer_blocks(i + 1, answer, planned_figures(answer) if answer.figures else [])
+                    self.printer.answer_blocks(i + 1, answer, planned_figures(answer))
                 except Exception:       # printed again, with its error, when the report is
                     pass
                 return True
