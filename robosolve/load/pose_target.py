@@ -54,8 +54,13 @@ def v_pose_target(ql, path, value, q):
         chk.error(path, f"the orientation is given twice ({' and '.join('`' + k + '`' for k in given)}): keep one")
         return None
     if not given or POSITION not in value:
-        missing = "`position`" if given else "`R`, `zyz` or `rpy`"
-        chk.error(path, f"a pose target needs `position` and one orientation (`R`, `zyz` or `rpy`): {missing} missing")
+        # a key whose did-you-mean was already reported (`postion`) is not missing a second time
+        missing = [] if POSITION in value or chk.misspelt(value, POSITION, POSE_KEYS) else ["`position`"]
+        if not given and not any(chk.misspelt(value, k, POSE_KEYS) for k in ORIENTATION_KEYS):
+            missing.append("`R`, `zyz` or `rpy`")
+        if missing:
+            chk.error(path, "a pose target needs `position` and one orientation (`R`, `zyz` or `rpy`): "
+                      f"{' and '.join(missing)} missing")
         return None
     p = chk.vector(path + (POSITION,), value[POSITION], ql.params_ns, length=3)
     key = given[0]

@@ -111,12 +111,24 @@ def v_equations(ql, path, value, q):
         try:
             lhs = ql.b.ns_points.parse_text(str(key))
         except ExpressionError as exc:
-            chk.error(path + (key,), str(exc))
+            chk.error(path + (key,), _pose_key_hint(key) or str(exc))
             continue
         rhs = chk.expr(path + (key,), v, ql.params_ns)
         if rhs is not None:
             out.append((str(key), lhs, rhs))
     return out if len(out) == len(value) else None
+
+
+def _pose_key_hint(key) -> str | None:
+    """The message for a target key that is no coordinate but a misspelt key of a pose target
+    (`postion`): a did-you-mean, not the expression parser's "unknown name"."""
+    from robosolve.load.pose_target import POSE_KEYS
+
+    hint = did_you_mean(str(key), POSE_KEYS) if str(key).isidentifier() else ""
+    if not hint:
+        return None
+    return (f"unknown key '{key}'{hint} (a pose target has `pose`, or `position` with `R`, `zyz` or "
+            "`rpy`; other targets are equations on coordinates such as E.x)")
 
 
 def v_ik_target(ql, path, value, q):

@@ -190,6 +190,22 @@ def test_bad_pose_targets_are_input_errors(target, message):
     assert message in text and "p.yaml:" in text
 
 
+@pytest.mark.parametrize("target, key, suggestion", [
+    ("{postion: [0.5, 0, 0.5], rpy: [0, 0, 0]}", "postion", "position"),      # with an orientation
+    ("{postion: [0.5, 0, 0.5]}", "postion", "position"),                      # read as equations
+    ("{position: [0.5, 0, 0.5], rp: [0, 0, 0]}", "rp", "rpy"),
+])
+def test_a_misspelt_pose_key_gives_one_message_with_its_did_you_mean(target, key, suggestion):
+    from robosolve.errors import InputError
+    from robosolve.load.loader import load_problem_text
+
+    with pytest.raises(InputError) as exc:
+        load_problem_text(_yaml(f"{{type: inverse_kinematics, target: {target}}}"), "p.yaml")
+    issues = exc.value.issues
+    assert len(issues) == 1, [str(i) for i in issues]       # no "missing" for the misspelt key
+    assert f"target.{key}:" in str(issues[0]) and f"did you mean '{suggestion}'" in str(issues[0])
+
+
 def test_pose_with_point_is_an_input_error_exit_2(tmp_path):
     import subprocess
     import sys
