@@ -1,8 +1,10 @@
 """The `task_trajectory` question type (Work-space trajectory): options, checks, answer schema.
 
-The checks that need the robot (from/to within reach and not singular, a circle's centre
-equidistant from both ends) run before solving: solvers/task_trajectory.py `check_input`,
-called by the pipeline's `check_inputs` (they are input errors, FILE:LINE, exit 2).
+The checks that need the robot (a circle's centre equidistant from both ends, a `start` that
+reaches `from`) run before solving: solvers/task_trajectory.py `check_input`, called by the
+pipeline's `check_inputs` (they are input errors, FILE:LINE, exit 2). Ends out of reach or at a
+singular configuration are answers (`unreachable` / `singular`), as the spec has a path that
+leaves the workspace.
 """
 
 from __future__ import annotations
@@ -153,6 +155,17 @@ def notebook_cell(q, answer, problem):
     names = [j.name for j in problem.joints]
     per_joint = f"dict(zip({names!r}, {{}}))"
     followed = "end" in answer.numeric
+    if "start" not in answer.numeric:       # `from` out of reach: no configuration to start from
+        return lines(
+            *trajectory_lines(q, problem)[:-1],
+            robosolve_numbers(answer, ["T", "length"]),
+            compare_line("T", "timing.T"),
+            compare_line("length", "path.length"),
+            "if start is None:",
+            "    print('the path cannot be followed: no configuration of the arm reaches its start', path.a)",
+            "else:",
+            "    print('recomputed: a configuration reaches the start', start, '(robosolve found none)')",
+        )
     return lines(
         *trajectory_lines(q, problem),
         robosolve_numbers(answer, ["T", "length", "start", "end", "max_joint_velocity", "max_joint_acceleration",

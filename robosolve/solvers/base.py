@@ -173,12 +173,16 @@ class SolveContext:
         return prof
 
     def record_trajectory(self, qid: str, trajectory) -> None:
-        """The converted work-space trajectory of the work-space trajectory question `qid`."""
+        """The converted work-space trajectory of the work-space trajectory question `qid`; None
+        for a path that cannot be followed (it leaves the workspace or meets a singularity)."""
         self._trajectories[qid] = trajectory
 
     def trajectory(self, qid: str):
         """The trajectory of `qid` (its solver's `TaskTrajectory`); SolverError when
-        it has no answer."""
+        it has no answer or cannot be followed."""
+        if qid in self._trajectories and self._trajectories[qid] is None:
+            raise SolverError(f"the task trajectory '{qid}' cannot be followed (its answer says where and "
+                              "when): there is no reference to track")
         tr = self._trajectories.get(qid)
         if tr is None:
             raise SolverError(f"the task trajectory '{qid}' has no answer")

@@ -187,29 +187,27 @@ def _setup(question, ctx: SolveContext):
     b = _values(ctx, opts["to"], coords, "to", subs)
     path = _path(ctx, opts.get("path", {"kind": "line"}), a, b, subs)
     timing = _timing(ctx, opts, path.length, subs)
-    q_from, res = _ik(ctx, model, x_expr, a, subs, "from")
-    if "start" in opts:
+    # A path that leaves the workspace or meets a singular configuration is an answer (`unreachable`
+    # or `singular`, with t and the point), its ends included: `follow` finds a singular end, or
+    # the instant the path leaves the reach; a `from` out of reach is the path leaving it at t = 0.
+    outside = None
+    try:
+        q_from, res = _ik(ctx, model, x_expr, a, subs, "from")
+    except BadInput as exc:
+        q_from, res, outside = None, None, exc.message
+    if "start" in opts and outside is None:
         q0 = np.array([float(ctx.numeric(opts["start"][j.name], subs)) for j in model.joints])
         q_from = tp.newton(arm, a, q0)
         if q_from is None:
-            raise BadInput("start", "Newton's method from this configuration does not reach `from`")
-    elif q_from is None:
+            if tp.newton(arm, a, np.zeros(len(model.q))) is None and res is None:
+                outside = "out of reach (Newton's method reaches it neither from `start` nor from q = 0)"
+            else:
+                raise BadInput("start", "Newton's method from this configuration does not reach `from`")
+    elif q_from is None and outside is None:
         q_from = tp.newton(arm, a, np.zeros(len(model.q)))
         if q_from is None:
-            raise BadInput("from", "out of reach (Newton's method from q = 0 does not reach it)")
-    scale = float(np.linalg.norm(arm.J(q_from), 2)) if np.any(arm.J(q_from)) else 1.0
-    for key, q in (("from", q_from),):
-        if np.linalg.svd(arm.J(q), compute_uv=False)[-1] < 1e-6 * max(scale, 1e-300):
-            raise BadInput(key, "a singular configuration of the arm (J loses rank there)")
-    if len(coords) == len(model.q):
-        q_to = tp.newton(arm, b, q_from, max_iter=100)       # the engine's search only when needed
-        if q_to is None:
-            q_to, _ = _ik(ctx, model, x_expr, b, subs, "to")
-        if np.linalg.svd(arm.J(q_to), compute_uv=False)[-1] < 1e-6 * max(scale, 1e-300):
-            raise BadInput("to", "a singular configuration of the arm (J loses rank there)")
-    elif tp.newton(arm, b, q_from, max_iter=200) is None:
-        raise BadInput("to", "out of reach (Newton's method from `from` does not reach it)")
-    return coords, arm, path, timing, q_from, res, subs
+            outside = "out of reach (Newton's method from q = 0 does not reach it)"
+    return coords, arm, path, timing, q_from, res, subs, outside
 
 
 def _path(ctx, spec, a, b, subs) -> tp.Path:
@@ -237,7 +235,7 @@ def _timing(ctx, opts, length, subs) -> tp.Timing:
 
 
 def check_input(question, ctx: SolveContext) -> list[tuple[str, str]]:
-    """The mistakes only the model shows (reach, singular ends, circle): (key, message)."""
+    """The mistakes only the model shows (the circle, a `start` off `from`): (key, message)."""
     try:
         setup(question, ctx)
     except BadInput as exc:
@@ -252,7 +250,7 @@ def solve(question, ctx: SolveContext) -> Answer:
     model = ctx.model
     ans = Answer(question.type, question.id)
     try:
-        coords, arm, path, timing, q_from, res, subs = setup(question, ctx)
+        coords, arm, path, timing, q_from, res, subs, outside = setup(question, ctx)
     except BadInput as exc:
         raise SolverError(f"{exc.key}: {exc.message}") from None
     except MissingValues as exc:
@@ -262,13 +260,17 @@ def solve(question, ctx: SolveContext) -> Answer:
     names = [j.name for j in model.joints]
     labels = [str(c) for c in coords]
     tex = [sp.latex(c, symbol_names=ctx.symbol_latex) for c in coords]
-    conv = tp.follow(arm, path, timing, q_from, samples=SAMPLES)
-    traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names)
     ans.numeric["T"] = timing.T
     ans.numeric["length"] = path.length
+    if outside is not None:
+        ctx.record_trajectory(question.id, None)
+        return _outside_at_start(ans, coords, labels, tex, path, timing, outside)
+    conv = tp.follow(arm, path, timing, q_from, samples=SAMPLES)
+    traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names)
     ans.numeric["start"] = {n: float(q_from[i]) for i, n in enumerate(names)}
     _path_steps(ans, traj, res, question, model, ctx.symbol_latex)
     if conv.failure is not None:
+        ctx.record_trajectory(question.id, None)
         _failure(ans, traj, model)
     else:
         ctx.record_trajectory(question.id, traj)
@@ -333,6 +335,8 @@ def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
         eq = [(f"{xs}(s)", "c + r\\left(\\cos\\frac{s}{r}\\,e_1 + \\sin\\frac{s}{r}\\,e_2\\right)")]
     ans.steps.append(Step("Path", text, equations=eq))
     ans.steps.append(_timing_step(timing))
+    if traj.conv is None:           # the path starts out of reach: no branch to follow
+        return
     names = [sp.latex(j.symbol, symbol_names=symbols) for j in model.joints]
     q0 = traj.conv.q[:, 0]
     how = ("the configuration given as `start`, brought onto `from` by Newton's method"
@@ -369,6 +373,20 @@ def _timing_step(timing) -> Step:
         eq = [("s(t)", "\\begin{cases} \\tfrac12 a t^2 & 0 \\le t \\le t_a \\\\ "
                        "L - \\tfrac12 a (T - t)^2 & t_a \\le t \\le T \\end{cases}")]
     return Step("Timing law", text, equations=eq)
+
+
+def _outside_at_start(ans, coords, labels, tex, path, timing, why: str) -> Answer:
+    """The answer for a path whose start `from` is out of reach: it leaves the workspace at
+    t = 0, so there is no configuration to start from and nothing to convert."""
+    traj = TaskTrajectory(coords, labels, tex, path, timing, None, None, [])
+    _path_steps(ans, traj, None, None, None, None)
+    where = Text.join(", ", [Text(f"{lab} = ", Num(v)) for lab, v in zip(labels, path.a)])
+    reason = Text("at t = ", Num(0.0, "s"), " the path starts at (", where, "), out of the arm's reach (",
+                  why.removeprefix("out of reach").strip(" :()") or "no configuration reaches it", ")")
+    ans.extra["unreachable"] = True
+    ans.extra["reason"] = reason
+    ans.steps.append(Step("The path cannot be followed", Text("No configuration to start from: ", reason, ".")))
+    return ans
 
 
 def _failure(ans, traj, model) -> None:

@@ -157,24 +157,72 @@ def test_solver_answers_and_pd_matches_an_independent_integration(write_problem,
 
 
 @pytest.mark.parametrize("edit, where", [
-    (LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 1.7, E.y: 0.1"), "from"),
     (LINE.replace("    max_velocity: 0.6\n", "    path: {circle: {center: [0.1, 0.1]}}\n    max_velocity: 0.6\n"),
      "path"),
     (LINE + "  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {E.x: 1, E.z: 1}, "
             "gains_d: {E.x: 1, E.y: 1}}\n", "gains.E.z"),
-    (LINE.replace("E.x: 0.2, E.y: 0.6", "E.x: 0.9, E.y: 0.0"), "to"),          # stretched: singular
     (LINE.replace("coordinates: [E.x, E.y]", "coordinates: [E.x]").replace(", E.y: 0.1", "").replace(", E.y: 0.6", "")
      + "  - {type: p_control, trajectory: line, law: task_computed_torque, gains: {E.x: 1}, gains_d: {E.x: 1}}\n",
      "square"),
     (LINE + "  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {q1: 1, q2: 1}, "
             "gains_d: {q1: 1, q2: 1}}\n", "per coordinate"),
-], ids=["from-out-of-reach", "centre-not-equidistant", "gain-of-a-missing-coordinate", "to-singular",
-        "computed-torque-wide-J", "joint-gains-for-a-task-law"])
+], ids=["centre-not-equidistant", "gain-of-a-missing-coordinate", "computed-torque-wide-J",
+        "joint-gains-for-a-task-law"])
 def test_bad_inputs_exit_2_with_file_and_line(write_problem, tmp_path, edit, where):
     r, _ = _solve(write_problem, tmp_path, ARM_2R + edit)
     assert r.returncode == 2, r.stderr
     assert ".yaml:" in r.stderr and where in r.stderr and "Traceback" not in r.stderr
     assert not (tmp_path / "out").exists()
+
+
+def _line_crossing(a, b, radius, timing):
+    """The instant a straight line from a to b, timed by `timing`, crosses the circle of `radius`
+    about the base (closed form of |a + s u| = radius, then s(t) inverted on a fine grid)."""
+    a, b = np.array(a, dtype=float), np.array(b, dtype=float)
+    u = (b - a) / np.linalg.norm(b - a)
+    half_b = float(a @ u)
+    s_cross = -half_b + math.sqrt(half_b ** 2 - (a @ a - radius ** 2))
+    ts = np.linspace(0, timing.T, 400001)
+    return s_cross, ts[int(np.argmax([timing.at(t)[0] >= s_cross for t in ts]))]
+
+
+def test_a_line_whose_end_is_out_of_reach_is_an_unreachable_answer(write_problem, tmp_path):
+    """The spec: a path that leaves the workspace is an answer (`unreachable`, `reason` with t and the
+    point), its end beyond the reach included; a p_control that follows it says it has no reference."""
+    text = LINE.replace("E.x: 0.2, E.y: 0.6", "E.x: 1.5, E.y: 0.6") + (
+        "  - {type: p_control, trajectory: line, law: pd_gravity, gains: {q1: 100, q2: 100}, "
+        "gains_d: {q1: 10, q2: 10}}\n")
+    r, res = _solve(write_problem, tmp_path, ARM_2R + text)
+    assert r.returncode == 1, r.stderr                   # the p_control has no reference: its error
+    a = res["answers"]["line"]
+    assert a["unreachable"] is True and "singular" not in a and "out of the arm's reach" in a["reason"]
+    length = math.hypot(0.8, 0.5)
+    assert a["numeric"]["length"] == pytest.approx(length) and "end" not in a["numeric"]
+    _s, t_cross = _line_crossing([0.7, 0.1], [1.5, 0.6], 0.9, tp.trapezoidal(length, 0.6, 3.0))
+    words = a["reason"].split()
+    assert words[:3] == ["at", "t", "="] and abs(float(words[3]) - t_cross) < 1e-4
+    x, y = (float(v) for v in a["reason"].split("(")[1].split(")")[0].replace("E.x = ", "").replace("E.y = ", "").split(","))
+    assert math.hypot(x, y) == pytest.approx(0.9, abs=1e-5)    # the point where it leaves: on the reach
+    assert "cannot be followed" in res["answers"]["p_control"]["error"]
+
+
+def test_a_line_that_starts_out_of_reach_is_an_unreachable_answer_at_t_0(write_problem, tmp_path):
+    r, res = _solve(write_problem, tmp_path, ARM_2R + LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 1.7, E.y: 0.1"))
+    assert r.returncode == 0, r.stderr
+    a = res["answers"]["line"]
+    assert a["unreachable"] is True and a["reason"].startswith("at t = 0 s the path starts at (E.x = 1.7, E.y = 0.1)")
+    assert a["numeric"]["length"] == pytest.approx(math.hypot(1.5, 0.5)) and "start" not in a["numeric"]
+    assert a["figures"] == []
+
+
+def test_a_line_that_ends_stretched_is_a_singular_answer_at_t_T(write_problem, tmp_path):
+    r, res = _solve(write_problem, tmp_path, ARM_2R + LINE.replace("E.x: 0.2, E.y: 0.6", "E.x: 0.9, E.y: 0.0"))
+    assert r.returncode == 0, r.stderr
+    a = res["answers"]["line"]
+    T = a["numeric"]["T"]
+    assert T == pytest.approx(math.hypot(0.2, 0.1) / 0.6 + 0.6 / 3) or T == pytest.approx(2 * math.sqrt(math.hypot(0.2, 0.1) / 3))
+    assert a["singular"] is True and "unreachable" not in a
+    assert abs(float(a["reason"].split()[3]) - T) < 1e-6 and "E.x = 0.9" in a["reason"]
 
 
 def test_an_arc_leaving_the_reach_is_an_unreachable_answer(write_problem, tmp_path):

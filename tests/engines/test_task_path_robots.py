@@ -71,7 +71,8 @@ def _convert(text):
     problem = load_problem_text(text, "r.yaml")
     ctx = solve_context(problem, RobotModel(problem))
     q = problem.questions[0]
-    coords, arm, path, timing, q_from, _res, _subs = tt.setup(q, ctx)
+    coords, arm, path, timing, q_from, _res, _subs, outside = tt.setup(q, ctx)
+    assert outside is None
     conv = tp.follow(arm, path, timing, q_from, samples=101)
     assert conv.failure is None
     return arm, path, timing, conv

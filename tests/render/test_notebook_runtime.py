@@ -408,7 +408,7 @@ def test_paths_and_timing_laws_match_the_task_path_engine(kind, timing):
 def test_the_joint_path_and_its_extremes_match_the_engine(key):
     from robosolve.motion import task_path as tp
 
-    problem, _, (coords, arm, path, timing, q_from, _res, _subs), ns = _trajectory_setup(key)
+    problem, _, (coords, arm, path, timing, q_from, _res, _subs, _outside), ns = _trajectory_setup(key)
     mine_arm, mine = ns["arm"], ns["trajectory"]
     rng = np.random.default_rng(11)
     for _ in range(3):                              # the task map, at random states
@@ -436,7 +436,7 @@ def test_the_joint_path_and_its_extremes_match_the_engine(key):
 def test_a_path_leaving_the_reach_fails_where_the_engine_says():
     from robosolve.motion import task_path as tp
 
-    _, _, (coords, arm, _p, _t, _q, _r, _s), ns = _trajectory_setup("2r-line")
+    _, _, (coords, arm, _p, _t, _q, _r, _s, _o), ns = _trajectory_setup("2r-line")
     for a, b in (([0.45, 0.05], [-0.45, 0.05]), ([0.45, 0.3], [0.85, 0.3])):    # the inner hole, the outer rim
         q0 = ns["arm"].start(a, [[-math.pi, math.pi]] * 2)
         path, timing = tp.line(a, b), tp.trapezoidal(float(np.hypot(*np.subtract(b, a))), 0.5, 2.0)
@@ -460,7 +460,7 @@ def test_work_space_closed_loops_match_the_control_engines(law, kp, kd):
     from robosolve.simulation.task_control import simulate_task
     from robosolve.solvers import task_trajectory as tt
 
-    problem, ctx, (coords, arm, path, timing, q_from, _res, subs), ns = _trajectory_setup("2r-line")
+    problem, ctx, (coords, arm, path, timing, q_from, _res, subs, _o), ns = _trajectory_setup("2r-line")
     conv = tp.follow(arm, path, timing, q_from, samples=tt.SAMPLES)
     traj = tt.TaskTrajectory(coords, [str(c) for c in coords], [], path, timing, arm, conv,
                              [j.name for j in problem.joints])
@@ -477,3 +477,27 @@ def test_work_space_closed_loops_match_the_control_engines(law, kp, kd):
     if not task:                                    # the work-space error of the ideal scheme
         x_err = np.array([traj.desired(t)[0] - arm.x(want.q[:, k]) for k, t in enumerate(want.t)])
         assert np.abs(got[5]).max(axis=0) == pytest.approx(np.abs(x_err).max(axis=0), rel=1e-4)
+
+
+@pytest.mark.parametrize("edit, printed", [
+    (("E.x: 0.7, E.y: 0.1", "E.x: 1.7, E.y: 0.1"), "no configuration of the arm reaches its start"),
+    (("E.x: 0.1, E.y: 0.7", "E.x: 1.5, E.y: 0.7"), "the path cannot be followed: {'kind': 'unreachable'"),
+], ids=["from-out-of-reach", "to-out-of-reach"])
+def test_the_cell_of_a_path_that_cannot_be_followed_runs_and_says_so(edit, printed, capsys):
+    """A path whose start (or end) is out of reach is an answer, and its notebook cell runs: T and
+    the length recomputed and compared, then what cannot be followed (no TaskTrajectory without a
+    start)."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.task_trajectory import notebook_cell
+    from robosolve.solvers import task_trajectory as tt
+    from robosolve.solvers.base import SolveContext
+
+    text = TRAJECTORIES["2r-planar-arc"].replace("path: {circle: {center: [0.1, 0.1]}}, ", "").replace(*edit)
+    problem = load_problem_text(text, "r.yaml")
+    q = problem.questions[0]
+    answer = tt.solve(q, SolveContext(problem, RobotModel(problem)))
+    assert answer.extra.get("unreachable") is True
+    namespace = dict(vars(rt))
+    exec(data_cell(problem) + "\n" + notebook_cell(q, answer, problem), namespace)
+    out = capsys.readouterr().out
+    assert printed in out and "DIFFERS" not in out and out.count("agrees with robosolve") >= 2
