@@ -19,7 +19,7 @@ from pathlib import Path
 
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean
-from robosolve.load.loader import path_str, type_name
+from robosolve.load.loader import as_meant, path_str, type_name, under
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, path_problem, read_text_file
 from robosolve.questions.registry import RECORD, question_type
 from robosolve.variants.naming import safe_name  # noqa: F401  (the one rule, variants.md)
@@ -60,8 +60,11 @@ class _Issues:
         self.src = source
         self.items: list[InputIssue] = []
         self.pending: list = []   # (dotted key, raw value, path) of each issue about a key
+        self.renamed: list = []   # misspelt keys read as meant (load.loader.as_meant): not judged
 
     def error(self, path, message: str, key=None, value=None) -> None:
+        if under(path, self.renamed):
+            return
         self.items.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
         self.pending.append((key, value, path))
 
@@ -100,6 +103,8 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
         if key not in TOP_KEYS:
             issues.error((key,), f"unknown key '{key}'" + did_you_mean(key, TOP_KEYS)
                          + f" (expected one of: {', '.join(TOP_KEYS)})")
+    if not ("robosolve" in data and FORMAT_KEY not in data):      # (a problem file: said below)
+        issues.renamed = as_meant((), data, TOP_KEYS)   # a misspelt key: its did-you-mean alone
     if FORMAT_KEY not in data:
         hint = " (this looks like a problem file)" if "robosolve" in data else ""
         issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1){hint}")

@@ -92,6 +92,34 @@ def _exact_if_whole(e):
     return e
 
 
+def as_meant(path, value: dict, allowed) -> list[tuple]:
+    """Each misspelt key of `value` (`cordinates`, `jints`) renamed in place to the key its
+    did-you-mean suggests; the paths of the keys renamed. Its message is given already and the
+    file is rejected, so the rest is checked as its author meant it: one mistake gives one
+    message — not "the timing needs max_velocity" beside it, nor "unknown name theta1" in every
+    frame after a misspelt `joints:`. What is wrong inside the renamed key itself is not said
+    (the caller drops messages under the paths returned): it is checked once the name is right."""
+    import difflib
+
+    unknown = [k for k in value if k not in allowed and isinstance(k, str)]
+    meant: dict = {}
+    for key in unknown:
+        close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.5)
+        if close and close[0] not in value and close[0] not in meant.values():
+            meant[key] = close[0]
+    if meant:
+        items = list(value.items())
+        value.clear()
+        value.update((meant.get(k, k), v) for k, v in items)
+    return [tuple(path) + (key,) for key in meant.values()]
+
+
+def under(path, prefixes) -> bool:
+    """Whether `path` is one of `prefixes` or inside one."""
+    path = tuple(path)
+    return any(path[:len(p)] == p for p in prefixes)
+
+
 class Checker:
     """Collects issues against a parsed source; helpers return None on failure."""
 
@@ -103,8 +131,11 @@ class Checker:
         # question's `at`: every expression read afterwards is checked with them
         self.values: dict | None = None
         self.overrides: dict = {}
+        self.renamed: list[tuple] = []     # misspelt keys read as meant (`as_meant`): not judged
 
     def error(self, path, message: str):
+        if self.renamed and under(path, self.renamed):
+            return
         self.issues.append(InputIssue(self.src.file, self.src.line(path), path_str(path), message))
 
     def warn(self, path, message: str, subject: tuple = ()):
@@ -124,6 +155,7 @@ class Checker:
         for key in required:
             if key not in value and not self.misspelt(value, key, allowed):
                 self.error(path, f"missing required key '{key}'")
+        self.renamed += as_meant(path, value, allowed)
         return True
 
     def entries(self, section: str, value, what: str, allowed, required=()):
@@ -284,6 +316,10 @@ class _ProblemBuilder:
         chk, data = self.chk, self.data
         if not isinstance(data, dict):
             chk.error((), f"the top level must be a mapping (with `robosolve: 1`), got {type_name(data)}")
+            return None
+        if "robosolve-answers" in data and "robosolve" not in data:
+            chk.error((), "this is an answers file (`robosolve-answers: 1`), not a problem: check it with "
+                      "`robosolve check FILE`, or give the problem file it answers")
             return None
         chk.mapping((), data, TOP_KEYS, required=("robosolve", "name", "questions"))
         if "robosolve" in data and (data["robosolve"] != 1 or isinstance(data["robosolve"], bool)):

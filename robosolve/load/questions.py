@@ -59,7 +59,13 @@ class _QuestionLoader:
         qtype = item.get("type")
         if not isinstance(qtype, str) or qtype not in QUESTION_TYPES:
             if "type" not in item:
-                chk.error(path, "missing required key 'type'")
+                known = set(COMMON_KEYS).union(*(t.options for t in QUESTION_TYPES.values()))
+                typo = next((k for k in item if isinstance(k, str) and k not in known
+                             and did_you_mean(k, ["type"])), None)
+                if typo is not None:        # `tpye: position`: the key, not a missing type
+                    chk.error(path + (typo,), f"unknown key '{typo}' (did you mean 'type'?)")
+                else:
+                    chk.error(path, "missing required key 'type'")
             else:
                 chk.error(path + ("type",), f"unknown question type {qtype!r}"
                           + (did_you_mean(qtype, QUESTION_TYPES) if isinstance(qtype, str) else "")

@@ -149,7 +149,7 @@ def v_joint_values(ql, path, value, q, require_all=True):
         if key not in ql.joint_names:
             chk.error(path + (key,), f"unknown joint '{key}'" + did_you_mean(key, ql.joint_names)
                       + f" (joints: {', '.join(ql.joint_names)})")
-    missing = [n for n in ql.joint_names if n not in value]
+    missing = [n for n in ql.joint_names if n not in value and not chk.misspelt(value, n, ql.joint_names)]
     if require_all and missing:
         chk.error(path, f"missing joint(s) {', '.join(missing)} (give a value for every joint)")
     out = {}

@@ -1,0 +1,139 @@
+"""One mistake, one message: a misspelt key gives its did-you-mean and nothing else — not the
+"missing" or "needs" messages of the key it meant, nor errors in the sections and questions that
+use it. Found by misspelling every key of the bundled problems (the loader had 48 cascades in
+question keys and ~450 across sections); this checks one of each kind, and the whole sweep is the
+slow test below."""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+
+import pytest
+import yaml
+
+from robosolve.errors import InputError
+from robosolve.load.loader import load_problem_text
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _issues(data) -> list[str]:
+    with pytest.raises(InputError) as exc:
+        load_problem_text(yaml.safe_dump(data, sort_keys=False, allow_unicode=True), "p.yaml")
+    return [str(i) for i in exc.value.issues]
+
+
+def _renamed(node: dict, key, wrong) -> None:
+    items = list(node.items())
+    node.clear()
+    node.update((wrong if k == key else k, v) for k, v in items)
+
+
+def _at(data, path):
+    for p in path:
+        data = data[p]
+    return data
+
+
+CASES = [   # (problem, path of the mapping, key, misspelling, what used to follow it)
+    ("exam-2r-full", (), "joints", "jints", "unknown name 'theta1' in every frame"),
+    ("exam-2r-full", (), "parameters", "prameters", "unknown names L1, m1 everywhere"),
+    ("exam-2r-full", (), "frames", "fames", "unknown frames in the bodies"),
+    ("exam-2r-full", ("joints", 0), "name", "nme", "theta1 unknown in frames and `at`"),
+    ("exam-2r-full", ("joints", 0), "type", "tpe", "theta1 unknown in frames and `at`"),
+    ("exam-2r-full", ("bodies", 2), "point", "pint", "exactly one mass distribution"),
+    ("exam-2r-full", ("questions", 3), "force", "frce", "expected force, torque or weight"),
+    ("exam-2r-full", ("questions", 3), "coordinates", "cordinates", "3 components expected"),
+    ("exam-2r-full", ("questions", 7, "max_acceleration"), "theta1", "teta1", "missing joint theta1"),
+    ("pendulum-runs", ("joints", 0), "actuator", "atuator", "unknown actuator C in three questions"),
+    ("kuka-kr", ("dh",), "rows", "rws", "no rows, unknown frames in the bodies"),
+    ("workspace-2r-line", ("questions", 0), "coordinates", "cordinates", "tall J, gains of E.x missing"),
+    ("workspace-2r-line", ("questions", 0), "max_velocity", "mx_velocity", "the timing needs max_velocity"),
+    ("workspace-2r-line", ("questions", 1), "trajectory", "tajectory", "needs a motion_profile question"),
+    ("rigid-displacements", ("questions", 5), "angle", "agle", "missing required key 'angle'"),
+    ("rigid-displacements", ("questions", 12), "space", "sapce", "3-DOF joints only with space: spatial"),
+]
+
+
+@pytest.mark.parametrize("name, path, key, wrong, cascade", CASES,
+                         ids=[f"{c[0]}:{'.'.join(map(str, c[1] + (c[2],)))}" for c in CASES])
+def test_a_misspelt_key_gives_its_did_you_mean_alone(name, path, key, wrong, cascade):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    _renamed(_at(data, path), key, wrong)
+    issues = _issues(data)
+    assert len(issues) == 1, (cascade, issues)
+    assert f"'{wrong}'" in issues[0] and f"did you mean '{key}'" in issues[0]
+
+
+def test_the_meant_key_is_not_judged_but_other_mistakes_still_are():
+    """What is inside the misspelt key is checked once its name is right (a second message about a
+    key the file does not have would confuse); a mistake elsewhere is still its own message."""
+    data = yaml.safe_load((ROOT / "problems" / "workspace-2r-line.yaml").read_text())
+    q = data["questions"][0]
+    q["max_velocity"] = -1
+    _renamed(q, "coordinates", "cordinates")
+    issues = _issues(data)
+    assert len(issues) == 2, issues
+    assert any("cordinates" in i for i in issues) and any("max_velocity" in i and "positive" in i for i in issues)
+
+
+def test_a_misspelt_question_type_key_says_so():
+    data = yaml.safe_load((ROOT / "problems" / "scara-rrp.yaml").read_text())
+    _renamed(data["questions"][0], "type", "tpye")
+    assert [i.split(": ", 1)[1] for i in _issues(data)] == ["questions[0].tpye: unknown key 'tpye' (did you mean 'type'?)"]
+
+
+def test_an_answers_file_given_as_a_problem_is_one_message():
+    text = (ROOT / "problems" / "answers" / "exam-2r-full-student.yaml").read_text()
+    with pytest.raises(InputError) as exc:
+        load_problem_text(text, "a.yaml")
+    assert len(exc.value.issues) == 1 and "answers file" in str(exc.value.issues[0])
+
+
+def test_a_misspelt_top_key_of_an_answers_file_is_one_message():
+    from robosolve.grading.answers import read_answers_text
+
+    text = (ROOT / "problems" / "answers" / "exam-2r-full-student.yaml").read_text()
+    submission = read_answers_text(text.replace("robosolve-answers: 1", "robosolve-anwers: 1"), "a.yaml")
+    issues = [str(i) for i in submission.issues]       # (not "missing robosolve-answers" besides)
+    assert len(issues) == 1 and "did you mean 'robosolve-answers'" in issues[0], issues
+
+
+def _keys(node, path=()):
+    """(path of a mapping, key) for the keys the loader reads by name (not the names of data:
+    parameters, frames, `at`, targets, gains, …)."""
+    data_keys = {"parameters", "at", "gains", "gains_d", "target", "from", "to", "start", "select",
+                 "velocity", "force", "limits", "values", "variants", "grading", "paper"}
+    if isinstance(node, dict):
+        for k, v in node.items():
+            if not isinstance(k, str) or k in data_keys:
+                continue
+            if not (path == ("frames",) or (len(path) == 2 and path[0] == "questions" and k in ("type", "id"))):
+                yield path, k
+            yield from _keys(v, path + (k,))
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from _keys(v, path + (i,))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
+def test_every_key_of_a_bundled_problem_misspelt_gives_one_message(name):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    flagged = []
+    for path, key in _keys(data):
+        if len(key) < 4 or (path and path[0] == "description"):
+            continue
+        wrong = key[0] + key[2:]                        # a letter dropped
+        bad = copy.deepcopy(data)
+        _renamed(_at(bad, path), key, wrong)
+        try:
+            load_problem_text(yaml.safe_dump(bad, sort_keys=False, allow_unicode=True), "p.yaml")
+        except InputError as exc:
+            issues = [str(i) for i in exc.issues]
+            if len(issues) != 1 or "did you mean" not in issues[0]:
+                flagged.append((path, key, issues[:3]))
+        else:
+            flagged.append((path, key, "accepted"))
+    assert flagged == []
