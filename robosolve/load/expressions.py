@@ -54,6 +54,15 @@ def did_you_mean(name: str, candidates) -> str:
     return f" (did you mean '{close[0]}'?)" if close else ""
 
 
+def meant_value(value, choices):
+    """The choice a misspelt word stands for (its did-you-mean), or None: after the message about
+    it, the rest of the file is checked with that choice (one mistake, one message)."""
+    if not isinstance(value, str):
+        return None
+    close = difflib.get_close_matches(value, sorted(choices), n=1, cutoff=0.5)
+    return close[0] if close else None
+
+
 class _TooLarge(Exception):
     pass
 

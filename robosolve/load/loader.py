@@ -16,7 +16,7 @@ from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue, InputWarning
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, did_you_mean, size_issue, value_issue,
+    RESERVED, ExpressionError, Namespace, did_you_mean, meant_value, size_issue, value_issue,
 )
 from robosolve.load.physical import LUMPED_ROTOR, inertia_issue, pseudo_inertia_issue, triangle_issue
 from robosolve.load.problem import (
@@ -479,7 +479,7 @@ class _ProblemBuilder:
                 chk.error(path + ("type",), f"unknown joint type {kind!r}"
                           + (did_you_mean(kind, (REVOLUTE, PRISMATIC)) if isinstance(kind, str) else "")
                           + " (expected revolute or prismatic)")
-                kind = None
+                kind = meant_value(kind, (REVOLUTE, PRISMATIC))
             if name is None or kind is None:
                 continue
             if name == DEFAULT_POINT:     # still a joint below, so that its uses say nothing more
@@ -587,8 +587,12 @@ class _ProblemBuilder:
             return
         conv = value.get("convention", "standard")
         if conv not in ("standard", "modified"):
-            chk.error(("dh", "convention"), f"unknown convention {conv!r} (expected standard or modified)")
-            return
+            chk.error(("dh", "convention"), f"unknown convention {conv!r}"
+                      + (did_you_mean(conv, ("standard", "modified")) if isinstance(conv, str) else "")
+                      + " (expected standard or modified)")
+            conv = meant_value(conv, ("standard", "modified"))
+            if conv is None:
+                return
         rows = value.get("rows")
         if not isinstance(rows, list) or not rows:
             chk.error(("dh", "rows"), "expected a non-empty list of rows")

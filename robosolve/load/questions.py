@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 
-from robosolve.load.expressions import Namespace, did_you_mean, value_issue
+from robosolve.load.expressions import Namespace, did_you_mean, meant_value, value_issue
 from robosolve.load.problem import Question
 from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES, types_where
 
@@ -57,6 +57,14 @@ class _QuestionLoader:
             chk.error(path, f"expected a mapping with a `type`, got {type(item).__name__}")
             return None
         qtype = item.get("type")
+        if isinstance(qtype, str) and qtype not in QUESTION_TYPES and meant_value(qtype, QUESTION_TYPES):
+            # `jcobian`: said once, then read as the type it suggests, its own checks silent, so the
+            # questions and sections that use it (its id, its profile) say nothing more
+            chk.error(path + ("type",), f"unknown question type {qtype!r}" + did_you_mean(qtype, QUESTION_TYPES)
+                      + f" (expected one of: {', '.join(QUESTION_TYPES)})")
+            chk.renamed.append(path)
+            item = dict(item, type=meant_value(qtype, QUESTION_TYPES))
+            qtype = item["type"]
         if not isinstance(qtype, str) or qtype not in QUESTION_TYPES:
             if "type" not in item:
                 known = set(COMMON_KEYS).union(*(t.options for t in QUESTION_TYPES.values()))

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
+from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean, meant_value
 
 SHAPES = ("bang-bang", "trapezoidal", "quintic")
 LAWS = ("p", "pd", "pd_gravity", "computed_torque")
@@ -187,7 +187,7 @@ def _choice(ql, path, value, choices):
         ql.chk.error(path, f"unknown value {value!r}"
                        + (did_you_mean(value, choices) if isinstance(value, str) else "")
                        + f" (expected one of: {', '.join(choices)})")
-        return None
+        return meant_value(value, choices)      # the rest checked as meant: one message
     return value
 
 

@@ -66,6 +66,30 @@ def test_a_misspelt_key_gives_its_did_you_mean_alone(name, path, key, wrong, cas
     assert f"'{wrong}'" in issues[0] and f"did you mean '{key}'" in issues[0]
 
 
+VALUE_CASES = [   # (problem, path of the value, misspelling, what used to follow it)
+    ("exam-2r-full", ("questions", 2, "type"), "jcobian", "variants: unknown question id 'jacobian'"),
+    ("exam-2r-full", ("questions", 7, "type"), "mtion_profile", "no motion_profile question with id 'profile'"),
+    ("workspace-2r-line", ("questions", 0, "type"), "tsk_trajectory", "no task_trajectory with id 'line'"),
+    ("ik-planar-3r", ("joints", 0, "type"), "rvolute", "unknown name theta1 in frames and targets"),
+    ("scara-rrp", ("joints", 2, "type"), "pismatic", "unknown name l in frames and `at`"),
+    ("kuka-kr", ("dh", "convention"), "sandard", "no frames: unknown frames in the bodies"),
+    ("panda", ("dh", "convention"), "mdified", "unknown parent frame 7"),
+    ("workspace-2r-line", ("questions", 1, "law"), "tsk_pd_gravity", "law p takes gains per joint"),
+    ("rigid-displacements", ("questions", 12, "space"), "satial", "3-DOF joints only with space: spatial"),
+]
+
+
+@pytest.mark.parametrize("name, path, wrong, cascade", VALUE_CASES,
+                         ids=[f"{c[0]}:{'.'.join(map(str, c[1]))}" for c in VALUE_CASES])
+def test_a_misspelt_word_gives_its_did_you_mean_alone(name, path, wrong, cascade):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    right = _at(data, path[:-1])[path[-1]]
+    _at(data, path[:-1])[path[-1]] = wrong
+    issues = _issues(data)
+    assert len(issues) == 1, (cascade, issues)
+    assert f"'{wrong}'" in issues[0] and f"did you mean '{right}'" in issues[0]
+
+
 def test_the_meant_key_is_not_judged_but_other_mistakes_still_are():
     """What is inside the misspelt key is checked once its name is right (a second message about a
     key the file does not have would confuse); a mistake elsewhere is still its own message."""
@@ -136,4 +160,40 @@ def test_every_key_of_a_bundled_problem_misspelt_gives_one_message(name):
                 flagged.append((path, key, issues[:3]))
         else:
             flagged.append((path, key, "accepted"))
+    assert flagged == []
+
+
+def _words(node, path=()):
+    """(path, value) of the string values that are words the loader reads as a choice or a
+    reference (joint types, laws, conventions, question types, shapes)."""
+    import re
+
+    if isinstance(node, dict):
+        items = [(k, v) for k, v in node.items() if k not in ("description", "title", "name", "text", "id")]
+    elif isinstance(node, list):
+        items = list(enumerate(node))
+    else:
+        return
+    for k, v in items:
+        if isinstance(v, str) and re.fullmatch(r"[a-z_]{4,}", v):
+            yield path + (k,), v
+        yield from _words(v, path + (k,))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
+def test_every_word_of_a_bundled_problem_misspelt_gives_one_message(name):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    flagged = []
+    for path, word in _words(data):
+        bad = copy.deepcopy(data)
+        _at(bad, path[:-1])[path[-1]] = word[0] + word[2:]
+        try:
+            load_problem_text(yaml.safe_dump(bad, sort_keys=False, allow_unicode=True), "p.yaml")
+        except InputError as exc:
+            issues = [str(i) for i in exc.issues]
+            if len(issues) != 1 or "did you mean" not in issues[0]:
+                flagged.append((path, word, issues[:3]))
+        else:
+            flagged.append((path, word, "accepted"))
     assert flagged == []
