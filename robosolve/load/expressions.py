@@ -218,11 +218,19 @@ class Namespace:
         # names known but meaningless here -> the message that says what to do instead
         self.refused: dict[str, str] = dict(refused or {})
 
+    # a name refused where it is defined (a joint named `2*`): every unknown name may be one of
+    # its uses, read as a plain symbol — the file is rejected already (one mistake, one message)
+    unknown_ok = False
+
     def with_names(self, extra: dict) -> "Namespace":
-        return Namespace({**self.names, **extra}, self.points, self.what, self.refused)
+        out = Namespace({**self.names, **extra}, self.points, self.what, self.refused)
+        out.unknown_ok = self.unknown_ok
+        return out
 
     def without_points(self) -> "Namespace":
-        return Namespace(self.names, (), self.what, self.refused)
+        out = Namespace(self.names, (), self.what, self.refused)
+        out.unknown_ok = self.unknown_ok
+        return out
 
     # ------------------------------------------------------------------
     def parse(self, value) -> sp.Expr:
@@ -333,6 +341,8 @@ class Namespace:
                                   "(Euler's number is exp(1))")
         if name == "e":
             raise ExpressionError("unknown name 'e' (Euler's number is exp(1))")
+        if self.unknown_ok:
+            return sp.Symbol(name, real=True)
         candidates = set(self.names) | set(CONSTANTS) | self.points
         raise ExpressionError(f"unknown {self.what} '{name}' in {text!r}"
                               + did_you_mean(name, candidates))

@@ -309,6 +309,9 @@ class _ProblemBuilder:
         self.file = chk.src.file
         self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
         self.rejected_points: set[str] = set()
+        self.joint_name_refused = False          # a joint's name refused: its uses are not judged
+        self.actuator_refused = False            # an actuator's name refused: the same
+        self.refused_question_ids: set = set()
         self.bodies_given = False
         self.gravity_refused = False
 
@@ -340,11 +343,13 @@ class _ProblemBuilder:
         static = {k: v for k, v in self.names.items() if k != "t"}
         self.ns = Namespace(static, what="name", refused={"t": TIME_REFUSED})
         self.ns_time = Namespace(self.names, what="name")
+        self.ns.unknown_ok = self.ns_time.unknown_ok = self.joint_name_refused
         self.frames = self._frames(data.get("frames"), data.get("dh"))
         self.points = self._points(data.get("points"))
         # rejected points parse (their error is already reported), so P.x is not "unknown" too
         self.ns_points = Namespace(static, list(self.points) + sorted(self.rejected_points), what="name",
                                    refused={"t": TIME_REFUSED})
+        self.ns_points.unknown_ok = self.joint_name_refused
         gravity, gravity_given = self._gravity(data.get("gravity"))
         # given but refused (its own message says why): no "declare g" for each question too
         params = data.get("parameters")
@@ -479,7 +484,11 @@ class _ProblemBuilder:
                 chk.error(path + ("type",), f"unknown joint type {kind!r}"
                           + (did_you_mean(kind, (REVOLUTE, PRISMATIC)) if isinstance(kind, str) else "")
                           + " (expected revolute or prismatic)")
-                kind = meant_value(kind, (REVOLUTE, PRISMATIC))
+                # read as the type it suggests, or as revolute: the file is rejected already, and the
+                # joint's uses (frames, `at`, targets) must not all become "unknown name" too
+                kind = meant_value(kind, (REVOLUTE, PRISMATIC)) or REVOLUTE
+            if "name" in item and name is None:
+                self.joint_name_refused = True
             if name is None or kind is None:
                 continue
             if name == DEFAULT_POINT:     # still a joint below, so that its uses say nothing more
@@ -493,8 +502,8 @@ class _ProblemBuilder:
             act = item.get("actuator", default_act)
             if "actuator" in item:
                 act = chk.string(path + ("actuator",), act, IDENT_RE, " (expected a name like C1)")
-            if act is None:
-                continue
+            if act is None:      # reported: the joint stays, with its default actuator (no cascade)
+                act, self.actuator_refused = default_act, True
             joints.append(Joint(
                 index=len(joints), name=name, kind=kind,
                 symbol=sp.Symbol(name, real=True), dot=sp.Symbol(f"{name}_dot", real=True),
@@ -590,9 +599,9 @@ class _ProblemBuilder:
             chk.error(("dh", "convention"), f"unknown convention {conv!r}"
                       + (did_you_mean(conv, ("standard", "modified")) if isinstance(conv, str) else "")
                       + " (expected standard or modified)")
-            conv = meant_value(conv, ("standard", "modified"))
-            if conv is None:
-                return
+            # read as the word it suggests, or as standard: the frames stay defined for the
+            # bodies, forces and questions that use them (one mistake, one message)
+            conv = meant_value(conv, ("standard", "modified")) or "standard"
         rows = value.get("rows")
         if not isinstance(rows, list) or not rows:
             chk.error(("dh", "rows"), "expected a non-empty list of rows")

@@ -91,6 +91,8 @@ class Question:
     grade: tuple = ()                               # graded answer keys (dotted); () = principal
     text: str | None = None                         # the teacher's wording on the paper (papers.md)
     lines: dict = field(default_factory=dict)       # option key -> its line in the file
+    # keys given but refused (their messages given): what depends on them says nothing more
+    rejected: frozenset = frozenset()
 
 
 @dataclass

@@ -14,6 +14,9 @@ from robosolve.load.problem import Question
 from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES, types_where
 
 ID_RE = re.compile(r"^[A-Za-z0-9_-]+$")
+# Options the others are judged against (the coordinates, the law, the space, what is followed):
+# when one is refused, its question's type checks do not run on a default in its place.
+CONTEXT_KEYS = frozenset({"coordinates", "law", "space", "trajectory", "profile", "point", "frame", "at"})
 
 
 def load_questions(builder, value) -> list:
@@ -31,8 +34,12 @@ def load_questions(builder, value) -> list:
         q = ql.load(i, item)
         if q is not None:
             questions.append(q)
+        else:       # refused whole (its message given): references to it say nothing more
+            ql.refused_ids.add(item.get("id") if isinstance(item, dict) and isinstance(item.get("id"), str)
+                               else None)
     ql.assign_ids(questions, value)
     ql.check_references(questions)
+    builder.refused_question_ids = ql.refused_ids      # (the variants section's references)
     return questions
 
 
@@ -43,6 +50,11 @@ class _QuestionLoader:
         self.params_ns = Namespace({s.name: s for s in b.parameters}, what="parameter")
         self.joint_names = [j.name for j in b.joints]
         self.profile_type = self.type_name("makes_profile")
+        self.refused_ids: set = set()      # ids of questions refused whole (None: one had no id)
+
+    def refused(self, ref) -> bool:
+        """Whether `ref` may be the id of a question refused whole (said already)."""
+        return ref in self.refused_ids or None in self.refused_ids
 
     @staticmethod
     def type_name(flag: str) -> str:
@@ -84,10 +96,15 @@ class _QuestionLoader:
         n_before = len(chk.issues)
         chk.mapping(path, item, COMMON_KEYS + tuple(schema), required=qt.required)
         q = Question(type=qtype, id="", index=i, line=chk.src.line(path))
+        rejected = set()
         if "id" in item:
             ident = item["id"]
             if not isinstance(ident, str) or not ID_RE.fullmatch(ident):
                 chk.error(path + ("id",), "expected an id of letters, digits, '_' or '-'")
+                rejected.add("id")
+                self.refused_ids.add(None)      # references to it may use another spelling
+                # the id as written stands for the question (references to it say nothing more)
+                q.id = ident if isinstance(ident, str) and ident.strip() else f"<questions[{i}]>"
             else:
                 q.id = ident
         q.frame = b.last_frame()
@@ -106,7 +123,10 @@ class _QuestionLoader:
             else:
                 q.point, q.point_given = p, True
         if "at" in item:
+            before = len(chk.issues)
             q.at = self.at(path + ("at",), item["at"])
+            if len(chk.issues) > before:
+                rejected.add("at")
         chk.overrides = self.at_values(q.at)  # the question's options are checked with its `at`
         if "marks" in item:
             q.marks = self.marks(path + ("marks",), item["marks"])
@@ -118,9 +138,13 @@ class _QuestionLoader:
         q.lines = {str(k): chk.src.line(path + (k,)) for k in item}
         for key, validator in schema.items():
             if key in item:
+                before = len(chk.issues)
                 v = validator(self, path + (key,), item[key], q)
                 if v is not None:
                     q.options[key] = v
+                if v is None or len(chk.issues) > before:
+                    rejected.add(key)
+        q.rejected = frozenset(rejected)
         self.type_rules(path, item, q)
         chk.overrides = {}
         return q
@@ -135,13 +159,15 @@ class _QuestionLoader:
         if needs_robot and not b.problem.has_robot:
             chk.error(path + ("type",), f"a {t} question needs a robot: define joints and frames")
         if needs_robot and qt.needs_joints and not b.joints:
-            if b.problem.has_robot:
+            if b.problem.has_robot and not b.joint_name_refused:
                 chk.error(path + ("type",), f"a {t} question needs joints")
         if "duration" in opts:
             value = chk.number_value(opts["duration"])
             if value is not None and not value > 0:
                 chk.error(path + ("duration",), f"must be positive (seconds), got {item['duration']!r}")
-        if qt.check is not None:
+        if qt.check is not None and not (q.rejected & CONTEXT_KEYS) and not b.joint_name_refused:
+            # the type's checks judge its options against these (a force per coordinate, gains per
+            # the law's kind): with one refused (and said), they would judge a default in its place
             qt.check(self, path, item, q)
         if qt.needs_dynamics:
             self.require_gravity(path)
@@ -181,15 +207,17 @@ class _QuestionLoader:
         for q in questions:
             if QUESTION_TYPES[q.type].resolve is not None:
                 QUESTION_TYPES[q.type].resolve(self, q, questions)
-            if not QUESTION_TYPES[q.type].uses_profile or "trajectory" in q.options:
+            if not QUESTION_TYPES[q.type].uses_profile or "trajectory" in q.options or "trajectory" in q.rejected:
+                continue
+            if "profile" in q.rejected:
                 continue
             ref = q.options.get("profile")
             if ref is None:
-                if not profiles:
+                if not profiles and not self.refused_ids:
                     chk.error(("questions", q.index), f"needs a {source} question (none in the file)")
                 else:
                     q.options["profile"] = profiles[0].id
-            elif ref not in [p.id for p in profiles]:
+            elif ref not in [p.id for p in profiles] and not self.refused(ref):
                 chk.error(("questions", q.index, "profile"), f"no {source} question with id '{ref}'"
                           + did_you_mean(ref, [p.id for p in profiles]))
 
@@ -236,7 +264,8 @@ class _QuestionLoader:
         try:
             for key, v in value.items():
                 if key not in allowed:
-                    chk.error(path + (key,), f"unknown joint or parameter '{key}'" + did_you_mean(key, allowed))
+                    if not self.b.joint_name_refused:     # (maybe the refused joint's: said already)
+                        chk.error(path + (key,), f"unknown joint or parameter '{key}'" + did_you_mean(key, allowed))
                     continue
                 e = chk.expr(path + (key,), v, self.params_ns)
                 if e is not None:

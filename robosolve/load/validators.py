@@ -146,7 +146,7 @@ def v_joint_values(ql, path, value, q, require_all=True):
         chk.error(path, "expected a mapping joint: value")
         return None
     for key in value:
-        if key not in ql.joint_names:
+        if key not in ql.joint_names and not ql.b.joint_name_refused:
             chk.error(path + (key,), f"unknown joint '{key}'" + did_you_mean(key, ql.joint_names)
                       + f" (joints: {', '.join(ql.joint_names)})")
     missing = [n for n in ql.joint_names if n not in value and not chk.misspelt(value, n, ql.joint_names)]
@@ -234,8 +234,9 @@ def v_start_state(ql, path, value, q):
                       "equations of motion (give joint values and <joint>_dot rates)")
             continue
         if key not in allowed:
-            chk.error(path + (key,), f"unknown joint or joint rate '{key}'" + did_you_mean(key, allowed)
-                      + f" (expected: {', '.join(allowed)})")
+            if not ql.b.joint_name_refused:
+                chk.error(path + (key,), f"unknown joint or joint rate '{key}'" + did_you_mean(key, allowed)
+                          + f" (expected: {', '.join(allowed)})")
             continue
         e = chk.expr(path + (key,), v, ql.params_ns)
         if e is not None:
@@ -255,9 +256,12 @@ def v_actuator_laws(ql, path, value, q):
         names[j.name], names[j.dot.name] = j.symbol, j.dot
     names["t"] = b.names["t"]
     ns = Namespace(names, what="name in the law (it may use t, the joints, their _dot rates, the parameters)")
+    ns.unknown_ok = b.joint_name_refused
     out = {}
     for key, v in value.items():
         if key not in acts:
+            if b.actuator_refused or b.joint_name_refused:
+                continue         # maybe the refused actuator's (said already)
             chk.error(path + (str(key),), f"unknown actuator '{key}'" + did_you_mean(str(key), acts)
                       + f" (actuators: {', '.join(acts)})")
             continue

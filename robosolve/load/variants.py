@@ -259,6 +259,9 @@ def _require(builder, value, varied: set | None) -> list:
 
 
 def _question_ref(chk, builder, path, kind, qid, questions):
+    refused = getattr(builder, "refused_question_ids", set())
+    if isinstance(qid, str) and qid not in questions and (qid in refused or None in refused):
+        return None         # a question refused whole (said already): one mistake, one message
     if not isinstance(qid, str) or qid not in questions:
         known = ", ".join(questions) or "none"
         chk.error(path, f"unknown question id {qid!r}"
@@ -277,7 +280,7 @@ def _question_ref(chk, builder, path, kind, qid, questions):
                       f"with a Jacobian ({', '.join(JACOBIAN_TYPES)})")
             return None
         missing = [j.name for j in builder.joints if j.symbol not in q.at]
-        if missing:
+        if missing and "at" not in q.rejected:      # (a refused `at` value is said already)
             chk.error(path, f"question '{qid}' has no `at` value for {', '.join(missing)}: nonsingular "
                       "checks J at the question's `at`, which must give every joint")
             return None

@@ -74,9 +74,12 @@ def _resolve(ql, q, questions):
     trajs = [t for t in questions if getattr(_qt(t), "makes_trajectory", False)]
     target = next((t for t in trajs if t.id == ref), None)
     if target is None:
-        ql.chk.error(base + ("trajectory",), f"no {ql.type_name('makes_trajectory')} question with id '{ref}'"
-                     + V.did_you_mean(ref, [t.id for t in trajs]))
+        if not ql.refused(ref):
+            ql.chk.error(base + ("trajectory",), f"no {ql.type_name('makes_trajectory')} question with id '{ref}'"
+                         + V.did_you_mean(ref, [t.id for t in trajs]))
         return
+    if "coordinates" in target.rejected:
+        return          # the trajectory's coordinates were refused (said): its gains are not judged
     law = q.options.get("law", "p")
     if law not in TASK_LAWS:
         return

@@ -1,8 +1,8 @@
 """One mistake, one message: a misspelt key gives its did-you-mean and nothing else — not the
 "missing" or "needs" messages of the key it meant, nor errors in the sections and questions that
 use it. Found by misspelling every key of the bundled problems (the loader had 48 cascades in
-question keys and ~450 across sections); this checks one of each kind, and the whole sweep is the
-slow test below."""
+question keys and ~450 across sections); the cases below are one of each kind, then the sweeps of
+every key and every word (and, slow, every value broken)."""
 
 from __future__ import annotations
 
@@ -141,7 +141,6 @@ def _keys(node, path=()):
             yield from _keys(v, path + (i,))
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
 def test_every_key_of_a_bundled_problem_misspelt_gives_one_message(name):
     data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
@@ -180,7 +179,6 @@ def _words(node, path=()):
         yield from _words(v, path + (k,))
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
 def test_every_word_of_a_bundled_problem_misspelt_gives_one_message(name):
     data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
@@ -196,4 +194,40 @@ def test_every_word_of_a_bundled_problem_misspelt_gives_one_message(name):
                 flagged.append((path, word, issues[:3]))
         else:
             flagged.append((path, word, "accepted"))
+    assert flagged == []
+
+
+def _values(node, path=()):
+    """(path, value) of every number or string of the file but its prose."""
+    if isinstance(node, dict):
+        items = [(k, v) for k, v in node.items() if k not in ("description", "title", "text", "robosolve")]
+    elif isinstance(node, list):
+        items = list(enumerate(node))
+    else:
+        return
+    for k, v in items:
+        if isinstance(v, (str, int, float)) and not isinstance(v, bool):
+            yield path + (k,), v
+        yield from _values(v, path + (k,))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
+def test_every_value_of_a_bundled_problem_broken_gives_one_message(name):
+    """A broken expression or a list in place of any one value: one message. (Before: a joint
+    whose name or type was refused made its name unknown in every frame; a refused coordinate
+    made the force, the velocity and the gains of the questions that follow it wrong in length;
+    a refused law judged the gains as law p's; a refused `at` made the variants section say the
+    question has no value for that joint; a refused id left its references dangling.)"""
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    flagged = []
+    for k, (path, _v) in enumerate(_values(data)):
+        for broken in (("2*", [1, 2, 3, 4, 5, 6, 7])[k % 2],):     # each value one way (time)
+            bad = copy.deepcopy(data)
+            _at(bad, path[:-1])[path[-1]] = broken
+            try:
+                load_problem_text(yaml.safe_dump(bad, sort_keys=False, allow_unicode=True), "p.yaml")
+            except InputError as exc:
+                if len(exc.issues) != 1:
+                    flagged.append((path, broken, [str(i) for i in exc.issues][:3]))
     assert flagged == []
