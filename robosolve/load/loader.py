@@ -298,8 +298,44 @@ def load_problem_text(text: str, file: str = "<input>") -> Problem:
         if not chk.issues:
             chk.issues.append(InputIssue(file, 1, "", f"cannot validate this file ({type(exc).__name__}: {exc})"))
     if chk.issues:
-        raise InputError(chk.issues)
+        raise InputError(grouped(chk.issues))
     return problem
+
+
+_UNKNOWN_NAME = re.compile(r"^unknown (?:name|parameter)\b[^']*'(?P<name>[^']+)' in ")
+
+
+def grouped(issues: list) -> list:
+    """One message per unknown name, however many expressions use it (a parameter left out of
+    `parameters:` is one mistake): the first use, with the lines of the others. The issues stay
+    in their order."""
+    first: dict = {}
+    others: dict = {}
+    for k, issue in enumerate(issues):
+        m = _UNKNOWN_NAME.match(issue.message)
+        if m is None:
+            continue
+        name = m.group("name")
+        if name in first:
+            others.setdefault(name, []).append(k)
+        else:
+            first[name] = k
+    if not others:
+        return list(issues)
+    drop = {k for ks in others.values() for k in ks}
+    out = []
+    for k, issue in enumerate(issues):
+        if k in drop:
+            continue
+        m = _UNKNOWN_NAME.match(issue.message)
+        if m is not None and m.group("name") in others:
+            lines = sorted({issues[j].line for j in others[m.group("name")]})
+            more = len(others[m.group("name")])
+            issue = InputIssue(issue.file, issue.line, issue.path, issue.message
+                               + f" (and {more} more use{'s' if more > 1 else ''}: line{'s' if len(lines) > 1 else ''} "
+                               + ", ".join(map(str, lines)) + ")")
+        out.append(issue)
+    return out
 
 
 class _ProblemBuilder:
@@ -487,8 +523,10 @@ class _ProblemBuilder:
                 # read as the type it suggests, or as revolute: the file is rejected already, and the
                 # joint's uses (frames, `at`, targets) must not all become "unknown name" too
                 kind = meant_value(kind, (REVOLUTE, PRISMATIC)) or REVOLUTE
-            if "name" in item and name is None:
+            if name is None:          # refused or missing (said): its uses are not judged
                 self.joint_name_refused = True
+            if kind is None:          # missing (said): revolute in its place, for its uses
+                kind = REVOLUTE
             if name is None or kind is None:
                 continue
             if name == DEFAULT_POINT:     # still a joint below, so that its uses say nothing more

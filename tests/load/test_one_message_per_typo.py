@@ -7,6 +7,7 @@ every key and every word (and, slow, every value broken)."""
 from __future__ import annotations
 
 import copy
+import re
 from pathlib import Path
 
 import pytest
@@ -231,3 +232,26 @@ def test_every_value_of_a_bundled_problem_broken_gives_one_message(name):
                 if len(exc.issues) != 1:
                     flagged.append((path, broken, [str(i) for i in exc.issues][:3]))
     assert flagged == []
+
+
+def test_a_parameter_left_out_is_one_message_with_the_lines_of_its_other_uses():
+    data = yaml.safe_load((ROOT / "problems" / "scara-rrp.yaml").read_text())
+    frames = yaml.safe_dump(data["frames"])
+    name = next(n for n in data["parameters"] if re.search(rf"\b{n}\b", frames))     # one the frames use
+    del data["parameters"][name]
+    text = yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+    uses = [i + 1 for i, line in enumerate(text.splitlines())
+            if re.search(rf"(?<![A-Za-z0-9_]){name}(?![A-Za-z0-9_])", line) and not line.lstrip().startswith(("#", "description"))]
+    with pytest.raises(InputError) as exc:
+        load_problem_text(text, "p.yaml")
+    issues = [str(i) for i in exc.value.issues]
+    assert len(issues) == 1 and f"unknown name '{name}'" in issues[0], issues
+    if len(uses) > 1:
+        assert "more use" in issues[0] and all(str(n) in issues[0] for n in uses[1:]), (uses, issues)
+
+
+def test_a_joint_without_a_name_is_one_message():
+    data = yaml.safe_load((ROOT / "problems" / "exam-2r-full.yaml").read_text())
+    del data["joints"][0]["name"]
+    issues = _issues(data)
+    assert len(issues) == 1 and "joints[0]: missing required key 'name'" in issues[0], issues
