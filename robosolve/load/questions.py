@@ -68,29 +68,10 @@ class _QuestionLoader:
         if not isinstance(item, dict):
             chk.error(path, f"expected a mapping with a `type`, got {type(item).__name__}")
             return None
-        qtype = item.get("type")
-        if isinstance(qtype, str) and qtype not in QUESTION_TYPES and meant_value(qtype, QUESTION_TYPES):
-            # `jcobian`: said once, then read as the type it suggests, its own checks silent, so the
-            # questions and sections that use it (its id, its profile) say nothing more
-            chk.error(path + ("type",), f"unknown question type {qtype!r}" + did_you_mean(qtype, QUESTION_TYPES)
-                      + f" (expected one of: {', '.join(QUESTION_TYPES)})")
-            chk.renamed.append(path)
-            item = dict(item, type=meant_value(qtype, QUESTION_TYPES))
-            qtype = item["type"]
-        if not isinstance(qtype, str) or qtype not in QUESTION_TYPES:
-            if "type" not in item:
-                known = set(COMMON_KEYS).union(*(t.options for t in QUESTION_TYPES.values()))
-                typo = next((k for k in item if isinstance(k, str) and k not in known
-                             and did_you_mean(k, ["type"])), None)
-                if typo is not None:        # `tpye: position`: the key, not a missing type
-                    chk.error(path + (typo,), f"unknown key '{typo}' (did you mean 'type'?)")
-                else:
-                    chk.error(path, "missing required key 'type'")
-            else:
-                chk.error(path + ("type",), f"unknown question type {qtype!r}"
-                          + (did_you_mean(qtype, QUESTION_TYPES) if isinstance(qtype, str) else "")
-                          + f" (expected one of: {', '.join(QUESTION_TYPES)})")
+        item = self.typed(path, item)
+        if item is None:
             return None
+        qtype = item["type"]
         qt = QUESTION_TYPES[qtype]
         schema = qt.options
         n_before = len(chk.issues)
@@ -148,6 +129,34 @@ class _QuestionLoader:
         self.type_rules(path, item, q)
         chk.overrides = {}
         return q
+
+    def typed(self, path, item: dict) -> dict | None:
+        """The question with a known `type`, or None after saying what is wrong with it. A
+        misspelt type (`jcobian`) is said once, then read as the type it suggests with its own
+        checks silent, so the questions and sections that use it (its id, its profile) say
+        nothing more."""
+        chk = self.chk
+        qtype = item.get("type")
+        if isinstance(qtype, str) and qtype not in QUESTION_TYPES and meant_value(qtype, QUESTION_TYPES):
+            chk.error(path + ("type",), f"unknown question type {qtype!r}" + did_you_mean(qtype, QUESTION_TYPES)
+                      + f" (expected one of: {', '.join(QUESTION_TYPES)})")
+            chk.renamed.append(path)
+            return dict(item, type=meant_value(qtype, QUESTION_TYPES))
+        if isinstance(qtype, str) and qtype in QUESTION_TYPES:
+            return item
+        if "type" not in item:
+            known = set(COMMON_KEYS).union(*(t.options for t in QUESTION_TYPES.values()))
+            typo = next((k for k in item if isinstance(k, str) and k not in known
+                         and did_you_mean(k, ["type"])), None)
+            if typo is not None:        # `tpye: position`: the key, not a missing type
+                chk.error(path + (typo,), f"unknown key '{typo}' (did you mean 'type'?)")
+            else:
+                chk.error(path, "missing required key 'type'")
+        else:
+            chk.error(path + ("type",), f"unknown question type {qtype!r}"
+                      + (did_you_mean(qtype, QUESTION_TYPES) if isinstance(qtype, str) else "")
+                      + f" (expected one of: {', '.join(QUESTION_TYPES)})")
+        return None
 
     def type_rules(self, path, item, q):
         """The checks every type shares (robot, joints, duration, dynamics), then the type's own
