@@ -42,6 +42,15 @@ __all__ = ["Condition", "SearchBudget", "SearchTooLong", "SingularityResult", "f
            "wrap_angle"]
 
 
+def _text(expr) -> str:
+    """str(expr) (sympy's sstr), each expression printed once per process: a condition's
+    equations are printed for its sort key, its duplicates' key and its mapping (the 9 minors
+    of a 6R flange's rank condition, some hundred terms each)."""
+    from robosolve.core.printing import SharedStrPrinter
+
+    return SharedStrPrinter().doprint(expr)
+
+
 # A factor of one joint longer than this (sympy operations, in c = cos q, s = sin q) is not solved
 # as a polynomial system (its radicals with symbolic parameters take minutes): it stays an equation.
 SOLVE_OPS = 30
@@ -87,10 +96,10 @@ class Condition:
     def mapping(self) -> dict[str, str] | str:
         """The spec's layout: {joint: "value"} or an equation string."""
         if self.equations:
-            eqs = [f"{sp.sstr(e)} = 0" for e in self.equations]
-            eqs += [f"{q} = {sp.sstr(v)}" for q, v in self.values]
+            eqs = [f"{_text(e)} = 0" for e in self.equations]
+            eqs += [f"{q} = {_text(v)}" for q, v in self.values]
             return ", ".join(eqs)
-        return {str(q): sp.sstr(v) for q, v in self.values}
+        return {str(q): _text(v) for q, v in self.values}
 
     def latex(self) -> str:
         parts = [f"{sp.latex(q)} = {sp.latex(v)}" for q, v in self.values]
@@ -504,8 +513,8 @@ def _order_key(cond: Condition, joints, sample):
     for q, v in sorted(cond.values, key=lambda qv: idx[qv[0]]):
         val = _numeric(v, _sample_params(sp.sympify(v).free_symbols, sample))
         num = val.real if val is not None else math.inf
-        key.append((idx[q], round(num, 9), sp.sstr(v)))
-    key.append(tuple(sp.sstr(e) for e in cond.equations))
+        key.append((idx[q], round(num, 9), _text(v)))
+    key.append(tuple(_text(e) for e in cond.equations))
     return (key[0], tuple(key[1:-1]), key[-1])
 
 
@@ -569,7 +578,7 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
     unique: list[Condition] = []
     seen = set()
     for c in conds:
-        key = (tuple((q, sp.sstr(v)) for q, v in c.values), tuple(map(sp.sstr, c.equations)))
+        key = (tuple((q, _text(v)) for q, v in c.values), tuple(map(_text, c.equations)))
         if key not in seen:
             seen.add(key)
             unique.append(c)
@@ -580,12 +589,12 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
         bad = [(q, v) for q, v in c.values if _is_real_value(v, params) is False]
         if bad:
             notes.append("no real configuration for the given parameters: "
-                         + ", ".join(f"{q} = {sp.sstr(v)}" for q, v in bad))
+                         + ", ".join(f"{q} = {_text(v)}" for q, v in bad))
             continue
         never = [e for e in c.equations if _never_zero(e, joints, kinds, params)]
         if never:
             notes.append("no real configuration for the given parameters: "
-                         + ", ".join(f"{sp.sstr(e)} = 0" for e in never)
+                         + ", ".join(f"{_text(e)} = 0" for e in never)
                          + " (its constant term exceeds the sum of the other terms' coefficients, "
                          "each multiplying sines and cosines)")
             continue
