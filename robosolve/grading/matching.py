@@ -14,10 +14,10 @@ from __future__ import annotations
 
 import csv
 import difflib
-import io
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from robosolve.core.csv_text import csv_reader
 from robosolve.grading.answers import safe_name
 
 
@@ -118,7 +118,7 @@ def _read_csv(path: Path, what: str) -> list:
     except InputError as exc:
         raise TableError(str(exc)) from None
     try:
-        return [row for row in csv.reader(io.StringIO(text)) if any(c.strip() for c in row)]
+        return [row for row in csv_reader(text) if any(c.strip() for c in row)]
     except csv.Error as exc:
         raise TableError(f"{path}: CSV error in the {what}: {exc}")
 

@@ -7,6 +7,7 @@ import hashlib
 import io
 import re
 
+from robosolve.core.csv_text import csv_reader
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean
 from robosolve.load.yamlsource import read_text_file
@@ -73,7 +74,7 @@ def roster_table(path):
     """(ids as read_roster gives them, the header as written, each student's row as written)."""
     file = str(path)
     text = read_text_file(path, line=1, what="the roster")
-    reader = csv.reader(io.StringIO(text))
+    reader = csv_reader(text)          # `,` or, from a spreadsheet in many locales, `;`
     try:
         rows = list(reader)
     except csv.Error as exc:

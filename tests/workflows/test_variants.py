@@ -295,6 +295,30 @@ def test_roster_student_k_gets_variant_k(tmp_path):
     assert (by_roster / "roster.csv").read_text() == "variant,student\njo-smith,Jo Smith\n2024-017,2024/017\nann,Ann\n"
 
 
+@pytest.mark.parametrize("sep", [";", "\t"], ids=["semicolons", "tabs"])
+def test_a_roster_saved_with_semicolons_or_tabs_is_read_as_with_commas(tmp_path, sep):
+    """Spreadsheets in many locales save CSV with `;` (`,` is their decimal mark), some LMS exports
+    with tabs: the same students, the same variants, and DIR/roster.csv written with commas."""
+    p = problem_file(tmp_path)
+    rows = [["Student", "Email", "Note"], ["Jo Smith", "jo@x.org", "1,5"], ["2024/017", "b@x.org", ""]]
+    commas, other = tmp_path / "commas.csv", tmp_path / "other.csv"
+    with open(commas, "w", newline="", encoding="utf-8") as fh:
+        csv.writer(fh, lineterminator="\n").writerows(rows)
+    with open(other, "w", newline="", encoding="utf-8") as fh:
+        csv.writer(fh, delimiter=sep, lineterminator="\n").writerows(rows)
+    outs = []
+    for roster in (commas, other):
+        out = tmp_path / roster.stem
+        result = runner.invoke(app, ["variants", str(p), "--roster", str(roster), "--out", str(out), "--no-solve"])
+        assert result.exit_code == 0, result.output
+        outs.append(out)
+    for name in ("variants.csv", "roster.csv"):
+        assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes()
+    assert list(csv.reader(io.StringIO((outs[1] / "roster.csv").read_text()))) == [
+        ["variant", "Student", "Email", "Note"], ["jo-smith", "Jo Smith", "jo@x.org", "1,5"],
+        ["2024-017", "2024/017", "b@x.org", ""]]
+
+
 # ---------------------------------------------------------------------------
 # the command's outputs
 
