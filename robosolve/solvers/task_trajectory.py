@@ -290,14 +290,18 @@ def _figures(ans, ctx, traj, subs, question) -> None:
     fp = sp.lambdify([list(model.q)], list(p0), modules=numpy_modules())
     trace = [[float(v) for v in fp(list(conv.q[:, k]))] for k in range(conv.t.size)]
     poses = []
+    last = "end" if conv.failure is None else "last reached"     # a path cut short is not at its end
     if conv.t.size:
-        for label, k in (("start", 0), ("middle", conv.t.size // 2), ("end", conv.t.size - 1)):
+        for label, k in (("start", 0), ("middle", conv.t.size // 2), (last, conv.t.size - 1)):
             s2 = dict(subs)
             s2.update({j.symbol: sp.Float(conv.q[i, k]) for i, j in enumerate(model.joints)})
             drw = robot_drawing(ctx, s2)
             if drw is not None:
                 poses.append({"label": Text(label, " (t = ", Num(conv.t[k], "s"), ")"), "drawing": drw})
-    ans.figures.append(FigureSpec("path", "task_path", "Path of the end effector, the arm at start, middle and end",
+    title = ("Path of the end effector, the arm at start, middle and end" if conv.failure is None else
+             "Path of the end effector, cut where it " + ("leaves the reach" if conv.failure["kind"] == "unreachable"
+                                                           else "turns singular"))
+    ans.figures.append(FigureSpec("path", "task_path", title,
                                   {"trace": trace, "poses": poses, "point": question.point}))
     syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
     ans.figures.append(FigureSpec("joints", "joint_motion", "Joint positions, rates and accelerations",
