@@ -307,8 +307,33 @@ _UNKNOWN_NAME = re.compile(r"^unknown (?:name|parameter)\b[^']*'(?P<name>[^']+)'
 
 def grouped(issues: list) -> list:
     """One message per unknown name, however many expressions use it (a parameter left out of
-    `parameters:` is one mistake): the first use, with the lines of the others. The issues stay
-    in their order."""
+    `parameters:` is one mistake): the first use, with the lines of the others; and one message for
+    the same words said of several places (three questions that "use gravity: declare g"), with
+    the lines of the others. The issues stay in their order."""
+    return _same_words(_same_name(issues))
+
+
+def _same_words(issues: list) -> list:
+    first: dict = {}
+    for k, issue in enumerate(issues):
+        first.setdefault(issue.message, []).append(k)
+    if all(len(ks) == 1 for ks in first.values()):
+        return list(issues)
+    out = []
+    for k, issue in enumerate(issues):
+        ks = first[issue.message]
+        if k != ks[0]:
+            continue
+        if len(ks) > 1:
+            lines = sorted({issues[j].line for j in ks[1:]} - {issue.line})
+            where = ", ".join(issues[j].path or "the file" for j in ks[1:])
+            issue = InputIssue(issue.file, issue.line, issue.path, issue.message + f" (the same for {where}"
+                               + (f": line{'s' if len(lines) > 1 else ''} {', '.join(map(str, lines))})" if lines else ")"))
+        out.append(issue)
+    return out
+
+
+def _same_name(issues: list) -> list:
     first: dict = {}
     others: dict = {}
     for k, issue in enumerate(issues):

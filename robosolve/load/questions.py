@@ -218,8 +218,8 @@ class _QuestionLoader:
                 QUESTION_TYPES[q.type].resolve(self, q, questions)
             if not QUESTION_TYPES[q.type].uses_profile or "trajectory" in q.options or "trajectory" in q.rejected:
                 continue
-            if "profile" in q.rejected:
-                continue
+            if "profile" in q.rejected or str(q.options.get("law", "")).startswith("task_"):
+                continue        # (a task law follows a `trajectory`: its own check asks for one)
             ref = q.options.get("profile")
             if ref is None:
                 if not profiles and not self.refused_ids:

@@ -259,6 +259,8 @@ def _require(builder, value, varied: set | None) -> list:
 
 
 def _question_ref(chk, builder, path, kind, qid, questions):
+    if not questions:
+        return None         # no question at all (the file's own message says so)
     refused = getattr(builder, "refused_question_ids", set())
     if isinstance(qid, str) and qid not in questions and (qid in refused or None in refused):
         return None         # a question refused whole (said already): one mistake, one message

@@ -49,6 +49,14 @@ def v_trajectory_ref(ql, path, value, q):
 
 def _check(ql, path, item, q):
     law = q.options.get("law", "p")
+    by_coordinate = [k for k in ("gains", "gains_d")
+                     if isinstance(q.options.get(k), dict) and "coordinates" in q.options[k]]
+    if "law" not in item and by_coordinate:
+        # gains per coordinate and no law: the law is what is missing (one message, not the default
+        # law p's complaints about each gain)
+        ql.chk.error(path, f"{' and '.join(by_coordinate)} per coordinate need a task law: give "
+                     f"law: {' or '.join(TASK_LAWS)} (the default law p takes gains per joint)")
+        return
     if law != "p" and "gains_d" not in item:
         ql.chk.error(path, f"law {law} needs gains_d")
     if law == "p" and "gains_d" in item:

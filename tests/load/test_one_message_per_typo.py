@@ -255,3 +255,19 @@ def test_a_joint_without_a_name_is_one_message():
     del data["joints"][0]["name"]
     issues = _issues(data)
     assert len(issues) == 1 and "joints[0]: missing required key 'name'" in issues[0], issues
+
+
+def test_the_same_words_for_several_questions_are_one_message_with_their_places():
+    data = yaml.safe_load((ROOT / "problems" / "exam-2r-full.yaml").read_text())
+    del data["parameters"]["g"]          # four questions use gravity
+    issues = _issues(data)
+    assert len(issues) == 1 and "declare g" in issues[0], issues
+    others = issues[0].split("(the same for ")[1]
+    assert others.count("questions[") >= 2 and "lines " in others      # where else, and their lines
+
+
+def test_task_gains_without_a_law_say_the_law_is_missing():
+    data = yaml.safe_load((ROOT / "problems" / "workspace-2r-line.yaml").read_text())
+    del data["questions"][1]["law"]       # gains per coordinate: a task law was meant
+    issues = _issues(data)
+    assert len(issues) == 1 and "need a task law" in issues[0] and "task_pd_gravity" in issues[0], issues
