@@ -372,6 +372,7 @@ class _ProblemBuilder:
         self.rejected_points: set[str] = set()
         self.joint_name_refused = False          # a joint's name refused: its uses are not judged
         self.actuator_refused = False            # an actuator's name refused: the same
+        self.frames_refused = False              # a DH table without rows: its frames' uses, the same
         self.refused_question_ids: set = set()
         self.bodies_given = False
         self.gravity_refused = False
@@ -667,7 +668,9 @@ class _ProblemBuilder:
             conv = meant_value(conv, ("standard", "modified")) or "standard"
         rows = value.get("rows")
         if not isinstance(rows, list) or not rows:
-            chk.error(("dh", "rows"), "expected a non-empty list of rows")
+            if "rows" in value:          # (missing: the mapping's own message says so)
+                chk.error(("dh", "rows"), "expected a non-empty list of rows")
+            self.frames_refused = True   # the frames the table would define: their uses say nothing more
             return
         keys = DH_KEYS if conv == "standard" else MDH_KEYS
         for i, row in enumerate(rows):
@@ -700,7 +703,7 @@ class _ProblemBuilder:
             return
         default_parent = list(frames)[-1] if frames else "0"
         parent = str(item.get("parent", default_parent))
-        if parent != "0" and parent not in frames and parent in self.rejected_frames:
+        if parent != "0" and parent not in frames and (parent in self.rejected_frames or self.frames_refused):
             return  # its parent was rejected (and reported): one mistake, one message
         if parent != "0" and parent not in frames:
             chk.error(path + ("parent",), f"unknown parent frame '{parent}'"
@@ -810,7 +813,7 @@ class _ProblemBuilder:
         name = str(value)
         if name == "0" and allow_base:
             return name
-        if name not in self.frames and name in self.rejected_frames:
+        if name not in self.frames and (name in self.rejected_frames or self.frames_refused):
             return None  # the frame itself was rejected (and reported): no second message
         if name not in self.frames:
             known = list(self.frames) + (["0"] if allow_base else [])

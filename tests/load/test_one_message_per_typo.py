@@ -271,3 +271,11 @@ def test_task_gains_without_a_law_say_the_law_is_missing():
     del data["questions"][1]["law"]       # gains per coordinate: a task law was meant
     issues = _issues(data)
     assert len(issues) == 1 and "need a task law" in issues[0] and "task_pd_gravity" in issues[0], issues
+
+
+@pytest.mark.parametrize("name", ["kuka-kr", "panda"])
+def test_a_dh_table_without_rows_is_one_message(name):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    del data["dh"]["rows"]           # (before: 'expected rows' twice, every body's frame unknown)
+    issues = _issues(data)
+    assert len(issues) == 1 and "missing required key 'rows'" in issues[0], issues
