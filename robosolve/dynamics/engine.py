@@ -506,13 +506,13 @@ class DynamicsEngine:
         def build():
             name = self.joint_frame(i)
             s = self.alg.to_matrix(self.chain_data.body_twist(name, i))
-            w = vex(s[:3, :3])
+            w = vex(s[:3, :3]).applyfunc(self._fixed_trig)
             a = self.joints[i].actuator
             if any(x != 0 for x in w):
                 out = sp.zeros(4, 4)
                 out[:3, :3] = skew(a * w / self._axis_norm2(w))
                 return out.applyfunc(sp.expand)
-            v = s[:3, 3]
+            v = s[:3, 3].applyfunc(self._fixed_trig)
             return action_matrix(list(a * v / self._axis_norm2(v)), [0, 0, 0]).applyfunc(sp.expand)
         return self._cached(("Phi_act", i), build)
 
@@ -521,8 +521,17 @@ class DynamicsEngine:
         (alpha: 0.7) leave rounding noise in it (5.6e-17·c₂s₂ from cos²0.7 + sin²0.7 ≠ 1 in
         floating point), which is dropped so that Φ stays a polynomial in the joints."""
         norm2 = sp.expand((v.T * v)[0, 0])
-        return sp.Add(*[t for t in sp.Add.make_args(norm2)
-                        if not (t.has(*self.q) and abs(t.as_coeff_Mul()[0]) < 1e-12)])
+        norm2 = sp.Add(*[t for t in sp.Add.make_args(norm2)
+                         if not (t.has(*self.q) and abs(t.as_coeff_Mul()[0]) < 1e-12)])
+        return self._fixed_trig(norm2)
+
+    def _fixed_trig(self, x):
+        """An entry free of the joints simplified when it holds sines and cosines: a fixed rotation
+        by an exact angle sympy keeps as it is (Rz(2), Rx(1/3)) leaves cos²2 + sin²2 in the joint's
+        axis, which must be 1 for Φ to stay a polynomial (it divides by the axis' |w|²)."""
+        if x.has(sp.sin, sp.cos) and not x.has(*self.q):
+            return sp.trigsimp(x)
+        return x
 
     def link_of(self, name: str) -> str | None:
         """The frame of the link that frame `name` belongs to: the nearest frame (itself

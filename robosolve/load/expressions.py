@@ -63,6 +63,19 @@ def meant_value(value, choices):
     return close[0] if close else None
 
 
+def degrees_hint(e) -> str | None:
+    """A warning for an angle given as a plain number that reads like degrees (90, -90, 30, 180:
+    a whole multiple of 5 beyond a full turn), which robosolve takes in radians; None otherwise."""
+    if not isinstance(e, sp.Number) or e == 0:
+        return None
+    v = float(e)
+    if abs(v) <= 2 * math.pi + 1e-9 or abs(v / 5 - round(v / 5)) > 1e-9:
+        return None
+    text = f"{v:g}"
+    return (f"{text} is an angle in radians ({abs(v) / (2 * math.pi):.3g} turns); if degrees were meant, "
+            f"write deg({text})")
+
+
 class _TooLarge(Exception):
     pass
 

@@ -16,7 +16,7 @@ from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue, InputWarning
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, did_you_mean, meant_value, size_issue, value_issue,
+    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, meant_value, size_issue, value_issue,
 )
 from robosolve.load.physical import LUMPED_ROTOR, inertia_issue, pseudo_inertia_issue, triangle_issue
 from robosolve.load.problem import (
@@ -682,8 +682,16 @@ class _ProblemBuilder:
                 self.rejected_frames.add(str(i + 1))
                 continue
             name = str(i + 1)
+            self._degrees_in_dh(path, dict(zip(keys, vals)))
             frames[name] = Frame(name, str(i), "dh" if conv == "standard" else "mdh",
                                  factors=vals, line=chk.src.line(path))
+
+    def _degrees_in_dh(self, path, row: dict) -> None:
+        """A warning for a DH angle (the twist α, a constant θ) that reads like degrees."""
+        for key in ("alpha", "theta"):
+            hint = degrees_hint(row[key])
+            if hint is not None:
+                self.chk.warn(path + (key,), hint)
 
     def _frame(self, name, item, frames, from_dh):
         chk = self.chk
@@ -733,6 +741,7 @@ class _ProblemBuilder:
                 return
             vals = [chk.expr(path + (kind, k), item[kind][k], self.ns) for k in keys if k in item[kind]]
             if len(vals) == 4 and all(v is not None for v in vals):
+                self._degrees_in_dh(path + (kind,), dict(zip(keys, vals)))
                 frames[name] = Frame(name, parent, kind, factors=vals, line=line)
 
     def _is_rigid(self, m) -> bool:
@@ -798,6 +807,8 @@ class _ProblemBuilder:
             if issue is not None:
                 chk.error(path, f"{op}({inner.strip()}): {issue}")
                 return None
+            if op[0] == "R" and (hint := degrees_hint(e)) is not None:
+                chk.warn(path, f"{op}({inner.strip()}): {hint}")
             factors.append((op, e))
             i = k + 1
         if not factors:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import re
 
-from robosolve.load.expressions import Namespace, did_you_mean, meant_value, value_issue
+from robosolve.load.expressions import Namespace, degrees_hint, did_you_mean, meant_value, value_issue
 from robosolve.load.problem import Question
 from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES, types_where
 
@@ -281,6 +281,10 @@ class _QuestionLoader:
                     out[allowed[key]], paths[allowed[key]] = e, path + (key,)
         finally:
             chk.values = values
+        for j in b.joints:            # a revolute joint's value that reads like degrees (30, 90)
+            hint = degrees_hint(out.get(j.symbol)) if j.kind == "revolute" else None
+            if hint is not None:
+                chk.warn(paths[j.symbol], hint)
         params = {s: e for s, e in out.items() if s in b.parameters}
         for s, e in list(out.items()):
             shown = value[s.name] if isinstance(value.get(s.name), str) else None

@@ -1,0 +1,42 @@
+"""An angle given as a plain number that reads like degrees (90, -90, 30) is accepted — robosolve
+takes radians — with a warning that says how to write degrees (deg(90)); angles that read like
+radians (pi/2, 1.2), lengths and prismatic joints' values give none."""
+
+from __future__ import annotations
+
+import pytest
+
+from robosolve.load.loader import load_problem_text
+
+ARM = """robosolve: 1
+name: arm
+parameters: {L1: 1/2}
+joints: [{name: q1, type: revolute}, {name: d2, type: prismatic}]
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1) {extra}"}
+  "2": {dh: {theta: 0, d: d2, a: 0, alpha: {alpha}}}
+questions:
+  - {type: position, at: {q1: {q1}, d2: {d2}}}
+"""
+
+
+def _warnings(extra="", alpha="0", q1="0.3", d2="30"):
+    text = ARM.replace("{extra}", extra).replace("{alpha}", alpha).replace("{q1}", q1).replace("{d2}", d2)
+    return [str(w) for w in load_problem_text(text, "p.yaml").warnings]
+
+
+@pytest.mark.parametrize("kw, where", [
+    ({"alpha": "-90"}, "frames.2.dh.alpha"),
+    ({"extra": "Rx(90)"}, "frames.1.pose"),
+    ({"q1": "30"}, "questions[0].at.q1"),
+    ({"q1": "180"}, "questions[0].at.q1"),
+])
+def test_a_degree_like_angle_is_warned_with_how_to_write_degrees(kw, where):
+    warnings = _warnings(**kw)
+    assert len(warnings) == 1 and f"{where}: warning:" in warnings[0] and "write deg(" in warnings[0], warnings
+
+
+@pytest.mark.parametrize("kw", [{"alpha": "pi/2"}, {"alpha": "-1.5708"}, {"extra": "Rx(1.2)"}, {"q1": "6"},
+                                {"q1": "deg(30)"}, {"d2": "90"}])
+def test_radian_angles_lengths_and_prismatic_values_are_not_warned(kw):
+    assert _warnings(**kw) == []
