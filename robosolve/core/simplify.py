@@ -514,6 +514,14 @@ def small_trig(expr):
 
 
 @memoised
+def fixed_angles(expr):
+    """An expression free of the joints with sines and cosines of fixed angles that sympy keeps
+    as they are (a pose's Rz(2), a DH twist of 1/3): trigsimp, so that cos²2 + sin²2 is 1 (the
+    dynamics engine divides by a joint axis' |w|², which must stay a constant it can read)."""
+    return sp.trigsimp(expr) if expr.has(sp.sin, sp.cos) else expr
+
+
+@memoised
 def twist_entry(expr):
     """An entry of a local twist dM/dq M^-1: trigsimp of the expanded entry."""
     return sp.trigsimp(sp.expand(expr))

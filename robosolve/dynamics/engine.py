@@ -529,9 +529,9 @@ class DynamicsEngine:
         """An entry free of the joints simplified when it holds sines and cosines: a fixed rotation
         by an exact angle sympy keeps as it is (Rz(2), Rx(1/3)) leaves cos²2 + sin²2 in the joint's
         axis, which must be 1 for Φ to stay a polynomial (it divides by the axis' |w|²)."""
-        if x.has(sp.sin, sp.cos) and not x.has(*self.q):
-            return sp.trigsimp(x)
-        return x
+        from robosolve.core.simplify import fixed_angles
+
+        return fixed_angles(x) if x.has(sp.sin, sp.cos) and not x.has(*self.q) else x
 
     def link_of(self, name: str) -> str | None:
         """The frame of the link that frame `name` belongs to: the nearest frame (itself
