@@ -142,25 +142,40 @@ def _keys(node, path=()):
             yield from _keys(v, path + (i,))
 
 
-@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
-def test_every_key_of_a_bundled_problem_misspelt_gives_one_message(name):
-    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+def _not_one_message(mutants, suggestion: bool) -> list:
+    """(what, messages) of each mutated problem (what, data) that does not give exactly one
+    message (with a did-you-mean, when `suggestion`), or is accepted."""
     flagged = []
-    for path, key in _keys(data):
-        if len(key) < 4 or (path and path[0] == "description"):
-            continue
-        wrong = key[0] + key[2:]                        # a letter dropped
-        bad = copy.deepcopy(data)
-        _renamed(_at(bad, path), key, wrong)
+    for what, bad in mutants:
         try:
             load_problem_text(yaml.safe_dump(bad, sort_keys=False, allow_unicode=True), "p.yaml")
         except InputError as exc:
             issues = [str(i) for i in exc.issues]
-            if len(issues) != 1 or "did you mean" not in issues[0]:
-                flagged.append((path, key, issues[:3]))
+            if len(issues) != 1 or (suggestion and "did you mean" not in issues[0]):
+                flagged.append((what, issues[:3]))
         else:
-            flagged.append((path, key, "accepted"))
-    assert flagged == []
+            flagged.append((what, "accepted"))
+    return flagged
+
+
+def _key_misspelt(data, path, key):
+    bad = copy.deepcopy(data)
+    _renamed(_at(bad, path), key, key[0] + key[2:])          # a letter dropped
+    return bad
+
+
+def _value_set(data, path, value):
+    bad = copy.deepcopy(data)
+    _at(bad, path[:-1])[path[-1]] = value
+    return bad
+
+
+@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
+def test_every_key_of_a_bundled_problem_misspelt_gives_one_message(name):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    mutants = (((path, key), _key_misspelt(data, path, key)) for path, key in _keys(data)
+               if len(key) >= 4 and not (path and path[0] == "description"))
+    assert _not_one_message(mutants, suggestion=True) == []
 
 
 def _words(node, path=()):
@@ -183,19 +198,8 @@ def _words(node, path=()):
 @pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
 def test_every_word_of_a_bundled_problem_misspelt_gives_one_message(name):
     data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
-    flagged = []
-    for path, word in _words(data):
-        bad = copy.deepcopy(data)
-        _at(bad, path[:-1])[path[-1]] = word[0] + word[2:]
-        try:
-            load_problem_text(yaml.safe_dump(bad, sort_keys=False, allow_unicode=True), "p.yaml")
-        except InputError as exc:
-            issues = [str(i) for i in exc.issues]
-            if len(issues) != 1 or "did you mean" not in issues[0]:
-                flagged.append((path, word, issues[:3]))
-        else:
-            flagged.append((path, word, "accepted"))
-    assert flagged == []
+    mutants = ((path, _value_set(data, path, word[0] + word[2:])) for path, word in _words(data))
+    assert _not_one_message(mutants, suggestion=True) == []
 
 
 def _values(node, path=()):
@@ -221,16 +225,10 @@ def test_every_value_of_a_bundled_problem_broken_gives_one_message(name):
     a refused law judged the gains as law p's; a refused `at` made the variants section say the
     question has no value for that joint; a refused id left its references dangling.)"""
     data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
-    flagged = []
-    for k, (path, _v) in enumerate(_values(data)):
-        for broken in (("2*", [1, 2, 3, 4, 5, 6, 7])[k % 2],):     # each value one way (time)
-            bad = copy.deepcopy(data)
-            _at(bad, path[:-1])[path[-1]] = broken
-            try:
-                load_problem_text(yaml.safe_dump(bad, sort_keys=False, allow_unicode=True), "p.yaml")
-            except InputError as exc:
-                if len(exc.issues) != 1:
-                    flagged.append((path, broken, [str(i) for i in exc.issues][:3]))
+    broken = ("2*", [1, 2, 3, 4, 5, 6, 7])            # each value one way (time)
+    mutants = (((path, broken[k % 2]), _value_set(data, path, broken[k % 2]))
+               for k, (path, _v) in enumerate(_values(data)))
+    flagged = [f for f in _not_one_message(mutants, suggestion=False) if f[1] != "accepted"]
     assert flagged == []
 
 
