@@ -531,7 +531,7 @@ class DynamicsEngine:
         axis, which must be 1 for Φ to stay a polynomial (it divides by the axis' |w|²)."""
         from robosolve.core.simplify import fixed_angles
 
-        return fixed_angles(x) if x.has(sp.sin, sp.cos) and not x.has(*self.q) else x
+        return x if x.has(*self.q) else fixed_angles(x)
 
     def link_of(self, name: str) -> str | None:
         """The frame of the link that frame `name` belongs to: the nearest frame (itself

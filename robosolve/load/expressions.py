@@ -224,26 +224,22 @@ def _parse_hint(text: str) -> str:
 class Namespace:
     """The names an expression may use, and what each one stands for."""
 
-    def __init__(self, names: dict | None = None, points=(), what: str = "name", refused=None):
+    def __init__(self, names: dict | None = None, points=(), what: str = "name", refused=None,
+                 unknown_ok: bool = False):
         self.names: dict[str, sp.Basic] = dict(names or {})
         self.points = set(points)
         self.what = what
         # names known but meaningless here -> the message that says what to do instead
         self.refused: dict[str, str] = dict(refused or {})
-
-    # a name refused where it is defined (a joint named `2*`): every unknown name may be one of
-    # its uses, read as a plain symbol — the file is rejected already (one mistake, one message)
-    unknown_ok = False
+        # a name refused where it is defined (a joint named `2*`): every unknown name may be one of
+        # its uses, read as a plain symbol — the file is rejected already (one mistake, one message)
+        self.unknown_ok = unknown_ok
 
     def with_names(self, extra: dict) -> "Namespace":
-        out = Namespace({**self.names, **extra}, self.points, self.what, self.refused)
-        out.unknown_ok = self.unknown_ok
-        return out
+        return Namespace({**self.names, **extra}, self.points, self.what, self.refused, self.unknown_ok)
 
     def without_points(self) -> "Namespace":
-        out = Namespace(self.names, (), self.what, self.refused)
-        out.unknown_ok = self.unknown_ok
-        return out
+        return Namespace(self.names, (), self.what, self.refused, self.unknown_ok)
 
     # ------------------------------------------------------------------
     def parse(self, value) -> sp.Expr:

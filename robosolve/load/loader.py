@@ -99,14 +99,12 @@ def as_meant(path, value: dict, allowed) -> list[tuple]:
     message — not "the timing needs max_velocity" beside it, nor "unknown name theta1" in every
     frame after a misspelt `joints:`. What is wrong inside the renamed key itself is not said
     (the caller drops messages under the paths returned): it is checked once the name is right."""
-    import difflib
-
-    unknown = [k for k in value if k not in allowed and isinstance(k, str)]
     meant: dict = {}
-    for key in unknown:
-        close = difflib.get_close_matches(key, sorted(allowed), n=1, cutoff=0.5)
-        if close and close[0] not in value and close[0] not in meant.values():
-            meant[key] = close[0]
+    for key in value:
+        if key not in allowed:
+            close = meant_value(key, allowed)
+            if close is not None and close not in value and close not in meant.values():
+                meant[key] = close
     if meant:
         items = list(value.items())
         value.clear()
@@ -175,10 +173,7 @@ class Checker:
     def misspelt(value: dict, key: str, allowed) -> bool:
         """True when an unknown key of `value` is a misspelling of `key`: its did-you-mean
         already says what is wrong, so a 'missing key' would be a second message for one mistake."""
-        import difflib
-
-        unknown = [k for k in value if k not in allowed and isinstance(k, str)]
-        return any(difflib.get_close_matches(k, sorted(allowed), n=1, cutoff=0.5) == [key] for k in unknown)
+        return any(k not in allowed and meant_value(k, allowed) == key for k in value)
 
     def string(self, path, value, pattern=None, hint="") -> str | None:
         if not isinstance(value, str):
@@ -310,55 +305,39 @@ def grouped(issues: list) -> list:
     `parameters:` is one mistake): the first use, with the lines of the others; and one message for
     the same words said of several places (three questions that "use gravity: declare g"), with
     the lines of the others. The issues stay in their order."""
-    return _same_words(_same_name(issues))
+    def name(issue):
+        m = _UNKNOWN_NAME.match(issue.message)
+        return m and m.group("name")
+
+    def more_uses(first, others):
+        lines = sorted({o.line for o in others})
+        return (f" (and {len(others)} more use{'s' if len(others) > 1 else ''}: "
+                f"line{'s' if len(lines) > 1 else ''} {', '.join(map(str, lines))})")
+
+    def same_for(first, others):
+        lines = sorted({o.line for o in others} - {first.line})
+        where = ", ".join(o.path or "the file" for o in others)
+        return (f" (the same for {where}"
+                + (f": line{'s' if len(lines) > 1 else ''} {', '.join(map(str, lines))})" if lines else ")"))
+
+    return _merged(_merged(issues, name, more_uses), lambda issue: issue.message, same_for)
 
 
-def _same_words(issues: list) -> list:
-    first: dict = {}
+def _merged(issues: list, key, note) -> list:
+    """The issues with one `key` merged into the first of them, `note(first, others)` added to its
+    message; those whose key is None kept as they are."""
+    groups: dict = {}
     for k, issue in enumerate(issues):
-        first.setdefault(issue.message, []).append(k)
-    if all(len(ks) == 1 for ks in first.values()):
-        return list(issues)
+        if key(issue) is not None:
+            groups.setdefault(key(issue), []).append(k)
     out = []
     for k, issue in enumerate(issues):
-        ks = first[issue.message]
+        ks = groups.get(key(issue), [k])
         if k != ks[0]:
             continue
         if len(ks) > 1:
-            lines = sorted({issues[j].line for j in ks[1:]} - {issue.line})
-            where = ", ".join(issues[j].path or "the file" for j in ks[1:])
-            issue = InputIssue(issue.file, issue.line, issue.path, issue.message + f" (the same for {where}"
-                               + (f": line{'s' if len(lines) > 1 else ''} {', '.join(map(str, lines))})" if lines else ")"))
-        out.append(issue)
-    return out
-
-
-def _same_name(issues: list) -> list:
-    first: dict = {}
-    others: dict = {}
-    for k, issue in enumerate(issues):
-        m = _UNKNOWN_NAME.match(issue.message)
-        if m is None:
-            continue
-        name = m.group("name")
-        if name in first:
-            others.setdefault(name, []).append(k)
-        else:
-            first[name] = k
-    if not others:
-        return list(issues)
-    drop = {k for ks in others.values() for k in ks}
-    out = []
-    for k, issue in enumerate(issues):
-        if k in drop:
-            continue
-        m = _UNKNOWN_NAME.match(issue.message)
-        if m is not None and m.group("name") in others:
-            lines = sorted({issues[j].line for j in others[m.group("name")]})
-            more = len(others[m.group("name")])
-            issue = InputIssue(issue.file, issue.line, issue.path, issue.message
-                               + f" (and {more} more use{'s' if more > 1 else ''}: line{'s' if len(lines) > 1 else ''} "
-                               + ", ".join(map(str, lines)) + ")")
+            issue = InputIssue(issue.file, issue.line, issue.path,
+                               issue.message + note(issue, [issues[j] for j in ks[1:]]))
         out.append(issue)
     return out
 
@@ -403,15 +382,14 @@ class _ProblemBuilder:
         # time: meaningful only in forces (along a run, a simulation or a profile) and in
         # the laws of a type with `time_laws`; anywhere else a `t` is refused with what to do instead
         static = {k: v for k, v in self.names.items() if k != "t"}
-        self.ns = Namespace(static, what="name", refused={"t": TIME_REFUSED})
-        self.ns_time = Namespace(self.names, what="name")
-        self.ns.unknown_ok = self.ns_time.unknown_ok = self.joint_name_refused
+        lenient = self.joint_name_refused
+        self.ns = Namespace(static, what="name", refused={"t": TIME_REFUSED}, unknown_ok=lenient)
+        self.ns_time = Namespace(self.names, what="name", unknown_ok=lenient)
         self.frames = self._frames(data.get("frames"), data.get("dh"))
         self.points = self._points(data.get("points"))
         # rejected points parse (their error is already reported), so P.x is not "unknown" too
         self.ns_points = Namespace(static, list(self.points) + sorted(self.rejected_points), what="name",
-                                   refused={"t": TIME_REFUSED})
-        self.ns_points.unknown_ok = self.joint_name_refused
+                                   refused={"t": TIME_REFUSED}, unknown_ok=lenient)
         gravity, gravity_given = self._gravity(data.get("gravity"))
         # given but refused (its own message says why): no "declare g" for each question too
         params = data.get("parameters")
@@ -551,10 +529,8 @@ class _ProblemBuilder:
                 kind = meant_value(kind, (REVOLUTE, PRISMATIC)) or REVOLUTE
             if name is None:          # refused or missing (said): its uses are not judged
                 self.joint_name_refused = True
-            if kind is None:          # missing (said): revolute in its place, for its uses
-                kind = REVOLUTE
-            if name is None or kind is None:
                 continue
+            kind = kind or REVOLUTE   # missing (said): revolute in its place, for its uses
             if name == DEFAULT_POINT:     # still a joint below, so that its uses say nothing more
                 chk.error(path + ("name",), DEFAULT_POINT_TAKEN)
             elif name in taken or name in seen or name in PYTHON_KEYWORDS:

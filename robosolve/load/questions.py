@@ -19,6 +19,12 @@ ID_RE = re.compile(r"^[A-Za-z0-9_-]+$")
 CONTEXT_KEYS = frozenset({"coordinates", "law", "space", "trajectory", "profile", "point", "frame", "at"})
 
 
+def may_be_refused(refused_ids: set, ref) -> bool:
+    """Whether `ref` may be the id of a question refused whole, said already (`refused_ids`: their
+    ids, None for one that had no readable id)."""
+    return ref in refused_ids or None in refused_ids
+
+
 def load_questions(builder, value) -> list:
     chk = builder.chk
     if value is None:
@@ -54,7 +60,7 @@ class _QuestionLoader:
 
     def refused(self, ref) -> bool:
         """Whether `ref` may be the id of a question refused whole (said already)."""
-        return ref in self.refused_ids or None in self.refused_ids
+        return may_be_refused(self.refused_ids, ref)
 
     @staticmethod
     def type_name(flag: str) -> str:
@@ -137,13 +143,14 @@ class _QuestionLoader:
         nothing more."""
         chk = self.chk
         qtype = item.get("type")
-        if isinstance(qtype, str) and qtype not in QUESTION_TYPES and meant_value(qtype, QUESTION_TYPES):
+        if isinstance(qtype, str) and qtype in QUESTION_TYPES:
+            return item
+        meant = meant_value(qtype, QUESTION_TYPES)
+        if meant is not None:
             chk.error(path + ("type",), f"unknown question type {qtype!r}" + did_you_mean(qtype, QUESTION_TYPES)
                       + f" (expected one of: {', '.join(QUESTION_TYPES)})")
             chk.renamed.append(path)
-            return dict(item, type=meant_value(qtype, QUESTION_TYPES))
-        if isinstance(qtype, str) and qtype in QUESTION_TYPES:
-            return item
+            return dict(item, type=meant)
         if "type" not in item:
             known = set(COMMON_KEYS).union(*(t.options for t in QUESTION_TYPES.values()))
             typo = next((k for k in item if isinstance(k, str) and k not in known

@@ -19,6 +19,7 @@ import sympy as sp
 
 from robosolve.core.simplify import full, is_zero
 from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
+from robosolve.load.questions import may_be_refused
 from robosolve.questions.registry import types_where
 
 SECTION_KEYS = ("parameters", "require")
@@ -261,8 +262,7 @@ def _require(builder, value, varied: set | None) -> list:
 def _question_ref(chk, builder, path, kind, qid, questions):
     if not questions:
         return None         # no question at all (the file's own message says so)
-    refused = getattr(builder, "refused_question_ids", set())
-    if isinstance(qid, str) and qid not in questions and (qid in refused or None in refused):
+    if isinstance(qid, str) and qid not in questions and may_be_refused(builder.refused_question_ids, qid):
         return None         # a question refused whole (said already): one mistake, one message
     if not isinstance(qid, str) or qid not in questions:
         known = ", ".join(questions) or "none"

@@ -194,19 +194,19 @@ def _setup(question, ctx: SolveContext):
     try:
         q_from, res = _ik(ctx, model, x_expr, a, subs, "from")
     except BadInput as exc:
-        q_from, res, outside = None, None, exc.message
+        q_from, res, outside = None, None, exc.message.removeprefix("out of reach: ")
     if "start" in opts and outside is None:
         q0 = np.array([float(ctx.numeric(opts["start"][j.name], subs)) for j in model.joints])
         q_from = tp.newton(arm, a, q0)
         if q_from is None:
             if tp.newton(arm, a, np.zeros(len(model.q))) is None and res is None:
-                outside = "out of reach (Newton's method reaches it neither from `start` nor from q = 0)"
+                outside = "Newton's method reaches it neither from `start` nor from q = 0"
             else:
                 raise BadInput("start", "Newton's method from this configuration does not reach `from`")
     elif q_from is None and outside is None:
         q_from = tp.newton(arm, a, np.zeros(len(model.q)))
         if q_from is None:
-            outside = "out of reach (Newton's method from q = 0 does not reach it)"
+            outside = "Newton's method from q = 0 does not reach it"
     return coords, arm, path, timing, q_from, res, subs, outside
 
 
@@ -386,7 +386,7 @@ def _outside_at_start(ans, coords, labels, tex, path, timing, why: str) -> Answe
     _path_steps(ans, traj, None, None, None, None)
     where = Text.join(", ", [Text(f"{lab} = ", Num(v)) for lab, v in zip(labels, path.a)])
     reason = Text("at t = ", Num(0.0, "s"), " the path starts at (", where, "), out of the arm's reach (",
-                  why.removeprefix("out of reach").strip(" :()") or "no configuration reaches it", ")")
+                  why or "no configuration reaches it", ")")
     ans.extra["unreachable"] = True
     ans.extra["reason"] = reason
     ans.steps.append(Step("The path cannot be followed", Text("No configuration to start from: ", reason, ".")))
