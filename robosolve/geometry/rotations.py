@@ -147,6 +147,26 @@ def _rot3_symbolic(m) -> sp.Matrix:
     return a
 
 
+def _inexact(r: sp.Matrix) -> bool:
+    """A matrix of numbers some of them floats: its angles come from the numeric functions (as
+    sympy Floats), whose tolerances hold at round-off; the exact route would square entries
+    and drop what the simplification takes for round-off (a rotation of 1e-7 rad read as none)."""
+    return not r.free_symbols and bool(r.atoms(sp.Float))
+
+
+def _as_sympy(value):
+    """A numeric result with its floats as sympy Floats (lists and tuples kept as such)."""
+    if isinstance(value, float):
+        return sp.Float(value)
+    if isinstance(value, (list, tuple)):
+        return type(value)(_as_sympy(v) for v in value)
+    return value
+
+
+def _euler_as_sympy(e: "EulerAngles") -> "EulerAngles":
+    return EulerAngles(_as_sympy(e.solutions), e.singular, _as_sympy(e.family), e.condition, list(e.notes))
+
+
 #: The simplification of every symbolic quantity here: the policy's `exact_geometry`
 #: variant (exact numbers fully, small expressions with trigsimp, large ones untouched).
 _default_simplify = exact_geometry
@@ -218,6 +238,10 @@ def axis_angle_symbolic(m, simplify: Callable = _default_simplify) -> AxisAngle:
     u_i^2 = (R_ii + 1)/2 and u_i u_j = (R_ij + R_ji)/4.
     """
     r = _rot3_symbolic(m)
+    if _inexact(r):
+        aa = axis_angle_numeric(np.array(r, dtype=float))
+        return AxisAngle(_as_sympy(aa.axis), _as_sympy(aa.angle), aa.case, _as_sympy(aa.cos_angle),
+                         _as_sympy(aa.sin_angle))
     c = simplify((r.trace() - 1) / 2)
     v = (r - r.T) / 2
     v = sp.Matrix([v[2, 1], v[0, 2], v[1, 0]])
@@ -272,6 +296,8 @@ def quaternion_symbolic(m, simplify: Callable = _default_simplify) -> list:
     At alpha = pi (eta = 0) eps = u from `axis_angle_symbolic`.
     """
     r = _rot3_symbolic(m)
+    if _inexact(r):
+        return _as_sympy(quaternion_numeric(np.array(r, dtype=float)))
     eta = sp.sqrt(simplify(1 + r.trace())) / 2
     if is_zero(eta) and not r.free_symbols:
         aa = axis_angle_symbolic(r, simplify)
@@ -359,6 +385,8 @@ def zyz_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
         return (r[1, 0], r[0, 0], sp.Integer(0), "phi + psi"), (-r[0, 1], -r[0, 0], sp.pi, "phi - psi")
 
     # st = sin(theta) = sqrt(r13^2 + r23^2) = sqrt(1 - r33^2) (unit column)
+    if _inexact(_rot3_symbolic(m)):
+        return _euler_as_sympy(zyz_numeric(np.array(_rot3_symbolic(m), dtype=float)))
     return _euler_symbolic(m, (2, 2), 1, lock_cases, regular_sets, "valid where sin(theta) != 0", simplify)
 
 
@@ -415,4 +443,6 @@ def rpy_symbolic(m, simplify: Callable = _default_simplify) -> EulerAngles:
                 (-r[0, 1], r[1, 1], -sp.pi / 2, "roll + yaw"))
 
     # cp = cos(pitch) = sqrt(r11^2 + r21^2) = sqrt(1 - r31^2) (unit column); -r31 = sin(pitch)
+    if _inexact(_rot3_symbolic(m)):
+        return _euler_as_sympy(rpy_numeric(np.array(_rot3_symbolic(m), dtype=float)))
     return _euler_symbolic(m, (2, 0), -1, lock_cases, regular_sets, "valid where cos(pitch) != 0", simplify)

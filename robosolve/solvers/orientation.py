@@ -37,7 +37,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         subs = {s: v for s, v in question.at.items() if s in set(ctx.model.q)}
         r = ctx.model.M0(frame)[:3, :3].xreplace(subs)
         where = f"The rotation is the orientation block of ${m_name('0', frame)}$."
-    r = geometry_matrix(ctx, r)
+    if r.free_symbols or not r.atoms(sp.Float):
+        r = geometry_matrix(ctx, r)     # floats alone are kept as given: no round-off dropped
     steps = [Step("Rotation matrix", where, equations=[("R", r)])]
 
     try:

@@ -194,3 +194,36 @@ def test_helical_axis_figures_draw(answers, tmp_path):
         out = tmp_path / f"{name}.png"
         draw(spec, out)
         assert out.stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("angle", [1e-7, 3e-6, math.pi - 1e-7])
+def test_orientation_of_float_matrices_near_the_special_cases(write_problem, angle):
+    """A float matrix a hair away from the identity or a half turn is a rotation with its own
+    angles (it was refused: 1 - cos^2 of a float at 1e-14 was dropped as round-off, then
+    trace(R) = 3 - 1e-14 was "neither 3 nor -1"); symbolic and numeric agree. Reference: scipy."""
+    from scipy.spatial.transform import Rotation
+
+    r = Rotation.from_rotvec(angle * np.array([0.0, -0.6, 0.8])).as_matrix()
+    path = write_problem(f"""
+        robosolve: 1
+        name: tiny-rotation
+        questions:
+          - type: orientation
+            matrix: {[[float(x) for x in row] for row in r]}
+    """)
+    o = results_document(solve_file(path), {})["answers"]["orientation"]
+    n = o["numeric"]
+    assert n["axis_angle"]["angle"] == pytest.approx(angle, rel=1e-6)
+    assert np.allclose(n["axis_angle"]["axis"], [0.0, -0.6, 0.8], atol=1e-6)
+    q = n["quaternion"]
+    assert np.allclose(Rotation.from_quat([q[1], q[2], q[3], q[0]]).as_matrix(), r, atol=1e-12)
+    for phi, theta, psi in n["zyz"]["solutions"]:
+        ref = Rotation.from_euler("ZYZ", [phi, theta, psi]).as_matrix()
+        assert np.abs(ref - r).max() < 1e-9   # near the lock the angles are ill-conditioned
+    for roll, pitch, yaw in n["rpy"]["solutions"]:
+        ref = Rotation.from_euler("ZYX", [yaw, pitch, roll]).as_matrix()
+        assert np.abs(ref - r).max() < 1e-9   # near the lock the angles are ill-conditioned
+    s = o["symbolic"]
+    assert float(s["axis_angle"]["angle"]) == pytest.approx(n["axis_angle"]["angle"], rel=1e-9)
+    assert s["zyz"]["singular"] == n["zyz"]["singular"]
+    assert len(s["rpy"]["solutions"]) == len(n["rpy"]["solutions"])
