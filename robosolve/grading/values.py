@@ -106,6 +106,8 @@ class Reader:
         kind = ak.kind
         if isinstance(value, str) and value.strip().startswith("[") and kind in ARRAY_KINDS:
             value = self.array_text(ak, value, where)
+        elif kind in (R.VECTOR, R.MATRIX) and self._typed_unquoted(value):
+            value = self.array_text(ak, "[" + ", ".join(str(v) for v in value) + "]", where)
         if kind == R.SCALAR:
             return self.scalar(value, where)
         if kind == R.VECTOR:
@@ -161,6 +163,32 @@ class Reader:
         if ak.kind == R.MATRIX and out and not isinstance(out[0], list):
             out = [out]                           # one row
         return out
+
+    def _typed_unquoted(self, value) -> bool:
+        """A MATLAB matrix or vector typed without quotes: YAML reads `[0 0.43 0.65]` as one
+        string entry and `[a, b; c, d]` as ['a', 'b; c', 'd']. Taken as typed text when an entry
+        holds a `;` or is no expression but several ones separated by spaces; `[a -b]`, which
+        reads as a - b, stays one entry."""
+        from robosolve.grading.typed import ArrayTextError, row_entries
+
+        if self.expected or not isinstance(value, list) or not value:
+            return False
+        if not all(isinstance(v, (str, int, float)) and not isinstance(v, bool) for v in value):
+            return False
+        texts = [v for v in value if isinstance(v, str)]
+        if any(";" in v for v in texts):
+            return True
+        for v in texts:
+            try:
+                if len(row_entries(v)) < 2:
+                    continue
+            except ArrayTextError:
+                continue
+            try:
+                self.ns.parse(v)
+            except ExpressionError:
+                return True
+        return False
 
     def _list(self, value, where):
         if not isinstance(value, (list, tuple)):

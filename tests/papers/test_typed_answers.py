@@ -25,12 +25,20 @@ runner = CliRunner()
     ("[cos(a + b) -sin(a + b); L1^2 deg(30)]", [["cos(a + b)", "-sin(a + b)"], ["L1^2", "deg(30)"]]),
     ("[a * b, c]", ["a * b", "c"]),
     ("[]", []),
+    ("[4.929\t1.171]", ["4.929", "1.171"]),                  # a tab between entries
+    ("[1 2\n3 4]", [["1", "2"], ["3", "4"]]),                # MATLAB: an end of line ends a row
+    ("[1 2;\n 3 4;\n]", [["1", "2"], ["3", "4"]]),
+    ("[1, 2,]", ["1", "2"]),                                  # Python's trailing comma
+    ("[[1, 2], [3, 4],]", [["1", "2"], ["3", "4"]]),
+    ("[1 2;]", ["1", "2"]),
+    ("[1 2 3]'", [["1"], ["2"], ["3"]]),                      # MATLAB's transpose
+    ("[1 2; 3 4].'", [["1", "3"], ["2", "4"]]),
 ])
 def test_parse_array(text, expected):
     assert parse_array(text) == expected
 
 
-@pytest.mark.parametrize("text", ["[1, 2", "[1, , 2]", "[[1, 2], 3]", "1 2", "[(1, 2]"])
+@pytest.mark.parametrize("text", ["[1, 2", "[1, , 2]", "[[1, 2], 3]", "1 2", "[(1, 2]", "[;1 2]", "[1 2]''"])
 def test_parse_array_refuses(text):
     with pytest.raises(ArrayTextError):
         parse_array(text)
@@ -89,3 +97,22 @@ def test_echo_and_no_expected(tmp_path):
     assert "entry 2 is 0.41" in record and not re.search(r"expected \S+ =|; expected", record)
     r = runner.invoke(app, ["check", str(f), "--json", str(tmp_path / "r2.json")])
     assert "expected position = [0.5, 0.4, 0]" in (tmp_path / "r2.json").read_text()
+
+
+def test_matlab_typed_without_quotes_is_read_as_typed(tmp_path):
+    """YAML reads an unquoted `[0.5 0.4 0]` as one string entry and `[a, b; c, d]` as
+    ['a', 'b; c', 'd']: both are read as the MATLAB text they were (they were `invalid`:
+    "cannot parse expression '0.5 0.4 0'", "a list of rows of equal length")."""
+    (tmp_path / "arm.yaml").write_text(ARM)
+    f = tmp_path / "a.yaml"
+    f.write_text("robosolve-answers: 1\nproblem: arm.yaml\nstudent: s1\nanswers:\n  position:\n"
+                 "    M: [0, -1, 0, 1/2; 1, 0, 0, 2/5; 0 0 1 0; 0 0 0 1]\n"
+                 "    position: [0.5 0.4 0]\n")
+    r = runner.invoke(app, ["check", str(f), "--json", "-"])
+    assert r.exit_code == 0, r.output
+    # a YAML list whose entries are expressions stays so: `1 -1/2` is 1 - 1/2 there, not two entries
+    f.write_text("robosolve-answers: 1\nproblem: arm.yaml\nstudent: s1\nanswers:\n  position:\n"
+                 "    M: [[0, -1, 0, 1/2], [1, 0, 0, 2/5], [0, 0, 1, 0], [0, 0, 0, 1]]\n"
+                 "    position: [1 -1/2, 0.4, 0]\n")
+    r = runner.invoke(app, ["check", str(f), "--json", "-"])
+    assert r.exit_code == 0, r.output
