@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from robosolve.load.expressions import ExpressionError
+from robosolve.load.expressions import ExpressionError, typed_math
 from robosolve.load.loader import type_name
 from robosolve.questions import registry as R
 
@@ -57,6 +57,8 @@ class Reader:
             return value
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
             raise ValueProblem(f"{_label(where)}expected a number or an expression, got {type_name(value)}")
+        if isinstance(value, str) and not self.expected:
+            value = typed_math(value)
         try:
             return self.ns.parse(value)
         except ExpressionError as exc:

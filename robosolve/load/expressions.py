@@ -210,9 +210,32 @@ def number(value) -> sp.Expr:
     raise ExpressionError("expected a number or an expression")
 
 
+#: Typography a text pasted from a printed paper, a PDF or a word processor carries, and the
+#: ASCII it stands for (answers are read through it: `typed_math`).
+TYPOGRAPHY = {"\u2212": "-", "\u2013": "-", "\u00d7": "*", "\u00b7": "*", "\u22c5": "*", "\u2217": "*",
+              "\u03c0": "pi", "\u00b2": "^2", "\u00b3": "^3", "\u00a0": " ", "\u2009": " "}
+
+
+def typed_math(text: str) -> str:
+    """A student's typed expression in the parser's ASCII: `−0.45` (a Unicode minus), `2·L1`,
+    `π/2`, `L1²`, `√3/4` and `√(a + b)` (a root of one number, name or parenthesis)."""
+    import re
+
+    for mark, ascii_text in TYPOGRAPHY.items():
+        text = text.replace(mark, ascii_text)
+    text = re.sub(r"\u221a\s*(\d+(?:\.\d*)?|[A-Za-z_]\w*)", r"sqrt(\1)", text)
+    return text.replace("\u221a", "sqrt")
+
+
 def _parse_hint(text: str) -> str:
     import re
 
+    marks = [m for m in TYPOGRAPHY if m in text] + (["\u221a"] if "\u221a" in text else [])
+    if marks:
+        return " (write " + ", ".join(
+            f"{TYPOGRAPHY.get(m, 'sqrt(…)').strip() or 'a space'!r} for {m!r}" for m in marks) + ")"
+    if re.fullmatch(r"\s*[-+]?\d+,\d+\s*", text):
+        return f" (decimals are written with a point: {text.strip().replace(',', '.')})"
     m = re.search(r"(\d+(?:\.\d*)?)\s*(?:deg|°)", text)
     if m:
         return f" (for an angle in degrees write deg({m.group(1)}); angles are radians otherwise)"
@@ -326,7 +349,7 @@ class Namespace:
             if name == "exp":
                 return self._bounded(sp.exp(args[0], evaluate=False), text, lambda: sp.exp(args[0]))
             return FUNCTIONS[name](*args)
-        raise ExpressionError(f"not allowed in an expression: {text!r}")
+        raise ExpressionError(f"not allowed in an expression: {text!r}" + _parse_hint(text))
 
     @staticmethod
     def _bounded(unevaluated, text, evaluate=None):

@@ -40,3 +40,16 @@ def test_a_degree_like_angle_is_warned_with_how_to_write_degrees(kw, where):
                                 {"q1": "deg(30)"}, {"d2": "90"}])
 def test_radian_angles_lengths_and_prismatic_values_are_not_warned(kw):
     assert _warnings(**kw) == []
+
+
+def test_typography_in_a_problem_file_is_named(tmp_path):
+    """A problem file is the teacher's: a pasted Unicode minus is an error that says what to type."""
+    from robosolve.errors import InputError
+    from robosolve.load.loader import load_problem
+
+    p = tmp_path / "p.yaml"
+    p.write_text("robosolve: 1\nname: x\nparameters: {L: \"−2\"}\nquestions:\n"
+                 "  - {type: dof, bodies: 2, joints_1dof: 1}\n")
+    with pytest.raises(InputError) as info:
+        load_problem(p)
+    assert "p.yaml:3: parameters.L: cannot parse expression '−2' (write '-' for '−')" in str(info.value)

@@ -116,3 +116,32 @@ def test_matlab_typed_without_quotes_is_read_as_typed(tmp_path):
                  "    position: [1 -1/2, 0.4, 0]\n")
     r = runner.invoke(app, ["check", str(f), "--json", "-"])
     assert r.exit_code == 0, r.output
+
+
+@pytest.mark.parametrize("typed, read", [
+    ("−0.45", "-0.45"),            # a Unicode minus, as pasted from a printed paper or a PDF
+    ("2·L1 × 3", "2*L1*3"),
+    ("π/2", "pi/2"),
+    ("L1² + L2³", "L1**2 + L2**3"),
+    ("√3/4", "sqrt(3)/4"),
+    ("√(L1 + L2)", "sqrt(L1 + L2)"),
+    ("√L1", "sqrt(L1)"),
+])
+def test_typography_of_pasted_answers(typed, read):
+    import sympy as sp
+
+    from robosolve.load.expressions import Namespace, typed_math
+
+    L1, L2 = sp.symbols("L1 L2")
+    ns = Namespace({"L1": L1, "L2": L2})
+    assert sp.simplify(ns.parse(typed_math(typed)) - ns.parse(read)) == 0
+
+
+def test_a_pasted_minus_and_a_decimal_comma_in_check(tmp_path):
+    f = _answers(tmp_path, [[0, -1, 0, "1/2"], [1, 0, 0, "2/5"], [0, 0, 1, 0], [0, 0, 0, 1]], ["0.5", "0.4", "−0"])
+    r = runner.invoke(app, ["check", str(f)])
+    assert r.exit_code == 0, r.output
+    f = _answers(tmp_path, [[0, -1, 0, "1/2"], [1, 0, 0, "2/5"], [0, 0, 1, 0], [0, 0, 0, 1]], ["0,5", "0.4", "0"])
+    r = runner.invoke(app, ["check", str(f), "--json", str(tmp_path / "r.json")])
+    assert r.exit_code == 1
+    assert "decimals are written with a point: 0.5" in (tmp_path / "r.json").read_text()
