@@ -62,7 +62,8 @@ class TrigAlgebra:
         for i, (s, c) in trig.items():
             self._back[syms[s]] = sp.sin(q[i])
             self._back[syms[c]] = sp.cos(q[i])
-        self.elements = elements
+        self._reduce_coefficient = _fixed_angle_reducer(ring.domain)
+        self.elements = [self.reduce(e) for e in elements] if self._reduce_coefficient else elements
         # the ring's generators as the expressions they stand for (sin qᵢ, cos qᵢ, the others
         # themselves): an element is written out in them directly, not written in the ring's
         # symbols and substituted afterwards (the same expression, built once)
@@ -111,6 +112,11 @@ class TrigAlgebra:
             gens = [sc[0][1]] if q else [sp.Symbol("c0_")]
         # the extra 1/2 makes the coefficient domain a field over QQ (Christoffel halves)
         ring, elements = sring([*converted, sp.Rational(1, 2)], *gens)
+        if ring.domain.is_EX:
+            # a fixed angle whose sine sympy takes for an algebraic number (cos(pi/7)) makes the
+            # coefficients bare expressions, whose every sum simplifies (minutes for a 2R arm);
+            # as generators of the coefficients' ring they are reduced by `_fixed_angle_reducer`
+            ring, elements = sring([*converted, sp.Rational(1, 2)], *gens, composite=True)
         half = elements.pop()
         gmap = dict(zip(gens, ring.gens))
         trig = {i: (gmap[sc[i][0]], gmap[sc[i][1]]) for i in sorted(trig_used)}
@@ -139,6 +145,9 @@ class TrigAlgebra:
         its bookkeeping (a few times faster). Decimal coefficients keep the division unless
         asked: its sums are rounded in another order, and the reports of the robots with decimal
         masses are compared byte for byte."""
+        if self._reduce_coefficient is not None and p != 0:
+            fix = self._reduce_coefficient
+            p = p.new({m: c for m, c in ((m, fix(c)) for m, c in p.items()) if c})
         if not self._basis or p == 0:
             return p
         if not self.term_by_term:
@@ -243,6 +252,30 @@ class TrigAlgebra:
 
     def to_matrix(self, m):
         return sp.Matrix([[self.to_expr(x) for x in row] for row in m])
+
+
+def _fixed_angle_reducer(domain):
+    """The reduction of the coefficients modulo sin²a + cos²a = 1 for each fixed angle a sympy
+    keeps as it is (a pose's Rx(1/3), Rz(2), a DH twist of pi/7: the coefficient domain holds
+    sin(1/3) and cos(1/3) as symbols), or None when there is none. Without it Rx(1/3)ᵀ·Rx(1/3)
+    is not I in the ring, and a joint's axis in its own frame seems to turn with the joint."""
+    gens_of = getattr(domain, "ring", None) or getattr(getattr(domain, "field", None), "ring", None)
+    if gens_of is None or not hasattr(gens_of, "symbols"):
+        return None
+    fixed: dict = {}
+    for g, sym in zip(gens_of.gens, gens_of.symbols):
+        if isinstance(sym, (sp.sin, sp.cos)) and not sym.args[0].free_symbols:
+            fixed.setdefault(sym.args[0], {})[type(sym)] = g
+    basis = [pair[sp.sin] ** 2 + pair[sp.cos] ** 2 - 1 for pair in fixed.values() if len(pair) == 2]
+    if not basis:
+        return None
+
+    def reduced(c):
+        if hasattr(c, "numer") and hasattr(c, "denom"):          # a fraction of the parameters
+            num, den = c.numer.rem(basis), c.denom.rem(basis)
+            return c.new(num, den) if num else c.field.zero
+        return c.rem(basis)
+    return reduced
 
 
 def _division_remainder(p, basis):

@@ -36,7 +36,7 @@ from typing import Any, Callable
 import numpy as np
 import sympy as sp
 
-from robosolve.core.simplify import full, is_zero
+from robosolve.core.simplify import exact_geometry, full, is_zero
 from robosolve.core.transforms import rigid_inverse, skew
 from robosolve.geometry.rotations import ZERO_TOL, axis_angle_numeric, axis_angle_symbolic, axis_angle_matrix
 
@@ -150,7 +150,15 @@ def helical_numeric(q, tol: float = ZERO_TOL) -> HelicalAxis:
 _default_simplify = full
 
 
-def helical_symbolic(q, simplify: Callable = _default_simplify) -> HelicalAxis:
+def _sympy_floats(v):
+    if isinstance(v, float):
+        return sp.Float(v)
+    if isinstance(v, list):
+        return [_sympy_floats(x) for x in v]
+    return v
+
+
+def helical_symbolic(q, simplify: Callable | None = None) -> HelicalAxis:
     """Helical axis of a sympy 4x4 displacement, with the course's formulas.
 
     cos(alpha) = (tr R - 1)/2, sin(alpha) = |vex(R - R^T)|/2,
@@ -160,6 +168,15 @@ def helical_symbolic(q, simplify: Callable = _default_simplify) -> HelicalAxis:
     m = sp.Matrix(q)
     if m.shape != (4, 4):
         raise ValueError(f"expected a 4x4 matrix, got shape {m.shape}")
+    if not m.free_symbols and m.atoms(sp.Float):
+        # numbers, some of them decimals: the numeric axis (its tolerances hold at round-off)
+        hx = helical_numeric(np.array(m, dtype=float))
+        return HelicalAxis(hx.case, m[:3, :3], m[:3, 3], *(_sympy_floats(getattr(hx, k)) for k in (
+            "cos_alpha", "sin_alpha", "axis", "angle", "h", "point", "pitch")), list(hx.notes))
+    if simplify is None:
+        # decimals beside symbols (a configuration in decimals, the lengths kept): the bounded
+        # geometric simplification — a blanket simplify of such entries takes minutes
+        simplify = exact_geometry if m.atoms(sp.Float) else _default_simplify
     r, dt = m[:3, :3], m[:3, 3]
     aa = axis_angle_symbolic(r, simplify)
     base = dict(R=r, dT=dt, cos_alpha=aa.cos_angle, sin_alpha=aa.sin_angle)

@@ -9,6 +9,8 @@ of the report and the figures.
 
 from __future__ import annotations
 
+import contextlib
+
 from dataclasses import dataclass, field
 
 import sympy as sp
@@ -113,14 +115,16 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     dyn = ctx.dynamics()
     if dyn is None:
         raise SolverError("the symbolic equations of motion took too long: the run needs them")
-    st = setup(question, ctx, dyn)
+    with _singular_mass_is_an_error():
+        st = setup(question, ctx, dyn)
     ans.symbolic["equations"] = st.equations
     ans.steps.extend(_steps_setup(question, model, dyn, st))
     values, missing = _numbers(question, ctx, dyn, st)
     if values is None:
         ans.note(missing_note("run", missing, ctx.problem))
         return ans
-    run = compute(question, ctx, dyn, st, values)
+    with _singular_mass_is_an_error():
+        run = compute(question, ctx, dyn, st, values)
     names = [j.name for j in model.joints]
     scale = [max(abs(run.q_max[i]), abs(run.q_min[i]), 1e-300) for i in range(len(names))]
     vscale = [max(abs(x) for x in run.qd[i]) for i in range(len(names))]
@@ -139,6 +143,22 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ans.steps.append(_step_energy(question, model, st, run, values[0], ans.numeric["energy"]))
     ans.figures.extend(_figures(model, st, run))
     return ans
+
+
+@contextlib.contextmanager
+def _singular_mass_is_an_error():
+    """A joint that moves no mass (a point mass on its axis, a body of mass 0) leaves M(q)
+    singular: the accelerations are not defined, which the answer says (as a controller's run does)."""
+    import numpy as np
+    from sympy.matrices.exceptions import NonInvertibleMatrixError
+
+    try:
+        yield
+    except (NonInvertibleMatrixError, np.linalg.LinAlgError, ZeroDivisionError) as exc:
+        if isinstance(exc, np.linalg.LinAlgError) and "singular" not in str(exc).lower():
+            raise
+        raise SolverError("the mass matrix M(q) is singular (a joint moves no mass: a point mass on "
+                          "its axis, a body of mass 0?), so the motion is not defined") from None
 
 
 # ---------------------------------------------------------------------- report

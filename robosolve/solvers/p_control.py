@@ -124,7 +124,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         raise SolverError(str(exc)) from None
     except (ValueError, ZeroDivisionError, np.linalg.LinAlgError) as exc:
         if "invertible" in str(exc) or "singular" in str(exc).lower() or isinstance(exc, ZeroDivisionError):
-            raise SolverError("the mass matrix M(q) is singular (a joint moves no mass: a body of mass 0?), "
+            raise SolverError("the mass matrix M(q) is singular (a joint moves no mass: a point mass on its axis, a body of mass 0?), "
                               "so the motion under control is not defined") from None
         raise
 

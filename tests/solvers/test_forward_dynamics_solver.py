@@ -243,3 +243,21 @@ def test_joint_torques_symbolic_profile_keeps_the_parameters_and_matches_pinocch
         q, qd, qdd = (x[:, 0] for x in plan.evaluate([t]))
         ref = pin.rnea(model, data, q, qd, qdd, fext(t))[0]
         assert float(prof.xreplace(values).subs(tsym, t)) == pytest.approx(ref, rel=1e-9)
+
+
+@pytest.mark.parametrize("pose", ["Rx(theta) Tx(L)", "Rz(pi/2) Rx(pi/2) Rx(theta) Tx(L)"])
+def test_a_joint_that_moves_no_mass_is_an_answer_error(pose):
+    """A point mass on the joint's axis: M(q) = 0, so q̈ is not defined. The run says so (it
+    stopped with 'internal error (NonInvertibleMatrixError …)' or a LinAlgError)."""
+    text = f"""
+robosolve: 1
+name: on-axis
+parameters: {{L: 1, m: 2, g: 9.81}}
+joints: [{{name: theta, type: revolute}}]
+frames: {{"1": {{parent: "0", pose: "{pose}"}}}}
+bodies: [{{name: bob, frame: "1", mass: m, point: [0, 0, 0]}}]
+questions:
+  - {{type: forward_dynamics, start: {{theta: 0.3}}, duration: 1}}
+"""
+    (a,) = solve_problem(load_problem_text(text)).answers
+    assert a.error and "mass matrix M(q) is singular" in a.error and "internal" not in a.error

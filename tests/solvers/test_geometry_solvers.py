@@ -227,3 +227,58 @@ def test_orientation_of_float_matrices_near_the_special_cases(write_problem, ang
     assert float(s["axis_angle"]["angle"]) == pytest.approx(n["axis_angle"]["angle"], rel=1e-9)
     assert s["zyz"]["singular"] == n["zyz"]["singular"]
     assert len(s["rpy"]["solutions"]) == len(n["rpy"]["solutions"])
+
+
+def test_displacement_between_decimal_configurations_of_a_tilted_arm(write_problem):
+    """Decimal joint values beside symbolic lengths and a fixed Rx(1/3): the blanket simplify of
+    the helical axis ran into its 10 s time limit (a note, and an outcome that hung on the
+    machine); now the bounded geometric simplification, symbolic equal to numeric. Reference:
+    numpy forward kinematics and scipy's rotation vector."""
+    from scipy.spatial.transform import Rotation
+
+    path = write_problem("""
+        robosolve: 1
+        name: tilted
+        parameters: {L1: 0.527, L2: 0.559, L3: 3/7, L4: 1/3}
+        joints: [{name: q1, type: revolute}, {name: q2, type: revolute},
+                 {name: q3, type: revolute}, {name: q4, type: revolute}]
+        frames:
+          "1": {parent: "0", pose: "Rx(pi/2) Ry(q1) Tx(L1)"}
+          "2": {pose: "Tz(L2/2) Ry(q2) Ty(L2)"}
+          "3": {pose: "Rx(1/3) Rz(q3) Tx(L3) Rz(pi/2)"}
+          "4": {pose: "Rx(pi/2) Ry(q4) Tx(L4) Rz(pi/2)"}
+        questions:
+          - type: displacement
+            from: {q1: -0.331, q2: 0.821, q3: -0.367, q4: -0.729}
+            to: {q1: -0.129, q2: 0.91, q3: 0.066, q4: 0.536}
+    """)
+    d = results_document(solve_file(path), {})["answers"]["displacement"]
+    assert not [n for n in d["notes"] if "time limit" in n]
+
+    def rot(axis, t):
+        m = np.eye(4)
+        m[:3, :3] = Rotation.from_euler(axis, t).as_matrix()
+        return m
+
+    def tr(axis, x):
+        m = np.eye(4)
+        m["xyz".index(axis), 3] = x
+        return m
+
+    def pose(q1, q2, q3, q4):
+        L1, L2, L3, L4 = 0.527, 0.559, 3 / 7, 1 / 3
+        return (rot("x", math.pi / 2) @ rot("y", q1) @ tr("x", L1) @ tr("z", L2 / 2) @ rot("y", q2)
+                @ tr("y", L2) @ rot("x", 1 / 3) @ rot("z", q3) @ tr("x", L3) @ rot("z", math.pi / 2)
+                @ rot("x", math.pi / 2) @ rot("y", q4) @ tr("x", L4) @ rot("z", math.pi / 2))
+
+    q = pose(-0.129, 0.91, 0.066, 0.536) @ np.linalg.inv(pose(-0.331, 0.821, -0.367, -0.729))
+    rv = Rotation.from_matrix(q[:3, :3]).as_rotvec()
+    n = d["numeric"]
+    assert np.allclose(n["Q"], q, atol=1e-9)
+    assert n["alpha"] == pytest.approx(np.linalg.norm(rv), rel=1e-9)
+    assert np.allclose(n["u"], rv / np.linalg.norm(rv), atol=1e-9)
+    assert n["h"] == pytest.approx(float(np.dot(n["u"], q[:3, 3])), abs=1e-9)
+    s = d["symbolic"]
+    assert float(s["alpha"]) == pytest.approx(n["alpha"], rel=1e-9)
+    values = {"L1": 0.527, "L2": 0.559, "L3": sp.Rational(3, 7), "L4": sp.Rational(1, 3)}
+    assert float(sp.sympify(s["h"]).subs(values)) == pytest.approx(n["h"], abs=1e-9)
