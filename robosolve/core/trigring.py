@@ -16,7 +16,10 @@ cos² + sin² = 1 happens at once. Two ways in, one algebra:
   (core/simplify.py's chain entries and `is_zero`), each angle eliminated in the direction
   that leaves fewer operations.
 
-Both reduce with `pythagorean_basis` (sin² eliminated) or `eliminate_cos_squared`.
+Both reduce with `pythagorean_basis` (sin² eliminated) or `eliminate_cos_squared`. A fixed
+rotation by an exact angle sympy keeps as it is (Rx(1/3), Rz(pi/7)) puts sin a and cos a among
+the coefficients' generators; the coefficients are reduced modulo sin²a + cos²a = 1 as well
+(`_fixed_angle_reducer`).
 Nothing here calls a simplifier (core/simplify.py owns the policy and imports this module).
 """
 
