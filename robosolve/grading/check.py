@@ -64,7 +64,8 @@ def read_back(sub, problem) -> list[tuple[str, str, str]]:
     from robosolve.load.expressions import Namespace
     from robosolve.questions.registry import question_type
 
-    reader = Reader(Namespace(problem.names, problem.points.keys(), what="name"))
+    reader = Reader(Namespace(problem.names, problem.points.keys(), what="name"),
+                    joints=[(j.name, j.symbol) for j in problem.joints])
     types = {q.id: question_type(q.type) for q in problem.questions}
     out = []
     for qid, keys in sub.answers.items():

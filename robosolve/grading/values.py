@@ -45,9 +45,39 @@ def _label(where: str) -> str:
 class Reader:
     """Builds trees from YAML data (given) or from an Answer's values (expected)."""
 
-    def __init__(self, namespace, expected: bool = False):
+    def __init__(self, namespace, expected: bool = False, joints=()):
         self.ns = namespace
         self.expected = expected
+        self.joints = list(joints)          # (name, symbol) in joint order, for given values
+
+    # -- per-joint values written as people write them -----------------------
+    def _in_joint_order(self, value):
+        """Joint values written as a vector (`Fq: [8.66, 0]`, an IK solution `[-0.17, 1.47]`):
+        the mapping joint -> value they are in joint order, when there is one per joint."""
+        if (self.joints and isinstance(value, (list, tuple)) and len(value) == len(self.joints)
+                and not any(isinstance(v, (list, tuple, dict)) for v in value)):
+            return {name: v for (name, _), v in zip(self.joints, value)}
+        return value
+
+    def _as_joint_values(self, element):
+        """A condition written as equations that each give one joint a value (`"theta2 = pi"`,
+        `"theta3 = 0, theta5 = 0"`) is the mapping joint -> value it states, as the reference
+        writes such a condition; any other equation stays one (`"L1*cos(theta2) + L2 = 0"`)."""
+        if not (isinstance(element, tuple) and element and all(isinstance(x, Equation) for x in element)):
+            return element
+        names = dict((sym, name) for name, sym in self.joints)
+        values = {}
+        for eq in element:
+            r = sp.sympify(eq.residual)
+            used = [q for q in names if r.has(q)]
+            if len(used) != 1:
+                return element
+            q = used[0]
+            slope = sp.diff(r, q)
+            if slope not in (1, -1) or names[q] in values:
+                return element
+            values[names[q]] = sp.expand(q - r / slope)
+        return {name: values[name] for name, _ in self.joints if name in values}
 
     # -- leaves -----------------------------------------------------------
     def scalar(self, value, where=""):
@@ -118,13 +148,20 @@ class Reader:
             return self.matrix(value, where)
         if kind == R.MATRIX_LIST:
             return [self.matrix(m, _join(where, f"matrix {i + 1}")) for i, m in enumerate(self._list(value, where))]
+        if kind == R.JOINT_MAP and not self.expected:
+            if isinstance(value, str) and value.strip().startswith("["):
+                value = self._typed_vector(value, where)
+            value = self._in_joint_order(value)
         if kind in MAP_KINDS:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:
             return self.mapping(value, self.matrix, where)
         if kind in (R.JOINT_MAP_SET, R.JOINT_MAP_LIST):
-            return [self.joint_map_or_equations(v, _join(where, f"element {i + 1}"))
-                    for i, v in enumerate(self._list(value, where))]
+            items = self._list(value, where)
+            if not self.expected:
+                items = [self._in_joint_order(v) for v in items]
+            out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}")) for i, v in enumerate(items)]
+            return out if self.expected else [self._as_joint_values(x) for x in out]
         if kind in (R.VECTOR_SET, R.AXES):
             return [self.vector(v, _join(where, f"element {i + 1}")) for i, v in enumerate(self._list(value, where))]
         if kind == R.EQUATIONS:
@@ -191,6 +228,17 @@ class Reader:
             except ExpressionError:
                 return True
         return False
+
+    def _typed_vector(self, value, where):
+        from robosolve.grading.typed import ArrayTextError, parse_array
+
+        try:
+            out = parse_array(value)
+        except ArrayTextError as exc:
+            raise ValueProblem(f"{_label(where)}cannot read {value!r} as a vector: {exc}") from None
+        if out and all(isinstance(r, list) and len(r) == 1 for r in out):
+            out = [r[0] for r in out]             # a column [a; b]
+        return out
 
     def _list(self, value, where):
         if not isinstance(value, (list, tuple)):

@@ -157,6 +157,34 @@ def test_singularities_any_order_and_form(ref):
     assert r.verdict == "incorrect"
 
 
+def test_singularities_written_as_equations_of_one_joint(ref):
+    """`q2 = pi` states the condition {q2: pi}: it was graded `incorrect` (an equation never
+    matched a mapping), a right answer graded wrong."""
+    for value in ('[q2 = 0, q2 = pi]', '["pi = q2", "q2 = 0"]', '["-q2 = 0", "q2 - pi = 0"]'):
+        r = one(ref, "jacobian", "singularities", value)
+        assert r.verdict == "correct", (value, r)
+    r = one(ref, "jacobian", "singularities", '[q2 = 0, q2 = pi/2]')
+    assert r.verdict == "incorrect"
+    r = one(ref, "jacobian", "singularities", '[q2 = 0, "2*q2 = pi"]')     # not isolated: an equation
+    assert r.verdict == "incorrect"
+
+
+def test_joint_values_written_as_a_vector_in_joint_order(ref):
+    """Fq = −Jᵀ·Fs is a vector in the course: `[a, b]` (or typed `"[a; b]"`) is read in joint
+    order, one value per joint; IK solutions as lists likewise. Reference: −Jᵀ·F by hand."""
+    fq = -jac().T @ np.array([0.0, -F])
+    for value in (f"[{fq[0]:.6f}, {fq[1]:.6f}]", f'"[{fq[0]:.6f}; {fq[1]:.6f}]"', f'"[{fq[0]:.6f} {fq[1]:.6f}]"'):
+        r = one(ref, "statics", "Fq", value)
+        assert r.verdict == "correct", (value, r)
+    r = one(ref, "statics", "Fq", f"[{fq[1]:.6f}, {fq[0]:.6f}]")
+    assert r.verdict == "incorrect"
+    r = one(ref, "statics", "Fq", f"[{fq[0]:.6f}, {fq[1]:.6f}, 0]")
+    assert r.verdict == "invalid"                      # three values for two joints
+    (a1, a2), (b1, b2) = ik_solutions()
+    r = one(ref, "inverse_kinematics", "solutions", f"[[{b1:.5f}, {b2:.5f}], [{a1:.5f}, {a2:.5f}]]")
+    assert r.verdict == "correct", r
+
+
 def test_wrong_shape(ref):
     r = one(ref, "position", "M", "[[1, 0, 0], [0, 1, 0], [0, 0, 1]]")
     assert (r.verdict, r.diagnosis) == ("invalid", "wrong_shape")
