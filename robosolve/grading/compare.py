@@ -195,6 +195,10 @@ def _axes(g, e, rules, sign_free: bool) -> Outcome:
         return Outcome(False, shape=f"{len(g) if isinstance(g, list) else 1} axes where {len(e)} are expected")
     wrong = []
     for i, (a, b) in enumerate(zip(g, e)):
+        if a is None or b is None:      # an infinite semi-axis: null, and only null, is right
+            if a is not b:
+                wrong.append(f"axis {i + 1}")
+            continue
         if not isinstance(a, list) or len(a) != len(b):
             return Outcome(False, shape=f"axis {i + 1} has {len(a) if isinstance(a, list) else 1} "
                                         f"components where {len(b)} are expected")

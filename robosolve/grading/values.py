@@ -162,7 +162,10 @@ class Reader:
                 items = [self._in_joint_order(v) for v in items]
             out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}")) for i, v in enumerate(items)]
             return out if self.expected else [self._as_joint_values(x) for x in out]
-        if kind in (R.VECTOR_SET, R.AXES):
+        if kind == R.AXES:      # an infinite semi-axis (a force ellipse at a singularity) is null
+            return [None if v is None else self.vector(v, _join(where, f"element {i + 1}"))
+                    for i, v in enumerate(self._list(value, where))]
+        if kind == R.VECTOR_SET:
             return [self.vector(v, _join(where, f"element {i + 1}")) for i, v in enumerate(self._list(value, where))]
         if kind == R.EQUATIONS:
             return [self.equation(v, _join(where, f"equation {i + 1}")) for i, v in enumerate(self._list(value, where))]

@@ -485,3 +485,35 @@ def test_question_without_reference_is_not_graded(ref):
     assert res.max_score == 6 and jac_q.score == 0
     rows = [r for r in grade_rows(res) if r[1] == "jacobian"]
     assert all(r[3] == "no_reference" and r[5:] == ("0", "0") for r in rows)
+
+
+SINGULAR_ELLIPSE = """
+robosolve: 1
+name: two-r-stretched
+parameters: {L1: 1/2, L2: 2/5}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: ellipsoids, coordinates: [E.x, E.y], at: {q1: 0, q2: 0}, grade: [force.semi_axes, force.lengths]}
+"""
+
+
+def test_an_infinite_force_semi_axis_given_as_null_is_right():
+    """At q2 = 0 the force ellipse is unbounded along x (its semi-axis null, papers.md's `~` rule
+    says so too): giving null back was `invalid` ("expected a list (a vector), got null").
+    Reference by hand: J = [[0, 0], [L1 + L2, L2]], A = J·Jᵀ has eigenvalues 0 and (L1+L2)² + L2²
+    along y, so the finite force semi-axis is 1/sqrt(0.81 + 0.16) along ±y."""
+    ref = reference_of(SINGULAR_ELLIPSE)
+    finite = 1 / math.sqrt(0.9 ** 2 + 0.4 ** 2)
+    for axes in (f"[null, [0, {finite:.6f}]]", f"[~, [0, {-finite:.6f}]]"):
+        text = answers(f"  ellipsoids:\n    force.semi_axes: {axes}\n    force.lengths: [null, {finite:.6f}]\n")
+        res = grade_text(ref, text)
+        assert key(res, "ellipsoids", "force.semi_axes").verdict == "correct", axes
+        assert key(res, "ellipsoids", "force.lengths").verdict == "correct"
+    for axes in (f"[[1, 0], [0, {finite:.6f}]]", "[null, [0, 0.5]]"):
+        res = grade_text(ref, answers(f"  ellipsoids:\n    force.semi_axes: {axes}\n"))
+        assert key(res, "ellipsoids", "force.semi_axes").verdict == "incorrect", axes
