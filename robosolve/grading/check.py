@@ -65,7 +65,8 @@ def read_back(sub, problem) -> list[tuple[str, str, str]]:
     from robosolve.questions.registry import question_type
 
     reader = Reader(Namespace(problem.names, problem.points.keys(), what="name"),
-                    joints=[(j.name, j.symbol) for j in problem.joints])
+                    joints=[(j.name, j.symbol) for j in problem.joints],
+                    actuators=[str(j.actuator) for j in problem.joints])
     types = {q.id: question_type(q.type) for q in problem.questions}
     out = []
     for qid, keys in sub.answers.items():

@@ -194,7 +194,8 @@ class Grader:
         self.reveal = reveal      # False: no expected value in any feedback (--no-expected)
         self.tol = tolerance or reference.tolerance
         self.ns = reference.namespace
-        self.reader = Reader(self.ns, joints=[(j.name, j.symbol) for j in reference.problem.joints])
+        self.reader = Reader(self.ns, joints=[(j.name, j.symbol) for j in reference.problem.joints],
+                             actuators=[str(j.actuator) for j in reference.problem.joints])
         self.expected_reader = Reader(self.ns, expected=True)
         self.revolute = reference.revolute
         self.parameters = set(reference.problem.parameters)

@@ -45,18 +45,21 @@ def _label(where: str) -> str:
 class Reader:
     """Builds trees from YAML data (given) or from an Answer's values (expected)."""
 
-    def __init__(self, namespace, expected: bool = False, joints=()):
+    def __init__(self, namespace, expected: bool = False, joints=(), actuators=()):
         self.ns = namespace
         self.expected = expected
         self.joints = list(joints)          # (name, symbol) in joint order, for given values
+        self.actuators = list(actuators)    # their actuators' names, in joint order
 
     # -- per-joint values written as people write them -----------------------
-    def _in_joint_order(self, value):
+    def _in_joint_order(self, value, names=None):
         """Joint values written as a vector (`Fq: [8.66, 0]`, an IK solution `[-0.17, 1.47]`):
-        the mapping joint -> value they are in joint order, when there is one per joint."""
-        if (self.joints and isinstance(value, (list, tuple)) and len(value) == len(self.joints)
+        the mapping joint -> value they are in joint order, when there is one per joint
+        (`names`: the actuators', for actuator values)."""
+        names = [name for name, _ in self.joints] if names is None else names
+        if (names and isinstance(value, (list, tuple)) and len(value) == len(names)
                 and not any(isinstance(v, (list, tuple, dict)) for v in value)):
-            return {name: v for (name, _), v in zip(self.joints, value)}
+            return dict(zip(names, value))
         return value
 
     def _as_joint_values(self, element):
@@ -148,10 +151,10 @@ class Reader:
             return self.matrix(value, where)
         if kind == R.MATRIX_LIST:
             return [self.matrix(m, _join(where, f"matrix {i + 1}")) for i, m in enumerate(self._list(value, where))]
-        if kind == R.JOINT_MAP and not self.expected:
+        if kind in (R.JOINT_MAP, R.ACTUATOR_MAP) and not self.expected:
             if isinstance(value, str) and value.strip().startswith("["):
                 value = self._typed_vector(value, where)
-            value = self._in_joint_order(value)
+            value = self._in_joint_order(value, self.actuators if kind == R.ACTUATOR_MAP else None)
         if kind in MAP_KINDS:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:

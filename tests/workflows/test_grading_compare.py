@@ -517,3 +517,30 @@ def test_an_infinite_force_semi_axis_given_as_null_is_right():
     for axes in (f"[[1, 0], [0, {finite:.6f}]]", "[null, [0, 0.5]]"):
         res = grade_text(ref, answers(f"  ellipsoids:\n    force.semi_axes: {axes}\n"))
         assert key(res, "ellipsoids", "force.semi_axes").verdict == "incorrect", axes
+
+
+PENDULUM_2 = """
+robosolve: 1
+name: two-pendula
+parameters: {L: 1/2, m: 2, g: 9.81}
+joints: [{name: a, type: revolute, actuator: Ta}, {name: b, type: revolute, actuator: Tb}]
+frames:
+  "1": {parent: "0", pose: "Rz(a) Tx(L)"}
+  "2": {parent: "0", pose: "Rz(b) Tx(L)"}
+gravity: [0, -g, 0]
+bodies: [{name: p1, frame: "1", mass: m, point: [0, 0, 0]}, {name: p2, frame: "2", mass: m, point: [0, 0, 0]}]
+questions:
+  - {type: equations_of_motion, at: {a: 0.3, b: -0.8, a_dot: 0, b_dot: 0, a_ddot: 1, b_ddot: 2}}
+"""
+
+
+def test_actuator_values_written_as_a_vector_in_joint_order():
+    """Two independent pendula: T = m L² q̈ + m g L cos q for each (closed form); [Ta, Tb] as a
+    vector is read in joint order."""
+    ref = reference_of(PENDULUM_2)
+    m, L, g = 2, 0.5, 9.81
+    ta, tb = (m * L * L * qdd + m * g * L * math.cos(q) for q, qdd in ((0.3, 1), (-0.8, 2)))
+    res = grade_text(ref, answers(f"  equations_of_motion:\n    actuators: [{ta:.6f}, {tb:.6f}]\n"))
+    assert key(res, "equations_of_motion", "actuators").verdict == "correct"
+    res = grade_text(ref, answers(f"  equations_of_motion:\n    actuators: [{tb:.6f}, {ta:.6f}]\n"))
+    assert key(res, "equations_of_motion", "actuators").verdict == "incorrect"
