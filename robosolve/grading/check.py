@@ -60,11 +60,10 @@ def read_back(sub, problem) -> list[tuple[str, str, str]]:
     """(question, key, how the value was read) for every key the submission gives (`--echo`):
     the value as robosolve understood it, or why it cannot be read."""
     from robosolve.grading.grader import show
-    from robosolve.grading.values import Reader, ValueProblem, blanks
-    from robosolve.load.expressions import Namespace
+    from robosolve.grading.values import Reader, ValueProblem, answers_namespace, blanks
     from robosolve.questions.registry import question_type
 
-    reader = Reader(Namespace(problem.names, problem.points.keys(), what="name"),
+    reader = Reader(answers_namespace(problem),
                     joints=[(j.name, j.symbol) for j in problem.joints],
                     actuators=[str(j.actuator) for j in problem.joints])
     types = {q.id: question_type(q.type) for q in problem.questions}

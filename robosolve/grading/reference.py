@@ -82,7 +82,9 @@ class Reference:
 
     @property
     def namespace(self) -> Namespace:
-        return Namespace(self.problem.names, self.problem.points.keys(), what="name")
+        from robosolve.grading.values import answers_namespace
+
+        return answers_namespace(self.problem)
 
     @property
     def revolute(self) -> frozenset:

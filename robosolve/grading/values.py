@@ -38,6 +38,26 @@ ARRAY_KINDS = (R.VECTOR, R.MATRIX, R.VECTOR_SET, R.AXES)
 SET_KINDS = (R.JOINT_MAP_SET, R.VECTOR_SET)
 
 
+#: One expression of an answers file: bounded by the file's own size (yamlsource.MAX_FILE_BYTES),
+#: so the reference's longest expressions (a 6R arm's equations of motion) can be given back.
+ANSWER_MAX_CHARS = 1_000_000
+ANSWER_MAX_NODES = 2_000_000
+
+
+def answers_namespace(problem):
+    """The names an answer to `problem` may use: the problem's, and the target entries r11…r33,
+    px, py, pz a closed form of the inverse kinematics of a pose is written in (the spec's pose row)."""
+    from robosolve.load.expressions import Namespace
+    from robosolve.load.pose_target import PoseTarget
+
+    names = dict(problem.names)
+    if any(isinstance(q.options.get("target"), PoseTarget) for q in problem.questions):
+        entries = [f"r{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)] + ["px", "py", "pz"]
+        names.update({n: sp.Symbol(n) for n in entries if n not in names})
+    return Namespace(names, problem.points.keys(), what="name", max_chars=ANSWER_MAX_CHARS,
+                     max_nodes=ANSWER_MAX_NODES)
+
+
 def _label(where: str) -> str:
     return f"{where}: " if where else ""
 

@@ -248,7 +248,7 @@ class Namespace:
     """The names an expression may use, and what each one stands for."""
 
     def __init__(self, names: dict | None = None, points=(), what: str = "name", refused=None,
-                 unknown_ok: bool = False):
+                 unknown_ok: bool = False, max_chars: int = MAX_EXPRESSION_CHARS, max_nodes: int = MAX_NODES):
         self.names: dict[str, sp.Basic] = dict(names or {})
         self.points = set(points)
         self.what = what
@@ -257,12 +257,17 @@ class Namespace:
         # a name refused where it is defined (a joint named `2*`): every unknown name may be one of
         # its uses, read as a plain symbol — the file is rejected already (one mistake, one message)
         self.unknown_ok = unknown_ok
+        # the size of one expression: a problem file's are written by hand; an answers file may
+        # hold the reference's own (a PUMA's velocity terms run to 15,000 characters)
+        self.max_chars, self.max_nodes = max_chars, max_nodes
 
     def with_names(self, extra: dict) -> "Namespace":
-        return Namespace({**self.names, **extra}, self.points, self.what, self.refused, self.unknown_ok)
+        return Namespace({**self.names, **extra}, self.points, self.what, self.refused, self.unknown_ok,
+                         self.max_chars, self.max_nodes)
 
     def without_points(self) -> "Namespace":
-        return Namespace(self.names, (), self.what, self.refused, self.unknown_ok)
+        return Namespace(self.names, (), self.what, self.refused, self.unknown_ok, self.max_chars,
+                         self.max_nodes)
 
     # ------------------------------------------------------------------
     def parse(self, value) -> sp.Expr:
@@ -275,8 +280,8 @@ class Namespace:
         text = text.strip()
         if not text:
             raise ExpressionError("empty expression")
-        if len(text) > MAX_EXPRESSION_CHARS:
-            raise ExpressionError(f"expression longer than {MAX_EXPRESSION_CHARS} characters")
+        if len(text) > self.max_chars:
+            raise ExpressionError(f"expression longer than {self.max_chars} characters")
         try:
             tree = ast.parse(text.replace("^", "**"), mode="eval")
         except SyntaxError:
@@ -284,7 +289,7 @@ class Namespace:
         except (RecursionError, MemoryError, ValueError):
             raise ExpressionError("expression too deeply nested") from None
         count = sum(1 for _ in ast.walk(tree))
-        if count > MAX_NODES:
+        if count > self.max_nodes:
             raise ExpressionError("expression too large")
         try:
             return self._convert(tree.body, text)
