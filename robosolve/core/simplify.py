@@ -31,6 +31,8 @@ solve context carries one: `ctx.budgets.simplify`); engines use the defaults.
 
 from __future__ import annotations
 
+import sys
+import types
 from dataclasses import dataclass
 from functools import wraps
 
@@ -537,7 +539,7 @@ def exact_geometry(e, max_ops: int = DEFAULT_BUDGETS.geometry_ops):
     if floats:  # inexact input: drop round-off terms (2.8e-17*h) before anything else
         e = e.xreplace({x: sp.Integer(0) for x in floats if abs(x) < 1e-13})
     if not e.free_symbols:
-        return sp.simplify(e)
+        return _simplify(e)
     if isinstance(e, sp.atan2):
         return sp.atan2(*(exact_geometry(a, max_ops) for a in e.args))
     if count_ops(e) > max_ops:
@@ -549,7 +551,33 @@ def exact_geometry(e, max_ops: int = DEFAULT_BUDGETS.geometry_ops):
 def full(e):
     """A blanket `simplify`: only for the few small exact expressions of one helical axis
     or one atan2 branch, where it finds the shortest form."""
-    return sp.simplify(e)
+    return _simplify(e)
+
+
+_UNITS = "sympy.physics.units"
+
+
+class _NoQuantity(sp.Basic):
+    """Stands for sympy's Quantity while `_simplify` runs: never instantiated."""
+
+
+def _simplify(e):
+    """sympy's `simplify`, without importing `sympy.physics.units`: simplify imports it on
+    every call only to ask whether the expression holds a physical Quantity (robosolve's never
+    do), and that import is a quarter of a second of CPU in every process, more than the
+    simplifications of a usual exam together. A stand-in module answers that one question
+    while simplify runs and is removed after, so anything that imports the real units later
+    gets them; with the real module already imported, it is used."""
+    if _UNITS in sys.modules:
+        return sp.simplify(e)
+    stand_in = types.ModuleType(_UNITS)
+    stand_in.Quantity = _NoQuantity
+    sys.modules[_UNITS] = stand_in
+    try:
+        return sp.simplify(e)
+    finally:
+        if sys.modules.get(_UNITS) is stand_in:
+            del sys.modules[_UNITS]
 
 
 def bounded_full(e, max_ops: int = DEFAULT_BUDGETS.root_ops):
@@ -645,7 +673,7 @@ def collected_radicals(e):
 @memoised
 def eigenvalue(val):
     """An exact eigenvalue: simplify, then radicals collected."""
-    return sp.radsimp(sp.simplify(val))
+    return sp.radsimp(_simplify(val))
 
 
 def rational(x):
