@@ -13,6 +13,7 @@ import re
 from robosolve.papers.keys import decided, graded_keys, placeholder, shape
 from robosolve.questions import registry as R
 from robosolve.questions.registry import title as question_title
+from robosolve.render.numbers import marks_number
 
 PLAIN_KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_.]*$")
 
@@ -34,7 +35,7 @@ def yaml_key(key: str) -> str:
 
 
 def marks_text(marks) -> str:
-    text = str(marks)
+    text = marks_number(marks)
     return f"{text} mark" + ("" if text == "1" else "s")
 
 

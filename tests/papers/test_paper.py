@@ -242,3 +242,15 @@ def test_the_template_lays_out_a_control_law_s_errors_per_joint_or_per_coordinat
     assert 'max_task_error: {E.x: ~, E.y: ~, "q1 + q2 + q3": ~}' in template
     exam = render_template(load_problem(PROBLEMS / "exam-2r-full.yaml"), "exam.yaml")
     assert "max_error: {theta1: ~, theta2: ~}" in exam
+
+
+def test_decimal_marks_are_written_as_the_teacher_wrote_them(write_problem, tmp_path):
+    """marks: 1.5 is "1.5 marks" (it was "1.50000000000000 marks"), the total 1.5 + 1 = 2.5."""
+    from robosolve.papers.template import render_template
+
+    problem = load_problem(write_problem(ARM.replace("marks: 2,", "marks: 1.5,")))
+    paper = render_paper(problem, RobotModel(problem))
+    assert "### 1. Position (direct kinematics) (1.5 marks)" in paper
+    assert "**Total:** 2.5 marks" in paper
+    assert "# 1. Position (direct kinematics), 1.5 marks" in render_template(problem, "p.yaml")
+    assert "0000" not in paper
