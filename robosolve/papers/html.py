@@ -12,7 +12,7 @@ from __future__ import annotations
 import html
 import re
 
-from robosolve.papers.keys import graded_keys, placeholder
+from robosolve.papers.keys import decided, graded_keys, placeholder
 from robosolve.questions import registry as R
 
 BOX = re.compile(r"RSBOX(\d+)N(\d+)X")
@@ -71,6 +71,17 @@ def box_html(ak, question, problem) -> str:
         rows = "".join(f"<tr><th>{html.escape(a)}</th>" + "<td></td>" * len(fields) + "</tr>" for a in shape)
         inner = ('<table class="rs-grid"><tr><th></th>' + "".join(f"<th>{html.escape(f)}</th>" for f in fields)
                  + f"</tr>{rows}</table>")
+    elif kind == R.MATRIX_LIST and isinstance(shape, list) and shape:
+        labels = [f"{e}" for e in (decided(ak, question, problem)[0] or range(1, len(shape) + 1))]
+        return "".join(f'<div class="rs-field"><span>frame {html.escape(str(e))}</span>'
+                       f'<div class="rs-box">{_grid(4, 4)}</div></div>' for e in labels)
+    elif kind == R.MATRIX_MAP and isinstance(shape, dict) and shape:
+        return "".join(f'<div class="rs-field"><span>{html.escape(b)}</span>'
+                       f'<div class="rs-box">{_grid(len(m), len(m[0]))}</div></div>' for b, m in shape.items())
+    elif kind == R.BODY_MAP and isinstance(shape, dict):
+        inner = _grid(1, len(shape), list(shape))
+    elif kind == R.EQUATIONS and isinstance(shape, list):
+        inner = '<div class="rs-lines">' + '<div class="rs-line"></div>' * max(len(shape), 1) + "</div>"
     elif kind == R.RECORD:
         inner = "".join(f'<div class="rs-field"><span>{html.escape(f.name)}</span>'
                         f'{box_html(f, question, problem)}</div>' for f in ak.fields)

@@ -102,6 +102,11 @@ class Say:
     def joints(self) -> str:
         return ", ".join(f"${self.tex(j.symbol)}$" for j in self.problem.joints)
 
+    def asked(self, question) -> list[str]:
+        """The graded keys of `question` (dotted paths, in grading order): what its statement
+        asks for (questions/wording.py)."""
+        return [gk.key for gk in graded_keys(question, self.problem)]
+
 
 def teacher_text(question, say: Say) -> str:
     """A question's `text` with `{name}` the parameter's value (as in the data table), `{at}`
@@ -139,8 +144,8 @@ def what_to_give(question, problem, boxes: bool = False) -> list[str]:
     out = []
     for k, gk in enumerate(graded_keys(question, problem)):
         ak = gk.answer_key
-        unit = key_unit(ak, question, problem)
-        out.append(f"- `{gk.key}`: {ak.doc}; {layout_text(ak, question, problem)}; {form_text(ak)}"
+        unit = key_unit(ak, question, problem, gk.parent)
+        out.append(f"- `{gk.key}`: {gk.doc}; {layout_text(ak, question, problem)}; {form_text(ak)}"
                    + (f"; {unit}" if unit else "") + "."
                    + (" " + box_marker(question.index, k) if boxes else ""))
     return out
