@@ -177,12 +177,25 @@ def gravity_sentence(g) -> str:
     return "Gravity is the vector of the data, in frame 0."
 
 
+def dh_sentence(problem) -> str:
+    """What DH(…) and MDH(…) of the frames table mean, when the table uses them."""
+    kinds = {f.kind for f in problem.frames.values()}
+    out = []
+    if "dh" in kinds:
+        out.append("$DH(\\theta, d, a, \\alpha) = R_z(\\theta)\\,T_z(d)\\,T_x(a)\\,R_x(\\alpha)$ "
+                   "(standard Denavit–Hartenberg)")
+    if "mdh" in kinds:
+        out.append("$MDH(\\alpha, a, \\theta, d) = R_x(\\alpha)\\,T_x(a)\\,R_z(\\theta)\\,T_z(d)$ "
+                   "(modified Denavit–Hartenberg)")
+    return (" In the frames table, " + " and ".join(out) + ".") if out else ""
+
+
 def conventions(problem) -> str:
     gravity = ""
     if problem.gravity is not None and (problem.bodies or problem.gravity_given):
         gravity = " " + gravity_sentence(problem.gravity)
     return ("**Conventions.** ${}^{i}M_{j}$ is the pose of frame $j$ in frame $i$ (4×4); angles are in "
-            "radians and every quantity in SI units (m, kg, s, N, N·m)." + gravity
+            "radians and every quantity in SI units (m, kg, s, N, N·m)." + dh_sentence(problem) + gravity
             + " Give each answer in the layout of the answers file (answers.yaml): matrices as lists "
             "of rows, one value per joint in joint order; a value is a number or an expression in "
             "the problem's names.")
@@ -201,7 +214,8 @@ def render_paper(problem, model, student: str | None = None, variant: str | None
     out.append(conventions(problem))
     if figure:
         out.append(f"![The robot at its reference configuration]({FIGURE})")
-    out += render_data(problem, model, tex, notes=False)
+    data = render_data(problem, model, tex, notes=False)
+    out += data if len(data) > 1 else []          # no empty Data heading (a problem without a robot)
     out.append("## Questions")
     for i, q in enumerate(problem.questions, 1):
         out.append(f"### {i}. {question_title(q.type)} ({marks_text(q.marks)})")

@@ -110,13 +110,13 @@ def render_data(problem, model, tex: Tex, notes: bool = True) -> list[str]:
         for name, f in problem.frames.items():
             factors = names.factors(name)
             pose = " ".join(factors) if f.kind == "pose" else (
-                "explicit matrix" if f.kind == "matrix" else f"${factors[0]}$ ({f.kind})")
+                f"${tex(f.matrix)}$ (matrix)" if f.kind == "matrix" else f"${factors[0]}$ ({f.kind})")
             if f.kind == "pose":
                 pose = f"${pose}$"
             rows.append((name_md(name), name_md(f.parent), pose))
         out += ["### Frames", "Each pose is applied in the current (moving) frame, left to right.",
                 render_table(("frame", "parent", "pose in parent"), rows)]
-    if problem.points:
+    if problem.points and problem.has_robot:       # a problem without a robot has no point E
         rows = [(p.name, name_md(p.frame), f"${tex(list(p.at))}$" + (" (default: origin of the last frame)"
                                                               if p.implicit else ""))
                 for p in problem.points.values()]

@@ -254,3 +254,43 @@ def test_decimal_marks_are_written_as_the_teacher_wrote_them(write_problem, tmp_
     assert "**Total:** 2.5 marks" in paper
     assert "# 1. Position (direct kinematics), 1.5 marks" in render_template(problem, "p.yaml")
     assert "0000" not in paper
+
+
+def test_the_data_a_student_needs_is_on_the_paper(tmp_path):
+    """A frame given as a matrix is shown (it said only "explicit matrix"), DH(…) and MDH(…) of the
+    frames table are defined (problem-format.md: Rz(θ) Tz(d) Tx(a) Rx(α), Rx(α) Tx(a) Rz(θ) Tz(d)),
+    and a problem without a robot has no data section (it listed a point E of frame 0)."""
+    from robosolve.load.loader import load_problem_text
+
+    arm = load_problem_text(ARM.replace('"2": {pose: "Rz(theta2) Tx(L2)"}',
+                                        '"2": {matrix: [[cos(theta2), -sin(theta2), 0, L2], [sin(theta2), '
+                                        'cos(theta2), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}'), str(tmp_path / "a.yaml"))
+    paper = render_paper(arm, RobotModel(arm))
+    row = next(line for line in paper.splitlines() if line.startswith("| 2 | 1 |"))
+    assert "\\cos{\\left(\\theta_{2} \\right)}" in row and "L_{2}" in row and "explicit matrix" not in row
+    assert "DH(" not in paper
+    mdh = load_problem_text("""robosolve: 1
+name: m
+parameters: {a1: 0.3, d1: 0.2}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+dh:
+  convention: modified
+  rows:
+    - {alpha: 0, a: 0, theta: q1, d: d1}
+    - {alpha: pi/2, a: a1, theta: q2, d: 0}
+frames:
+  tool: {parent: "2", dh: {theta: 0, d: 0.1, a: 0, alpha: 0}}
+questions:
+  - {type: position, at: {q1: 0, q2: 0}}
+""", str(tmp_path / "m.yaml"))
+    conventions = next(p for p in render_paper(mdh, RobotModel(mdh)).split("\n\n") if p.startswith("**Conventions"))
+    assert "$MDH(\\alpha, a, \\theta, d) = R_x(\\alpha)\\,T_x(a)\\,R_z(\\theta)\\,T_z(d)$" in conventions
+    assert "$DH(\\theta, d, a, \\alpha) = R_z(\\theta)\\,T_z(d)\\,T_x(a)\\,R_x(\\alpha)$" in conventions
+    screw = load_problem_text("""robosolve: 1
+name: s
+questions:
+  - {type: displacement, axis: [0, 0, 1], angle: pi/2}
+  - {type: dof, bodies: 4, joints_1dof: 4}
+""", str(tmp_path / "s.yaml"))
+    bare = render_paper(screw, None)
+    assert "## Data" not in bare and "Points" not in bare and "origin of the last frame" not in bare
