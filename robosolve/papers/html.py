@@ -42,6 +42,7 @@ figure.rs-drawing { float: right; width: 50%; margin: 0 0 .6em 1.2em; }
   h2 { margin: 1em 0 .4em; }
   h3 { margin: .9em 0 .3em; }
   .rs-table, figure, .rs-box, li { break-inside: avoid; page-break-inside: avoid; }
+  h2, h3, .rs-give { break-after: avoid; page-break-after: avoid; }   /* with what follows */
   figure { margin: .4em 0; }
   img { max-height: 66mm; }
 }
@@ -117,6 +118,7 @@ def paper_body(markdown: str, problem, model, files) -> str:
         body = body.replace(fig.group(0), "", 1)
         drawing = fig.group(0).replace("<figure>", '<figure class="rs-drawing">', 1)
         body = re.sub(r"(</h1>\n)", lambda m: m.group(1) + drawing, body, count=1)
+    body = body.replace("<p><strong>What to give</strong>", '<p class="rs-give"><strong>What to give</strong>')
     return _boxes(body, problem, model)
 
 

@@ -166,6 +166,9 @@ def test_paper_html_boxes_shaped_like_the_answers(write_problem, tmp_path):
     assert "<script" not in page and "http://" not in page.replace("http://www.w3.org", "")
     assert 'src="data:image/png;base64,' in page and "<math" in page
     assert "break-inside: avoid" in page and "@page" in page and "RSBOX" not in page
+    # a question's heading and its "What to give" stay with what follows them when printed
+    assert page.count('<p class="rs-give"><strong>What to give</strong>') == 2
+    assert "h2, h3, .rs-give { break-after: avoid;" in page
     grids = re.findall(r'<table class="rs-grid">(.*?)</table>', page, re.S)
     cells = [g.count("<td></td>") for g in grids]
     assert cells == [16, 3, 4]            # M 4×4, position [x, y, z], J 2×2
