@@ -58,7 +58,16 @@ def _target(q, say) -> tuple[str, str]:
     if not isinstance(o["target"], list):       # a pose target (load/pose_target.py)
         t = o["target"]
         where = f"the point {q.point}" if q.point_given else f"frame {name_md(q.frame)}"
-        return (f"{where} at the position ${say.tex(t.p)}$ with the orientation $R = {say.tex(t.R)}$", "pose")
+        orientation = f"$R = {say.tex(t.R)}$"
+        if t.given in ("zyz", "rpy") and t.angles is not None:     # the angles as given, and their R
+            names, product = (("\\varphi, \\theta, \\psi", "R_z(\\varphi)\\,R_y(\\theta)\\,R_z(\\psi)")
+                              if t.given == "zyz" else
+                              ("\\mathrm{roll}, \\mathrm{pitch}, \\mathrm{yaw}",
+                               "R_z(\\mathrm{yaw})\\,R_y(\\mathrm{pitch})\\,R_x(\\mathrm{roll})"))
+            words = "ZYZ Euler angles" if t.given == "zyz" else "roll-pitch-yaw angles"
+            angles = ", ".join(say.value(a) for a in t.angles)
+            orientation = f"of {words} $({names})$ = ({angles}), $R = {product} = {say.tex(t.R)}$"
+        return f"{where} at the position ${say.tex(t.p)}$ with the orientation {orientation}", "pose"
     return ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in o["target"]), "target"
 
 

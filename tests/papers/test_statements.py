@@ -212,3 +212,26 @@ def test_the_template_lays_out_lists_and_mappings_of_known_size(exam):
     for (type_name, key), expected in cases.items():
         q = _question(problem, type_name, key)
         assert placeholder(QUESTION_TYPES[type_name].key(key), q, problem) == expected, key
+
+
+def test_a_pose_target_given_by_angles_states_them_and_their_rotation(tmp_path):
+    """target: {position, rpy: [0.1, 0.9, 0.3]}: the angles as given, the convention, and R =
+    Rz(yaw)·Ry(pitch)·Rx(roll) computed here with numpy (it printed R alone)."""
+    import numpy as np
+
+    from test_paper_drawing import STANFORD
+
+    text = STANFORD.replace("questions:\n", "questions:\n  - {type: inverse_kinematics, target: "
+                            "{position: [0.4, 0.3, 0.7], rpy: [0.1, 0.9, 0.3]}}\n")
+    problem = load_problem_text(text, str(tmp_path / "s.yaml"))
+    ik = statement(problem.questions[0], Say(problem, Tex(symbol_latex(problem))))
+    assert "roll-pitch-yaw angles $(\\mathrm{roll}, \\mathrm{pitch}, \\mathrm{yaw})$ = ($0.1$, $0.9$, $0.3$)" in ik
+    assert "R_z(\\mathrm{yaw})\\,R_y(\\mathrm{pitch})\\,R_x(\\mathrm{roll})" in ik
+
+    def rot(axis, t):
+        c, s = np.cos(t), np.sin(t)
+        return {"x": np.array([[1, 0, 0], [0, c, -s], [0, s, c]]), "y": np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]]),
+                "z": np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])}[axis]
+
+    R = rot("z", 0.3) @ rot("y", 0.9) @ rot("x", 0.1)
+    assert all(f"{x:.6g}" in ik for x in R.ravel()), R
