@@ -144,6 +144,9 @@ def test_labels_cover_no_label_and_no_link(monkeypatch, tmp_path, at):
     for i, (a, ea) in enumerate(boxes):
         for b, eb in boxes[i + 1:]:
             assert not ea.overlaps(eb), (a, b)
+    # no scale to read E's coordinates off a drawing made at a question's configuration
+    assert not [t.get_text() for t in ax.get_xticklabels() + ax.get_yticklabels() if t.get_text()]
+    assert not ax.xaxis.get_gridlines() or not any(g.get_visible() for g in ax.xaxis.get_gridlines())
     links = [np.array([ax.transData.transform((p[0], p[1])) for p in link]) for link in spec.data["links"]]
     for name, e in boxes:
         for link in links:
@@ -200,3 +203,18 @@ def test_a_load_normal_to_the_page_is_drawn(monkeypatch, tmp_path, load, turns):
     centre = np.array(arcs[0].center)
     tail, head = np.array(purple[0].xyann) - centre, np.array(purple[0].xy) - centre
     assert (tail[0] * head[1] - tail[1] * head[0] > 0) == (turns == "ccw")
+
+
+def test_a_3d_drawing_has_no_scale_either(monkeypatch, tmp_path):
+    from robosolve.render import plots
+
+    problem = load_problem_text(STANFORD, str(tmp_path / "s.yaml"))
+    module = __import__("robosolve.render.plots.robot_paper", fromlist=["save"])
+    kept = []
+    real = module.save
+    monkeypatch.setattr(module, "save", lambda fig, path: (kept.append(fig), real(fig, path)))
+    plots.draw(paper_figure(problem, RobotModel(problem)), tmp_path / "robot.png")
+    kept[0].canvas.draw()
+    ax = kept[0].axes[0]
+    shown = [t.get_text() for axis in (ax.xaxis, ax.yaxis, ax.zaxis) for t in axis.get_ticklabels() if t.get_text()]
+    assert not shown

@@ -95,9 +95,12 @@ def _draw_2d(ax, d, size) -> tuple[list, list]:
         labels.append(((x, y), p["name"], "tab:orange", 12, "bold", "NE"))
     for f in d["forces"]:
         _load_2d(ax, f, (h, v), size, labels, segments)
-    ax.set_xlabel(f"{NAMES[h]}₀ [m]")
-    ax.set_ylabel(f"{NAMES[v]}₀ [m]")
-    ax.grid(True, color="0.92", lw=0.6)
+    # no scale: a drawing at a question's configuration must not let coordinates be read off it
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.grid(False)
+    ax.set_xlabel(f"{NAMES[h]}₀")
+    ax.set_ylabel(f"{NAMES[v]}₀")
     return labels, (segments, markers)
 
 
@@ -391,9 +394,11 @@ def _equal_3d(ax, d, size):
     for setter, c in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre):
         setter(c - half, c + half)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_xlabel("x₀ [m]")
-    ax.set_ylabel("y₀ [m]")
-    ax.set_zlabel("z₀ [m]")
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):      # no scale to read coordinates off (see _draw_2d)
+        axis.set_ticklabels([])
+    ax.set_xlabel("x₀")
+    ax.set_ylabel("y₀")
+    ax.set_zlabel("z₀")
 
 
 def draw(spec, path):
