@@ -41,6 +41,12 @@ class Say:
         """An exact value with its decimals when it is not already a decimal: $π/6 ≈ 0.5236$."""
         return f"${_value(v, self.tex)}$"
 
+    def equals(self, lhs, rhs, rate: bool = False) -> str:
+        """'$E_{x} = \\frac{\\pi}{6} \\approx 0.5236$': a left side (its rate, with a dot) and its exact
+        value with decimals."""
+        left = f"\\dot{{{self.tex(lhs)}}}" if rate else self.tex(lhs)
+        return f"${left} = {_value(rhs, self.tex)}$"
+
     def joint_values(self, mapping: dict) -> str:
         """{joint name: value} -> '$θ₁ = π/6 ≈ 0.523599$, $θ₂ = 0$'."""
         by_name = {j.name: j for j in self.problem.joints}

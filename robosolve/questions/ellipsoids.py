@@ -66,7 +66,7 @@ def _statement(q, say) -> str:
     budgets = o.get("budgets")
     if budgets:
         text += "; the budgets are " + ", ".join(f"{k} {say.value(v)}" for k, v in budgets.items())
-    if "joint_compliance" in o:
+    if "joint_compliance" in o and any(k.startswith("compliance") for k in say.asked(q)):
         text += f"; the joint compliances are {say.math(list(o['joint_compliance']))}"
     return text + "."
 

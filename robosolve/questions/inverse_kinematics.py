@@ -68,7 +68,7 @@ def _target(q, say) -> tuple[str, str]:
             angles = ", ".join(say.value(a) for a in t.angles)
             orientation = f"of {words} $({names})$ = ({angles}), $R = {product} = {say.tex(t.R)}$"
         return f"{where} at the position ${say.tex(t.p)}$ with the orientation {orientation}", "pose"
-    return ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in o["target"]), "target"
+    return ", ".join(say.equals(lhs, rhs) for _, lhs, rhs in o["target"]), "target"
 
 
 def _selection(q, say) -> str:
@@ -87,8 +87,8 @@ def _words(q, say) -> dict:
                            + ("entries of the target pose ($r_{11}$ … $r_{33}$, $p_x$, $p_y$, $p_z$)"
                               if not isinstance(q.options["target"], list) else "target's coordinates"))}
     if "velocity" in q.options:
-        wanted = ", ".join(f"$\\dot{{{say.tex(lhs)}}} = {say.tex(rhs)}$" for _, lhs, rhs in q.options["velocity"])
-        out["q_dot"] = f"at {_selection(q, say)}, the joint rates giving {wanted}"
+        wanted = ", ".join(say.equals(lhs, rhs, rate=True) for _, lhs, rhs in q.options["velocity"])
+        out["q_dot"] = f"the joint rates giving {wanted} at {_selection(q, say)}"
     return out
 
 

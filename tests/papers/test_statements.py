@@ -235,3 +235,17 @@ def test_a_pose_target_given_by_angles_states_them_and_their_rotation(tmp_path):
 
     R = rot("z", 0.3) @ rot("y", 0.9) @ rot("x", 0.1)
     assert all(f"{x:.6g}" in ik for x in R.ravel()), R
+
+
+def test_targets_and_loads_are_stated_exact_and_with_decimals(tmp_path):
+    """An IK target's exact value with its decimals, as every configuration (π/6 ≈ 0.523599:
+    the paper wrote π/6 alone), its rates likewise; a statics force applied at its point."""
+    text = EXAM.replace("target: {E.x: 0.6, E.y: 0.3}, velocity: {E.x: 0.1, E.y: 0}",
+                        'target: {E.x: 0.6, "theta1 + theta2": pi/6}, velocity: {E.x: pi/10, E.y: 0}')
+    problem = load_problem_text(text, str(tmp_path / "t.yaml"))
+    say = Say(problem, Tex(symbol_latex(problem)))
+    ik = statement(next(q for q in problem.questions if q.type == "inverse_kinematics"), say)
+    assert "$\\theta_{1} + \\theta_{2} = \\frac{\\pi}{6} \\approx 0.523599$" in ik
+    assert "$\\dot{E_{x}} = \\frac{\\pi}{10} \\approx 0.314159$" in ik
+    statics = statement(next(q for q in problem.questions if q.type == "statics"), say)
+    assert "applied at point E (one component per coordinate ($E_{x}$, $E_{y}$))" in statics
