@@ -30,8 +30,6 @@ def notebook_cell(q, answer, problem):
 
 WORDS = {
     "actuators": "each actuator's signed peak (the value of largest magnitude) and the time of that peak",
-    "actuators.peak": "each actuator's signed peak (the value of largest magnitude)",
-    "actuators.t_peak": "the time at which each actuator reaches its peak (its value of largest magnitude)",
     "profiles": "each actuator's action as a piecewise expression of the time $t$",
 }
 
