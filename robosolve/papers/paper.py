@@ -164,7 +164,7 @@ def total_marks(problem) -> str:
 
 def header(problem, student: str | None, variant: str | None) -> list[str]:
     out = [f"# {name_md(problem.title or problem.name)}"]
-    who = f"**Student:** {student}" if student else "**Name:** ________________  **ID:** ________"
+    who = f"**Student:** {name_md(student)}" if student else "**Name:** ________________  **ID:** ________"
     lines = [who]
     if variant:
         lines.append(f"**Variant:** `{variant}`")

@@ -297,3 +297,14 @@ questions:
 """, str(tmp_path / "s.yaml"))
     bare = render_paper(screw, None)
     assert "## Data" not in bare and "Points" not in bare and "origin of the last frame" not in bare
+
+
+def test_the_student_id_is_shown_as_written(write_problem, tmp_path):
+    """A roster id is not Markdown: '*Jo* _Smith_ $x$' was shown as emphasis and a formula."""
+    path = write_problem(ARM)
+    out = tmp_path / "paper"
+    r = runner.invoke(app, ["paper", str(path), "--out", str(out), "--format", "md,html",
+                            "--student", "*Jo* _Smith_ $x$ <b>"])
+    assert r.exit_code == 0, r.output
+    page = (out / "paper.html").read_text()
+    assert "<strong>Student:</strong> *Jo* _Smith_ $x$ &lt;b&gt;" in page
