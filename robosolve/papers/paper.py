@@ -220,7 +220,7 @@ def render_paper(problem, model, student: str | None = None, variant: str | None
     out.append(conventions(problem))
     if figure:
         out.append(f"![The robot at its reference configuration]({FIGURE})")
-    data = render_data(problem, model, tex, notes=False)
+    data = render_data(problem, model, tex, notes=False, paper=True)
     out += data if len(data) > 1 else []          # no empty Data heading (a problem without a robot)
     out.append("## Questions")
     for i, q in enumerate(problem.questions, 1):

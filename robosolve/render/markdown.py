@@ -85,16 +85,17 @@ def render_table(header, rows) -> str:
     return "\n".join(out)
 
 
-def render_data(problem, model, tex: Tex, notes: bool = True) -> list[str]:
-    """The data section; `notes`: with the loader's warnings under the data (not on a paper)."""
+def render_data(problem, model, tex: Tex, notes: bool = True, paper: bool = False) -> list[str]:
+    """The data section; `notes`: with the loader's warnings under the data (not on a paper);
+    `paper`: for a student, who knows the questions by their numbers and not the file's keys."""
     out = ["## Data"]
     if problem.parameters:
         rows = [(f"${tex(s)}$", "null (symbolic)" if v is None else f"${tex(v)}$")
                 for s, v in problem.parameters.items()]
         header = ("symbol", "value")
-        overrides = overrides_by_parameter(problem, tex)
+        overrides = overrides_by_parameter(problem, tex, numbered=paper)
         if overrides:       # the values some questions use instead, next to the base value
-            header += ("changed by a question's `at`",)
+            header += ("changed by a question" if paper else "changed by a question's `at`",)
             rows = [r + ("; ".join(overrides.get(s, [])) or "—",)
                     for r, s in zip(rows, problem.parameters)]
         out += ["### Parameters", render_table(header, rows)]

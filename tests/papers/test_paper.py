@@ -308,3 +308,18 @@ def test_the_student_id_is_shown_as_written(write_problem, tmp_path):
     assert r.exit_code == 0, r.output
     page = (out / "paper.html").read_text()
     assert "<strong>Student:</strong> *Jo* _Smith_ $x$ &lt;b&gt;" in page
+
+
+def test_the_data_table_names_questions_by_their_numbers(write_problem):
+    """A parameter a question overrides: "0.3 in question 2" and no file key (`at`, an id) on the
+    paper; the report keeps the ids."""
+    from robosolve.render.markdown import Tex, render_data
+
+    problem = load_problem(write_problem(ARM.replace("at: {theta1: 0, theta2: pi/3}",
+                                                     "at: {theta1: 0, theta2: pi/3, L2: 0.3}")))
+    paper = render_paper(problem, RobotModel(problem))
+    data = paper.split("## Data")[1].split("## Questions")[0]
+    assert "| $L_{2}$ | $\\frac{2}{5}$ | $0.3$ in question 2 |" in data
+    assert "`" not in data
+    report = "\n".join(render_data(problem, RobotModel(problem), Tex({})))
+    assert "in `jac`" in report and "changed by a question's `at`" in report
