@@ -11,7 +11,7 @@ import re
 
 from robosolve.load.expressions import Namespace, degrees_hint, did_you_mean, meant_value, value_issue
 from robosolve.load.problem import Question
-from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES, types_where
+from robosolve.questions.registry import COMMON_KEYS, QUESTION_TYPES, RECORD, types_where
 
 ID_RE = re.compile(r"^[A-Za-z0-9_-]+$")
 # Options the others are judged against (the coordinates, the law, the space, what is followed):
@@ -253,10 +253,12 @@ class _QuestionLoader:
             chk.error(path, "expected a non-empty list of answer keys (e.g. [M, position])")
             return ()
         known = [a.name for a in qt.answers if not a.top]
-        known += [f"{a.name}.{f.name}" for a in qt.answers for f in a.fields]
+        # a record's field may be graded alone (force.lengths); not a field of the records of a
+        # mapping (actuators.peak: each actuator has one), which no answers file can hold
+        known += [f"{a.name}.{f.name}" for a in qt.answers if a.kind == RECORD for f in a.fields]
         out = []
         for i, key in enumerate(value):
-            if qt.key(key) is None or qt.key(key).top:
+            if key not in known:
                 chk.error(path + (i,), f"unknown answer key '{key}' for a {qt.name} question"
                           + did_you_mean(key, known) + f" (keys: {', '.join(known)})")
             elif key in out:

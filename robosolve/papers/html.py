@@ -12,7 +12,7 @@ from __future__ import annotations
 import html
 import re
 
-from robosolve.papers.keys import graded_keys, placeholder
+from robosolve.papers.keys import decided, graded_keys, placeholder
 from robosolve.questions import registry as R
 
 BOX = re.compile(r"RSBOX(\d+)N(\d+)X")
@@ -42,6 +42,7 @@ figure.rs-drawing { float: right; width: 50%; margin: 0 0 .6em 1.2em; }
   h2 { margin: 1em 0 .4em; }
   h3 { margin: .9em 0 .3em; }
   .rs-table, figure, .rs-box, li { break-inside: avoid; page-break-inside: avoid; }
+  h2, h3, .rs-give { break-after: avoid; page-break-after: avoid; }   /* with what follows */
   figure { margin: .4em 0; }
   img { max-height: 66mm; }
 }
@@ -71,6 +72,17 @@ def box_html(ak, question, problem) -> str:
         rows = "".join(f"<tr><th>{html.escape(a)}</th>" + "<td></td>" * len(fields) + "</tr>" for a in shape)
         inner = ('<table class="rs-grid"><tr><th></th>' + "".join(f"<th>{html.escape(f)}</th>" for f in fields)
                  + f"</tr>{rows}</table>")
+    elif kind == R.MATRIX_LIST and isinstance(shape, list) and shape:
+        labels = [f"{e}" for e in (decided(ak, question, problem)[0] or range(1, len(shape) + 1))]
+        return "".join(f'<div class="rs-field"><span>frame {html.escape(str(e))}</span>'
+                       f'<div class="rs-box">{_grid(4, 4)}</div></div>' for e in labels)
+    elif kind == R.MATRIX_MAP and isinstance(shape, dict) and shape:
+        return "".join(f'<div class="rs-field"><span>{html.escape(b)}</span>'
+                       f'<div class="rs-box">{_grid(len(m), len(m[0]))}</div></div>' for b, m in shape.items())
+    elif kind == R.BODY_MAP and isinstance(shape, dict):
+        inner = _grid(1, len(shape), list(shape))
+    elif kind == R.EQUATIONS and isinstance(shape, list):
+        inner = '<div class="rs-lines">' + '<div class="rs-line"></div>' * max(len(shape), 1) + "</div>"
     elif kind == R.RECORD:
         inner = "".join(f'<div class="rs-field"><span>{html.escape(f.name)}</span>'
                         f'{box_html(f, question, problem)}</div>' for f in ak.fields)
@@ -106,6 +118,7 @@ def paper_body(markdown: str, problem, model, files) -> str:
         body = body.replace(fig.group(0), "", 1)
         drawing = fig.group(0).replace("<figure>", '<figure class="rs-drawing">', 1)
         body = re.sub(r"(</h1>\n)", lambda m: m.group(1) + drawing, body, count=1)
+    body = body.replace("<p><strong>What to give</strong>", '<p class="rs-give"><strong>What to give</strong>')
     return _boxes(body, problem, model)
 
 

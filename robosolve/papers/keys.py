@@ -19,13 +19,27 @@ MAP_KINDS = (R.JOINT_MAP, R.ACTUATOR_MAP)
 class GradedKey:
     key: str                      # dotted path, e.g. "force.lengths"
     answer_key: object            # its AnswerKey
+    parent: object = None         # the AnswerKey of its record, for a field ("force" of "force.lengths")
+
+    @property
+    def doc(self) -> str:
+        """What the key is: a field's own words after its record's ("total energy T + U: at the
+        end of the run")."""
+        own = self.answer_key.doc
+        return f"{self.parent.doc}: {own}" if self.parent is not None and self.parent.doc else own
+
+    @property
+    def unit(self) -> str:
+        """The key's unit, a field's that of its record unless it has its own."""
+        return self.answer_key.unit or (self.parent.unit if self.parent is not None else "")
 
 
 def graded_keys(question, problem) -> list[GradedKey]:
     """The graded keys of `question` in grading order (grading.md)."""
     qt = question_type(question.type)
     keys = question.grade or qt.template_keys(question.options, len(problem.joints))
-    return [GradedKey(k, qt.key(k)) for k in keys if qt.key(k) is not None]
+    return [GradedKey(k, qt.key(k), qt.key(k.rpartition(".")[0]) if "." in k else None)
+            for k in keys if qt.key(k) is not None]
 
 
 def dimensions(question, problem) -> dict:
@@ -50,9 +64,18 @@ def placeholder(ak, question, problem):
     """The answer's shape with None (YAML `~`) in every entry a student fills."""
     kind, dims = ak.kind, shape(ak, question, problem)
     entries = decided(ak, question, problem)[0]
+    if kind == R.MATRIX_LIST and entries is not None:       # one 4×4 pose per frame of a chain
+        return [[[None] * 4 for _ in range(4)] for _ in entries]
     if entries is not None:
         return {e: None for e in entries}
     joints = [j.name for j in problem.joints]
+    bodies = [b.name for b in problem.bodies]
+    if kind == R.BODY_MAP:
+        return {**{b: None for b in bodies}, "total": None}
+    if kind == R.MATRIX_MAP and len(dims) == 2:
+        return {b: [[None] * dims[1] for _ in range(dims[0])] for b in bodies}
+    if kind == R.EQUATIONS:
+        return [None] * len(joints)
     if kind == R.MATRIX and len(dims) == 2:
         return [[None] * dims[1] for _ in range(dims[0])]
     if kind == R.VECTOR and len(dims) == 1:

@@ -41,6 +41,12 @@ class Say:
         """An exact value with its decimals when it is not already a decimal: $π/6 ≈ 0.5236$."""
         return f"${_value(v, self.tex)}$"
 
+    def equals(self, lhs, rhs, rate: bool = False) -> str:
+        """'$E_{x} = \\frac{\\pi}{6} \\approx 0.5236$': a left side (its rate, with a dot) and its exact
+        value with decimals."""
+        left = f"\\dot{{{self.tex(lhs)}}}" if rate else self.tex(lhs)
+        return f"${left} = {_value(rhs, self.tex)}$"
+
     def joint_values(self, mapping: dict) -> str:
         """{joint name: value} -> '$θ₁ = π/6 ≈ 0.523599$, $θ₂ = 0$'."""
         by_name = {j.name: j for j in self.problem.joints}
@@ -102,6 +108,11 @@ class Say:
     def joints(self) -> str:
         return ", ".join(f"${self.tex(j.symbol)}$" for j in self.problem.joints)
 
+    def asked(self, question) -> list[str]:
+        """The graded keys of `question` (dotted paths, in grading order): what its statement
+        asks for (questions/wording.py)."""
+        return [gk.key for gk in graded_keys(question, self.problem)]
+
 
 def teacher_text(question, say: Say) -> str:
     """A question's `text` with `{name}` the parameter's value (as in the data table), `{at}`
@@ -139,8 +150,8 @@ def what_to_give(question, problem, boxes: bool = False) -> list[str]:
     out = []
     for k, gk in enumerate(graded_keys(question, problem)):
         ak = gk.answer_key
-        unit = key_unit(ak, question, problem)
-        out.append(f"- `{gk.key}`: {ak.doc}; {layout_text(ak, question, problem)}; {form_text(ak)}"
+        unit = key_unit(ak, question, problem, gk.parent)
+        out.append(f"- `{gk.key}`: {gk.doc}; {layout_text(ak, question, problem)}; {form_text(ak)}"
                    + (f"; {unit}" if unit else "") + "."
                    + (" " + box_marker(question.index, k) if boxes else ""))
     return out
@@ -153,7 +164,7 @@ def total_marks(problem) -> str:
 
 def header(problem, student: str | None, variant: str | None) -> list[str]:
     out = [f"# {name_md(problem.title or problem.name)}"]
-    who = f"**Student:** {student}" if student else "**Name:** ________________  **ID:** ________"
+    who = f"**Student:** {name_md(student)}" if student else "**Name:** ________________  **ID:** ________"
     lines = [who]
     if variant:
         lines.append(f"**Variant:** `{variant}`")
@@ -172,12 +183,25 @@ def gravity_sentence(g) -> str:
     return "Gravity is the vector of the data, in frame 0."
 
 
+def dh_sentence(problem) -> str:
+    """What DH(…) and MDH(…) of the frames table mean, when the table uses them."""
+    kinds = {f.kind for f in problem.frames.values()}
+    out = []
+    if "dh" in kinds:
+        out.append("$DH(\\theta, d, a, \\alpha) = R_z(\\theta)\\,T_z(d)\\,T_x(a)\\,R_x(\\alpha)$ "
+                   "(standard Denavit–Hartenberg)")
+    if "mdh" in kinds:
+        out.append("$MDH(\\alpha, a, \\theta, d) = R_x(\\alpha)\\,T_x(a)\\,R_z(\\theta)\\,T_z(d)$ "
+                   "(modified Denavit–Hartenberg)")
+    return (" In the frames table, " + " and ".join(out) + ".") if out else ""
+
+
 def conventions(problem) -> str:
     gravity = ""
     if problem.gravity is not None and (problem.bodies or problem.gravity_given):
         gravity = " " + gravity_sentence(problem.gravity)
     return ("**Conventions.** ${}^{i}M_{j}$ is the pose of frame $j$ in frame $i$ (4×4); angles are in "
-            "radians and every quantity in SI units (m, kg, s, N, N·m)." + gravity
+            "radians and every quantity in SI units (m, kg, s, N, N·m)." + dh_sentence(problem) + gravity
             + " Give each answer in the layout of the answers file (answers.yaml): matrices as lists "
             "of rows, one value per joint in joint order; a value is a number or an expression in "
             "the problem's names.")
@@ -196,7 +220,8 @@ def render_paper(problem, model, student: str | None = None, variant: str | None
     out.append(conventions(problem))
     if figure:
         out.append(f"![The robot at its reference configuration]({FIGURE})")
-    out += render_data(problem, model, tex, notes=False)
+    data = render_data(problem, model, tex, notes=False, paper=True)
+    out += data if len(data) > 1 else []          # no empty Data heading (a problem without a robot)
     out.append("## Questions")
     for i, q in enumerate(problem.questions, 1):
         out.append(f"### {i}. {question_title(q.type)} ({marks_text(q.marks)})")

@@ -13,6 +13,7 @@ import re
 from robosolve.papers.keys import decided, graded_keys, placeholder, shape
 from robosolve.questions import registry as R
 from robosolve.questions.registry import title as question_title
+from robosolve.render.numbers import marks_number
 
 PLAIN_KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_.]*$")
 
@@ -34,7 +35,7 @@ def yaml_key(key: str) -> str:
 
 
 def marks_text(marks) -> str:
-    text = str(marks)
+    text = marks_number(marks)
     return f"{text} mark" + ("" if text == "1" else "s")
 
 
@@ -53,10 +54,13 @@ def unit_text(unit: str, problem) -> str:
     return f"{names['revolute']} (revolute joints) or {names['prismatic']} (prismatic)"
 
 
-def key_unit(ak, question, problem) -> str:
-    """The unit of a key in this question: the one the question decides, else the schema's."""
+def key_unit(ak, question, problem, parent=None) -> str:
+    """The unit of a key in this question: the one the question decides, else the schema's (a
+    field's, else its record's: `parent`)."""
     unit = decided(ak, question, problem)[1]
-    return unit_text(unit if unit is not None else ak.unit, problem)
+    if unit is None:
+        unit = ak.unit or (parent.unit if parent is not None else "")
+    return unit_text(unit, problem)
 
 
 def layout_text(ak, question, problem) -> str:
@@ -65,6 +69,17 @@ def layout_text(ak, question, problem) -> str:
     dims = shape(ak, question, problem)
     joints = ", ".join(j.name for j in problem.joints)
     entries = decided(ak, question, problem)[0]
+    bodies = ", ".join(b.name for b in problem.bodies)
+    if kind == R.MATRIX_LIST and entries is not None:
+        return (f"a list of {len(entries)} 4×4 matri{'x' if len(entries) == 1 else 'ces'} (frame "
+                + ", ".join(entries) + " in its parent), each a list of rows")
+    if kind == R.BODY_MAP:
+        return f"one value per body ({bodies}) and their total (total)"
+    if kind == R.MATRIX_MAP and len(dims) == 2:
+        return f"one {dims[0]}×{dims[1]} matrix per body ({bodies}), each a list of rows"
+    if kind == R.EQUATIONS:
+        return (f"a list of {len(problem.joints)} equations, one per joint in joint order ({joints}), "
+                "each a string \"left side = right side\"")
     if entries is not None:
         names = [j.name for j in problem.joints]
         return (f"one value per joint ({joints})" if list(entries) == names else
@@ -79,7 +94,8 @@ def layout_text(ak, question, problem) -> str:
         return "one value per actuator (" + ", ".join(str(j.actuator) for j in problem.joints) + ")"
     if kind == R.ACTUATOR_RECORDS:
         return ("per actuator (" + ", ".join(str(j.actuator) for j in problem.joints) + "): "
-                + ", ".join(f"{f.name} ({f.doc})" for f in ak.fields))
+                + ", ".join(f"{f.name} ({f.doc}" + (f"; {u}" if (u := key_unit(f, question, problem)) else "") + ")"
+                            for f in ak.fields))
     if kind == R.JOINT_MAP_SET:
         element = "{" + ", ".join(f"{j.name}: …" for j in problem.joints) + "}"
         return f"a set, a list of {element} in any order ([] when there is none)"
@@ -102,9 +118,10 @@ def form_text(ak) -> str:
     return "numeric" if ak.numeric else "symbolic"
 
 
-def key_comment(ak, question, problem) -> str:
-    parts = [ak.doc, layout_text(ak, question, problem), form_text(ak)]
-    unit = key_unit(ak, question, problem)
+def key_comment(gk, question, problem) -> str:
+    ak = gk.answer_key
+    parts = [gk.doc, layout_text(ak, question, problem), form_text(ak)]
+    unit = key_unit(ak, question, problem, gk.parent)
     if unit:
         parts.append(unit)
     return "; ".join(p for p in parts if p)
@@ -125,6 +142,6 @@ def render_template(problem, problem_path: str, student: str = "", name: str | N
             continue
         lines.append(f"  {yaml_key(q.id)}:  # {i}. {question_title(q.type)}, {marks_text(q.marks)}")
         for gk in keys:
-            lines.append(f"    # {gk.key} — {key_comment(gk.answer_key, q, problem)}")
+            lines.append(f"    # {gk.key} — {key_comment(gk, q, problem)}")
             lines.append(f"    {yaml_key(gk.key)}: {flow(placeholder(gk.answer_key, q, problem))}")
     return "\n".join(lines) + "\n"

@@ -8,6 +8,7 @@ import sympy as sp
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import MATRIX, SCALAR, VECTOR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, robosolve_numbers, text
 
 
@@ -51,7 +52,7 @@ def _check(ql, path, item, q):
 
 def _pose(v, say) -> str:
     if isinstance(v, dict) and "config" in v:
-        return "the configuration " + say.joint_values(v["config"])
+        return f"its pose at the configuration {say.joint_values(v['config'])}"
     if isinstance(v, dict) and "matrix" in v:
         return "the pose " + say.math(v["matrix"])
     if isinstance(v, dict) and "frame" in v:
@@ -59,21 +60,33 @@ def _pose(v, say) -> str:
     return say.math(v)
 
 
+WORDS = {
+    "u": "the unit vector $u$ of its helical axis",
+    "alpha": "the rotation angle $\\alpha \\in [0, \\pi]$ about the axis",
+    "h": "the translation $h$ along the axis",
+    "P": "the point $P$ of the axis nearest the origin",
+    "Q": "its displacement matrix $Q$",
+    "pitch": "the pitch $h / \\alpha$ of the screw",
+    "L": "the matrix $L$ of the screw",
+}
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from from/to or the screw."""
+    """The paper's statement (papers.md), from from/to (the poses, or the question's frame at two
+    configurations) or the screw, then what the question grades."""
     o = q.options
+    give = f" Give {listing(asked(q, say, WORDS))}."
     if "axis" in o:
         text = (f"A screw displacement turns by {say.value(o['angle'])} rad about the axis of direction "
                 f"{say.math(list(o['axis']))}")
         if "through" in o:
             text += f" through the point {say.math(list(o['through']))}"
         if "translation" in o:
-            text += f" and translates by {say.value(o['translation'])} along it"
-        return text + ". Give its displacement matrix $Q$ and the matrix $L$ of the screw."
-    return (f"The rigid displacement takes {_pose(o['from'], say)} to {_pose(o['to'], say)}"
-            + (f" ({say.frame(q)})" if q.frame_given else "")
-            + ". Give its helical axis: the unit vector $u$, the angle $\\alpha \\in [0, \\pi]$, the "
-            "translation $h$ along the axis and the point $P$ of the axis nearest the origin.")
+            text += f" and translates by {say.value(o['translation'])} m along it"
+        return text + "." + give
+    configs = any(isinstance(o[k], dict) and "config" in o[k] for k in ("from", "to"))
+    who = f"of {say.frame(q)} " if configs or q.frame_given else ""
+    return f"The rigid displacement {who}takes {_pose(o['from'], say)} to {_pose(o['to'], say)}." + give
 
 
 def _pose_source(side, q) -> str:
@@ -130,10 +143,10 @@ TYPE = QuestionType(
         _k("alpha", SCALAR, "rotation angle in [0, π]", principal=True, unit="rad", angle=True),
         _k("h", SCALAR, "translation along the axis", principal=True, unit="m"),
         _k("P", VECTOR, "the axis point nearest the origin", principal=True, unit="m", shape=(3,)),
-        _k("Q", MATRIX, "the displacement matrix", shape=(4, 4), pose=True,
+        _k("Q", MATRIX, "the displacement matrix", unit="m", shape=(4, 4), pose=True,
            hints=(("inverse", "this is the displacement back, from `to` to `from`"),)),
-        _k("pitch", SCALAR, "h / α"),
-        _k("L", MATRIX, "[[u], P×u + pitch·u; 0, 0] (given a screw)", shape=(4, 4)),
+        _k("pitch", SCALAR, "h / α", unit="m/rad"),
+        _k("L", MATRIX, "the matrix of the screw, Q = exp(α·L) (given a screw)", shape=(4, 4)),
     ),
     principal_for=_principal,
     figures=(("helical_axis", "helical_axis"),),

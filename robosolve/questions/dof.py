@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import SCALAR, QuestionType, _k
+from robosolve.questions.wording import listing
 from robosolve.questions.notebook_code import compare_line, lines, robosolve_numbers
 
 
@@ -14,11 +15,11 @@ def _check(ql, path, item, q):
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the bodies and joints counted."""
     o = q.options
-    joints = [f"{o[k]} joints of {k[7]} degree{'s' if k[7] != '1' else ''} of freedom"
+    joints = [f"{o[k]} joint{'' if o[k] == 1 else 's'} of {k[7]} degree{'s' if k[7] != '1' else ''} of freedom"
               for k in ("joints_1dof", "joints_2dof", "joints_3dof") if k in o]
     space = o.get("space", "planar")
     return (f"A {space} mechanism has {say.value(o['bodies'])} bodies (the ground included) and "
-            + ", ".join(joints) + ". Give its number of degrees of freedom.")
+            + listing(joints) + ". Give its number of degrees of freedom.")
 
 
 def notebook_cell(q, answer, problem):

@@ -8,6 +8,7 @@ import math
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import AXES, JOINT_MAP, M, MATRIX, RECORD, SCALAR, VECTOR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import compare_line, jacobian_lines, lines, literal, text
 
 
@@ -39,21 +40,34 @@ def _check(ql, path, item, q):
         chk.error(path + ("joint_compliance",),
                   f"expected {len(joints)} values (one per joint), got {len(opts['joint_compliance'])}")
 
+def _words(q, say) -> dict:
+    out = {"condition_number": "the condition number of $A = J J^T$ (its largest eigenvalue over its smallest)",
+           "A": "the matrix $A = J J^T$",
+           "eigenvalues": "the eigenvalues of $A = J J^T$ (largest first)"}
+    for kind in ("force", "velocity", "compliance"):
+        out[kind] = (f"the {kind} ellipsoid (its semi-axes scaled to their lengths, the lengths and the "
+                     "unit directions, longest first)")
+        out[f"{kind}.semi_axes"] = f"the semi-axes of the {kind} ellipsoid (each scaled to its length, longest first)"
+        out[f"{kind}.lengths"] = f"the semi-axis lengths of the {kind} ellipsoid (longest first)"
+        out[f"{kind}.directions"] = f"the unit directions of the semi-axes of the {kind} ellipsoid (longest first)"
+    if "velocity" in q.options:
+        out["q_dot"] = (f"the joint rates giving the velocity {say.math(list(q.options['velocity']))} of the "
+                        "coordinates")
+    return out
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the coordinates, budgets, compliance, velocity, `at`."""
+    """The paper's statement (papers.md), from the coordinates, budgets, compliance, `at`, then
+    what the question grades (the ellipsoids' lengths, axes, A, the joint rates of a velocity)."""
     o, at = q.options, say.at(q)
     coords = (f"the coordinates {say.coordinates(o['coordinates'])}" if o.get("coordinates")
               else f"the coordinates of {say.point(q)} in frame 0")
-    text = (f"For {coords}" + (f", {at}" if at else "") + ", compute the force and the velocity "
-            "ellipsoids (semi-axis lengths, longest first) and the condition number of $A = J J^T$")
+    text = f"For {coords}" + (f", {at}" if at else "") + f", compute {listing(asked(q, say, _words(q, say)))}"
     budgets = o.get("budgets")
     if budgets:
         text += "; the budgets are " + ", ".join(f"{k} {say.value(v)}" for k, v in budgets.items())
-    if "joint_compliance" in o:
+    if "joint_compliance" in o and any(k.startswith("compliance") for k in say.asked(q)):
         text += f"; the joint compliances are {say.math(list(o['joint_compliance']))}"
-    if "velocity" in o:
-        text += (f"; also the joint rates giving the velocity {say.math(list(o['velocity']))} "
-                 "of the coordinates")
     return text + "."
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.questions.schema import ACTUATOR_MAP, BODY_MAP, EQUATIONS, JOINT_MAP, MATRIX, N, VECTOR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
 
 
@@ -23,13 +24,27 @@ def _check(ql, path, item, q):
                      "vary with time t, so the numbers at a configuration would need a time: drop `at` "
                      f"(the symbolic equations keep t), or follow the motion with a {follow} question")
 
+def _words(q, say) -> dict:
+    actuators = ", ".join(f"${say.tex(j.actuator)}$" for j in say.problem.joints)
+    return {
+        "mass_matrix": "the mass matrix $M(q)$",
+        "velocity_terms": "the velocity terms $c(q, \\dot q)$",
+        "gravity_terms": "the gravity terms $g(q)$",
+        "generalized_forces": "the generalized forces $Q$ (actuators plus external forces)",
+        "equations": "the equation of each joint (written \"left side = right side\")",
+        "kinetic_energy": "the kinetic energy $T$ of each body and their total",
+        "potential_energy": "the potential energy $U$ of each body and their total",
+        "actuators": f"the actuator actions ({actuators}) needed at the given configuration, rates and accelerations",
+    }
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the bodies, forces and `at` of the data."""
+    """The paper's statement (papers.md), from the bodies, forces and `at` of the data, then what
+    the question grades (M, c, g, Q, the equations, the energies, the actuators needed)."""
     at = say.at(q)
     return ("With the bodies, forces and gravity of the data, derive the equations of motion "
-            "$M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = Q$: the mass matrix $M(q)$, the velocity terms "
-            "$c(q, \\dot q)$, the gravity terms $g(q)$ and the generalized forces $Q$ (actuators plus "
-            "external forces)" + (f"; give the numbers {at}" if at else "") + ".")
+            "$M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = Q$; give " + listing(asked(q, say, _words(q, say)))
+            + (f"; give the numbers {at}" if at else "") + ".")
 
 
 def notebook_cell(q, answer, problem):
@@ -72,9 +87,10 @@ TYPE = QuestionType(
         _k("generalized_forces", JOINT_MAP, "actuator plus external forces, per joint",
            principal=True, unit="effort"),
         _k("equations", EQUATIONS, "one equation per joint", numeric=False),
-        _k("kinetic_energy", BODY_MAP, "T per body and total"),
-        _k("potential_energy", BODY_MAP, "U per body and total"),
-        _k("actuators", ACTUATOR_MAP, "actuator values needed at `at`", symbolic=False),
+        _k("kinetic_energy", BODY_MAP, "T per body and total", unit="J"),
+        _k("potential_energy", BODY_MAP, "U per body and total", unit="J"),
+        _k("actuators", ACTUATOR_MAP, "actuator values needed at the question's configuration, rates "
+           "and accelerations", unit="effort", symbolic=False),
     ),
     cost=0.7, cost_growth=2.5, unit="dynamics",
     check=_check,

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import EQUATIONS, JOINT_MAP, RECORD, SCALAR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, literal, robosolve_numbers, text
 
 
@@ -16,16 +17,40 @@ def _check(ql, path, item, q):
                      f"parameters only: give the starting value of '{key}' in `start` "
                      "(joint values and <joint>_dot rates)")
 
+WORDS = {
+    "final": "each joint's value at the end (unwrapped: an arm that turns twice ends near $4\\pi$)",
+    "max": "each joint's largest value over the run",
+    "min": "each joint's smallest value over the run",
+    "final_velocity": "each joint's rate at the end",
+    "energy": "the total energy $T + U$ at the start and at the end of the run",
+    "energy.start": "the total energy $T + U$ at $t = 0$",
+    "energy.end": "the total energy $T + U$ at the end of the run",
+    "equations": ("the equations of motion with the actuator laws substituted (one per joint, "
+                  "each written \"left side = right side\")"),
+}
+
+
+def _start(q, say) -> str:
+    """The whole state at t = 0: every joint's value and rate (those not given are 0)."""
+    start = q.options.get("start") or {}
+    joints = say.problem.joints
+    values = {j.name: start.get(j.name, 0) for j in joints}
+    rates = {j.dot.name: start.get(j.dot.name, 0) for j in joints}
+    if all(v == 0 for v in rates.values()):
+        return f"at rest from {say.joint_values(values)}"
+    return f"from {say.joint_values(values)}, with the rates {say.joint_values(rates)}"
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the start state, actuator laws and duration."""
+    """The paper's statement (papers.md), from the start state (every joint and rate), the
+    actuator laws (every actuator) and the duration, then what the question grades."""
     o = q.options
-    start = o.get("start")
-    text = ("Starting " + (f"from {say.joint_values(start)}" if start else "at rest at zero")
-            + (f", with the actuators {say.joint_values(o['actuators'])}" if o.get("actuators")
-               else ", with no actuator action")
-            + f", the robot moves for {say.value(o['duration'])} s under the bodies, forces and "
-            "gravity of the data.")
-    return text + " Give each joint's value at the end, and its largest and smallest values over the run."
+    laws = o.get("actuators") or {}
+    actuators = {str(j.actuator): laws.get(str(j.actuator), 0) for j in say.problem.joints}
+    acting = (f", with the actuators {say.joint_values(actuators)}" if any(v != 0 for v in actuators.values())
+              else ", with no actuator action")
+    return (f"Starting {_start(q, say)}{acting}, the robot moves for {say.value(o['duration'])} s under the "
+            f"bodies, forces and gravity of the data. Give {listing(asked(q, say, WORDS))}.")
 
 
 def notebook_cell(q, answer, problem):
@@ -70,8 +95,8 @@ TYPE = QuestionType(
            symbolic=False, digits=10),
         _k("min", JOINT_MAP, "smallest value of each joint over the run", principal=True, unit="joint",
            symbolic=False, digits=10),
-        _k("final_velocity", JOINT_MAP, "joint rates at the end", symbolic=False, digits=10),
-        _k("energy", RECORD, "total energy T + U", symbolic=False, fields=(
+        _k("final_velocity", JOINT_MAP, "joint rates at the end", unit="joint/s", symbolic=False, digits=10),
+        _k("energy", RECORD, "total energy T + U", unit="J", symbolic=False, fields=(
             _k("start", SCALAR, "at t = 0", digits=10),
             _k("end", SCALAR, "at the end of the run", digits=10))),
         _k("equations", EQUATIONS, "the equations of motion with the actuator laws substituted",

@@ -7,6 +7,7 @@ import sympy as sp
 from robosolve.core.prose import name_md
 from robosolve.load import validators as V
 from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MAP_SET, TEXT, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, text
 
 
@@ -51,25 +52,56 @@ def notebook_cell(q, answer, problem):
         ]
     return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
 
-def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the target, the velocity and the selection."""
+def _target(q, say) -> tuple[str, str]:
+    """(what the configurations put where, what there is none of)."""
     o = q.options
     if not isinstance(o["target"], list):       # a pose target (load/pose_target.py)
         t = o["target"]
         where = f"the point {q.point}" if q.point_given else f"frame {name_md(q.frame)}"
-        return (f"Find every configuration ({say.joints()}) within the joint limits that puts {where} at the "
-                f"position ${say.tex(t.p)}$ with the orientation $R = {say.tex(t.R)}$ (none, if the pose "
-                "cannot be reached).")
-    target = ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in o["target"])
-    text = (f"Find every configuration ({say.joints()}) within the joint limits that puts {target}"
-            " (none, if the target cannot be reached)")
-    if "velocity" in o:
-        wanted = ", ".join(f"$\\dot{{{say.tex(lhs)}}} = {say.tex(rhs)}$" for _, lhs, rhs in o["velocity"])
-        select = o.get("select")
-        which = (f"the solution nearest to {say.joint_values(select)}" if isinstance(select, dict)
-                 else "the selected solution")
-        text += f"; at {which}, the joint rates giving {wanted}"
-    return text + "."
+        orientation = f"$R = {say.tex(t.R)}$"
+        if t.given in ("zyz", "rpy") and t.angles is not None:     # the angles as given, and their R
+            names, product = (("\\varphi, \\theta, \\psi", "R_z(\\varphi)\\,R_y(\\theta)\\,R_z(\\psi)")
+                              if t.given == "zyz" else
+                              ("\\mathrm{roll}, \\mathrm{pitch}, \\mathrm{yaw}",
+                               "R_z(\\mathrm{yaw})\\,R_y(\\mathrm{pitch})\\,R_x(\\mathrm{roll})"))
+            words = "ZYZ Euler angles" if t.given == "zyz" else "roll-pitch-yaw angles"
+            angles = ", ".join(say.value(a) for a in t.angles)
+            orientation = f"of {words} $({names})$ = ({angles}), $R = {product} = {say.tex(t.R)}$"
+        return f"{where} at the position ${say.tex(t.p)}$ with the orientation {orientation}", "pose"
+    return ", ".join(say.equals(lhs, rhs) for _, lhs, rhs in o["target"]), "target"
+
+
+def _selection(q, say) -> str:
+    """The solution `selected` (and the joint rates) refers to, in words."""
+    select = q.options.get("select")
+    if isinstance(select, dict):
+        return (f"the solution nearest to {say.joint_values(select)} (Euclidean distance of the joint "
+                "values, angles wrapped into $(-\\pi, \\pi]$)")
+    return ("the first solution, in the order of the joints' values (" + say.joints()
+            + "; smallest first)")
+
+
+def _words(q, say) -> dict:
+    out = {"selected": f"the selected solution: {_selection(q, say)}",
+           "closed_form": ("the closed-form solution: each branch as one expression per joint, in the "
+                           + ("entries of the target pose ($r_{11}$ … $r_{33}$, $p_x$, $p_y$, $p_z$)"
+                              if not isinstance(q.options["target"], list) else "target's coordinates"))}
+    if "velocity" in q.options:
+        wanted = ", ".join(say.equals(lhs, rhs, rate=True) for _, lhs, rhs in q.options["velocity"])
+        out["q_dot"] = f"the joint rates giving {wanted} at {_selection(q, say)}"
+    return out
+
+
+def _statement(q, say) -> str:
+    """The paper's statement (papers.md), from the target, then what the question grades: every
+    solution, the selected one (by its rule), the joint rates of a velocity, the closed form."""
+    target, kind = _target(q, say)
+    rest = listing(asked(q, say, _words(q, say)))
+    if "solutions" in say.asked(q):
+        return (f"Find every configuration ({say.joints()}) within the joint limits that puts {target} "
+                f"(none, if the {kind} cannot be reached)" + (f"; give also {rest}" if rest else "") + ".")
+    return (f"Of the configurations ({say.joints()}) within the joint limits that put {target}, "
+            f"give {rest}.")
 
 
 def _check(ql, path, item, q):
@@ -115,7 +147,7 @@ TYPE = QuestionType(
            principal=True, unit="joint", angle=True, unordered=True, symbolic=False, reaches=True),
         _k("q_dot", JOINT_MAP, "joint rates at the selected solution", principal=True, unit="joint/s",
            symbolic=False),
-        _k("selected", JOINT_MAP, "the selected solution", angle=True, symbolic=False),
+        _k("selected", JOINT_MAP, "the selected solution", angle=True, unit="joint", symbolic=False),
         _k("closed_form", JOINT_MAP_LIST, "closed-form solution branches", numeric=False),
         _k("unreachable", BOOL, "true when there is no solution", top=True),
         _k("reason", TEXT, "why there is no solution", top=True),

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP_SET, MATRIX, MATRIX_MAP, N, R, SCALAR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, guarded, jacobian_lines, lines, robosolve_numbers
 
 
@@ -29,21 +30,32 @@ def _paper_keys(options: dict, joints: int) -> tuple:
     return ("J", "det" if rows == joints else "manipulability", "singularities")
 
 
+WORDS = {
+    "det": "its determinant",
+    "manipulability": "its manipulability (the product of its singular values)",
+    "singularities": "the singular configurations (the joint values that make $J$ lose rank)",
+    "com_jacobians": "the Jacobian of the centre of mass of each body (its position in frame 0)",
+}
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the coordinates, `geometric`, `bodies` and `at`."""
+    """The paper's statement (papers.md): J of the coordinates (or geometric), then what of it the
+    question grades (det J or the manipulability, the singular configurations, the bodies'
+    centre-of-mass Jacobians), at its `at`."""
     o, at = q.options, say.at(q)
     if o.get("geometric"):
-        what = (f"the geometric Jacobian of {say.point(q)} and {say.frame(q)} (linear velocity of the "
+        what = (f"the geometric Jacobian $J$ of {say.point(q)} and {say.frame(q)} (linear velocity of the "
                 "point above the angular velocity of the frame, both in frame 0)")
     elif o.get("coordinates"):
-        what = f"the Jacobian of the coordinates {say.coordinates(o['coordinates'])}"
+        what = f"the Jacobian $J$ of the coordinates {say.coordinates(o['coordinates'])}"
     else:
-        what = f"the Jacobian of the coordinates of {say.point(q)} in frame 0 (x, y, z)"
-    text = (f"Compute {what} with respect to the joint variables ({say.joints()}); give its "
-            "determinant (square J) or its manipulability, and the singular configurations")
-    if o.get("bodies"):
-        text += "; also the Jacobians of the bodies' centres of mass"
-    return text + (f"; give the numbers {at}" if at else "") + "."
+        what = f"the Jacobian $J$ of the coordinates of {say.point(q)} in frame 0 (x, y, z)"
+    what += f" with respect to the joint variables ({say.joints()})"
+    rest = listing(asked(q, say, WORDS))
+    numbers = f"; give the numbers {at}" if at else ""
+    if "J" in say.asked(q):
+        return f"Compute {what}" + (f"; give {rest}" if rest else "") + numbers + "."
+    return f"For {what}, give {rest}" + numbers + "."
 
 
 def notebook_cell(q, answer, problem):
@@ -74,7 +86,7 @@ TYPE = QuestionType(
         _k("J", MATRIX, "the Jacobian of the coordinates", principal=True, shape=(R, N), in_frame0=True,
            hints=(("transposed", "J has one row per coordinate and one column per joint: "
                                  "column i is ∂(coordinates)/∂qᵢ"),)),
-        _k("det", SCALAR, "det J (square J)", principal=True),
+        _k("det", SCALAR, "det J", principal=True),
         _k("manipulability", SCALAR, "product of the singular values (J not square)", principal=True),
         _k("singularities", JOINT_MAP_SET, "conditions joint -> value making J lose rank",
            principal=True, unit="joint", angle=True, unordered=True, by_value=True),

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import ACTUATOR_MAP, ACTUATOR_RECORDS, SCALAR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id
 
 
@@ -27,11 +28,17 @@ def notebook_cell(q, answer, problem):
         compare_line("t_peak", "t_peaks", rtol=1e-5),
     )
 
+WORDS = {
+    "actuators": "each actuator's signed peak (the value of largest magnitude) and the time of that peak",
+    "profiles": "each actuator's action as a piecewise expression of the time $t$",
+}
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the profile it follows."""
+    """The paper's statement (papers.md), from the profile it follows, then what the question
+    grades (the peaks and their times, the actions as expressions of t)."""
     return (f"Along the motion of {say.question_number(q.options['profile'])}, with the bodies, "
-            "forces and gravity of the data, compute the actuator actions; give each actuator's "
-            "signed peak (the value of largest magnitude) and the time of that peak.")
+            f"forces and gravity of the data, compute the actuator actions; give {listing(asked(q, say, WORDS))}.")
 
 
 TYPE = QuestionType(
@@ -41,10 +48,10 @@ TYPE = QuestionType(
     needs_dynamics=True,
     answers=(
         _k("actuators", ACTUATOR_RECORDS, "actuator -> signed peak and its time", principal=True,
-           symbolic=False, fields=(_k("peak", SCALAR, "signed value of largest magnitude"),
+           symbolic=False, fields=(_k("peak", SCALAR, "signed value of largest magnitude", unit="effort"),
                                    # an interior peak is flat: its time is known to ~1e-8
-                                   _k("t_peak", SCALAR, "time of the peak", digits=8))),
-        _k("profiles", ACTUATOR_MAP, "actuator -> piecewise expression in t", numeric=False),
+                                   _k("t_peak", SCALAR, "time of the peak", unit="s", digits=8))),
+        _k("profiles", ACTUATOR_MAP, "actuator -> piecewise expression in t", unit="effort", numeric=False),
     ),
     figures=(("torques", "joint_torques"),),
     cost=0.4, cost_growth=2.5, unit="dynamics",

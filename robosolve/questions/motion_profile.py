@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP, SCALAR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import compare_line, guarded, lines, profile_lines, robosolve_numbers
 
 
@@ -21,8 +22,14 @@ def _check(ql, path, item, q):
                 chk.error(path + (key, name), f"must be positive, got {item[key][name]!r}"
                           + (f" (= {value:g})" if not v.is_number else ""))
 
+ACCELERATIONS = {"bang-bang": "the accelerations the joints use to finish together (rescaled)",
+                 "trapezoidal": "the acceleration of each joint in the synchronized motion",
+                 "quintic": "the peak acceleration of each joint in the synchronized motion"}
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the start, goal, limits and shape."""
+    """The paper's statement (papers.md), from the start, goal, limits and shape, then what the
+    question grades (the durations, T, the accelerations, the profiles q(t))."""
     o = q.options
     shape = o.get("shape", "bang-bang")
     text = (f"The joints move from {say.joint_values(o['from'])} to {say.joint_values(o['to'])}, "
@@ -30,8 +37,11 @@ def _statement(q, say) -> str:
             f"{say.per_joint(o['max_acceleration'], 'joint/s²')}")
     if "max_velocity" in o:
         text += f" and maximum velocities {say.per_joint(o['max_velocity'], 'joint/s')}"
-    return (text + ". Compute the duration of each joint alone at its limits, the synchronized "
-            "duration $T$, and the accelerations the joints use to finish together.")
+    words = {"durations": "the duration of each joint alone at its limits",
+             "T": "the synchronized duration $T$",
+             "accelerations": ACCELERATIONS.get(shape, ACCELERATIONS["bang-bang"]),
+             "profiles": "the motion $q(t)$ of each joint as a piecewise expression of the time $t$"}
+    return text + f". Compute {listing(asked(q, say, words))}."
 
 
 def notebook_cell(q, answer, problem):
@@ -57,10 +67,10 @@ TYPE = QuestionType(
     required=("from", "to", "max_acceleration"),
     defaults={"shape": "bang-bang"},
     answers=(
-        _k("durations", JOINT_MAP, "each joint alone at its maximum acceleration", principal=True, unit="s"),
+        _k("durations", JOINT_MAP, "each joint alone at its limits", principal=True, unit="s"),
         _k("T", SCALAR, "the synchronized duration", principal=True, unit="s"),
-        _k("accelerations", JOINT_MAP, "rescaled accelerations", principal=True, unit="joint/s²"),
-        _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", numeric=False),
+        _k("accelerations", JOINT_MAP, "each joint's acceleration in the synchronized motion", principal=True, unit="joint/s²"),
+        _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", unit="joint", numeric=False),
     ),
     figures=(("profile", "motion_profile"),),
     cost=0.1, unit="dynamics",

@@ -6,6 +6,7 @@ import sympy as sp
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import BOOL, RECORD, SCALAR, VECTOR, VECTOR_SET, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal
 
 
@@ -17,15 +18,31 @@ def _check(ql, path, item, q):
     if "matrix" in item and "frame" in item:
         ql.chk.error(path, "give either matrix or frame (with at), not both")
 
+ZYZ = "the ZYZ Euler angles, $R = R_z(\\varphi)\\,R_y(\\theta)\\,R_z(\\psi)$"
+RPY = "the roll-pitch-yaw angles, $R = R_z(\\mathrm{yaw})\\,R_y(\\mathrm{pitch})\\,R_x(\\mathrm{roll})$"
+WORDS = {
+    "zyz": ZYZ + " (every solution, and whether R is a singularity of them)",
+    "zyz.solutions": ZYZ + " (every solution)",
+    "zyz.singular": "whether R is a singularity of the ZYZ Euler angles",
+    "rpy": RPY + " (every solution, and whether R is a singularity of them)",
+    "rpy.solutions": RPY + " (every solution)",
+    "rpy.singular": "whether R is a singularity of the roll-pitch-yaw angles",
+    "axis_angle": "the axis and the angle of the rotation (angle in $[0, \\pi]$)",
+    "axis_angle.axis": "the unit axis of the rotation (its angle taken in $[0, \\pi]$)",
+    "axis_angle.angle": "the angle of the rotation, in $[0, \\pi]$",
+    "quaternion": "the unit quaternion $[\\eta, \\varepsilon_x, \\varepsilon_y, \\varepsilon_z]$ with $\\eta \\ge 0$",
+}
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the matrix or the frame at `at`."""
+    """The paper's statement (papers.md), from the matrix or the frame at `at`, then what the
+    question grades (the Euler and roll-pitch-yaw angles, the axis and angle, the quaternion)."""
     if "matrix" in q.options:
         what = f"the rotation matrix $R = $ {say.math(q.options['matrix'])}"
     else:
         at = say.at(q)
-        what = f"the orientation of {say.frame(q)} in frame 0" + (f" {at}" if at else "")
-    return (f"For {what}, give the ZYZ Euler angles, the roll-pitch-yaw angles (every solution, and "
-            "whether it is singular), the axis and angle, and the unit quaternion.")
+        what = f"the orientation $R$ of {say.frame(q)} in frame 0" + (f" {at}" if at else "")
+    return f"For {what}, give {listing(asked(q, say, WORDS))}."
 
 
 def notebook_cell(q, answer, problem):

@@ -125,13 +125,12 @@ def _statement(q, say) -> str:
     text = (f"The robot follows the motion of {say.question_number(o['profile'])} under "
             f"{laws.get(o.get('law', 'p'), o.get('law', 'p'))} controller, "
             f"${JOINT_LAW_TEX.get(o.get('law', 'p'), '')}$ with $e = q_d - q$, with the gains {_gains_text(q, say, [])}")
-    if "start" in o:
-        text += f", starting from {say.joint_values(o['start'])}"
-    if "duration" in o:
-        text += f", for {say.value(o['duration'])} s"
-    unit = joint_unit(say.problem)
-    return (text + f". Simulate the closed loop; give, for each joint, the largest tracking error "
-            f"$|e|$ over the run ({unit}) and the signed error at the end ({unit}).")
+    text += (f", starting from rest at {say.joint_values(o['start'])}" if "start" in o
+             else ", starting from rest at the start of that motion")
+    text += (f", for {say.value(o['duration'])} s" if "duration" in o
+             else ", from $t = 0$ to the end $T$ of that motion")
+    give = _task_asked(q, say, [])
+    return text + ". Simulate the closed loop on the robot's equations of motion; " + give[:1].lower() + give[1:]
 
 
 def notebook_cell(q, answer, problem):

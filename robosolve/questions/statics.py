@@ -25,11 +25,11 @@ def _check(ql, path, item, q):
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the load, its coordinates and `at`."""
     o, at = q.options, say.at(q)
-    coords = (f"the coordinates {say.coordinates(o['coordinates'])}" if o.get("coordinates")
-              else f"the coordinates of {say.point(q)} in frame 0")
+    along = (f"one component per coordinate {say.coordinates(o['coordinates'])}" if o.get("coordinates")
+             else "its components in frame 0")
     loads = []
     if "force" in o:
-        loads.append(f"the force $F_s = $ {say.math(list(o['force']))} applied along {coords}")
+        loads.append(f"the force $F_s = $ {say.math(list(o['force']))} applied at {say.point(q)} ({along})")
     if "torque" in o:
         loads.append(f"the torque {say.math(list(o['torque']))} on {say.frame(q)}")
     if o.get("weight"):

@@ -195,8 +195,8 @@ TYPE = QuestionType(
     answers=(
         _k("T", SCALAR, "duration of the motion", principal=True, unit="s", symbolic=False),
         _k("length", SCALAR, "length of the path", principal=True, symbolic=False),
-        _k("start", JOINT_MAP, "the configuration at `from`", angle=True, unit="joint", symbolic=False),
-        _k("end", JOINT_MAP, "the configuration at `to`", angle=True, unit="joint", symbolic=False),
+        _k("start", JOINT_MAP, "the joint configuration at the start of the path", angle=True, unit="joint", symbolic=False),
+        _k("end", JOINT_MAP, "the joint configuration at the end of the path", angle=True, unit="joint", symbolic=False),
         _k("max_joint_velocity", JOINT_MAP, "max |q_dot| over [0, T]", principal=True, unit="joint/s", symbolic=False),
         _k("max_joint_acceleration", JOINT_MAP, "max |q_ddot| over [0, T]", principal=True, unit="joint/s²", symbolic=False),
         _k("min_singular_value", SCALAR, "smallest singular value of J along the path", symbolic=False),

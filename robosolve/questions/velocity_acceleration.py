@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.prose import name_tex
 from robosolve.questions.schema import MATRIX, VECTOR, QuestionType, _k
+from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, guarded, lines, robosolve_numbers
 
 
@@ -25,11 +27,28 @@ def notebook_cell(q, answer, problem):
                  ("acceleration", compare_line("acceleration", "(H @ P)[:3]"))),
     )
 
+def _words(q, say) -> dict:
+    k = name_tex(q.frame)
+    aux = f"expressed in the auxiliary frame (origin at {say.point(q)}, axes parallel to frame 0)"
+    return {
+        "velocity": f"the velocity of {say.point(q)} in frame 0",
+        "acceleration": f"the acceleration of {say.point(q)} in frame 0",
+        "angular_velocity": f"the angular velocity of {say.frame(q)} in frame 0",
+        "angular_acceleration": f"the angular acceleration of {say.frame(q)} in frame 0",
+        "W": f"the velocity matrix $W = \\dot M\\,M^{{-1}}$ of {say.frame(q)}, $M = {{}}^{{0}}M_{{{k}}}$ "
+             "(expressed in frame 0)",
+        "H": f"the acceleration matrix $H = \\ddot M\\,M^{{-1}}$ of {say.frame(q)}, $M = {{}}^{{0}}M_{{{k}}}$ "
+             "(expressed in frame 0)",
+        "W_aux": f"the velocity matrix $W$ of {say.frame(q)} {aux}",
+        "H_aux": f"the acceleration matrix $H$ of {say.frame(q)} {aux}",
+    }
+
+
 def _statement(q, say) -> str:
-    """The paper's statement (papers.md), from the question's point, frame and `at`."""
+    """The paper's statement (papers.md): the graded keys of the question's point and frame, at
+    its `at`."""
     at = say.at(q)
-    return (f"Compute the velocity and the acceleration of {say.point(q)} in frame 0 and the angular "
-            f"velocity of {say.frame(q)} in frame 0" + (f", {at}" if at else "")
+    return (f"Compute {listing(asked(q, say, _words(q, say)))}" + (f", {at}" if at else "")
             + " (symbolic in the joint variables and their rates, or the numbers of this configuration).")
 
 
@@ -44,7 +63,7 @@ TYPE = QuestionType(
            shape=(3,), in_frame0=True),
         _k("angular_velocity", VECTOR, "ω of the frame in frame 0", principal=True, unit="rad/s", shape=(3,),
            in_frame0=True),
-        _k("angular_acceleration", VECTOR, "ω̇ of the frame in frame 0", shape=(3,)),
+        _k("angular_acceleration", VECTOR, "ω̇ of the frame in frame 0", unit="rad/s²", shape=(3,)),
         _k("W", MATRIX, "W₀ₖ = Ṁ M⁻¹, expressed in frame 0", shape=(4, 4)),
         _k("H", MATRIX, "H₀ₖ = M̈ M⁻¹ = Ẇ + W², expressed in frame 0", shape=(4, 4)),
         _k("W_aux", MATRIX, "W in the auxiliary frame (origin at the point)", shape=(4, 4)),

@@ -71,7 +71,7 @@ def path_phrase(q, say) -> str:
     o = q.options
 
     def place(eqs):
-        return ", ".join(f"${say.tex(lhs)} = {say.tex(rhs)}$" for _, lhs, rhs in eqs)
+        return ", ".join(say.equals(lhs, rhs) for _, lhs, rhs in eqs)
 
     path = o.get("path")
     if isinstance(path, dict) and path.get("kind") == "circle":

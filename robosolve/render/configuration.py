@@ -89,10 +89,12 @@ def configuration_text(question, problem, tex) -> str | None:
     return text
 
 
-def overrides_by_parameter(problem, tex) -> dict:
-    """Parameter symbol -> "value in `id`" strings of the questions that override it."""
+def overrides_by_parameter(problem, tex, numbered: bool = False) -> dict:
+    """Parameter symbol -> "value in `id`" strings of the questions that override it ("value in
+    question 3" when `numbered`: a paper, whose reader knows the questions by their numbers)."""
     out: dict = {}
-    for question in problem.questions:
+    for k, question in enumerate(problem.questions, 1):
+        where = f"question {k}" if numbered else f"`{question.id}`"
         for s, v in split_at(question, problem)[3]:
-            out.setdefault(s, []).append(f"${_value(v, tex)}$ in `{question.id}`")
+            out.setdefault(s, []).append(f"${_value(v, tex)}$ in {where}")
     return out

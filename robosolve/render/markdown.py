@@ -85,16 +85,17 @@ def render_table(header, rows) -> str:
     return "\n".join(out)
 
 
-def render_data(problem, model, tex: Tex, notes: bool = True) -> list[str]:
-    """The data section; `notes`: with the loader's warnings under the data (not on a paper)."""
+def render_data(problem, model, tex: Tex, notes: bool = True, paper: bool = False) -> list[str]:
+    """The data section; `notes`: with the loader's warnings under the data (not on a paper);
+    `paper`: for a student, who knows the questions by their numbers and not the file's keys."""
     out = ["## Data"]
     if problem.parameters:
         rows = [(f"${tex(s)}$", "null (symbolic)" if v is None else f"${tex(v)}$")
                 for s, v in problem.parameters.items()]
         header = ("symbol", "value")
-        overrides = overrides_by_parameter(problem, tex)
+        overrides = overrides_by_parameter(problem, tex, numbered=paper)
         if overrides:       # the values some questions use instead, next to the base value
-            header += ("changed by a question's `at`",)
+            header += ("changed by a question" if paper else "changed by a question's `at`",)
             rows = [r + ("; ".join(overrides.get(s, [])) or "—",)
                     for r, s in zip(rows, problem.parameters)]
         out += ["### Parameters", render_table(header, rows)]
@@ -110,13 +111,13 @@ def render_data(problem, model, tex: Tex, notes: bool = True) -> list[str]:
         for name, f in problem.frames.items():
             factors = names.factors(name)
             pose = " ".join(factors) if f.kind == "pose" else (
-                "explicit matrix" if f.kind == "matrix" else f"${factors[0]}$ ({f.kind})")
+                f"${tex(f.matrix)}$ (matrix)" if f.kind == "matrix" else f"${factors[0]}$ ({f.kind})")
             if f.kind == "pose":
                 pose = f"${pose}$"
             rows.append((name_md(name), name_md(f.parent), pose))
         out += ["### Frames", "Each pose is applied in the current (moving) frame, left to right.",
                 render_table(("frame", "parent", "pose in parent"), rows)]
-    if problem.points:
+    if problem.points and problem.has_robot:       # a problem without a robot has no point E
         rows = [(p.name, name_md(p.frame), f"${tex(list(p.at))}$" + (" (default: origin of the last frame)"
                                                               if p.implicit else ""))
                 for p in problem.points.values()]

@@ -68,6 +68,17 @@ def prose_number(x, digits: int | None = None) -> str:
     return "0" if s in ("-0", "-0.0") else s
 
 
+def marks_number(x) -> str:
+    """A question's marks (or their total) as a teacher writes them: an integer or an exact
+    fraction as it is (2, 1/2), a decimal without float noise (1.5, not 1.50000000000000)."""
+    import sympy as sp
+
+    x = sp.sympify(x)
+    if x.is_Integer or x.is_Rational:
+        return str(x)
+    return prose_number(float(x))
+
+
 def report_number(x, digits: int | None = None) -> str:
     if isinstance(x, bool):
         return "true" if x else "false"

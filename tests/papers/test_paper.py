@@ -166,6 +166,9 @@ def test_paper_html_boxes_shaped_like_the_answers(write_problem, tmp_path):
     assert "<script" not in page and "http://" not in page.replace("http://www.w3.org", "")
     assert 'src="data:image/png;base64,' in page and "<math" in page
     assert "break-inside: avoid" in page and "@page" in page and "RSBOX" not in page
+    # a question's heading and its "What to give" stay with what follows them when printed
+    assert page.count('<p class="rs-give"><strong>What to give</strong>') == 2
+    assert "h2, h3, .rs-give { break-after: avoid;" in page
     grids = re.findall(r'<table class="rs-grid">(.*?)</table>', page, re.S)
     cells = [g.count("<td></td>") for g in grids]
     assert cells == [16, 3, 4]            # M 4×4, position [x, y, z], J 2×2
@@ -242,3 +245,81 @@ def test_the_template_lays_out_a_control_law_s_errors_per_joint_or_per_coordinat
     assert 'max_task_error: {E.x: ~, E.y: ~, "q1 + q2 + q3": ~}' in template
     exam = render_template(load_problem(PROBLEMS / "exam-2r-full.yaml"), "exam.yaml")
     assert "max_error: {theta1: ~, theta2: ~}" in exam
+
+
+def test_decimal_marks_are_written_as_the_teacher_wrote_them(write_problem, tmp_path):
+    """marks: 1.5 is "1.5 marks" (it was "1.50000000000000 marks"), the total 1.5 + 1 = 2.5."""
+    from robosolve.papers.template import render_template
+
+    problem = load_problem(write_problem(ARM.replace("marks: 2,", "marks: 1.5,")))
+    paper = render_paper(problem, RobotModel(problem))
+    assert "### 1. Position (direct kinematics) (1.5 marks)" in paper
+    assert "**Total:** 2.5 marks" in paper
+    assert "# 1. Position (direct kinematics), 1.5 marks" in render_template(problem, "p.yaml")
+    assert "0000" not in paper
+
+
+def test_the_data_a_student_needs_is_on_the_paper(tmp_path):
+    """A frame given as a matrix is shown (it said only "explicit matrix"), DH(…) and MDH(…) of the
+    frames table are defined (problem-format.md: Rz(θ) Tz(d) Tx(a) Rx(α), Rx(α) Tx(a) Rz(θ) Tz(d)),
+    and a problem without a robot has no data section (it listed a point E of frame 0)."""
+    from robosolve.load.loader import load_problem_text
+
+    arm = load_problem_text(ARM.replace('"2": {pose: "Rz(theta2) Tx(L2)"}',
+                                        '"2": {matrix: [[cos(theta2), -sin(theta2), 0, L2], [sin(theta2), '
+                                        'cos(theta2), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}'), str(tmp_path / "a.yaml"))
+    paper = render_paper(arm, RobotModel(arm))
+    row = next(line for line in paper.splitlines() if line.startswith("| 2 | 1 |"))
+    assert "\\cos{\\left(\\theta_{2} \\right)}" in row and "L_{2}" in row and "explicit matrix" not in row
+    assert "DH(" not in paper
+    mdh = load_problem_text("""robosolve: 1
+name: m
+parameters: {a1: 0.3, d1: 0.2}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+dh:
+  convention: modified
+  rows:
+    - {alpha: 0, a: 0, theta: q1, d: d1}
+    - {alpha: pi/2, a: a1, theta: q2, d: 0}
+frames:
+  tool: {parent: "2", dh: {theta: 0, d: 0.1, a: 0, alpha: 0}}
+questions:
+  - {type: position, at: {q1: 0, q2: 0}}
+""", str(tmp_path / "m.yaml"))
+    conventions = next(p for p in render_paper(mdh, RobotModel(mdh)).split("\n\n") if p.startswith("**Conventions"))
+    assert "$MDH(\\alpha, a, \\theta, d) = R_x(\\alpha)\\,T_x(a)\\,R_z(\\theta)\\,T_z(d)$" in conventions
+    assert "$DH(\\theta, d, a, \\alpha) = R_z(\\theta)\\,T_z(d)\\,T_x(a)\\,R_x(\\alpha)$" in conventions
+    screw = load_problem_text("""robosolve: 1
+name: s
+questions:
+  - {type: displacement, axis: [0, 0, 1], angle: pi/2}
+  - {type: dof, bodies: 4, joints_1dof: 4}
+""", str(tmp_path / "s.yaml"))
+    bare = render_paper(screw, None)
+    assert "## Data" not in bare and "Points" not in bare and "origin of the last frame" not in bare
+
+
+def test_the_student_id_is_shown_as_written(write_problem, tmp_path):
+    """A roster id is not Markdown: '*Jo* _Smith_ $x$' was shown as emphasis and a formula."""
+    path = write_problem(ARM)
+    out = tmp_path / "paper"
+    r = runner.invoke(app, ["paper", str(path), "--out", str(out), "--format", "md,html",
+                            "--student", "*Jo* _Smith_ $x$ <b>"])
+    assert r.exit_code == 0, r.output
+    page = (out / "paper.html").read_text()
+    assert "<strong>Student:</strong> *Jo* _Smith_ $x$ &lt;b&gt;" in page
+
+
+def test_the_data_table_names_questions_by_their_numbers(write_problem):
+    """A parameter a question overrides: "0.3 in question 2" and no file key (`at`, an id) on the
+    paper; the report keeps the ids."""
+    from robosolve.render.markdown import Tex, render_data
+
+    problem = load_problem(write_problem(ARM.replace("at: {theta1: 0, theta2: pi/3}",
+                                                     "at: {theta1: 0, theta2: pi/3, L2: 0.3}")))
+    paper = render_paper(problem, RobotModel(problem))
+    data = paper.split("## Data")[1].split("## Questions")[0]
+    assert "| $L_{2}$ | $\\frac{2}{5}$ | $0.3$ in question 2 |" in data
+    assert "`" not in data
+    report = "\n".join(render_data(problem, RobotModel(problem), Tex({})))
+    assert "in `jac`" in report and "changed by a question's `at`" in report

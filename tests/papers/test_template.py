@@ -92,3 +92,41 @@ def test_template_round_trip(file):
            if qr.keys[k].verdict != "correct"]
     assert not bad
     assert result.all_correct
+
+
+def test_every_key_a_question_may_grade_has_a_place_in_its_template(tmp_path):
+    """A question may grade (`grade:`) exactly the keys an answers file can hold, so its
+    template reads back with every key blank (check exits 1, never 2): a record's field
+    (force.lengths) yes; a field of the records of a mapping (joint_torques' actuators.peak:
+    one record per actuator) is refused where the problem is read — it was accepted, and `check`
+    on the untouched template then exited 2 ('unknown answer key')."""
+    import re
+
+    from robosolve.errors import InputError
+    from robosolve.grading.answers import known_keys
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.registry import QUESTION_TYPES
+    from test_statements import EXAM
+
+    head, _, rest = EXAM.partition("questions:\n")
+    items = []                                   # one line per question (flow mappings joined)
+    for line in rest.splitlines():
+        if line.startswith("  - "):
+            items.append(line)
+        elif line.strip():
+            items[-1] += " " + line.strip()
+    by_type = {}
+    for item in items:
+        by_type.setdefault(re.search(r"type: (\w+)", item).group(1), item)
+    graded = []
+    for name, qt in QUESTION_TYPES.items():
+        for key in known_keys(qt):
+            if not qt.key(key).top:             # a copy of the type's question grading `key` alone
+                graded.append(re.sub(r"id: [\w-]+, ", "", by_type[name]).replace("{type:", f"{{grade: [{key}], type:", 1))
+    text = head + "questions:\n" + "\n".join(items + graded) + "\n"
+    problem = load_problem_text(text, str(tmp_path / "every-key.yaml"))
+    blank = resolve_answers(read_answers_text(render_template(problem, "every-key.yaml"), "answers.yaml"), problem)
+    assert len(blank.answers) == len(problem.questions)
+    with pytest.raises(InputError, match=r"unknown answer key 'actuators.peak' for a joint_torques question"):
+        load_problem_text(text.replace("grade: [profiles], type: joint_torques", "grade: [actuators.peak], type: joint_torques"),
+                          str(tmp_path / "refused.yaml"))
