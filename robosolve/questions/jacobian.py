@@ -13,6 +13,27 @@ from robosolve.questions.notebook_code import at_literal, compare_line, guarded,
 def _check(ql, path, item, q):
     if q.options.get("geometric") and "coordinates" in item:
         ql.chk.error(path + ("geometric",), "geometric: true cannot be combined with coordinates")
+    _check_graded_keys(ql, path, q)
+
+
+def _check_graded_keys(ql, path, q):
+    """A graded key the question does not compute has no reference to grade against: the
+    centre-of-mass Jacobians without `bodies: true`, det J of a J that is not square, the
+    manipulability of a square one (its |det J| is asked as `det`)."""
+    grade = tuple(q.grade or ())
+    joints = len(ql.b.joints)
+    rows = 6 if q.options.get("geometric") else len(q.options.get("coordinates") or ()) or 3
+    reasons = {
+        "com_jacobians": None if q.options.get("bodies") else
+        "the centre-of-mass Jacobians are computed only with bodies: true",
+        "det": None if rows == joints else
+        f"J is {rows}x{joints}: it has no determinant (grade its manipulability)",
+        "manipulability": None if rows != joints else
+        f"J is {rows}x{joints}, square: grade its determinant (det)",
+    }
+    for i, key in enumerate(grade):
+        if reasons.get(key):
+            ql.chk.error(path + ("grade", i), f"'{key}' is not an answer of this question: {reasons[key]}")
 
 
 def _cost_factor(question, joints: int) -> float:

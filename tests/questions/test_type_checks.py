@@ -58,6 +58,24 @@ def test_jacobian_geometric_without_coordinates():
     assert messages("  - {type: jacobian, geometric: true}\n") == []
 
 
+def test_jacobian_grades_only_what_it_computes():
+    """A graded key the question never computes would be `no_reference` for every student while
+    the paper asks for it: the centre-of-mass Jacobians need bodies: true, det a square J, the
+    manipulability a J that is not square."""
+    assert messages("  - {type: jacobian, coordinates: [E.x, E.y], grade: [com_jacobians]}\n") == [
+        f"f.yaml:{Q}: questions[0].grade[0]: 'com_jacobians' is not an answer of this question: "
+        "the centre-of-mass Jacobians are computed only with bodies: true"]
+    assert messages("  - {type: jacobian, coordinates: [E.x], grade: [J, det]}\n") == [
+        f"f.yaml:{Q}: questions[0].grade[1]: 'det' is not an answer of this question: "
+        "J is 1x2: it has no determinant (grade its manipulability)"]
+    assert messages("  - {type: jacobian, grade: [manipulability]}\n") == []      # 3x2: not square
+    assert messages("  - {type: jacobian, coordinates: [E.x, E.y], grade: [manipulability]}\n") == [
+        f"f.yaml:{Q}: questions[0].grade[0]: 'manipulability' is not an answer of this question: "
+        "J is 2x2, square: grade its determinant (det)"]
+    assert messages("  - {type: jacobian, coordinates: [E.x, E.y], bodies: true, grade: [com_jacobians, det]}\n") == []
+    assert messages("  - {type: jacobian, geometric: true, grade: [manipulability]}\n") == []
+
+
 def test_statics_load_and_components():
     assert messages("  - {type: statics}\n") == [f"f.yaml:{Q}: questions[0]: expected force, torque or weight: true"]
     assert messages("  - {type: statics, coordinates: [E.x, E.y], force: [1, 2, 3]}\n") == [
