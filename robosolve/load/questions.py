@@ -185,6 +185,7 @@ class _QuestionLoader:
             # the type's checks judge its options against these (a force per coordinate, gains per
             # the law's kind): with one refused (and said), they would judge a default in its place
             qt.check(self, path, item, q)
+            self.graded_keys_computed(path, q, qt)
         if qt.needs_dynamics:
             self.require_gravity(path)
             if not b.problem.bodies and not b.bodies_given:
@@ -193,6 +194,17 @@ class _QuestionLoader:
             if qt.integrates and masses and all(m == 0 for m in masses):
                 chk.error(path + ("type",), "every body has mass 0, so the mass matrix M(q) is singular "
                           "and the motion cannot be integrated: give the bodies their masses")
+
+    def graded_keys_computed(self, path, q, qt):
+        """A graded key the question does not compute would be `no_reference` for every student
+        while the paper asks for it (q_dot without a velocity, the centre-of-mass Jacobians
+        without bodies: true): said with the key's line."""
+        keys = {a.name: a for a in qt.answers}
+        for i, name in enumerate(q.grade or ()):
+            key = keys.get(name.split(".")[0])
+            why = key.needs(q, self.b.joints) if key is not None and key.needs else ""
+            if why:
+                self.chk.error(path + ("grade", i), f"'{name}' is not an answer of this question: {why}")
 
     def require_gravity(self, path):
         """A question using gravity needs it declared."""

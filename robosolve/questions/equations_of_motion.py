@@ -24,6 +24,15 @@ def _check(ql, path, item, q):
                      "vary with time t, so the numbers at a configuration would need a time: drop `at` "
                      f"(the symbolic equations keep t), or follow the motion with a {follow} question")
 
+def _needs_configuration(q, joints) -> str:
+    """The actuators' values are computed at a configuration: every joint's value in `at`
+    (rates and accelerations not given are 0)."""
+    given = {getattr(s, "name", str(s)) for s in (q.at or {})}
+    missing = [j.name for j in joints if j.name not in given]
+    return "" if not missing else ("the actuators are computed only at a configuration: give "
+                                   + ", ".join(missing) + " in at")
+
+
 def _words(q, say) -> dict:
     actuators = ", ".join(f"${say.tex(j.actuator)}$" for j in say.problem.joints)
     return {
@@ -90,7 +99,7 @@ TYPE = QuestionType(
         _k("kinetic_energy", BODY_MAP, "T per body and total", unit="J"),
         _k("potential_energy", BODY_MAP, "U per body and total", unit="J"),
         _k("actuators", ACTUATOR_MAP, "actuator values needed at the question's configuration, rates "
-           "and accelerations", unit="effort", symbolic=False),
+           "and accelerations", unit="effort", symbolic=False, needs=_needs_configuration),
     ),
     cost=0.7, cost_growth=2.5, unit="dynamics",
     check=_check,

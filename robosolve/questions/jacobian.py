@@ -13,27 +13,24 @@ from robosolve.questions.notebook_code import at_literal, compare_line, guarded,
 def _check(ql, path, item, q):
     if q.options.get("geometric") and "coordinates" in item:
         ql.chk.error(path + ("geometric",), "geometric: true cannot be combined with coordinates")
-    _check_graded_keys(ql, path, q)
 
 
-def _check_graded_keys(ql, path, q):
-    """A graded key the question does not compute has no reference to grade against: the
-    centre-of-mass Jacobians without `bodies: true`, det J of a J that is not square, the
-    manipulability of a square one (its |det J| is asked as `det`)."""
-    grade = tuple(q.grade or ())
-    joints = len(ql.b.joints)
-    rows = 6 if q.options.get("geometric") else len(q.options.get("coordinates") or ()) or 3
-    reasons = {
-        "com_jacobians": None if q.options.get("bodies") else
-        "the centre-of-mass Jacobians are computed only with bodies: true",
-        "det": None if rows == joints else
-        f"J is {rows}x{joints}: it has no determinant (grade its manipulability)",
-        "manipulability": None if rows != joints else
-        f"J is {rows}x{joints}, square: grade its determinant (det)",
-    }
-    for i, key in enumerate(grade):
-        if reasons.get(key):
-            ql.chk.error(path + ("grade", i), f"'{key}' is not an answer of this question: {reasons[key]}")
+def _rows(q) -> int:
+    return 6 if q.options.get("geometric") else len(q.options.get("coordinates") or ()) or 3
+
+
+def _needs_bodies(q, joints) -> str:
+    return "" if q.options.get("bodies") else "the centre-of-mass Jacobians are computed only with bodies: true"
+
+
+def _needs_square(q, joints) -> str:
+    rows, n = _rows(q), len(joints)
+    return "" if rows == n else f"J is {rows}x{n}: it has no determinant (grade its manipulability)"
+
+
+def _needs_wide(q, joints) -> str:
+    rows, n = _rows(q), len(joints)
+    return "" if rows != n else f"J is {rows}x{n}, square: grade its determinant (det)"
 
 
 def _cost_factor(question, joints: int) -> float:
@@ -107,11 +104,13 @@ TYPE = QuestionType(
         _k("J", MATRIX, "the Jacobian of the coordinates", principal=True, shape=(R, N), in_frame0=True,
            hints=(("transposed", "J has one row per coordinate and one column per joint: "
                                  "column i is ∂(coordinates)/∂qᵢ"),)),
-        _k("det", SCALAR, "det J", principal=True),
-        _k("manipulability", SCALAR, "product of the singular values (J not square)", principal=True),
+        _k("det", SCALAR, "det J", principal=True, needs=_needs_square),
+        _k("manipulability", SCALAR, "product of the singular values (J not square)", principal=True,
+           needs=_needs_wide),
         _k("singularities", JOINT_MAP_SET, "conditions joint -> value making J lose rank",
            principal=True, unit="joint", angle=True, unordered=True, by_value=True),
-        _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N)),
+        _k("com_jacobians", MATRIX_MAP, "body -> 3xn Jacobian of its centre of mass", shape=(3, N),
+           needs=_needs_bodies),
     ),
     paper_keys=_paper_keys,
     cost=0.5, cost_growth=2, cost_factor=_cost_factor,

@@ -315,7 +315,9 @@ TYPE = QuestionType(
         _k("final_error", CONTROL_MAP, "signed e at the end (per coordinate for a task law)", principal=True,
            unit="joint", symbolic=False, digits=6),
         _k("max_task_error", COORDINATE_MAP, "coordinate -> max |x_d - x| along a trajectory",
-           symbolic=False, digits=6),
+           symbolic=False, digits=6,
+           needs=lambda q, joints: "" if "trajectory" in q.options else
+           "the work-space error is computed only when the question follows a trajectory"),
         _k("t_max_error", CONTROL_MAP, "time of the largest |e|", symbolic=False, digits=6),
     ),
     figures=(("tracking", "control_tracking"), ("effort", "control_effort"), ("task", "control_tracking")),

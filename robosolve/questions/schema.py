@@ -82,6 +82,9 @@ class AnswerKey:
     # -- for papers and answers templates (papers.md) --
     unit: str = ""                # SI unit of the values; "joint" (rad or m by the joint's kind),
                                   #   "joint/s", "joint/s²", "effort" (N·m or N), "" none
+    # -- for the loader: a key only some questions of the type compute (q_dot needs a velocity) --
+    needs: Callable | None = None  # (question, its joints) -> why this question does not compute the
+                                   #   key ("" when it does): a grade list naming it is refused
 
     @property
     def symbol(self) -> str:

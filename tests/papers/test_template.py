@@ -121,8 +121,17 @@ def test_every_key_a_question_may_grade_has_a_place_in_its_template(tmp_path):
     graded = []
     for name, qt in QUESTION_TYPES.items():
         for key in known_keys(qt):
-            if not qt.key(key).top:             # a copy of the type's question grading `key` alone
-                graded.append(re.sub(r"id: [\w-]+, ", "", by_type[name]).replace("{type:", f"{{grade: [{key}], type:", 1))
+            # a copy of the type's question grading `key` alone, where that question computes it
+            # (a key it does not compute, max_task_error without a trajectory, is refused: its test
+            # is tests/questions/test_type_checks.py)
+            if not qt.key(key).top:
+                line = re.sub(r"id: [\w-]+, ", "", by_type[name]).replace("{type:", f"{{grade: [{key}], type:", 1)
+                try:
+                    load_problem_text(head + "questions:\n" + "\n".join(items + [line]) + "\n", "one.yaml")
+                except InputError as exc:
+                    assert "is not an answer of this question" in str(exc), str(exc)
+                    continue
+                graded.append(line)
     text = head + "questions:\n" + "\n".join(items + graded) + "\n"
     problem = load_problem_text(text, str(tmp_path / "every-key.yaml"))
     blank = resolve_answers(read_answers_text(render_template(problem, "every-key.yaml"), "answers.yaml"), problem)

@@ -76,6 +76,22 @@ def test_jacobian_grades_only_what_it_computes():
     assert messages("  - {type: jacobian, geometric: true, grade: [manipulability]}\n") == []
 
 
+@pytest.mark.parametrize("question, key, ok", [
+    ("{type: inverse_kinematics, target: {E.x: 1, E.y: 1}, grade: [q_dot]}", "q_dot",
+     "{type: inverse_kinematics, target: {E.x: 1, E.y: 1}, velocity: {E.x: 0.1, E.y: 0}, grade: [q_dot]}"),
+    ("{type: ellipsoids, coordinates: [E.x, E.y], at: {q1: 0.3, q2: 1}, grade: [q_dot]}", "q_dot",
+     "{type: ellipsoids, coordinates: [E.x, E.y], at: {q1: 0.3, q2: 1}, velocity: [0, 1], grade: [q_dot]}"),
+    ("{type: equations_of_motion, at: {q1: 0.3}, grade: [actuators]}", "actuators",
+     "{type: equations_of_motion, at: {q1: 0.3, q2: 0.1}, grade: [actuators]}"),
+    ("{type: displacement, from: {q1: 0, q2: 0}, to: {q1: 1, q2: 0}, grade: [L]}", "L",
+     "{type: displacement, axis: [0, 0, 1], angle: 1, grade: [L]}"),
+])
+def test_a_grade_list_names_only_keys_the_question_computes(question, key, ok):
+    said = messages(f"  - {question}\n")
+    assert len(said) == 1 and said[0].startswith(f"f.yaml:{Q}: questions[0].grade[0]: '{key}' is not an answer"), said
+    assert messages(f"  - {ok}\n") == []
+
+
 def test_statics_load_and_components():
     assert messages("  - {type: statics}\n") == [f"f.yaml:{Q}: questions[0]: expected force, torque or weight: true"]
     assert messages("  - {type: statics, coordinates: [E.x, E.y], force: [1, 2, 3]}\n") == [
