@@ -40,7 +40,8 @@ def _statement(q, say) -> str:
     words = {"durations": "the duration of each joint alone at its limits",
              "T": "the synchronized duration $T$",
              "accelerations": ACCELERATIONS.get(shape, ACCELERATIONS["bang-bang"]),
-             "profiles": "the motion $q(t)$ of each joint as a piecewise expression of the time $t$"}
+             "profiles": "the motion $q(t)$ of each joint as a piecewise expression of the time $t$",
+             "velocities": "the cruise velocity of each joint in the synchronized motion"}
     return text + f". Compute {listing(asked(q, say, words))}."
 
 
@@ -71,6 +72,10 @@ TYPE = QuestionType(
         _k("T", SCALAR, "the synchronized duration", principal=True, unit="s"),
         _k("accelerations", JOINT_MAP, "each joint's acceleration in the synchronized motion", principal=True, unit="joint/s²"),
         _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", unit="joint", numeric=False),
+        _k("velocities", JOINT_MAP, "each joint's cruise velocity in the synchronized motion (trapezoidal)",
+           unit="joint/s",
+           needs=lambda q, joints: "" if q.options.get("shape") == "trapezoidal" else
+           "the cruise velocities are computed only for a trapezoidal profile"),
     ),
     figures=(("profile", "motion_profile"),),
     cost=0.1, unit="dynamics",

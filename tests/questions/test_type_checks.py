@@ -83,6 +83,10 @@ def test_jacobian_grades_only_what_it_computes():
      "{type: ellipsoids, coordinates: [E.x, E.y], at: {q1: 0.3, q2: 1}, velocity: [0, 1], grade: [q_dot]}"),
     ("{type: equations_of_motion, at: {q1: 0.3}, grade: [actuators]}", "actuators",
      "{type: equations_of_motion, at: {q1: 0.3, q2: 0.1}, grade: [actuators]}"),
+    ("{type: motion_profile, from: {q1: 0, q2: 0}, to: {q1: 1, q2: 1}, max_acceleration: {q1: 1, q2: 1}, "
+     "grade: [velocities]}", "velocities",
+     "{type: motion_profile, shape: trapezoidal, from: {q1: 0, q2: 0}, to: {q1: 1, q2: 1}, "
+     "max_acceleration: {q1: 1, q2: 1}, max_velocity: {q1: 1, q2: 1}, grade: [velocities]}"),
     ("{type: displacement, from: {q1: 0, q2: 0}, to: {q1: 1, q2: 0}, grade: [L]}", "L",
      "{type: displacement, axis: [0, 0, 1], angle: 1, grade: [L]}"),
 ])

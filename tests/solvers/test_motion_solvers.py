@@ -194,3 +194,25 @@ def test_null_acceleration_limit_keeps_the_profile_symbolic():
     assert "Max" in str(ans["prof"].symbolic["T"]) and "T" not in ans["prof"].numeric
     assert ans["joint_torques"].notes == ["numeric torques omitted: it needs the null parameter a1"]
     assert ans["p_control"].notes == ["numeric simulation omitted: it needs the null parameter a1"]
+
+
+def test_trapezoidal_cruise_velocities_are_an_answer_key():
+    """A trapezoidal profile's lowered cruise velocities (results.json `velocities`) are a key of
+    the type's schema, so a teacher may grade them: against the closed form v (T − v/a) = Δ of the
+    slower joint (Δ = 0.5, a = 2, T = 2.5 from the first joint: v = (5 − √21)/2)."""
+    from robosolve.questions.registry import QUESTION_TYPES
+
+    problem = load_problem_text("""robosolve: 1
+name: trap
+parameters: {L: 1}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+frames: {"1": {parent: "0", pose: "Rz(q1) Tx(L)"}, "2": {pose: "Rz(q2) Tx(L)"}}
+questions:
+  - {type: motion_profile, shape: trapezoidal, from: {q1: 0, q2: 0}, to: {q1: 2, q2: 0.5},
+     max_acceleration: {q1: 2, q2: 2}, max_velocity: {q1: 1, q2: 1}, grade: [T, velocities]}
+""", "trap.yaml")
+    answer = solve_problem(problem).answers[0]
+    assert answer.numeric["T"] == pytest.approx(2.5)
+    assert answer.numeric["velocities"]["q1"] == pytest.approx(1.0)
+    assert answer.numeric["velocities"]["q2"] == pytest.approx((5 - math.sqrt(21)) / 2, rel=1e-12)
+    assert "velocities" in [k.name for k in QUESTION_TYPES["motion_profile"].answers]
