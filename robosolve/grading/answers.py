@@ -26,6 +26,10 @@ from robosolve.variants.naming import safe_name  # noqa: F401  (the one rule, va
 
 FORMAT_KEY = "robosolve-answers"
 TOP_KEYS = (FORMAT_KEY, "problem", "student", "answers")
+#: An answers file may be larger than a problem file (yamlsource.MAX_FILE_BYTES): it may hold the
+#: reference's own symbolic answers given back (a 7-joint arm's equations of motion run to
+#: 1.3 MB); still bounded, so that reading and grading it stays a matter of seconds.
+ANSWERS_MAX_FILE_BYTES = 4_000_000
 
 
 @dataclass
@@ -80,12 +84,12 @@ def read_answers(file) -> Submission:
     `answers`); smaller issues are kept in `issues` and raised by `resolve_answers` together
     with those of the questions and keys, so one run reports every mistake.
     """
-    return read_answers_text(read_text_file(file, line=1), str(file))
+    return read_answers_text(read_text_file(file, line=1, limit=ANSWERS_MAX_FILE_BYTES), str(file))
 
 
 def read_answers_text(text: str, file: str = "<answers>") -> Submission:
     try:
-        source, duplicates = parse_yaml(text, file)
+        source, duplicates = parse_yaml(text, file, limit=ANSWERS_MAX_FILE_BYTES)
     except YamlProblem as exc:
         message = exc.message.replace("expected a mapping with `robosolve: 1`",
                                       f"expected a mapping with `{FORMAT_KEY}: 1`")

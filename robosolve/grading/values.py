@@ -38,8 +38,9 @@ ARRAY_KINDS = (R.VECTOR, R.MATRIX, R.VECTOR_SET, R.AXES)
 SET_KINDS = (R.JOINT_MAP_SET, R.VECTOR_SET)
 
 
-#: One expression of an answers file: bounded by the file's own size (yamlsource.MAX_FILE_BYTES),
-#: so the reference's longest expressions (a 6R arm's equations of motion) can be given back.
+#: One expression of an answers file (whose size is bounded by answers.ANSWERS_MAX_FILE_BYTES):
+#: the reference's longest expressions (a 7-joint arm's velocity terms, 320,000 characters an
+#: entry) can be given back.
 ANSWER_MAX_CHARS = 1_000_000
 ANSWER_MAX_NODES = 2_000_000
 

@@ -80,10 +80,12 @@ class _TooLarge(Exception):
     pass
 
 
-def size_issue(expr, values: dict | None = None) -> str | None:
+def size_issue(expr, values: dict | None = None, memo: dict | None = None) -> str | None:
     """Why `expr` (with the numeric `values` of some symbols substituted) holds a number too
-    large to compute, or None. Works on the tree, evaluating only subtrees already bounded."""
-    memo: dict = {}
+    large to compute, or None. Works on the tree, evaluating only subtrees already bounded.
+    `memo` (estimates of subtrees already seen, for the same `values`) may be shared between
+    calls: a parser checks every product it builds, and each holds the ones below it."""
+    memo = {} if memo is None else memo
     try:
         _log10(expr, values or {}, memo)
     except _TooLarge as exc:
@@ -291,6 +293,7 @@ class Namespace:
         count = sum(1 for _ in ast.walk(tree))
         if count > self.max_nodes:
             raise ExpressionError("expression too large")
+        self._sizes: dict = {}      # size estimates of the subtrees built, shared by `_bounded`
         try:
             return self._convert(tree.body, text)
         except RecursionError:
@@ -356,10 +359,9 @@ class Namespace:
             return FUNCTIONS[name](*args)
         raise ExpressionError(f"not allowed in an expression: {text!r}" + _parse_hint(text))
 
-    @staticmethod
-    def _bounded(unevaluated, text, evaluate=None):
+    def _bounded(self, unevaluated, text, evaluate=None):
         """`unevaluated` checked for number size first; then `evaluate()` builds the real thing."""
-        issue = size_issue(unevaluated)
+        issue = size_issue(unevaluated, memo=self._sizes)
         if issue is not None:
             raise ExpressionError(f"{text!r}: {issue}")
         return evaluate() if evaluate is not None else unevaluated

@@ -193,10 +193,10 @@ def decode_utf8(raw: bytes, file, what: str = "the file", bom: bool = True) -> s
         raise InputError([InputIssue(str(file), line, "", message)]) from None
 
 
-def read_text_file(file, line: int = 0, what: str = "the file") -> str:
-    """The UTF-8 text of `file` (at most MAX_FILE_BYTES), or an InputError saying why it cannot
+def read_text_file(file, line: int = 0, what: str = "the file", limit: int = MAX_FILE_BYTES) -> str:
+    """The UTF-8 text of `file` (at most `limit` bytes), or an InputError saying why it cannot
     be read: at `line` when the file cannot be opened, at the line of a bad byte."""
-    return decode_utf8(read_input_bytes(file, line=line, what=what), file, what)
+    return decode_utf8(read_input_bytes(file, limit=limit, line=line, what=what), file, what)
 
 
 _OPENING = (yaml.FlowSequenceStartToken, yaml.FlowMappingStartToken, yaml.BlockMappingStartToken,
@@ -232,13 +232,14 @@ def _character_problem(text: str, exc) -> YamlProblem:
                        "(remove it; was the file saved as UTF-16 or binary?)")
 
 
-def parse_yaml(text: str, file: str = "<input>") -> tuple[Source, list[tuple[int, Path, str]]]:
-    """Parse YAML text. Raises YamlProblem for syntax errors and resource limits.
+def parse_yaml(text: str, file: str = "<input>", limit: int = MAX_FILE_BYTES) -> tuple[Source, list[tuple[int, Path, str]]]:
+    """Parse YAML text of at most `limit` bytes. Raises YamlProblem for syntax errors and
+    resource limits.
 
     Returns the Source and the duplicate keys found (line, path, key).
     """
-    if len(text.encode("utf-8", "replace")) > MAX_FILE_BYTES:
-        raise YamlProblem(1, f"file larger than {MAX_FILE_BYTES} bytes")
+    if len(text.encode("utf-8", "replace")) > limit:
+        raise YamlProblem(1, f"file larger than {limit} bytes")
     try:
         documents = list(yaml.compose_all(text, Loader=yaml.SafeLoader))
     except yaml.MarkedYAMLError as exc:

@@ -201,3 +201,53 @@ def test_the_reference_symbolic_answers_given_back_are_right(tmp_path, problem, 
     record = json.loads((tmp_path / "r.json").read_text())
     verdicts = {k: v["verdict"] for k, v in record["questions"][question]["keys"].items() if k in keys}
     assert verdicts == {k: "correct" for k in keys}, r.output
+
+
+def test_an_answers_file_may_be_larger_than_a_problem_file(folder):
+    """grading.md: an answers file may hold the reference's own symbolic answers given back (the
+    Panda's equations of motion run to 1.3 MB), so its bound (4 MB) is above a problem file's
+    (1 MB): a 1.5 MB file is read and graded; above 4 MB it is refused at line 1 (exit 2)."""
+    from robosolve.grading.answers import ANSWERS_MAX_FILE_BYTES
+    from robosolve.load.yamlsource import MAX_FILE_BYTES
+
+    assert MAX_FILE_BYTES < 1_500_000 < ANSWERS_MAX_FILE_BYTES
+    body = ("robosolve-answers: 1\nproblem: two-r.yaml\nanswers:\n  jacobian:\n"
+            "    det: \"L1*L2*sin(q2)\"\n")              # det J = L1·L2·sin q2, by hand
+    padding = "# " + "x" * 998 + "\n"
+    big = write(folder, body + padding * 1500)
+    assert big.stat().st_size > 1_500_000
+    code, record, _ = _run(["check", str(big), "--json", "-"])
+    assert code == 1 and json.loads(record[record.index("{"):])["questions"]["jacobian"]["keys"]["det"]["verdict"] == "correct"
+    huge = write(folder, body + padding * (ANSWERS_MAX_FILE_BYTES // 1000 + 1), name="huge.yaml")
+    assert _run(["check", str(huge)])[0] == 2
+    with pytest.raises(InputError) as exc:
+        read_answers(huge)
+    assert [str(i) for i in exc.value.issues] == [f"{huge}:1: the file is larger than {ANSWERS_MAX_FILE_BYTES} bytes"]
+
+
+@pytest.mark.slow
+def test_the_panda_symbolic_equations_given_back_are_right():
+    """papers.md round trip for the largest bundled answers: the Panda's graded symbolic keys
+    (1.3 MB of expressions) from its golden results.json are read (not refused as over 1 MB) and
+    right. Robosolve against itself, named as such (the expressions' correctness is checked
+    against pinocchio in tests/engines)."""
+    import yaml
+
+    from tests.papers.test_template import golden_reference
+    from robosolve.grading.answers import read_answers_text
+    from robosolve.load.loader import load_problem
+    from conftest import PROBLEMS
+
+    problem = load_problem(PROBLEMS / "panda.yaml")
+    ref, results = golden_reference(problem)
+    keys = ["mass_matrix", "velocity_terms", "gravity_terms", "generalized_forces"]
+    answers = {k: results["equations_of_motion"]["symbolic"][k] for k in keys}
+    text = yaml.safe_dump({"robosolve-answers": 1, "student": "s1",
+                           "answers": {"equations_of_motion": answers}}, width=10**9)
+    assert len(text.encode()) > 1_000_000
+    sub = resolve_answers(read_answers_text(text, "a.yaml"), problem)
+    from robosolve.grading.grader import Grader
+
+    result = Grader(ref).grade(sub.student, sub.answers)
+    q = next(q for q in result.questions if q.id == "equations_of_motion")
+    assert {k: q.keys[k].verdict for k in keys} == dict.fromkeys(keys, "correct")
