@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from robosolve.grading.values import MAP_KINDS, Equation
+from robosolve.grading.values import MAP_KINDS, Equation, Pieces
 from robosolve.load.expressions import did_you_mean
 from robosolve.questions import registry as R
 
@@ -44,7 +44,7 @@ class Outcome:
     wrong: list = field(default_factory=list)   # labels of wrong entries, in order
     shape: str = ""                  # a layout that differs from the expected one
     unknown: str = ""                # a name the answer cannot have (e.g. a joint that does not exist)
-    where: list = field(default_factory=list)   # index paths of the wrong entries (vectors, matrices, maps)
+    where: list = field(default_factory=list)   # index paths of the first wrong entries (vectors, matrices, maps)
     matched: int = 0                 # sets: expected elements matched by a given one
     n_given: int = 0
     n_expected: int = 0
@@ -66,10 +66,15 @@ def negate(tree):
         return [negate(v) for v in tree]
     if isinstance(tree, tuple):
         return tuple(negate(v) for v in tree)
+    if isinstance(tree, Pieces):
+        return Pieces(tuple(negate(v) for v in tree.parts), tree.intervals)
     return -tree if is_number(tree) else tree
 
 
 def leaf_ok(g, e, angle: bool, rules: Rules) -> bool:
+    if isinstance(e, Pieces) or isinstance(g, Pieces):       # a profile: right on every interval
+        return (isinstance(e, Pieces) and isinstance(g, Pieces) and len(g.parts) == len(e.parts)
+                and all(leaf_ok(a, b, angle, rules) for a, b in zip(g.parts, e.parts)))
     if isinstance(e, Equation) or isinstance(g, Equation):
         if not (isinstance(e, Equation) and isinstance(g, Equation)):
             return False
@@ -136,7 +141,7 @@ def _map(g, e, angle_of, rules, leaf=None) -> Outcome:
     unknown, missing = _names(g, e)
     if unknown:
         return Outcome(False, unknown=unknown)
-    wrong, where = [f"no value for {k}" for k in missing], []
+    wrong, where = [], []          # the entries of `where` label the first ones of `wrong`
     for k in e:
         if k in g:
             if leaf is not None:
@@ -149,6 +154,7 @@ def _map(g, e, angle_of, rules, leaf=None) -> Outcome:
             elif not leaf_ok(g[k], e[k], angle_of(k), rules):
                 wrong.append(k)
                 where.append((k,))
+    wrong += [f"no value for {k}" for k in missing]
     return Outcome(not wrong, wrong, where=where)
 
 
@@ -161,6 +167,14 @@ def _element_ok(g, e, angle_of, rules) -> bool:
             leaf_ok(a, b, False, rules) for a, b in zip(g, e))
     return isinstance(g, list) and len(g) == len(e) and all(
         leaf_ok(a, b, angle_of(None), rules) for a, b in zip(g, e))
+
+
+def value_rules(rules: Rules) -> Rules:
+    """The rules of values compared as numbers (singular conditions, grading.md): at the points
+    that keep the parameters at their values, when the points move them too."""
+    if rules.fixed is None or not (rules.mask & rules.fixed).any():
+        return rules
+    return Rules(rules.tol, rules.mask & rules.fixed, rules.revolute)
 
 
 def max_matching(adj: list[list[bool]]) -> int:
@@ -180,10 +194,11 @@ def max_matching(adj: list[list[bool]]) -> int:
     return sum(1 for i in range(len(adj)) if augment(i, [False] * n_exp))
 
 
-def _set(g, e, angle_of, rules) -> Outcome:
+def _set(g, e, angle_of, rules, by_value: bool = False) -> Outcome:
     if not isinstance(g, list):
         return Outcome(False, shape="a list is expected")
-    adj = [[_element_ok(a, b, angle_of, rules) for b in e] for a in g]
+    values = value_rules(rules) if by_value else rules
+    adj = [[_element_ok(a, b, angle_of, values if isinstance(b, dict) else rules) for b in e] for a in g]
     matched = max_matching(adj) if g and e else 0
     ok = matched == len(e) == len(g)
     wrong = [] if ok else [f"{matched} of the {len(e)} expected elements matched, {len(g)} given"]
@@ -264,7 +279,7 @@ def compare(ak, g, e, rules: Rules) -> Outcome:
         return _map(g, e, angle_of, rules,
                     leaf=lambda a, b: _map(a, b, lambda n: False, rules))
     if ak.unordered:
-        return _set(g, e, angle_of, rules)
+        return _set(g, e, angle_of, rules, ak.by_value)
     if kind == R.JOINT_MAP_LIST:
         if not isinstance(g, list) or len(g) != len(e):
             return Outcome(False, shape=f"{len(g) if isinstance(g, list) else 1} elements where "

@@ -19,10 +19,12 @@ from robosolve.core.plain import plain
 from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare
+from robosolve.grading.conditions import expand, one_joint_conditions
+from robosolve.grading.pieces import has_piecewise, split_pieces, wrong_intervals
 from robosolve.grading.points import evaluate, sample, single_point
 from robosolve.grading.reach import set_reaches
 from robosolve.grading.reference import Reference, lookup
-from robosolve.grading.values import Equation, Reader, ValueProblem, blanks, free_symbols, substitute
+from robosolve.grading.values import Equation, Pieces, Reader, ValueProblem, blanks, free_symbols, substitute
 from robosolve.questions import registry as R
 from robosolve.questions.registry import question_type
 
@@ -159,7 +161,8 @@ def _wrong_given(outcome, g) -> str:
     """What is wrong, with what was given there but not the expected value (`--no-expected`)."""
     if outcome.where:
         parts = [f"{label} is {show(_at(g, p))}" for label, p in zip(outcome.wrong, outcome.where)][:3]
-        more = len(outcome.where) - len(parts)
+        parts += outcome.wrong[len(outcome.where):]          # entries not given ("no value for q2")
+        more = len(outcome.where) - min(len(outcome.where), 3)
         return "wrong: " + "; ".join(parts) + (f" (and {more} more)" if more > 0 else "")
     if outcome.wrong and outcome.wrong != ["the value"]:
         return "wrong: " + ", ".join(outcome.wrong)
@@ -198,6 +201,7 @@ class Grader:
                              actuators=[str(j.actuator) for j in reference.problem.joints])
         self.expected_reader = Reader(self.ns, expected=True)
         self.revolute = reference.revolute
+        self.joint_names = {j.symbol: j.name for j in reference.problem.joints}
         self.parameters = set(reference.problem.parameters)
         grading = reference.problem.grading or {}
         self.partial = dict(grading.get("partial") or {})
@@ -261,11 +265,18 @@ class Grader:
 
     def _compare(self, qref, ak, key, g, sym, num) -> KeyResult:
         subs = qref.subs
-        free = free_symbols(g)
-        # by_value keys (singularities) are compared as numbers whenever the reference has them
-        # as numbers; conditions written as equations stay symbolic (a single point cannot
-        # tell an equation up to a constant factor)
-        symbolic = bool(free) and sym is not None and not (ak.by_value and num is not None)
+        conditions = []
+        if ak.by_value and isinstance(g, list):     # `sin(theta2) = 0`: the values it stands for
+            reference = self._expected(qref, ak, key, "symbolic", sym) if sym is not None else []
+            g, conditions = one_joint_conditions(g, self.joint_names, self.revolute, reference)
+        free = free_symbols(g) | free_symbols([el for el, _ in conditions])
+        if ak.by_value:
+            # singular conditions: compared as numbers when the reference has them as numbers;
+            # else at sample points (its equations, up to a constant factor), their values
+            # still compared at the problem's values only (compare.py)
+            symbolic = sym is not None and num is None
+        else:
+            symbolic = bool(free) and sym is not None
         if symbolic:
             e = self._expected(qref, ak, key, "symbolic", sym)
             if not free_symbols(e):
@@ -276,7 +287,7 @@ class Grader:
             if free:
                 g = substitute(g, subs)
                 left = free_symbols(g)
-                if left:
+                if left and not ak.by_value:    # (a condition in joints matches no value: wrong)
                     raise ValueProblem(f"{self._names(left)} {'has' if len(left) == 1 else 'have'} no value "
                                        "here: give numbers (or expressions of the parameters)")
             if num is not None:
@@ -287,20 +298,38 @@ class Grader:
                 if left:
                     raise ValueProblem(f"the answer depends on {self._names(left)}, which has no value: "
                                        "give it as an expression")
+        return self._judge(qref, ak, key, g, e, symbolic, conditions)
+
+    def _judge(self, qref, ak, key, g, e, symbolic: bool, conditions=()) -> KeyResult:
+        """The verdict on the given tree `g` against the expected `e` (sympy trees), compared at
+        sample points (`symbolic`) or at the question's values; `conditions`: singular conditions
+        of one joint per equation, taken out of g (conditions.py)."""
         compared = "symbolic" if symbolic else "numeric"
+        written = (g + [el for el, _ in conditions] if conditions else g), e    # for the feedback
+        pieced = symbolic and (has_piecewise(g) or has_piecewise(e))
+        if pieced:                     # profiles: compared piece by piece on [0, T] (pieces.py)
+            roles = qref.roles
+            g, e = split_pieces(g, e, roles.t_symbol, qref.subs, roles.t_range, self.tol)
+        free = free_symbols(g) | free_symbols([el for el, _ in conditions])
         points = (sample(free | free_symbols(e), qref.roles, f"{self.ref.name}/{qref.id}/{key}")
                   if symbolic else single_point())
-        ge, ee = evaluate(g, points), self._evaluated(qref, key, compared, e, points)
+        ge = evaluate(g, points)
+        ee = evaluate(e, points) if pieced else self._evaluated(qref, key, compared, e, points)
         mask = _finite_mask(ee, points.size)
         if symbolic and mask.sum() < MIN_POINTS:
             return self._prove(qref, ak, key, g, e)
         rules = Rules(self.tol, mask, self.revolute, fixed=points.fixed if symbolic else None)
+        if conditions:
+            ge = ge + self._condition_values(qref, conditions, ee, points, rules)
         outcome = compare(ak, ge, ee, rules)
         if outcome.ok or (ak.reaches and not symbolic and qref.reach
                           and set_reaches(qref.reach, ge, outcome.n_expected, self.revolute, self.tol)):
             return KeyResult(CORRECT, compared)
         if outcome.unknown:
             return KeyResult(INVALID, compared, feedback=outcome.unknown)
+        if pieced:
+            outcome.wrong = _named_intervals(outcome, ge, ee, ak, rules)
+        g, e = written
         substituted = (free_symbols(e) & self.parameters) - free   # parameters the answer lacks
         alts = self._alternatives(qref, ak, key, compared, points)
         diagnosis = D.diagnose(ak, ge, ee, rules, outcome, symbolic and bool(substituted), alts)
@@ -316,6 +345,25 @@ class Grader:
                              expected=shown, credit=credit)
         return KeyResult(INCORRECT, compared, "", self._wrong_entries(outcome, g, e) + expected_text,
                          hidden=_wrong_given(outcome, g), expected=shown, credit=credit)
+
+    def _condition_values(self, qref, conditions, ee, points, rules) -> list:
+        """The evaluated elements the singular conditions of one joint per equation stand for
+        (conditions.py), compared with the reference's values as compare.py compares them;
+        a condition that stands for no roots stays the equation it is."""
+        from robosolve.grading.compare import leaf_ok, value_rules
+
+        by_value = value_rules(rules)
+        if points.symbols:
+            columns = points.columns
+        else:
+            columns = {s: np.array([_number(v)]) for s, v in qref.subs.items() if s not in self.joint_names}
+        out = []
+        for el, parts in conditions:
+            values = expand(parts, ee, columns, points.size,
+                            lambda a, b, name: leaf_ok(a, b, name in self.revolute, by_value))
+            out += values if values is not None else [evaluate(el if points.symbols else substitute(el, qref.subs),
+                                                               points)]
+        return out
 
     def _credit(self, ak, diagnosis: str, outcome, e) -> Fraction:
         """Partial credit (grading.md): the diagnosis's share, or the share of entries right."""
@@ -347,7 +395,8 @@ class Grader:
         if outcome.where:
             parts = [f"{label} is {show(_at(g, p))}; expected {show(_at(e, p))}"
                      for label, p in zip(outcome.wrong, outcome.where)][:3]
-            more = len(outcome.where) - len(parts)
+            parts += outcome.wrong[len(outcome.where):]      # entries not given ("no value for q2")
+            more = len(outcome.where) - min(len(outcome.where), 3)
             return "; ".join(parts) + (f" (and {more} more)" if more > 0 else "") + ". In full: "
         if outcome.wrong and outcome.wrong != ["the value"]:
             return "wrong: " + ", ".join(outcome.wrong) + "; "
@@ -472,6 +521,30 @@ def _schema_order(qt, given: dict) -> list:
     return sorted(given, key=lambda k: order.index(k) if k in order else len(order))
 
 
+def _named_intervals(outcome, ge, ee, ak, rules) -> list:
+    """The labels of the wrong entries, a profile's with the intervals of t where it is wrong
+    ("theta1 (wrong for t in [0.8862, 1.772])")."""
+    from robosolve.grading.compare import leaf_ok
+
+    labels = list(outcome.wrong)
+    for i, path in enumerate(outcome.where):
+        a, b = _at(ge, path), _at(ee, path)
+        if i < len(labels) and isinstance(a, Pieces) and isinstance(b, Pieces):
+            angle = ak.angle and path[-1] in rules.revolute
+            spans = [f"[{x:.4g}, {y:.4g}]" for x, y in
+                     wrong_intervals(a, b, lambda u, v: leaf_ok(u, v, angle, rules))]
+            if spans:
+                labels[i] += f" (wrong for t in {', '.join(spans)})"
+    return labels
+
+
+def _number(v) -> float:
+    try:
+        return float(sp.N(v))
+    except (TypeError, ValueError):
+        return float("nan")
+
+
 def _finite_mask(tree, n: int) -> np.ndarray:
     mask = np.ones(n, dtype=bool)
 
@@ -485,6 +558,8 @@ def _finite_mask(tree, n: int) -> np.ndarray:
                 walk(v)
         elif isinstance(t, Equation):
             walk(t.residual)
+        elif isinstance(t, Pieces):
+            walk(t.parts)
         elif isinstance(t, np.ndarray):
             mask &= np.isfinite(t)
 
@@ -528,7 +603,9 @@ def _pairs(g, e):
                 return None
             out += sub
         return out
-    if isinstance(e, Equation) or isinstance(g, Equation):
+    if isinstance(e, Pieces) and isinstance(g, Pieces):
+        return _pairs(list(g.parts), list(e.parts))
+    if isinstance(e, (Equation, Pieces)) or isinstance(g, (Equation, Pieces)):
         return None
     if isinstance(e, (sp.Basic, float, int)) and isinstance(g, (sp.Basic, float, int)):
         return [(sp.sympify(g), sp.sympify(e))]

@@ -153,6 +153,27 @@ def evaluate(tree, sampling: Sampling):
     return map_leaves(tree, lambda _: next(values), _is_number)
 
 
+def values_at(expr, columns: dict, n: int) -> np.ndarray | None:
+    """The values of one expression at n points (`columns`: each symbol's values), by the tree
+    walk or else one `lambdify`; None when neither can (no slow point-by-point fallback: the
+    callers evaluate at thousands of points) or a symbol has no column."""
+    if not isinstance(expr, sp.Basic):
+        return np.full(n, float(expr))
+    if not expr.free_symbols <= set(columns):
+        return None
+    with np.errstate(all="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            return _as_real(tree_values(expr, columns, {}), n)
+        except Exception:  # noqa: BLE001 - a node it does not know: lambdify below
+            pass
+        symbols = sorted(expr.free_symbols, key=lambda s: s.name)
+        try:
+            return _as_real(sp.lambdify(symbols, expr, modules="numpy")(*(columns[s] for s in symbols)), n)
+        except Exception:  # noqa: BLE001 - a function numpy lacks
+            return None
+
+
 class _Unsupported(Exception):
     """An expression node the direct evaluator does not know (lambdify takes over)."""
 

@@ -33,6 +33,15 @@ class Equation:
     text: str = ""
 
 
+@dataclass(frozen=True)
+class Pieces:
+    """A piecewise leaf cut on the intervals of [0, T] where it and the leaf it is compared with
+    are each one expression (grading/pieces.py): the part on each interval, t rescaled in it."""
+
+    parts: tuple
+    intervals: tuple = ()          # (start, end) of each part's interval, s
+
+
 MAP_KINDS = (R.JOINT_MAP, R.ACTUATOR_MAP, R.BODY_MAP, R.COORDINATE_MAP, R.CONTROL_MAP)
 ARRAY_KINDS = (R.VECTOR, R.MATRIX, R.VECTOR_SET, R.AXES)
 SET_KINDS = (R.JOINT_MAP_SET, R.VECTOR_SET)
@@ -56,7 +65,7 @@ def answers_namespace(problem):
         entries = [f"r{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)] + ["px", "py", "pz"]
         names.update({n: sp.Symbol(n) for n in entries if n not in names})
     return Namespace(names, problem.points.keys(), what="name", max_chars=ANSWER_MAX_CHARS,
-                     max_nodes=ANSWER_MAX_NODES)
+                     max_nodes=ANSWER_MAX_NODES, piecewise=True)
 
 
 def _label(where: str) -> str:
@@ -183,6 +192,8 @@ class Reader:
         if kind in (R.JOINT_MAP_SET, R.JOINT_MAP_LIST):
             items = self._list(value, where)
             if not self.expected:
+                if kind == R.JOINT_MAP_SET:      # "theta2 = 0 or theta2 = pi": two conditions
+                    items = [part for v in items for part in _alternatives(v)]
                 items = [self._in_joint_order(v) for v in items]
             out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}")) for i, v in enumerate(items)]
             return out if self.expected else [self._as_joint_values(x) for x in out]
@@ -277,6 +288,16 @@ def _join(where: str, more: str) -> str:
     return f"{where}, {more}" if where else more
 
 
+def _alternatives(value) -> list:
+    """The elements of a set written as one string joined by `or` ("theta2 = 0 or theta2 = pi");
+    any other value is one element. (`or` is no name: it cannot be part of an expression.)"""
+    import re
+
+    if not isinstance(value, str) or not re.search(r"\bor\b", value):
+        return [value]
+    return [part.strip() for part in re.split(r"\bor\b", value)]
+
+
 def _split_equations(text: str) -> list[str]:
     """'a = 0, theta2 = pi' -> ['a = 0', 'theta2 = pi'] (commas inside brackets kept)."""
     from robosolve.grading.typed import split_top_level
@@ -296,6 +317,8 @@ def map_leaves(tree, fn, is_leaf=lambda x: isinstance(x, sp.Basic)):
         return tuple(map_leaves(v, fn, is_leaf) for v in tree)
     if isinstance(tree, Equation):
         return Equation(map_leaves(tree.residual, fn, is_leaf), tree.text)
+    if isinstance(tree, Pieces):
+        return Pieces(tuple(map_leaves(v, fn, is_leaf) for v in tree.parts), tree.intervals)
     return fn(tree) if is_leaf(tree) else tree
 
 

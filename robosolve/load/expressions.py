@@ -36,6 +36,8 @@ FUNCTIONS = {
 }
 FUNCTION_ARITY = {name: 1 for name in FUNCTIONS} | {"atan2": 2}
 CONSTANTS = {"pi": sp.pi}
+PIECEWISE = ("Piecewise", "piecewise")     # answers files only (Namespace.piecewise)
+COMPARISONS = {ast.Lt: sp.Lt, ast.LtE: sp.Le, ast.Gt: sp.Gt, ast.GtE: sp.Ge}
 RESERVED = set(FUNCTIONS) | set(CONSTANTS) | {"t"}
 COORDINATE_ATTRS = ("x", "y", "z")
 
@@ -250,7 +252,8 @@ class Namespace:
     """The names an expression may use, and what each one stands for."""
 
     def __init__(self, names: dict | None = None, points=(), what: str = "name", refused=None,
-                 unknown_ok: bool = False, max_chars: int = MAX_EXPRESSION_CHARS, max_nodes: int = MAX_NODES):
+                 unknown_ok: bool = False, max_chars: int = MAX_EXPRESSION_CHARS, max_nodes: int = MAX_NODES,
+                 piecewise: bool = False):
         self.names: dict[str, sp.Basic] = dict(names or {})
         self.points = set(points)
         self.what = what
@@ -262,14 +265,18 @@ class Namespace:
         # the size of one expression: a problem file's are written by hand; an answers file may
         # hold the reference's own (a PUMA's velocity terms run to 15,000 characters)
         self.max_chars, self.max_nodes = max_chars, max_nodes
+        # an answers file's profiles are piecewise in t (`piecewise(t < 1, t^2, ...)`, as the course
+        # writes them, or sympy's `Piecewise((t**2, t < 1), ...)`, as results.json does); a problem
+        # file has no use for them
+        self.piecewise = piecewise
 
     def with_names(self, extra: dict) -> "Namespace":
         return Namespace({**self.names, **extra}, self.points, self.what, self.refused, self.unknown_ok,
-                         self.max_chars, self.max_nodes)
+                         self.max_chars, self.max_nodes, self.piecewise)
 
     def without_points(self) -> "Namespace":
         return Namespace(self.names, (), self.what, self.refused, self.unknown_ok, self.max_chars,
-                         self.max_nodes)
+                         self.max_nodes, self.piecewise)
 
     # ------------------------------------------------------------------
     def parse(self, value) -> sp.Expr:
@@ -348,6 +355,8 @@ class Namespace:
             if not isinstance(node.func, ast.Name) or node.keywords:
                 raise ExpressionError(f"unexpected call in {text!r}")
             name = node.func.id
+            if self.piecewise and name in PIECEWISE:
+                return self._piecewise(node, text)
             if name not in FUNCTIONS:
                 raise ExpressionError(f"unknown function '{name}' in {text!r}"
                                       + did_you_mean(name, FUNCTIONS))
@@ -357,7 +366,56 @@ class Namespace:
             if name == "exp":
                 return self._bounded(sp.exp(args[0], evaluate=False), text, lambda: sp.exp(args[0]))
             return FUNCTIONS[name](*args)
+        if self.piecewise and isinstance(node, (ast.Compare, ast.BoolOp)):
+            raise ExpressionError(f"a condition stands only in piecewise(…) in {text!r} "
+                                  "(piecewise(t < 1, t^2, 2 - (2 - t)^2))")
         raise ExpressionError(f"not allowed in an expression: {text!r}" + _parse_hint(text))
+
+    def _piecewise(self, node, text):
+        """`Piecewise((e1, c1), (e2, c2), …)` (sympy's, results.json's) or `piecewise(c1, e1, c2, e2,
+        …[, otherwise])` (Maple's and MATLAB's, the course's): the first piece whose condition holds."""
+        args = node.args
+        if args and all(isinstance(a, ast.Tuple) and len(a.elts) == 2 for a in args):
+            pairs = [(a.elts[0], a.elts[1]) for a in args]
+        elif len(args) >= 2 and not any(isinstance(a, ast.Tuple) for a in args):
+            pairs = [(args[i + 1], args[i]) for i in range(0, len(args) - 1, 2)]
+            if len(args) % 2:
+                pairs.append((args[-1], ast.Constant(True)))
+        else:
+            raise ExpressionError(f"{node.func.id}() takes (expression, condition) pairs, as in "
+                                  f"Piecewise((t**2, t < 1), (1, True)), or conditions and expressions "
+                                  f"in turn, as in piecewise(t < 1, t^2, 1), in {text!r}")
+        pieces = [(self._convert(e, text), self._condition(c, text)) for e, c in pairs]
+        try:
+            return sp.Piecewise(*pieces)
+        except (TypeError, ValueError) as exc:
+            raise ExpressionError(f"cannot read {text!r} as a piecewise expression: {exc}") from None
+
+    def _condition(self, node, text):
+        """A condition of a piecewise expression: comparisons (chained: `0 <= t < 1`), joined by
+        `and` / `&`, `or` / `|`; `True` (or `otherwise`) for the last piece."""
+        if isinstance(node, ast.Constant) and isinstance(node.value, bool):
+            return sp.true if node.value else sp.false
+        if isinstance(node, ast.Name) and node.id in ("true", "otherwise"):
+            return sp.true
+        if isinstance(node, ast.BoolOp) or (isinstance(node, ast.BinOp) and isinstance(node.op, (ast.BitAnd, ast.BitOr))):
+            parts = node.values if isinstance(node, ast.BoolOp) else [node.left, node.right]
+            both = sp.And if isinstance(node.op, (ast.And, ast.BitAnd)) else sp.Or
+            return both(*(self._condition(p, text) for p in parts))
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not):
+            return sp.Not(self._condition(node.operand, text))
+        if isinstance(node, ast.Compare):
+            sides = [self._convert(x, text) for x in [node.left, *node.comparators]]
+            tests = []
+            for op, a, b in zip(node.ops, sides, sides[1:]):
+                if type(op) not in COMPARISONS:
+                    raise ExpressionError(f"a condition compares with < <= > >= in {text!r}")
+                try:
+                    tests.append(COMPARISONS[type(op)](a, b))
+                except TypeError as exc:
+                    raise ExpressionError(f"cannot compare in {text!r}: {exc}") from None
+            return sp.And(*tests)
+        raise ExpressionError(f"expected a condition (t < 1, 0 <= t and t < 2, True) in {text!r}")
 
     def _bounded(self, unevaluated, text, evaluate=None):
         """`unevaluated` checked for number size first; then `evaluate()` builds the real thing."""

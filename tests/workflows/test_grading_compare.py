@@ -544,3 +544,12 @@ def test_actuator_values_written_as_a_vector_in_joint_order():
     assert key(res, "equations_of_motion", "actuators").verdict == "correct"
     res = grade_text(ref, answers(f"  equations_of_motion:\n    actuators: [{tb:.6f}, {ta:.6f}]\n"))
     assert key(res, "equations_of_motion", "actuators").verdict == "incorrect"
+
+
+def test_a_wrong_entry_and_a_missing_one_are_each_named(ref):
+    """Fq = −Jᵀ·(0, −F) = F·(L1·cos q1 + L2·cos(q1 + q2), L2·cos(q1 + q2)) = (2.165, 0): with q1
+    wrong and q2 not given, the feedback quoted q1's value under q2's name ("no value for q2 is
+    3")."""
+    r = one(ref, "statics", "Fq", "{q1: 3.0}")
+    assert r.verdict == "incorrect"
+    assert r.feedback.startswith("q1 is 3; expected 2.165; no value for q2"), r.feedback
