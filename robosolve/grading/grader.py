@@ -18,7 +18,7 @@ import sympy as sp
 from robosolve.core.plain import plain
 from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
-from robosolve.grading.compare import Rules, compare
+from robosolve.grading.compare import Rules, compare, equivalents
 from robosolve.grading.conditions import expand, one_joint_conditions
 from robosolve.grading.pieces import has_piecewise, split_pieces, wrong_intervals
 from robosolve.grading.points import evaluate, sample, single_point
@@ -322,6 +322,8 @@ class Grader:
         if conditions:
             ge = ge + self._condition_values(qref, conditions, ee, points, rules)
         outcome = compare(ak, ge, ee, rules)
+        if not outcome.ok and any(compare(ak, ge, other, rules).ok for other in equivalents(ak, ge, ee, rules)):
+            return KeyResult(CORRECT, compared)
         if outcome.ok or (ak.reaches and not symbolic and qref.reach
                           and set_reaches(qref.reach, ge, outcome.n_expected, self.revolute, self.tol)):
             return KeyResult(CORRECT, compared)

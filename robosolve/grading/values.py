@@ -175,6 +175,8 @@ class Reader:
             value = self.array_text(ak, "[" + ", ".join(str(v) for v in value) + "]", where)
         if kind == R.SCALAR:
             return self.scalar(value, where)
+        if kind in (R.VECTOR, R.MATRIX) and all_null(value):
+            return None           # null where the reference has null (an axis at an angle of 0)
         if kind == R.VECTOR:
             return self.vector(value, where)
         if kind == R.MATRIX:
@@ -333,11 +335,18 @@ def substitute(tree, subs: dict):
     return map_leaves(tree, lambda e: e.xreplace(subs))
 
 
+def all_null(value) -> bool:
+    """null, or a list (of lists) of nothing but nulls: a template's [~, ~, ~] left as it is."""
+    if isinstance(value, list):
+        return bool(value) and all(all_null(v) for v in value)
+    return value is None
+
+
 def blanks(value, expected=(), where: str = "") -> list[str]:
     """The entries of a given value still holding `~` (null), named as the grader names them:
     a key with one left is `missing` (papers.md), never `invalid`. An entry whose `expected`
     value (the same layout; `()` when unknown) is itself null (an infinite length) is no blank."""
-    if value is None:
+    if value is None or (expected is None and all_null(value)):   # a template's [~, ~, ~] for null
         return [] if expected is None else [where or "the value"]
     out: list[str] = []
 
