@@ -191,6 +191,10 @@ class Reader:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:
             return self.mapping(value, self.matrix, where)
+        if kind == R.JOINT_MAP_SET and not self.expected and isinstance(value, str):
+            # typed as one string: "[-0.17 1.47; 1.10 -1.47]" (a row per element, in joint
+            # order), or "theta2 = 0 or theta2 = pi"
+            value = self._typed_rows(value, where) if value.strip().startswith("[") else [value]
         if kind in (R.JOINT_MAP_SET, R.JOINT_MAP_LIST):
             items = self._list(value, where)
             if not self.expected:
@@ -279,6 +283,22 @@ class Reader:
         if out and all(isinstance(r, list) and len(r) == 1 for r in out):
             out = [r[0] for r in out]             # a column [a; b]
         return out
+
+    def _typed_rows(self, value, where):
+        """A set of joint values typed as a matrix, one row per element in joint order (a
+        vector, or a column of one value per joint, is one element)."""
+        from robosolve.grading.typed import ArrayTextError, parse_array
+
+        try:
+            out = parse_array(value)
+        except ArrayTextError as exc:
+            raise ValueProblem(f"{_label(where)}cannot read {value!r} as rows of joint values: {exc}") from None
+        n = len(self.joints)
+        if out and all(isinstance(r, list) for r in out):
+            if n > 1 and len(out) == n and all(len(r) == 1 for r in out):
+                return [[r[0] for r in out]]
+            return out
+        return [[x] for x in out] if n == 1 else ([out] if out else [])
 
     def _list(self, value, where):
         if not isinstance(value, (list, tuple)):

@@ -217,12 +217,14 @@ def number(value) -> sp.Expr:
 #: Typography a text pasted from a printed paper, a PDF or a word processor carries, and the
 #: ASCII it stands for (answers are read through it: `typed_math`).
 TYPOGRAPHY = {"\u2212": "-", "\u2013": "-", "\u00d7": "*", "\u00b7": "*", "\u22c5": "*", "\u2217": "*",
-              "\u03c0": "pi", "\u00b2": "^2", "\u00b3": "^3", "\u00a0": " ", "\u2009": " "}
+              "\u03c0": "pi", "\u00b2": "^2", "\u00b3": "^3", "\u00a0": " ", "\u2009": " ",
+              "\u00b0": "*(pi/180)"}
 
 
 def typed_math(text: str) -> str:
     """A student's typed expression in the parser's ASCII: `−0.45` (a Unicode minus), `2·L1`,
-    `π/2`, `L1²`, `√3/4` and `√(a + b)` (a root of one number, name or parenthesis)."""
+    `π/2`, `L1²`, `√3/4` and `√(a + b)` (a root of one number, name or parenthesis), `30°`
+    (degrees, as deg(30))."""
     import re
 
     for mark, ascii_text in TYPOGRAPHY.items():
@@ -234,7 +236,8 @@ def typed_math(text: str) -> str:
 def _parse_hint(text: str) -> str:
     import re
 
-    marks = [m for m in TYPOGRAPHY if m in text] + (["\u221a"] if "\u221a" in text else [])
+    marks = ([m for m in TYPOGRAPHY if m in text and m != "\u00b0"]     # (° has its own hint below)
+             + (["\u221a"] if "\u221a" in text else []))
     if marks:
         return " (write " + ", ".join(
             f"{TYPOGRAPHY.get(m, 'sqrt(…)').strip() or 'a space'!r} for {m!r}" for m in marks) + ")"

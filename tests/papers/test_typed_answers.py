@@ -126,6 +126,8 @@ def test_matlab_typed_without_quotes_is_read_as_typed(tmp_path):
     ("√3/4", "sqrt(3)/4"),
     ("√(L1 + L2)", "sqrt(L1 + L2)"),
     ("√L1", "sqrt(L1)"),
+    ("30°", "pi/6"),               # degrees: was invalid ("write deg(30)")
+    ("-22.5° + L1", "-pi/8 + L1"),
 ])
 def test_typography_of_pasted_answers(typed, read):
     import sympy as sp

@@ -553,3 +553,16 @@ def test_a_wrong_entry_and_a_missing_one_are_each_named(ref):
     r = one(ref, "statics", "Fq", "{q1: 3.0}")
     assert r.verdict == "incorrect"
     assert r.feedback.startswith("q1 is 3; expected 2.165; no value for q2"), r.feedback
+
+
+def test_a_set_typed_as_one_string(ref):
+    """IK solutions typed as a MATLAB matrix, one row per solution in joint order (law of
+    cosines, by hand), and a singular set as one string joined by `or` (det J = L1·L2·sin q2):
+    both were `invalid` ("expected a list, got a string")."""
+    (a1, a2), (b1, b2) = ik_solutions()
+    r = one(ref, "inverse_kinematics", "solutions", f'"[{a1:.4f} {a2:.4f}; {b1:.4f} {b2:.4f}]"')
+    assert r.verdict == "correct", r
+    r = one(ref, "inverse_kinematics", "solutions", f'"[{a1:.4f} {a2:.4f}]"')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set")
+    assert one(ref, "jacobian", "singularities", '"q2 = 0 or q2 = pi"').verdict == "correct"
+    assert one(ref, "jacobian", "singularities", '[{q2: "0°"}, {q2: "180°"}]').verdict == "correct"
