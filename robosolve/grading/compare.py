@@ -227,7 +227,7 @@ def _axes(g, e, rules, sign_free: bool) -> Outcome:
 def _record(ak, g, e, rules) -> Outcome:
     if not isinstance(g, dict):
         return Outcome(False, shape="a mapping of " + ", ".join(e) + " is expected")
-    wrong = []
+    wrong, sets = [], []
     for name, ev in e.items():
         f = ak.field(name)
         if name not in g:
@@ -239,7 +239,11 @@ def _record(ak, g, e, rules) -> Outcome:
             return Outcome(False, shape=f"{name}: {sub.shape}", unknown=sub.unknown)
         if not sub.ok:
             wrong.append(name if not sub.wrong else f"{name} ({', '.join(sub.wrong)})")
-    return Outcome.of(wrong)
+            sets += [sub] if sub.n_expected or sub.n_given else []
+    out = Outcome.of(wrong)
+    if len(wrong) == 1 and len(sets) == 1:     # only a set field wrong: its counts (incomplete_set …)
+        out.matched, out.n_given, out.n_expected = sets[0].matched, sets[0].n_given, sets[0].n_expected
+    return out
 
 
 def compare(ak, g, e, rules: Rules) -> Outcome:

@@ -62,3 +62,13 @@ def test_every_writing_the_convention_allows_is_right(ref, question, name, value
 def test_other_rotations_stay_wrong(ref, question, name, value):
     r = given(ref, question, name, value)
     assert r.verdict == "incorrect", (question, value, r)
+
+
+def test_a_missing_euler_solution_is_an_incomplete_set(ref):
+    """The quarter turn about z has the RPY solutions (0, 0, π/2) and (π, π, −π/2) (by hand:
+    Rz(yaw)·Ry(pitch)·Rx(roll) with roll = pitch = π turns the same); one of them alone is
+    `incomplete_set`, as a set key is (it had no diagnosis inside the record)."""
+    r = given(ref, "quarter", "rpy", {"solutions": [[0, 0, "pi/2"]], "singular": False})
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set"), r
+    r = given(ref, "quarter", "rpy", {"solutions": [["pi", "pi", "-pi/2"], [0, 0, "pi/2"]], "singular": False})
+    assert r.verdict == "correct", r
