@@ -1,4 +1,7 @@
-"""Singular conditions written as equations of one joint each: the joint values they stand for.
+"""Singular conditions written as equations: the joint values (and conditions) they stand for.
+
+An equation whose left side is a product is first the conditions of its factors (det J = 0:
+a factor is zero; `factor_conditions`).
 
 grading.md: a singular condition is compared by its values. An equation that gives a joint a
 value linearly (`theta2 = pi`) is read as that mapping already (values.py); one that does not
@@ -21,6 +24,8 @@ import math
 
 import numpy as np
 
+import sympy as sp
+
 from robosolve.grading.points import values_at
 from robosolve.grading.values import Equation
 
@@ -30,6 +35,56 @@ GOLDEN_STEPS = 80
 ROOT = 1e-9                       # |residual| at a refined root, relative to its typical size
 CANDIDATE = 1e-3                  # |residual| at a grid minimum worth refining (an even root)
 SAME_ROOT = 1e-7                  # roots closer than this (rad) are one
+FACTOR_NODES = 400                # above (expression nodes): an equation is not split into its factors
+FACTOR_SECONDS = 10.0             # safety net of CPU time around a factorisation within FACTOR_NODES
+
+
+def factor_conditions(given: list, joints: dict, revolute) -> list:
+    """The set with each condition written as one equation whose left side is a product (det J
+    = 0: a factor is zero) replaced by the conditions of its factors: `sin(q3)*(a2*cos(q2) + …)
+    = 0` is `sin(q3) = 0` and `a2*cos(q2) + … = 0`; `d^2*cos(theta2) = 0` is `d = 0` and
+    `cos(theta2) = 0`. Factors free of the joints (L1*L2) are dropped; a factor linear in a
+    prismatic joint is the mapping it gives; an equation of one factor stays as written."""
+    out = []
+    for el in given:
+        parts = _factors(el[0], joints, revolute) if _is_equations(el) and len(el) == 1 else None
+        out += parts if parts else [el]
+    return out
+
+
+def _factors(eq, joints: dict, revolute):
+    from robosolve.core.simplify import determinant_factors, expression_nodes
+    from robosolve.core.timing import time_limit
+    from robosolve.errors import SymbolicTimeout
+
+    r = sp.sympify(eq.residual)
+    if not r.free_symbols & set(joints) or expression_nodes(r) > FACTOR_NODES:
+        return None
+    try:
+        with time_limit(FACTOR_SECONDS):    # a safety net: the node count decides
+            factors = [f for f in determinant_factors(r) if f.free_symbols & set(joints)]
+    except (SymbolicTimeout, sp.PolynomialError, ValueError, TypeError):
+        return None
+    out = []
+    for f in factors:
+        used = [q for q in joints if f.has(q)]
+        value = _linear_root(f, used[0]) if len(used) == 1 and joints[used[0]] not in revolute else None
+        out.append({joints[used[0]]: value} if value is not None else (Equation(f, f"{f} = 0"),))
+    # one factor stays the equation as written, unless it is in fewer joints (sin(q1 + q2)·cos q1
+    # − cos(q1 + q2)·sin q1 is sin q2) or gives a prismatic joint its value (2*d = 1)
+    fewer = len(factors) == 1 and set(factors[0].free_symbols & set(joints)) < set(r.free_symbols & set(joints))
+    return out if len(factors) > 1 or fewer or (out and isinstance(out[0], dict)) else None
+
+
+def _linear_root(f, q):
+    try:
+        poly = sp.Poly(f, q)
+    except sp.PolynomialError:
+        return None
+    if poly.degree() != 1:
+        return None
+    a, b = poly.all_coeffs()
+    return None if a.has(q) or b.has(q) else sp.expand(-b / a)
 
 
 def one_joint_conditions(given: list, joints: dict, revolute, expected: list) -> tuple[list, list]:

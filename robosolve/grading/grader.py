@@ -19,7 +19,7 @@ from robosolve.core.plain import plain
 from robosolve.core.simplify import is_zero
 from robosolve.grading import diagnose as D
 from robosolve.grading.compare import Rules, compare, equivalents
-from robosolve.grading.conditions import expand, one_joint_conditions
+from robosolve.grading.conditions import expand, factor_conditions, one_joint_conditions
 from robosolve.grading.pieces import has_piecewise, split_pieces, wrong_intervals
 from robosolve.grading.points import evaluate, sample, single_point
 from robosolve.grading.reach import set_reaches
@@ -268,6 +268,7 @@ class Grader:
         conditions = []
         if ak.by_value and isinstance(g, list):     # `sin(theta2) = 0`: the values it stands for
             reference = self._expected(qref, ak, key, "symbolic", sym) if sym is not None else []
+            g = factor_conditions(g, self.joint_names, self.revolute)
             g, conditions = one_joint_conditions(g, self.joint_names, self.revolute, reference)
         free = free_symbols(g) | free_symbols([el for el, _ in conditions])
         if ak.by_value:

@@ -129,3 +129,64 @@ def test_roots_found_by_the_grid_and_refined():
         assert len(found) == len(want), (residual, found)
         assert np.allclose(sorted(found), want, atol=1e-7), (residual, found, want)
     assert roots_at(sp.sin(q) ** 2 + sp.cos(q) ** 2 - 1, q, {}, 1) is None     # true for every q
+
+
+def test_a_product_is_the_conditions_of_its_factors(two_r):
+    """det J = 0 written whole: a product is zero when a factor is. sin(q1 + q2)·cos q1 −
+    cos(q1 + q2)·sin q1 = sin q2 (by the addition formula): right; cos q1·sin q2 = 0 adds
+    q1 = ±π/2, which are not singular: extra_in_set."""
+    r = singularities(two_r, '["L1*L2*(sin(q1 + q2)*cos(q1) - cos(q1 + q2)*sin(q1)) = 0"]')
+    assert r.verdict == "correct", r
+    r = singularities(two_r, '["cos(q1)*sin(q2) = 0"]')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "extra_in_set"), r
+
+
+ANTHROPOMORPHIC = """
+robosolve: 1
+name: anthropomorphic
+parameters: {L1: 1/2, L2: 2/5, L3: 3/10}
+joints:
+  - {name: theta1, type: revolute}
+  - {name: theta2, type: revolute}
+  - {name: theta3, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Tz(L1) Rz(theta1) Rx(pi/2)"}
+  "2": {pose: "Rz(theta2) Tx(L2)"}
+  "3": {pose: "Rz(theta3) Tx(L3)"}
+questions:
+  - {type: jacobian, at: {theta1: 0.3, theta2: 0.6, theta3: -0.9}, grade: [singularities]}
+"""
+
+# a planar arm turning theta and sliding d along its link: E = (d·cos θ, d·sin θ), det J = d
+RP = """
+robosolve: 1
+name: rp
+joints:
+  - {name: theta, type: revolute}
+  - {name: d, type: prismatic}
+frames:
+  "1": {parent: "0", pose: "Rz(theta)"}
+  "2": {pose: "Tx(d)"}
+questions:
+  - {type: jacobian, coordinates: [E.x, E.y], at: {theta: 0.3, d: 0.5}, grade: [singularities]}
+"""
+
+
+def test_the_textbook_determinant_of_the_anthropomorphic_arm():
+    """det J = L2·L3·sin θ3·(L2·cos θ2 + L3·cos(θ2 + θ3)) (Siciliano et al., the anthropomorphic
+    arm): the elbow (θ3 = 0, π) and the wrist point on the base axis (the second factor, an
+    equation in two joints). Written whole, it is those conditions; without its last factor,
+    incomplete."""
+    ref = reference_of(ANTHROPOMORPHIC)
+    det = "L2*L3*sin(theta3)*(L2*cos(theta2) + L3*cos(theta2 + theta3)) = 0"
+    assert singularities(ref, f'["{det}"]').verdict == "correct"
+    r = singularities(ref, '["L2*L3*sin(theta3) = 0"]')
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set"), r
+
+
+def test_a_prismatic_joint_given_its_value_by_any_linear_equation():
+    ref = reference_of(RP)
+    for value in ('[{d: 0}]', '["d = 0"]', '["2*d = 0"]', '["d^2 = 0"]'):
+        r = singularities(ref, value)
+        assert r.verdict == "correct", (value, r)
+    assert singularities(ref, '["d = 1"]').verdict == "incorrect"
