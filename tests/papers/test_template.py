@@ -139,3 +139,20 @@ def test_every_key_a_question_may_grade_has_a_place_in_its_template(tmp_path):
     with pytest.raises(InputError, match=r"unknown answer key 'actuators.peak' for a joint_torques question"):
         load_problem_text(text.replace("grade: [profiles], type: joint_torques", "grade: [actuators.peak], type: joint_torques"),
                           str(tmp_path / "refused.yaml"))
+
+
+def test_profiles_given_back_as_the_reference_writes_them():
+    """A teacher may grade the profiles (`grade: [profiles]`): the reference's own piecewise
+    profiles, given back from results.json, are right (they were `invalid`: the answers' parser
+    had no Piecewise). Robosolve against itself, named as such; the profiles' correctness is
+    checked against closed forms in tests/workflows/test_grading_profiles.py."""
+    problem = load_problem(PROBLEMS / "exam-2r-full.yaml")
+    for q in problem.questions:
+        if q.type in ("motion_profile", "joint_torques"):
+            q.grade = ["profiles"]
+    ref, results = golden_reference(problem)
+    answers = {q: {"profiles": results[q]["symbolic"]["profiles"]} for q in ("profile", "joint_torques")}
+    text = yaml.safe_dump({"robosolve-answers": 1, "student": "s1", "answers": answers}, width=10**6)
+    result = _grade(problem, ref, text)
+    verdicts = {qr.id: qr.keys["profiles"].verdict for qr in result.questions if "profiles" in qr.keys}
+    assert verdicts == {"profile": "correct", "joint_torques": "correct"}
