@@ -307,6 +307,8 @@ def equivalents(ak, g, e, rules: Rules) -> list:
     as well as q. Each an evaluated expected tree, for the given `g`."""
     if ak.quaternion and isinstance(e, list) and e and _all_near(e[0], 0.0, rules):
         return [negate(e)]
+    if ak.kind == R.RECORD and {f.name for f in ak.fields} == {"solutions", "singular"} and isinstance(e, dict):
+        return _singular_euler_representatives(ak.name, g, e, rules)
     if ak.kind != R.RECORD or {f.name for f in ak.fields} != {"axis", "angle"} or not isinstance(e, dict):
         return []
     angle, axis = e.get("angle"), e.get("axis")
@@ -319,6 +321,47 @@ def equivalents(ak, g, e, rules: Rules) -> list:
         if _all_near(norm, 1.0, rules):
             return [{**e, "axis": given}]
     return []
+
+
+def _singular_euler_representatives(convention: str, g, e, rules: Rules) -> list:
+    """At a singularity of ZYZ (θ = 0 or π) or roll-pitch-yaw (pitch = ±π/2) the angles are a
+    family: the reference writes one representative (the last angle 0), and any member of the
+    family written with `singular: true` is the same rotation and right. Each given triple is
+    judged by the rotation it makes."""
+    if e.get("singular") is not True or not isinstance(g, dict) or g.get("singular") is not True:
+        return []
+    given, expected = g.get("solutions"), e.get("solutions")
+    if not (isinstance(given, list) and isinstance(expected, list) and expected and len(given) == len(expected)):
+        return []
+    if not all(isinstance(t, list) and len(t) == 3 and all(is_number(a) for a in t) for t in given + expected):
+        return []
+    target = _euler_rotation(convention, expected[0])
+    for triple in given:
+        gap = np.abs(_euler_rotation(convention, triple) - target).max(axis=-1)   # per sample point
+        if not _all_near(gap, 0.0, rules):
+            return []
+    return [{**e, "solutions": given}]
+
+
+def _euler_rotation(convention: str, angles) -> np.ndarray:
+    """R of three angles (each a number or an array over the sample points), entries last:
+    zyz = Rz(φ)·Ry(θ)·Rz(ψ); rpy [roll, pitch, yaw] = Rz(yaw)·Ry(pitch)·Rx(roll)."""
+    a, b, c = (np.asarray(x, dtype=float) for x in angles)
+
+    def rz(t):
+        z, o = np.zeros_like(t), np.ones_like(t)
+        return np.stack([np.cos(t), -np.sin(t), z, np.sin(t), np.cos(t), z, z, z, o], -1).reshape(t.shape + (3, 3))
+
+    def ry(t):
+        z, o = np.zeros_like(t), np.ones_like(t)
+        return np.stack([np.cos(t), z, np.sin(t), z, o, z, -np.sin(t), z, np.cos(t)], -1).reshape(t.shape + (3, 3))
+
+    def rx(t):
+        z, o = np.zeros_like(t), np.ones_like(t)
+        return np.stack([o, z, z, z, np.cos(t), -np.sin(t), z, np.sin(t), np.cos(t)], -1).reshape(t.shape + (3, 3))
+
+    rot = rz(a) @ ry(b) @ rz(c) if convention == "zyz" else rz(c) @ ry(b) @ rx(a)
+    return rot.reshape(rot.shape[:-2] + (9,))
 
 
 def _all_near(values, target: float, rules: Rules) -> bool:

@@ -72,3 +72,34 @@ def test_a_missing_euler_solution_is_an_incomplete_set(ref):
     assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set"), r
     r = given(ref, "quarter", "rpy", {"solutions": [["pi", "pi", "-pi/2"], [0, 0, "pi/2"]], "singular": False})
     assert r.verdict == "correct", r
+
+
+SINGULAR = """
+robosolve: 1
+name: singular-euler
+questions:
+  - {type: orientation, id: flip, matrix: [[1, 0, 0], [0, -1, 0], [0, 0, -1]]}
+  - {type: orientation, id: pitch-up, matrix: [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]}
+"""
+
+
+@pytest.fixture(scope="module")
+def singular_ref():
+    return reference_of(SINGULAR)
+
+
+# By hand: Rz(φ)·Ry(π)·Rz(ψ) depends on φ − ψ only (diag(1, −1, −1) needs φ − ψ = ±π), and
+# Rz(yaw)·Ry(π/2)·Rx(roll) on yaw − roll only (the matrix above needs yaw = roll).
+@pytest.mark.parametrize("question, name, value, verdict", [
+    ("flip", "zyz", {"solutions": [[0, "pi", "pi"]], "singular": True}, "correct"),
+    ("flip", "zyz", {"solutions": [[1.2, "pi", "1.2 - pi"]], "singular": True}, "correct"),
+    ("flip", "zyz", {"solutions": [[0, "pi", 0]], "singular": True}, "incorrect"),
+    ("pitch-up", "rpy", {"solutions": [[0.5, "pi/2", 0.5]], "singular": True}, "correct"),
+    ("pitch-up", "rpy", {"solutions": [[0.5, "pi/2", -0.5]], "singular": True}, "incorrect"),
+    ("pitch-up", "rpy", {"solutions": [[0.5, "pi/2", 0.5]], "singular": False}, "incorrect"),
+])
+def test_any_member_of_a_singular_euler_family_is_right(singular_ref, question, name, value, verdict):
+    """At a singularity the reference writes one representative (the last angle 0); any triple of
+    the family, flagged singular, is the same rotation."""
+    r = given(singular_ref, question, name, value)
+    assert r.verdict == verdict, (question, value, r)
