@@ -51,7 +51,9 @@ TYPE = QuestionType(
            symbolic=False, fields=(_k("peak", SCALAR, "signed value of largest magnitude", unit="effort"),
                                    # an interior peak is flat: its time is known to ~1e-8
                                    _k("t_peak", SCALAR, "time of the peak", unit="s", digits=8))),
-        _k("profiles", ACTUATOR_MAP, "actuator -> piecewise expression in t", unit="effort", numeric=False),
+        _k("profiles", ACTUATOR_MAP, "actuator -> piecewise expression in t, written piecewise(t <= t1, e1, e2) "
+           "with t1 a number and e1, e2 expressions in t",
+           unit="effort", numeric=False),
     ),
     figures=(("torques", "joint_torques"),),
     cost=0.4, cost_growth=2.5, unit="dynamics",

@@ -71,7 +71,9 @@ TYPE = QuestionType(
         _k("durations", JOINT_MAP, "each joint alone at its limits", principal=True, unit="s"),
         _k("T", SCALAR, "the synchronized duration", principal=True, unit="s"),
         _k("accelerations", JOINT_MAP, "each joint's acceleration in the synchronized motion", principal=True, unit="joint/s²"),
-        _k("profiles", JOINT_MAP, "joint -> piecewise expression in t", unit="joint", numeric=False),
+        _k("profiles", JOINT_MAP, "joint -> piecewise expression in t, written piecewise(t <= t1, e1, e2) "
+           "with t1 a number and e1, e2 expressions in t",
+           unit="joint", numeric=False),
         _k("velocities", JOINT_MAP, "each joint's cruise velocity in the synchronized motion (trapezoidal)",
            unit="joint/s",
            needs=lambda q, joints: "" if q.options.get("shape") == "trapezoidal" else
