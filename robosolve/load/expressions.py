@@ -22,6 +22,7 @@ MAX_EXPONENT = 1000
 # big-integer and mpmath work cannot be interrupted by a time limit, so exp(exp(exp(100))) or
 # ((9**999)**999)**999 must be refused before sympy starts on it.
 MAX_LOG10 = 300          # |value| < 1e300 (the range of floating-point numbers, about 1.8e308)
+SHOWN_CHARS = 200        # a message quotes at most this much of a text (an answers file may hold 1 MB)
 
 
 def deg(x):
@@ -42,6 +43,11 @@ COORDINATE_ATTRS = ("x", "y", "z")
 
 class ExpressionError(Exception):
     """Why an expression was rejected (a message for the user)."""
+
+
+def shown(text: str, width: int = SHOWN_CHARS) -> str:
+    """A text as a message quotes it: at most about `width` characters, the middle left out."""
+    return text if len(text) <= width else text[:width // 2] + "…" + text[-(width // 2):]
 
 
 def point_symbol(point: str, axis: str) -> sp.Symbol:
@@ -235,10 +241,11 @@ def _parse_hint(text: str) -> str:
         return " (write " + ", ".join(
             f"{TYPOGRAPHY.get(m, 'sqrt(…)').strip() or 'a space'!r} for {m!r}" for m in marks) + ")"
     if re.fullmatch(r"\s*[-+]?\d+,\d+\s*", text):
-        return f" (decimals are written with a point: {text.strip().replace(',', '.')})"
-    m = re.search(r"(\d+(?:\.\d*)?)\s*(?:deg|°)", text)
+        return f" (decimals are written with a point: {shown(text.strip().replace(',', '.'))})"
+    # the number starts where a run of digits starts: no search restarted inside a long run
+    m = re.search(r"(?<![\d.])(\d+(?:\.\d*)?)\s*(?:deg|°)", text)
     if m:
-        return f" (for an angle in degrees write deg({m.group(1)}); angles are radians otherwise)"
+        return f" (for an angle in degrees write deg({shown(m.group(1))}); angles are radians otherwise)"
     if re.search(r"\d[a-zA-Z_(]", text):
         return " (write the multiplication: 2*L, not 2L)"
     return ""
@@ -285,14 +292,14 @@ class Namespace:
         try:
             tree = ast.parse(text.replace("^", "**"), mode="eval")
         except SyntaxError:
-            raise ExpressionError(f"cannot parse expression {text!r}" + _parse_hint(text)) from None
+            raise ExpressionError(f"cannot parse expression {shown(text)!r}" + _parse_hint(text)) from None
         except (RecursionError, MemoryError, ValueError):
             raise ExpressionError("expression too deeply nested") from None
         count = sum(1 for _ in ast.walk(tree))
         if count > self.max_nodes:
             raise ExpressionError("expression too large")
         try:
-            return self._convert(tree.body, text)
+            return self._convert(tree.body, shown(text))      # the text only goes into messages
         except RecursionError:
             raise ExpressionError("expression too deeply nested") from None
 
@@ -381,5 +388,5 @@ class Namespace:
         if self.unknown_ok:
             return sp.Symbol(name, real=True)
         candidates = set(self.names) | set(CONSTANTS) | self.points
-        raise ExpressionError(f"unknown {self.what} '{name}' in {text!r}"
+        raise ExpressionError(f"unknown {self.what} '{shown(name)}' in {text!r}"
                               + did_you_mean(name, candidates))
