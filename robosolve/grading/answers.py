@@ -97,17 +97,18 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
     if not isinstance(data, dict):
         issues.error((), f"an answers file is a mapping with `{FORMAT_KEY}: 1`, got {type_name(data)}")
         issues.raise_if_any()
+    if "robosolve" in data and FORMAT_KEY not in data:
+        # a problem file given as answers: one message, not one more for each of its keys
+        issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1) (this looks like "
+                     "a problem file)")
+        issues.raise_if_any()
     for key in data:
-        if key == "robosolve" and FORMAT_KEY not in data:
-            continue              # a problem file given as answers: one message below says so
         if key not in TOP_KEYS:
             issues.error((key,), f"unknown key '{key}'" + did_you_mean(key, TOP_KEYS)
                          + f" (expected one of: {', '.join(TOP_KEYS)})")
-    if not ("robosolve" in data and FORMAT_KEY not in data):      # (a problem file: said below)
-        issues.renamed = as_meant((), data, TOP_KEYS)   # a misspelt key: its did-you-mean alone
+    issues.renamed = as_meant((), data, TOP_KEYS)       # a misspelt key: its did-you-mean alone
     if FORMAT_KEY not in data:
-        hint = " (this looks like a problem file)" if "robosolve" in data else ""
-        issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1){hint}")
+        issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1)")
     elif data[FORMAT_KEY] != 1 or isinstance(data[FORMAT_KEY], bool):
         issues.error((FORMAT_KEY,), f"unsupported answers format {data[FORMAT_KEY]!r} (expected 1)")
     problem_file = _problem_file(issues, data, file)

@@ -67,6 +67,10 @@ def test_unknown_question_and_key_with_did_you_mean(folder):
 def test_layout_errors(folder):
     assert messages(folder, "robosolve: 1\nanswers: {}\n", problem=False) == [
         "A:1: missing required key 'robosolve-answers' (the answers format, 1) (this looks like a problem file)"]
+    # a whole problem file given as answers: that one message, not one more per key of the problem
+    assert messages(folder, "robosolve: 1\nname: arm\nparameters: {L1: 1}\njoints: []\nquestions: []\n",
+                    problem=False) == [
+        "A:1: missing required key 'robosolve-answers' (the answers format, 1) (this looks like a problem file)"]
     assert messages(folder, "robosolve-answers: 2\nanswers: {}\n", problem=False) == [
         "A:1: robosolve-answers: unsupported answers format 2 (expected 1)"]
     assert messages(folder, "robosolve-answers: 1\nanswers:\n  position:\n    M: [1\n", problem=False) == [
