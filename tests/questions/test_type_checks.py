@@ -163,3 +163,18 @@ def test_a_check_called_directly_reports_through_the_loader_checker():
     errors.clear()
     QUESTION_TYPES["dof"].check(ql, ("questions", 2), {"joints_3dof": 1}, SimpleNamespace(options={"space": "spatial"}))
     assert errors == []
+
+
+def test_inverse_kinematics_pose_target_of_the_fixed_frame():
+    """A pose target of frame 0 (or of a point fixed in it) is an input error with its line; it was
+    a solver error (exit 1) after the solve had started."""
+    target = "target: {position: [1, 1, 0], R: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}"
+    assert messages(f"  - {{type: inverse_kinematics, {target}, frame: '0'}}\n") == [
+        f"f.yaml:{Q}: questions[0].frame: frame 0 is the fixed base, which no joint moves: a pose target is "
+        "the pose of a moving frame (e.g. frame: '2', the default)"]
+    head = HEAD.replace('points: {E: {frame: "2"}}', 'points: {E: {frame: "2"}, B: {frame: "0", at: [1, 0, 0]}}')
+    assert messages(f"  - {{type: inverse_kinematics, {target}, point: B}}\n", head) == [
+        f"f.yaml:{Q}: questions[0].point: point B is fixed in frame 0, which no joint moves: a pose target's "
+        "point is fixed in a moving frame (its orientation is that frame's)"]
+    assert messages(f"  - {{type: inverse_kinematics, {target}, frame: '1'}}\n") == []
+    assert messages("  - {type: inverse_kinematics, target: {E.x: 1, E.y: 1}, frame: '0'}\n") == []
