@@ -971,7 +971,23 @@ class _ProblemBuilder:
             torque = chk.vector(path + ("torque",), item["torque"], self.ns_time) if "torque" in item else None
             if ("force" in item and force is None) or ("torque" in item and torque is None):
                 continue
+            if not all(self._defined_at_start(path + (key,), v, item[key])
+                       for key, v in (("force", force), ("torque", torque)) if v is not None):
+                continue
             if name is None or frame is None or in_frame is None or at is None:
                 continue
             out.append(Force(name, frame, at, force, torque, in_frame, line=chk.src.line(path)))
         return out
+
+    def _defined_at_start(self, path, vector, written) -> bool:
+        """A component that varies with time has a value at t = 0 (every run starts there); one
+        that also depends on the joints is judged along the run."""
+        t = self.names["t"]
+        for k, e in enumerate(vector):
+            if t in e.free_symbols:
+                shown = written[k] if isinstance(written[k], str) else None
+                issue = self.chk.value_issue(e.xreplace({t: 0}), shown)
+                if issue is not None:
+                    self.chk.error(path + (k,), f"no value at t = 0, where every run starts: {issue}")
+                    return False
+        return True

@@ -82,11 +82,24 @@ def v_vector3(ql, path, value, q):
 
 
 def v_coordinates(ql, path, value, q):
+    """Task coordinates: expressions of the joints or of points' coordinates, each given once."""
     if not isinstance(value, list) or not value:
         ql.chk.error(path, "expected a non-empty list of coordinate expressions (e.g. [E.x, E.y])")
         return None
     out = [ql.chk.expr(path + (i,), v, ql.b.ns_points) for i, v in enumerate(value)]
-    return None if any(e is None for e in out) else out
+    if any(e is None for e in out):
+        return None
+    moving = {j.symbol for j in ql.b.joints}
+    ok = True
+    for i, e in enumerate(out):
+        if not any(s in moving or "." in s.name for s in e.free_symbols):
+            ql.chk.error(path + (i,), f"{value[i]!r} does not depend on the joints: a coordinate is a "
+                         "point's coordinate (E.x, E.y, E.z) or an expression of the joints")
+            ok = False
+        elif any(sp.expand(e - f) == 0 for f in out[:i]):
+            ql.chk.error(path + (i,), f"the coordinate {value[i]!r} is given twice")
+            ok = False
+    return out if ok else None
 
 
 def v_budgets(ql, path, value, q):

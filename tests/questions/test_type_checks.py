@@ -120,7 +120,7 @@ def test_forward_dynamics_massless_bodies():
 def test_equations_of_motion_at_with_forces_in_time():
     head = HEAD.replace("questions:\n", "forces: [{name: push, frame: \"2\", at: [0, 0, 0], force: [sin(t), 0, 0]}]\nquestions:\n")
     assert messages("  - {type: equations_of_motion, at: {q1: 0, q2: 0}}\n", head) == [
-        f"f.yaml:{Q + 1}: questions[0].at: the force push vary with time t, so the numbers at a "
+        f"f.yaml:{Q + 1}: questions[0].at: the force push varies with time t, so the numbers at a "
         "configuration would need a time: drop `at` (the symbolic equations keep t), or follow the "
         "motion with a forward_dynamics question"]
     assert messages("  - {type: equations_of_motion}\n", head) == []
