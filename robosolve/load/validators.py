@@ -158,11 +158,18 @@ def v_joint_values(ql, path, value, q, require_all=True):
     if not isinstance(value, dict):
         chk.error(path, "expected a mapping joint: value")
         return None
+    # a misspelt joint is one of those not given (q9 among q1…q6 with q1 missing: q1), and its
+    # did-you-mean says so: it is not "missing" a second time
+    absent = [n for n in ql.joint_names if n not in value]
+    meant = set()
     for key in value:
         if key not in ql.joint_names and not ql.b.joint_name_refused:
-            chk.error(path + (key,), f"unknown joint '{key}'" + did_you_mean(key, ql.joint_names)
+            guess = meant_value(str(key), absent)
+            meant.add(guess)
+            chk.error(path + (key,), f"unknown joint '{key}'" + (f" (did you mean '{guess}'?)" if guess else
+                                                                  did_you_mean(str(key), ql.joint_names))
                       + f" (joints: {', '.join(ql.joint_names)})")
-    missing = [n for n in ql.joint_names if n not in value and not chk.misspelt(value, n, ql.joint_names)]
+    missing = [n for n in absent if n not in meant]
     if require_all and missing:
         chk.error(path, f"missing joint(s) {', '.join(missing)} (give a value for every joint)")
     out = {}

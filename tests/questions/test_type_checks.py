@@ -178,3 +178,14 @@ def test_inverse_kinematics_pose_target_of_the_fixed_frame():
         "point is fixed in a moving frame (its orientation is that frame's)"]
     assert messages(f"  - {{type: inverse_kinematics, {target}, frame: '1'}}\n") == []
     assert messages("  - {type: inverse_kinematics, target: {E.x: 1, E.y: 1}, frame: '0'}\n") == []
+
+
+def test_a_misspelt_joint_of_a_configuration_is_one_message_naming_the_joint_not_given():
+    """`{q9: 0, q2: 1}` for joints q1, q2: q9 stands for q1, the joint not given (its did-you-mean
+    named q2, already given, and a second message said q1 was missing)."""
+    assert messages("  - {type: motion_profile, from: {q9: 0, q2: 0}, to: {q1: 1, q2: 1}, "
+                    "max_acceleration: {q1: 1, q2: 1}}\n") == [
+        f"f.yaml:{Q}: questions[0].from.q9: unknown joint 'q9' (did you mean 'q1'?) (joints: q1, q2)"]
+    assert messages("  - {type: motion_profile, from: {q2: 0}, to: {q1: 1, q2: 1}, "
+                    "max_acceleration: {q1: 1, q2: 1}}\n") == [
+        f"f.yaml:{Q}: questions[0].from: missing joint(s) q1 (give a value for every joint)"]
