@@ -138,7 +138,8 @@ def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
     if value is None:
         return None
     if not (isinstance(value, str) and value.strip()):
-        issues.error(("problem",), f"expected the path of the problem file, got {type_name(value)}")
+        got = "an empty string" if isinstance(value, str) else type_name(value)
+        issues.error(("problem",), f"expected the path of the problem file, got {got}")
         return None
     path = Path(file).parent / value
     unusable = path_problem(str(path), value)

@@ -93,7 +93,10 @@ def circle(a, b, center, normal=None, rtol: float = 1e-6) -> Path:
     cosphi = float(np.clip(np.dot(ra, rb) / (r * r), -1.0, 1.0))
     phi = math.acos(cosphi)
     n = None if normal is None else np.asarray(normal, dtype=float)
-    if n is not None and (a.size != 3 or not np.linalg.norm(n) > 0):
+    if n is not None and a.size != 3:
+        raise PathError(f"a path in {a.size} coordinates lies in their plane: give no `normal` (it fixes the "
+                        "plane of an arc in 3 coordinates)", "path")
+    if n is not None and (n.size != 3 or not np.linalg.norm(n) > 0):
         raise PathError("the normal is a non-zero vector of the 3 coordinates", "path")
     if n is not None:
         n = n / np.linalg.norm(n)

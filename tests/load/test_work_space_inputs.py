@@ -60,3 +60,10 @@ def test_a_circle_centre_beyond_the_floating_point_range_is_a_path_error():
         warnings.simplefilter("error")                   # no overflow warning either
         with pytest.raises(tp.PathError, match="too far"):
             tp.circle([0.7, 0.2], [0.3, 0.5], [1e200, 0.35])
+
+
+def test_a_normal_for_an_arc_in_two_coordinates_says_the_plane_is_given():
+    with pytest.raises(tp.PathError, match="a path in 2 coordinates lies in their plane: give no `normal`"):
+        tp.circle([0.7, 0.2], [0.3, 0.5], [0.5, 0.35], normal=[0, 0, 1])
+    with pytest.raises(tp.PathError, match="the normal is a non-zero vector of the 3 coordinates"):
+        tp.circle([1, 0, 0], [0, 1, 0], [0, 0, 0], normal=[0, 0, 0])

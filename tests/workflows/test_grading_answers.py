@@ -71,6 +71,8 @@ def test_layout_errors(folder):
     assert messages(folder, "robosolve: 1\nname: arm\nparameters: {L1: 1}\njoints: []\nquestions: []\n",
                     problem=False) == [
         "A:1: missing required key 'robosolve-answers' (the answers format, 1) (this looks like a problem file)"]
+    assert messages(folder, "robosolve-answers: 1\nproblem: ''\nanswers: {}\n") == [
+        "A:2: problem: expected the path of the problem file, got an empty string"]
     assert messages(folder, "robosolve-answers: 2\nanswers: {}\n", problem=False) == [
         "A:1: robosolve-answers: unsupported answers format 2 (expected 1)"]
     assert messages(folder, "robosolve-answers: 1\nanswers:\n  position:\n    M: [1\n", problem=False) == [

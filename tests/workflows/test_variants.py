@@ -273,6 +273,24 @@ def test_roster_collisions_are_input_errors(tmp_path):
     assert result.exit_code == 2 and "no `student` column (columns: name)" in result.output
 
 
+def test_roster_messages_give_the_line_a_row_starts_on_and_quote_long_ids_short(tmp_path):
+    """A quoted cell over two lines (a spreadsheet's note) shifted every later line number by one;
+    a 5,000-character id was quoted whole."""
+    from robosolve.errors import InputError
+    from robosolve.variants.naming import read_roster
+
+    roster = tmp_path / "class.csv"
+    roster.write_text('student,notes\nJo,"two\nlines"\nAnn,x\nann,y\n', encoding="utf-8")
+    with pytest.raises(InputError) as err:
+        read_roster(roster)
+    assert [str(i) for i in err.value.issues] == [
+        f"{roster}:5: student: 'ann' and 'Ann' (line 4) give the same folder name 'ann'"]
+    roster.write_text("student\n" + "é" * 5000 + "\n", encoding="utf-8")
+    with pytest.raises(InputError) as err:
+        read_roster(roster)
+    assert len(str(err.value.issues[0])) < 400 and "gives an empty folder name" in str(err.value.issues[0])
+
+
 def test_roster_student_k_gets_variant_k(tmp_path):
     p = problem_file(tmp_path)
     roster = tmp_path / "class.csv"
