@@ -55,6 +55,9 @@ class RunUndefined(RunTooLong):
 
 def undefined_message(t: float, exc: Exception) -> str:
     """Why a run stopped where its equations have no value (the math module's error `exc` at t)."""
+    if isinstance(exc, OverflowError):
+        return (f"the equations of motion overflow at t = {t:.6g} s (a value beyond the range of "
+                "floating-point numbers, about 1.8e308: a start state, a gain or a law far too large?)")
     return (f"the equations of motion have no value at t = {t:.6g} s ({exc}: a square root or logarithm "
             "of a negative number in an actuator law or a force?)")
 

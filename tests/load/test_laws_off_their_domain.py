@@ -63,6 +63,14 @@ def test_a_run_stops_where_its_law_has_no_value():
         integrate(plant, [0.0], [0.0], 2.0)
 
 
+def test_a_run_that_overflows_says_so():
+    """q'' = exp(1000*q) from q = 1: exp(1000) is beyond the floats (about 1.8e308) at once."""
+    t, q, qd = sp.symbols("t q qd")
+    plant = compile_plant(sp.Matrix([[1]]), [0], [0], [sp.exp(1000 * q)], [q], [qd], t)
+    with pytest.raises(RunUndefined, match=r"overflow at t = 0 s \(a value beyond the range"):
+        integrate(plant, [1.0], [0.0], 1.0)
+
+
 def test_a_closed_loop_stops_where_a_force_has_no_value():
     def rhs(t, y):
         import math
