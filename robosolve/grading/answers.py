@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from robosolve.errors import InputError, InputIssue
-from robosolve.load.expressions import did_you_mean
+from robosolve.load.expressions import did_you_mean, meant_value
 from robosolve.load.loader import as_meant, path_str, type_name, under
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, path_problem, read_text_file
 from robosolve.questions.registry import RECORD, question_type
@@ -155,6 +155,25 @@ def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
         issues.error(("problem",), f"{value!r} is {kind}, not a problem file")
         return None
     return path
+
+
+def missing_problem(sub: Submission) -> InputIssue | None:
+    """The answers file's `problem:` names no file: said at its line, with the problem files
+    beside it that the name may mean (checked when the problem is needed, not on reading: with
+    --problem or a variants folder the name is not used)."""
+    path = sub.problem_file
+    if path is None or path.exists() or path.is_symlink():
+        return None
+    written = sub.source.data.get("problem", str(path))
+    try:
+        near = sorted(p.name for p in path.parent.iterdir() if p.suffix in (".yaml", ".yml")
+                      and p.resolve() != Path(sub.file).resolve()) if path.parent.is_dir() else []
+    except OSError:
+        near = []
+    meant = meant_value(path.name, near)
+    hint = f" (did you mean '{Path(str(written)).with_name(meant).as_posix()}'?)" if meant else ""
+    line, where = sub.where(("problem",))
+    return InputIssue(sub.file, line, where, f"'{written}' does not exist ({path}){hint}")
 
 
 def _student(issues: _Issues, data: dict, file: str) -> str:

@@ -207,3 +207,15 @@ def test_the_reference_symbolic_answers_given_back_are_right(tmp_path, problem, 
     record = json.loads((tmp_path / "r.json").read_text())
     verdicts = {k: v["verdict"] for k, v in record["questions"][question]["keys"].items() if k in keys}
     assert verdicts == {k: "correct" for k in keys}, r.output
+
+
+def test_a_problem_that_does_not_exist_is_said_at_its_line_with_a_did_you_mean(folder):
+    """It was said by the loader, at the problem's path, without the answers file's line."""
+    from robosolve.grading.check import problem_path
+
+    path = write(folder, "robosolve-answers: 1\nproblem: ./two_r.yaml\nanswers: {}\n")
+    with pytest.raises(InputError) as exc:
+        problem_path(read_answers(path), None)
+    assert [str(i).replace(str(path), "A") for i in exc.value.issues] == [
+        f"A:2: problem: './two_r.yaml' does not exist ({folder / 'two_r.yaml'}) (did you mean 'two-r.yaml'?)"]
+    assert str(problem_path(read_answers(path), folder / "two-r.yaml")) == str(folder / "two-r.yaml")
