@@ -19,7 +19,7 @@ from pathlib import Path
 
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean, meant_value
-from robosolve.load.loader import as_meant, path_str, type_name, under
+from robosolve.load.loader import as_meant, foreign_file, path_str, type_name, under
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, path_problem, read_text_file
 from robosolve.questions.registry import RECORD, question_type
 from robosolve.variants.naming import safe_name  # noqa: F401  (the one rule, variants.md)
@@ -96,6 +96,11 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
     data = source.data
     if not isinstance(data, dict):
         issues.error((), f"an answers file is a mapping with `{FORMAT_KEY}: 1`, got {type_name(data)}")
+        issues.raise_if_any()
+    foreign = None if FORMAT_KEY in data or "robosolve" in data else foreign_file(
+        data, TOP_KEYS, f"an answers file (a mapping with `{FORMAT_KEY}: 1`, `problem` and `answers`)")
+    if foreign is not None:
+        issues.error((), foreign)
         issues.raise_if_any()
     if "robosolve" in data and FORMAT_KEY not in data:
         # a problem file given as answers: one message, not one more for each of its keys

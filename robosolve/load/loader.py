@@ -92,6 +92,25 @@ def _exact_if_whole(e):
     return e
 
 
+def foreign_file(data: dict, own_keys, what: str) -> str | None:
+    """Why a mapping with none of a robosolve file's keys is another kind of file — one message
+    for the wrong file, not one per key it has and per key it lacks — or None. `what`: the file
+    expected, in words."""
+    keys = [str(k) for k in data]
+    if "format" in keys and ("score" in keys or "max_score" in keys):
+        return f"this is a result record (what `robosolve check --json` and `grade` write), not {what}"
+    if "format" in keys and set(keys) <= {"format", "problem", "answers"}:
+        return f"this is a results.json (the answers `robosolve solve` writes), not {what}"
+    if any(k in own_keys for k in data):
+        return None
+    if not keys:
+        return f"the file is an empty mapping: expected {what}"
+    if "nbformat" in keys:
+        return f"this is a Jupyter notebook, not {what}"
+    shown = ", ".join(keys[:5]) + (", …" if len(keys) > 5 else "")
+    return f"not {what}: none of its keys ({shown}) is one of them"
+
+
 def as_meant(path, value: dict, allowed) -> list[tuple]:
     """Each misspelt key of `value` (`cordinates`, `jints`) renamed in place to the key its
     did-you-mean suggests; the paths of the keys renamed. Its message is given already and the
@@ -364,6 +383,11 @@ class _ProblemBuilder:
         if "robosolve-answers" in data and "robosolve" not in data:
             chk.error((), "this is an answers file (`robosolve-answers: 1`), not a problem: check it with "
                       "`robosolve check FILE`, or give the problem file it answers")
+            return None
+        foreign = foreign_file(data, TOP_KEYS, "a problem file (a mapping with `robosolve: 1`, `name` and "
+                               "`questions`)")
+        if foreign is not None:
+            chk.error((), foreign)
             return None
         chk.mapping((), data, TOP_KEYS, required=("robosolve", "name", "questions"))
         if "robosolve" in data and (data["robosolve"] != 1 or isinstance(data["robosolve"], bool)):
