@@ -22,6 +22,11 @@ MAX_EXPONENT = 1000
 # big-integer and mpmath work cannot be interrupted by a time limit, so exp(exp(exp(100))) or
 # ((9**999)**999)**999 must be refused before sympy starts on it.
 MAX_LOG10 = 300          # |value| < 1e300 (the range of floating-point numbers, about 1.8e308)
+# Exact arithmetic grows with the size of its numbers, which no operation count sees: a link of
+# L1**999 m (1/2**999, 301 digits) held a 2R arm's equations of motion for 90 s of CPU (its safety
+# net), 40 digits for 17 s, 20 digits for 2 s (0.7 s with L1). An exam's exact numbers have a few
+# digits (0.0125 = 1/80, deg(30) = pi/6).
+MAX_EXACT_DIGITS = 30
 SHOWN_CHARS = 200        # a message quotes at most this much of a text (an answers file may hold 1 MB)
 
 
@@ -198,7 +203,22 @@ def value_issue(e, values: dict, shown: str | None = None) -> str | None:
     if abs(c.imag) > 1e-12 * max(1.0, abs(c.real)):
         return (f"{what} is not a real number (it is {c.real:.6g}{c.imag:+.6g}i: a square root or "
                 "logarithm of a negative number, or acos/asin beyond [-1, 1]?)")
-    return None
+    return digits_issue(what, v, c.real)
+
+
+def exact_digits(e) -> int:
+    """The most decimal digits of a numerator or a denominator among the rationals of `e`."""
+    return max((len(str(max(abs(r.p), abs(r.q)))) for r in e.atoms(sp.Rational)), default=0)
+
+
+def digits_issue(what: str, v, approx: float) -> str | None:
+    """Why the value `v` (about `approx`) of `what` holds an exact number too long, or None."""
+    digits = exact_digits(v)
+    if digits <= MAX_EXACT_DIGITS:
+        return None
+    return (f"{what} is an exact number of {digits} digits (about {approx:.3g}): robosolve keeps exact "
+            f"numbers of at most {MAX_EXACT_DIGITS} digits, whose arithmetic stays fast; write it as a "
+            "decimal number")
 
 
 def number(value) -> sp.Expr:

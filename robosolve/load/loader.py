@@ -16,7 +16,8 @@ from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue, InputWarning
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, meant_value, size_issue, value_issue,
+    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, digits_issue, meant_value, size_issue,
+    value_issue,
 )
 from robosolve.load.physical import LUMPED_ROTOR, inertia_issue, pseudo_inertia_issue, triangle_issue
 from robosolve.load.problem import (
@@ -498,6 +499,11 @@ class _ProblemBuilder:
                 continue
             if abs(fv.imag) > 1e-12 or fv.real != fv.real or abs(fv.real) == float("inf"):
                 chk.error(("parameters", n), _not_real(value[n], fv))
+                raw[n] = None
+                continue
+            issue = digits_issue(str(value[n]), v, fv.real)
+            if issue is not None:
+                chk.error(("parameters", n), issue)
                 raw[n] = None
                 continue
             numeric[n] = v
