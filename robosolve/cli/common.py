@@ -178,6 +178,9 @@ def main() -> None:
         status = ExitStatus.SIGINT
     except SystemExit as exc:
         status = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    except Exception as exc:          # a defect of robosolve: one line that says where, no traceback
+        err(internal_error(exc))
+        status = ExitStatus.ANSWER_ERROR
     # click turns KeyboardInterrupt into "Aborted!" and exit 1, and a library may swallow it:
     # a signal received at any point decides the status (spec §4: SIGINT exits 130).
     owed = interrupts.received()
@@ -194,6 +197,20 @@ def main() -> None:
     # check above and this line raises here, and robosolve.__main__ exits 130 for it.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     _exit(int(status))
+
+
+def internal_error(exc: BaseException) -> str:
+    """The one line a defect of robosolve gets: what was raised, and where in robosolve."""
+    import traceback
+
+    where = ""
+    for frame in reversed(traceback.extract_tb(exc.__traceback__)):
+        parts = frame.filename.replace(os.sep, "/").split("/robosolve/")
+        if len(parts) > 1:
+            where = f", at robosolve/{parts[-1]}:{frame.lineno}"
+            break
+    return (f"internal error ({type(exc).__name__}: {exc}{where}): this is a bug in robosolve; please "
+            "report it with the input files")
 
 
 def _exit(status: int) -> None:

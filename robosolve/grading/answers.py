@@ -18,8 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from robosolve.errors import InputError, InputIssue
-from robosolve.load.expressions import did_you_mean
-from robosolve.load.loader import as_meant, path_str, type_name, under
+from robosolve.load.expressions import did_you_mean, meant_value
+from robosolve.load.loader import as_meant, foreign_file, path_str, type_name, under
 from robosolve.load.yamlsource import Source, YamlProblem, parse_yaml, path_problem, read_text_file
 from robosolve.questions.registry import RECORD, question_type
 from robosolve.variants.naming import safe_name  # noqa: F401  (the one rule, variants.md)
@@ -101,17 +101,23 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
     if not isinstance(data, dict):
         issues.error((), f"an answers file is a mapping with `{FORMAT_KEY}: 1`, got {type_name(data)}")
         issues.raise_if_any()
+    foreign = None if FORMAT_KEY in data or "robosolve" in data else foreign_file(
+        data, TOP_KEYS, f"an answers file (a mapping with `{FORMAT_KEY}: 1`, `problem` and `answers`)")
+    if foreign is not None:
+        issues.error((), foreign)
+        issues.raise_if_any()
+    if "robosolve" in data and FORMAT_KEY not in data:
+        # a problem file given as answers: one message, not one more for each of its keys
+        issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1) (this looks like "
+                     "a problem file)")
+        issues.raise_if_any()
     for key in data:
-        if key == "robosolve" and FORMAT_KEY not in data:
-            continue              # a problem file given as answers: one message below says so
         if key not in TOP_KEYS:
             issues.error((key,), f"unknown key '{key}'" + did_you_mean(key, TOP_KEYS)
                          + f" (expected one of: {', '.join(TOP_KEYS)})")
-    if not ("robosolve" in data and FORMAT_KEY not in data):      # (a problem file: said below)
-        issues.renamed = as_meant((), data, TOP_KEYS)   # a misspelt key: its did-you-mean alone
+    issues.renamed = as_meant((), data, TOP_KEYS)       # a misspelt key: its did-you-mean alone
     if FORMAT_KEY not in data:
-        hint = " (this looks like a problem file)" if "robosolve" in data else ""
-        issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1){hint}")
+        issues.error((), f"missing required key '{FORMAT_KEY}' (the answers format, 1)")
     elif data[FORMAT_KEY] != 1 or isinstance(data[FORMAT_KEY], bool):
         issues.error((FORMAT_KEY,), f"unsupported answers format {data[FORMAT_KEY]!r} (expected 1)")
     problem_file = _problem_file(issues, data, file)
@@ -141,7 +147,8 @@ def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
     if value is None:
         return None
     if not (isinstance(value, str) and value.strip()):
-        issues.error(("problem",), f"expected the path of the problem file, got {type_name(value)}")
+        got = "an empty string" if isinstance(value, str) else type_name(value)
+        issues.error(("problem",), f"expected the path of the problem file, got {got}")
         return None
     path = Path(file).parent / value
     unusable = path_problem(str(path), value)
@@ -157,6 +164,25 @@ def _problem_file(issues: _Issues, data: dict, file: str) -> Path | None:
         issues.error(("problem",), f"{value!r} is {kind}, not a problem file")
         return None
     return path
+
+
+def missing_problem(sub: Submission) -> InputIssue | None:
+    """The answers file's `problem:` names no file: said at its line, with the problem files
+    beside it that the name may mean (checked when the problem is needed, not on reading: with
+    --problem or a variants folder the name is not used)."""
+    path = sub.problem_file
+    if path is None or path.exists() or path.is_symlink():
+        return None
+    written = sub.source.data.get("problem", str(path))
+    try:
+        near = sorted(p.name for p in path.parent.iterdir() if p.suffix in (".yaml", ".yml")
+                      and p.resolve() != Path(sub.file).resolve()) if path.parent.is_dir() else []
+    except OSError:
+        near = []
+    meant = meant_value(path.name, near)
+    hint = f" (did you mean '{Path(str(written)).with_name(meant).as_posix()}'?)" if meant else ""
+    line, where = sub.where(("problem",))
+    return InputIssue(sub.file, line, where, f"'{written}' does not exist ({path}){hint}")
 
 
 def _student(issues: _Issues, data: dict, file: str) -> str:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from robosolve.errors import InputError, InputIssue
-from robosolve.grading.answers import read_answers, resolve_answers
+from robosolve.grading.answers import missing_problem, read_answers, resolve_answers
 from robosolve.grading.grader import Grader, SubmissionResult
 from robosolve.grading.reference import Reference
 
@@ -19,6 +19,9 @@ def problem_path(sub, override) -> Path:
         raise InputError(sub.issues + [InputIssue(sub.file, sub.source.line(()), "",
                                                   "no problem: give `problem: FILE` in the answers file "
                                                   "or --problem")])
+    missing = missing_problem(sub)
+    if missing is not None:
+        raise InputError(sub.issues + [missing])
     return sub.problem_file
 
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from robosolve.errors import ExitStatus, InputError
-from robosolve.grading.answers import read_answers, resolve_answers, safe_name
+from robosolve.grading.answers import missing_problem, read_answers, resolve_answers, safe_name
 from robosolve.grading.grader import Grader, invalid_result
 from robosolve.grading.matching import TableError, VariantsTable, read_table
 from robosolve.grading.record import GRADES_COLUMNS, SUMMARY_COLUMNS, grade_rows, record_json, summary_row
@@ -128,7 +128,9 @@ def read_jobs(files, problem=None, table=None, warnings=None):
             sub.student = match.student
         student_fields = {"variant": match.variant, "row": match.row} if match is not None else {}
         if not Path(path).is_file():
-            jobs.append(Job(i, str(f), sub.student, None, None, f"{f}: the problem file {path} does not exist"))
+            missing = missing_problem(sub) if problem is None and match is None else None
+            jobs.append(Job(i, str(f), sub.student, None, None, str(missing) if missing is not None
+                            else f"{f}: the problem file {path} does not exist"))
             continue
         key = str(Path(path).resolve())
         problems.setdefault(key, (path, []))[1].append((i, sub))

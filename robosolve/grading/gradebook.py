@@ -31,7 +31,7 @@ class GradebookError(ValueError):
 
 def parse_lms(text: str | None) -> tuple:
     """'canvas,moodle' -> ('canvas', 'moodle') in the order given; GradebookError on a bad name."""
-    if not text:
+    if text is None:                 # not given (an empty --gradebook "" is a mistake, said below)
         return ()
     names = [n.strip().lower() for n in text.split(",") if n.strip()]
     for n in names:

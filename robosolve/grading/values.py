@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from robosolve.load.expressions import ExpressionError, typed_math
+from robosolve.load.expressions import ExpressionError, shown, typed_math
 from robosolve.load.loader import type_name
 from robosolve.questions import registry as R
 
@@ -130,7 +130,7 @@ class Reader:
     def equation(self, value, where=""):
         if not isinstance(value, str) or value.count("=") != 1:
             raise ValueProblem(f"{_label(where)}expected an equation \"lhs = rhs\", got "
-                               + (repr(value) if isinstance(value, str) else type_name(value)))
+                               + (repr(shown(value)) if isinstance(value, str) else type_name(value)))
         lhs, rhs = value.split("=")
         return Equation(self.scalar(lhs, where) - self.scalar(rhs, where), value)
 
@@ -240,7 +240,7 @@ class Reader:
         try:
             out = parse_array(value)
         except ArrayTextError as exc:
-            raise ValueProblem(f"{_label(where)}cannot read {value!r} as a matrix or vector: {exc}") from None
+            raise ValueProblem(f"{_label(where)}cannot read {shown(value)!r} as a matrix or vector: {exc}") from None
         if ak.kind == R.VECTOR and out and all(isinstance(r, list) and len(r) == 1 for r in out):
             out = [r[0] for r in out]             # a column [a; b; c]
         if ak.kind == R.MATRIX and out and not isinstance(out[0], list):
@@ -279,7 +279,7 @@ class Reader:
         try:
             out = parse_array(value)
         except ArrayTextError as exc:
-            raise ValueProblem(f"{_label(where)}cannot read {value!r} as a vector: {exc}") from None
+            raise ValueProblem(f"{_label(where)}cannot read {shown(str(value))!r} as a vector: {exc}") from None
         if out and all(isinstance(r, list) and len(r) == 1 for r in out):
             out = [r[0] for r in out]             # a column [a; b]
         return out

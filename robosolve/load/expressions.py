@@ -22,6 +22,12 @@ MAX_EXPONENT = 1000
 # big-integer and mpmath work cannot be interrupted by a time limit, so exp(exp(exp(100))) or
 # ((9**999)**999)**999 must be refused before sympy starts on it.
 MAX_LOG10 = 300          # |value| < 1e300 (the range of floating-point numbers, about 1.8e308)
+# Exact arithmetic grows with the size of its numbers, which no operation count sees: a link of
+# L1**999 m (1/2**999, 301 digits) held a 2R arm's equations of motion for 90 s of CPU (its safety
+# net), 40 digits for 17 s, 20 digits for 2 s (0.7 s with L1). An exam's exact numbers have a few
+# digits (0.0125 = 1/80, deg(30) = pi/6).
+MAX_EXACT_DIGITS = 30
+SHOWN_CHARS = 200        # a message quotes at most this much of a text (an answers file may hold 1 MB)
 
 
 def deg(x):
@@ -44,6 +50,11 @@ COORDINATE_ATTRS = ("x", "y", "z")
 
 class ExpressionError(Exception):
     """Why an expression was rejected (a message for the user)."""
+
+
+def shown(text: str, width: int = SHOWN_CHARS) -> str:
+    """A text as a message quotes it: at most about `width` characters, the middle left out."""
+    return text if len(text) <= width else text[:width // 2] + "…" + text[-(width // 2):]
 
 
 def point_symbol(point: str, axis: str) -> sp.Symbol:
@@ -196,7 +207,22 @@ def value_issue(e, values: dict, shown: str | None = None) -> str | None:
     if abs(c.imag) > 1e-12 * max(1.0, abs(c.real)):
         return (f"{what} is not a real number (it is {c.real:.6g}{c.imag:+.6g}i: a square root or "
                 "logarithm of a negative number, or acos/asin beyond [-1, 1]?)")
-    return None
+    return digits_issue(what, v, c.real)
+
+
+def exact_digits(e) -> int:
+    """The most decimal digits of a numerator or a denominator among the rationals of `e`."""
+    return max((len(str(max(abs(r.p), abs(r.q)))) for r in e.atoms(sp.Rational)), default=0)
+
+
+def digits_issue(what: str, v, approx: float) -> str | None:
+    """Why the value `v` (about `approx`) of `what` holds an exact number too long, or None."""
+    digits = exact_digits(v)
+    if digits <= MAX_EXACT_DIGITS:
+        return None
+    return (f"{what} is an exact number of {digits} digits (about {approx:.3g}): robosolve keeps exact "
+            f"numbers of at most {MAX_EXACT_DIGITS} digits, whose arithmetic stays fast; write it as a "
+            "decimal number")
 
 
 def number(value) -> sp.Expr:
@@ -242,10 +268,11 @@ def _parse_hint(text: str) -> str:
         return " (write " + ", ".join(
             f"{TYPOGRAPHY.get(m, 'sqrt(…)').strip() or 'a space'!r} for {m!r}" for m in marks) + ")"
     if re.fullmatch(r"\s*[-+]?\d+,\d+\s*", text):
-        return f" (decimals are written with a point: {text.strip().replace(',', '.')})"
-    m = re.search(r"(\d+(?:\.\d*)?)\s*(?:deg|°)", text)
+        return f" (decimals are written with a point: {shown(text.strip().replace(',', '.'))})"
+    # the number starts where a run of digits starts: no search restarted inside a long run
+    m = re.search(r"(?<![\d.])(\d+(?:\.\d*)?)\s*(?:deg|°)", text)
     if m:
-        return f" (for an angle in degrees write deg({m.group(1)}); angles are radians otherwise)"
+        return f" (for an angle in degrees write deg({shown(m.group(1))}); angles are radians otherwise)"
     if re.search(r"\d[a-zA-Z_(]", text):
         return " (write the multiplication: 2*L, not 2L)"
     return ""
@@ -297,7 +324,7 @@ class Namespace:
         try:
             tree = ast.parse(text.replace("^", "**"), mode="eval")
         except SyntaxError:
-            raise ExpressionError(f"cannot parse expression {text!r}" + _parse_hint(text)) from None
+            raise ExpressionError(f"cannot parse expression {shown(text)!r}" + _parse_hint(text)) from None
         except (RecursionError, MemoryError, ValueError):
             raise ExpressionError("expression too deeply nested") from None
         count = sum(1 for _ in ast.walk(tree))
@@ -305,7 +332,7 @@ class Namespace:
             raise ExpressionError("expression too large")
         self._sizes: dict = {}      # size estimates of the subtrees built, shared by `_bounded`
         try:
-            return self._convert(tree.body, text)
+            return self._convert(tree.body, shown(text))      # the text only goes into messages
         except RecursionError:
             raise ExpressionError("expression too deeply nested") from None
 
@@ -444,5 +471,5 @@ class Namespace:
         if self.unknown_ok:
             return sp.Symbol(name, real=True)
         candidates = set(self.names) | set(CONSTANTS) | self.points
-        raise ExpressionError(f"unknown {self.what} '{name}' in {text!r}"
+        raise ExpressionError(f"unknown {self.what} '{shown(name)}' in {text!r}"
                               + did_you_mean(name, candidates))

@@ -16,7 +16,8 @@ from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue, InputWarning
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, meant_value, size_issue, value_issue,
+    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, digits_issue, meant_value, size_issue,
+    value_issue,
 )
 from robosolve.load.physical import LUMPED_ROTOR, inertia_issue, pseudo_inertia_issue, triangle_issue
 from robosolve.load.problem import (
@@ -90,6 +91,25 @@ def _exact_if_whole(e):
     if isinstance(e, sp.Float) and float(e).is_integer():
         return sp.Integer(int(e))
     return e
+
+
+def foreign_file(data: dict, own_keys, what: str) -> str | None:
+    """Why a mapping with none of a robosolve file's keys is another kind of file — one message
+    for the wrong file, not one per key it has and per key it lacks — or None. `what`: the file
+    expected, in words."""
+    keys = [str(k) for k in data]
+    if "format" in keys and ("score" in keys or "max_score" in keys):
+        return f"this is a result record (what `robosolve check --json` and `grade` write), not {what}"
+    if "format" in keys and set(keys) <= {"format", "problem", "answers"}:
+        return f"this is a results.json (the answers `robosolve solve` writes), not {what}"
+    if any(k in own_keys for k in data):
+        return None
+    if not keys:
+        return f"the file is an empty mapping: expected {what}"
+    if "nbformat" in keys:
+        return f"this is a Jupyter notebook, not {what}"
+    shown = ", ".join(keys[:5]) + (", …" if len(keys) > 5 else "")
+    return f"not {what}: none of its keys ({shown}) is one of them"
 
 
 def as_meant(path, value: dict, allowed) -> list[tuple]:
@@ -365,6 +385,11 @@ class _ProblemBuilder:
             chk.error((), "this is an answers file (`robosolve-answers: 1`), not a problem: check it with "
                       "`robosolve check FILE`, or give the problem file it answers")
             return None
+        foreign = foreign_file(data, TOP_KEYS, "a problem file (a mapping with `robosolve: 1`, `name` and "
+                               "`questions`)")
+        if foreign is not None:
+            chk.error((), foreign)
+            return None
         chk.mapping((), data, TOP_KEYS, required=("robosolve", "name", "questions"))
         if "robosolve" in data and (data["robosolve"] != 1 or isinstance(data["robosolve"], bool)):
             chk.error(("robosolve",), f"unsupported format version {data['robosolve']!r} (expected 1)")
@@ -474,6 +499,11 @@ class _ProblemBuilder:
                 continue
             if abs(fv.imag) > 1e-12 or fv.real != fv.real or abs(fv.real) == float("inf"):
                 chk.error(("parameters", n), _not_real(value[n], fv))
+                raw[n] = None
+                continue
+            issue = digits_issue(str(value[n]), v, fv.real)
+            if issue is not None:
+                chk.error(("parameters", n), issue)
                 raw[n] = None
                 continue
             numeric[n] = v
@@ -971,7 +1001,23 @@ class _ProblemBuilder:
             torque = chk.vector(path + ("torque",), item["torque"], self.ns_time) if "torque" in item else None
             if ("force" in item and force is None) or ("torque" in item and torque is None):
                 continue
+            if not all(self._defined_at_start(path + (key,), v, item[key])
+                       for key, v in (("force", force), ("torque", torque)) if v is not None):
+                continue
             if name is None or frame is None or in_frame is None or at is None:
                 continue
             out.append(Force(name, frame, at, force, torque, in_frame, line=chk.src.line(path)))
         return out
+
+    def _defined_at_start(self, path, vector, written) -> bool:
+        """A component that varies with time has a value at t = 0 (every run starts there); one
+        that also depends on the joints is judged along the run."""
+        t = self.names["t"]
+        for k, e in enumerate(vector):
+            if t in e.free_symbols:
+                shown = written[k] if isinstance(written[k], str) else None
+                issue = self.chk.value_issue(e.xreplace({t: 0}), shown)
+                if issue is not None:
+                    self.chk.error(path + (k,), f"no value at t = 0, where every run starts: {issue}")
+                    return False
+        return True

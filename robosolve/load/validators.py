@@ -82,11 +82,24 @@ def v_vector3(ql, path, value, q):
 
 
 def v_coordinates(ql, path, value, q):
+    """Task coordinates: expressions of the joints or of points' coordinates, each given once."""
     if not isinstance(value, list) or not value:
         ql.chk.error(path, "expected a non-empty list of coordinate expressions (e.g. [E.x, E.y])")
         return None
     out = [ql.chk.expr(path + (i,), v, ql.b.ns_points) for i, v in enumerate(value)]
-    return None if any(e is None for e in out) else out
+    if any(e is None for e in out):
+        return None
+    moving = {j.symbol for j in ql.b.joints}
+    ok = True
+    for i, e in enumerate(out):
+        if not any(s in moving or "." in s.name for s in e.free_symbols):
+            ql.chk.error(path + (i,), f"{value[i]!r} does not depend on the joints: a coordinate is a "
+                         "point's coordinate (E.x, E.y, E.z) or an expression of the joints")
+            ok = False
+        elif any(sp.expand(e - f) == 0 for f in out[:i]):
+            ql.chk.error(path + (i,), f"the coordinate {value[i]!r} is given twice")
+            ok = False
+    return out if ok else None
 
 
 def v_budgets(ql, path, value, q):
@@ -145,11 +158,18 @@ def v_joint_values(ql, path, value, q, require_all=True):
     if not isinstance(value, dict):
         chk.error(path, "expected a mapping joint: value")
         return None
+    # a misspelt joint is one of those not given (q9 among q1…q6 with q1 missing: q1), and its
+    # did-you-mean says so: it is not "missing" a second time
+    absent = [n for n in ql.joint_names if n not in value]
+    meant = set()
     for key in value:
         if key not in ql.joint_names and not ql.b.joint_name_refused:
-            chk.error(path + (key,), f"unknown joint '{key}'" + did_you_mean(key, ql.joint_names)
+            guess = meant_value(str(key), absent)
+            meant.add(guess)
+            chk.error(path + (key,), f"unknown joint '{key}'" + (f" (did you mean '{guess}'?)" if guess else
+                                                                  did_you_mean(str(key), ql.joint_names))
                       + f" (joints: {', '.join(ql.joint_names)})")
-    missing = [n for n in ql.joint_names if n not in value and not chk.misspelt(value, n, ql.joint_names)]
+    missing = [n for n in absent if n not in meant]
     if require_all and missing:
         chk.error(path, f"missing joint(s) {', '.join(missing)} (give a value for every joint)")
     out = {}

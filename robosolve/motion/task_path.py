@@ -76,7 +76,11 @@ def circle(a, b, center, normal=None, rtol: float = 1e-6) -> Path:
     if a.size not in (2, 3):
         raise PathError(f"a circular path needs 2 or 3 coordinates (there are {a.size})", "path")
     ra, rb = a - c, b - c
-    r, r2 = float(np.linalg.norm(ra)), float(np.linalg.norm(rb))
+    with np.errstate(over="ignore", invalid="ignore"):       # a centre near 1e200 overflows: said below
+        r, r2 = float(np.linalg.norm(ra)), float(np.linalg.norm(rb))
+    if not (math.isfinite(r) and math.isfinite(r2)):
+        raise PathError("the centre is too far from the path: its distance to `from` and `to` is beyond "
+                        "the range of floating-point numbers", "path")
     if not r > 0:
         raise PathError("the centre is the `from` point itself", "path")
     if abs(r - r2) > rtol * max(r, r2):
@@ -89,7 +93,10 @@ def circle(a, b, center, normal=None, rtol: float = 1e-6) -> Path:
     cosphi = float(np.clip(np.dot(ra, rb) / (r * r), -1.0, 1.0))
     phi = math.acos(cosphi)
     n = None if normal is None else np.asarray(normal, dtype=float)
-    if n is not None and (a.size != 3 or not np.linalg.norm(n) > 0):
+    if n is not None and a.size != 3:
+        raise PathError(f"a path in {a.size} coordinates lies in their plane: give no `normal` (it fixes the "
+                        "plane of an arc in 3 coordinates)", "path")
+    if n is not None and (n.size != 3 or not np.linalg.norm(n) > 0):
         raise PathError("the normal is a non-zero vector of the 3 coordinates", "path")
     if n is not None:
         n = n / np.linalg.norm(n)

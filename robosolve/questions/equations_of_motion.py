@@ -20,9 +20,10 @@ def _check(ql, path, item, q):
     timed = [f.name for f in ql.b.problem.forces if _has_time(f)]
     if timed:
         follow = ql.type_name("time_laws")
-        ql.chk.error(path + ("at",), f"the force{'s' if len(timed) > 1 else ''} {', '.join(timed)} "
-                     "vary with time t, so the numbers at a configuration would need a time: drop `at` "
-                     f"(the symbolic equations keep t), or follow the motion with a {follow} question")
+        forces = f"forces {', '.join(timed)} vary" if len(timed) > 1 else f"force {timed[0]} varies"
+        ql.chk.error(path + ("at",), f"the {forces} with time t, so the numbers at a configuration would need "
+                     f"a time: drop `at` (the symbolic equations keep t), or follow the motion with a {follow} "
+                     "question")
 
 def _needs_configuration(q, joints) -> str:
     """The actuators' values are computed at a configuration: every joint's value in `at`

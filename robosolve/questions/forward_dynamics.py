@@ -11,11 +11,26 @@ from robosolve.questions.notebook_code import at_literal, compare_line, guarded,
 
 
 def _check(ql, path, item, q):
-    """`at` overrides parameters only: the motion starts from `start`."""
+    """`at` overrides parameters only: the motion starts from `start`; each actuator law has a
+    value at the start of the run (t = 0, the `start` state)."""
     for key, _ in V.joint_motion_in_at(ql, item):
         ql.chk.error(path + ("at", key), f"a forward_dynamics question's `at` may override "
                      f"parameters only: give the starting value of '{key}' in `start` "
                      "(joint values and <joint>_dot rates)")
+    if "start" in q.rejected or "at" in q.rejected:
+        return                      # the start state is not known: said already
+    start = q.options.get("start") or {}
+    initial = {ql.b.names["t"]: 0}
+    for j in ql.b.joints:
+        initial[j.symbol] = start.get(j.name, 0)
+        initial[j.dot] = start.get(j.dot.name, 0)
+    written = item.get("actuators") if isinstance(item.get("actuators"), dict) else {}
+    for name, law in (q.options.get("actuators") or {}).items():
+        shown = written.get(name)
+        issue = ql.chk.value_issue(law.xreplace(initial), shown if isinstance(shown, str) else None)
+        if issue is not None:
+            ql.chk.error(path + ("actuators", name), "the law has no value at the start of the run (t = 0, "
+                         f"the `start` state): {issue}")
 
 WORDS = {
     "final": "each joint's value at the end (unwrapped: an arm that turns twice ends near $4\\pi$)",

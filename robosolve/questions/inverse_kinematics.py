@@ -6,6 +6,7 @@ import sympy as sp
 
 from robosolve.core.prose import name_md
 from robosolve.load import validators as V
+from robosolve.load.pose_target import is_pose_target
 from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MAP_SET, TEXT, QuestionType, _k
 from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, text
@@ -105,12 +106,20 @@ def _statement(q, say) -> str:
 
 
 def _check(ql, path, item, q):
-    """`at` overrides parameters only: the joints are the unknowns (they were ignored silently)."""
+    """`at` overrides parameters only: the joints are the unknowns (they were ignored silently);
+    a pose target is the pose of a frame the joints move, never of the fixed frame 0."""
     for key, joint in V.joint_motion_in_at(ql, item):
         hint = (" (to choose the solution nearest a configuration, give it in `select`)"
                 if key == joint else " (joint rates come from `velocity`)")
         ql.chk.error(path + ("at", key), "an inverse_kinematics question solves for the joints: "
                      f"its `at` may override parameters only, not '{key}'{hint}")
+    if is_pose_target(item.get("target")):
+        if q.point_given and ql.b.points[q.point].frame == "0":
+            ql.chk.error(path + ("point",), f"point {q.point} is fixed in frame 0, which no joint moves: a "
+                         "pose target's point is fixed in a moving frame (its orientation is that frame's)")
+        elif q.frame_given and not q.point_given and q.frame == "0":
+            ql.chk.error(path + ("frame",), "frame 0 is the fixed base, which no joint moves: a pose target "
+                         f"is the pose of a moving frame (e.g. frame: '{ql.b.last_frame()}', the default)")
 
 
 def _pose_cell(q, answer, problem, target):

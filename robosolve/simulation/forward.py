@@ -31,7 +31,7 @@ from typing import Callable, Sequence
 import numpy as np
 import sympy as sp
 
-__all__ = ["Plant", "Run", "RunTooLong", "compile_plant", "integrate", "MAX_EVALUATIONS",
+__all__ = ["Plant", "Run", "RunTooLong", "RunUndefined", "compile_plant", "integrate", "MAX_EVALUATIONS",
            "RTOL", "ATOL"]
 
 RTOL = 1e-10
@@ -46,6 +46,20 @@ PROBES_PER_STEP = 3
 
 class RunTooLong(RuntimeError):
     """The integration needed more than its budget of right-hand-side evaluations."""
+
+
+class RunUndefined(RunTooLong):
+    """The equations have no value along the run (a law's square root or logarithm of a negative
+    number): the run stops there, and says where."""
+
+
+def undefined_message(t: float, exc: Exception) -> str:
+    """Why a run stopped where its equations have no value (the math module's error `exc` at t)."""
+    if isinstance(exc, OverflowError):
+        return (f"the equations of motion overflow at t = {t:.6g} s (a value beyond the range of "
+                "floating-point numbers, about 1.8e308: a start state, a gain or a law far too large?)")
+    return (f"the equations of motion have no value at t = {t:.6g} s ({exc}: a square root or logarithm "
+            "of a negative number in an actuator law or a force?)")
 
 
 @dataclass
@@ -153,7 +167,12 @@ class _Counter:
         if self.count % 2000 == 0 and time.monotonic() > self.deadline:
             self.last = (t, np.array(y))
             raise _OverClock()
-        return self.plant.rhs(t, y)
+        try:
+            return self.plant.rhs(t, y)
+        except (ValueError, OverflowError) as exc:      # the math module's: a law off its domain
+            if isinstance(exc, np.linalg.LinAlgError):
+                raise                    # a singular M(q) (also a ZeroDivisionError): the caller says so
+            raise RunUndefined(undefined_message(t, exc)) from None
 
 
 class _OverBudget(Exception):

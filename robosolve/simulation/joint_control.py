@@ -24,6 +24,7 @@ import numpy as np
 
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import NumericPlan
+from robosolve.simulation.forward import undefined_message
 
 __all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT", "MAX_EVALUATIONS"]
 
@@ -278,7 +279,12 @@ class _Budget:
             if self.deadline is not None and self.left % 500 == 0 and time.monotonic() > self.deadline:
                 raise SimulationTooLong(self.message(
                     f"{self.seconds:g} s (a wall-clock safety limit, reached only on a very slow machine)"))
-            return rhs(t, yy)
+            try:
+                return rhs(t, yy)
+            except (ValueError, OverflowError) as exc:   # the math module's: a force off its domain
+                if isinstance(exc, np.linalg.LinAlgError):
+                    raise                # a singular M(q) (also a ZeroDivisionError): the caller says so
+                raise SimulationTooLong(undefined_message(t, exc)) from None
 
         return guarded
 

@@ -14,7 +14,7 @@ import sympy as sp
 
 from robosolve.core.prose import Num, Text
 from robosolve.core.symbols import TIME
-from robosolve.errors import SymbolicTimeout
+from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
@@ -58,7 +58,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     except ValueError as exc:
         ans.note(f"numeric torques omitted: {exc}")
         return ans
-    res = torques_along(prof, fast, act_names)
+    res = _torques_along(prof, fast, act_names)
     # an interior peak is found to ~1e-12 in value but only ~1e-8 in time (the maximum is
     # flat): the answer schema keeps 8 digits of t_peak (registry: AnswerKey.digits)
     ans.numeric["actuators"] = {act_names[i]: {"peak": res.peaks[i], "t_peak": res.t_peaks[i]}
@@ -66,6 +66,26 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ans.steps += peak_steps(res, prof, joints)
     _figure(ans, res, prof, joints, act_names)
     return ans
+
+
+def _torques_along(prof, fast, act_names):
+    """The sampled actuators and their peaks; a force with no value along the profile (the square
+    root or logarithm of a negative number: the math module raises, numpy gives nan) is said."""
+    import math
+
+    import numpy as np
+
+    why = "a square root or logarithm of a negative number in a force?"
+    try:
+        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+            res = torques_along(prof, fast, act_names)
+    except (ValueError, OverflowError) as exc:
+        if isinstance(exc, np.linalg.LinAlgError):
+            raise
+        raise SolverError(f"the actuators have no value along the profile ({exc}: {why})") from None
+    if not all(math.isfinite(v) for v in list(res.peaks) + list(res.t_peaks)):
+        raise SolverError(f"the actuators have no finite value along the profile ({why})")
+    return res
 
 
 def _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines) -> None:

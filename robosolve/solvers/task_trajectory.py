@@ -39,6 +39,14 @@ class BadInput(Exception):
         self.key, self.message = key, message
 
 
+class OutOfReach(Exception):
+    """`from` is out of the arm's reach (an answer, not a mistake): why, as prose (str or Text)."""
+
+    def __init__(self, reason):
+        super().__init__(str(reason))
+        self.reason = reason
+
+
 @dataclass
 class TaskTrajectory:
     """A converted trajectory, as the closed-loop control reads it."""
@@ -139,7 +147,7 @@ def _ik_joints(model, ctx, subs):
     return out
 
 
-def _ik(ctx, model, x_expr, target, subs, key):
+def _ik(ctx, model, x_expr, target, subs):
     """(configuration, IKResult or None) reaching ``target``: the IK engine's selected
     solution; for fewer coordinates than joints, Newton's minimum-norm steps from 0."""
     n, m = len(model.q), len(target)
@@ -150,9 +158,9 @@ def _ik(ctx, model, x_expr, target, subs, key):
         res = solve_ik([(x_expr[i], float(target[i])) for i in range(m)], _ik_joints(model, ctx, subs), values,
                        time_limit_s=ctx.budgets.closed_form_seconds)
     except (TypeError, ValueError):      # a closed form evaluated off its domain (complex values)
-        raise BadInput(key, "out of reach: no configuration of the arm puts the point there") from None
+        raise OutOfReach("no configuration of the arm puts the point there") from None
     if res.status == "unreachable" or res.selected is None:
-        raise BadInput(key, "out of reach: " + (res.reason or "no configuration reaches it"))
+        raise OutOfReach(res.reason or "no configuration reaches it")
     return np.array([res.selected[j.name] for j in model.joints], dtype=float), res
 
 
@@ -183,6 +191,12 @@ def _setup(question, ctx: SolveContext):
     unknown = sorted(str(v) for v in x_expr.free_symbols - set(model.q))
     if unknown:
         raise MissingValues(unknown)
+    for c, x in zip(coords, x_expr):
+        if not x.free_symbols & set(model.q):
+            raise BadInput("coordinates" if "coordinates" in opts else "type",
+                           f"{c} does not move with the joints (it is {sp.sstr(x)} in every configuration): "
+                           "each task coordinate must change as the arm moves"
+                           + ("" if "coordinates" in opts else "; give `coordinates` (e.g. [E.x, E.y])"))
     a = _values(ctx, opts["from"], coords, "from", subs)
     b = _values(ctx, opts["to"], coords, "to", subs)
     path = _path(ctx, opts.get("path", {"kind": "line"}), a, b, subs)
@@ -192,9 +206,9 @@ def _setup(question, ctx: SolveContext):
     # the instant the path leaves the reach; a `from` out of reach is the path leaving it at t = 0.
     outside = None
     try:
-        q_from, res = _ik(ctx, model, x_expr, a, subs, "from")
-    except BadInput as exc:
-        q_from, res, outside = None, None, exc.message.removeprefix("out of reach: ")
+        q_from, res = _ik(ctx, model, x_expr, a, subs)
+    except OutOfReach as exc:            # the reason may be prose with numbers (Text)
+        q_from, res, outside = None, None, exc.reason
     if "start" in opts and outside is None:
         q0 = np.array([float(ctx.numeric(opts["start"][j.name], subs)) for j in model.joints])
         q_from = tp.newton(arm, a, q0)

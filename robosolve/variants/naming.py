@@ -9,7 +9,7 @@ import re
 
 from robosolve.core.csv_text import csv_reader
 from robosolve.errors import InputError, InputIssue
-from robosolve.load.expressions import did_you_mean
+from robosolve.load.expressions import did_you_mean, shown
 from robosolve.load.yamlsource import read_text_file
 
 UNSAFE_RUN = re.compile(r"[^a-z0-9_-]+")
@@ -75,8 +75,12 @@ def roster_table(path):
     file = str(path)
     text = read_text_file(path, line=1, what="the roster")
     reader = csv_reader(text)          # `,` or, from a spreadsheet in many locales, `;`
+    rows, lines, last = [], [], 0      # each row, and the line it starts on (a quoted cell may hold lines)
     try:
-        rows = list(reader)
+        for row in reader:
+            lines.append(last + 1)
+            rows.append(row)
+            last = reader.line_num
     except csv.Error as exc:
         raise InputError([InputIssue(file, reader.line_num, "", f"CSV error: {exc}")])
     if not rows:
@@ -87,21 +91,21 @@ def roster_table(path):
                                      + f" (columns: {', '.join(header) or 'none'})")])
     col = [h.casefold() for h in header].index("student")
     out, seen, issues, kept = [], {}, [], []
-    for line, row in enumerate(rows[1:], start=2):
+    for line, row in zip(lines[1:], rows[1:]):
         if not any(c.strip() for c in row):
             continue                     # a blank line
         student = row[col].strip() if col < len(row) else ""
         name = safe_name(student)
         if not name:
             issues.append(InputIssue(file, line, "student",
-                                     f"student id {student!r} gives an empty folder name"
+                                     f"student id {shown(student)!r} gives an empty folder name"
                                      " (it needs a letter or a digit)"))
             continue
         if name in seen:
             first_line, first = seen[name]
             issues.append(InputIssue(file, line, "student",
-                                     f"{student!r} and {first!r} (line {first_line}) give the same "
-                                     f"folder name '{name}'"))
+                                     f"{shown(student)!r} and {shown(first)!r} (line {first_line}) give the "
+                                     f"same folder name '{name}'"))
             continue
         seen[name] = (line, student)
         out.append((name, student))

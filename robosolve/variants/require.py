@@ -67,6 +67,26 @@ class Condition:
         return out
 
 
+def _exact_sign(e) -> int | None:
+    """The sign of the number `e` (exact, then to 50 digits), or None when it has no real value:
+    a division by zero, the square root or logarithm of a negative number."""
+    v = full(e)
+    if v == 0:
+        return 0
+    if v.is_extended_real and v.is_finite:
+        if v.is_positive:
+            return 1
+        if v.is_negative:
+            return -1
+    try:
+        c = complex(sp.N(v, 50))
+    except (TypeError, ValueError):
+        return None
+    if not (math.isfinite(c.real) and math.isfinite(c.imag)) or abs(c.imag) > 1e-30 * max(1.0, abs(c.real)):
+        return None
+    return int(np.sign(c.real))
+
+
 class RequirementChecker:
     """All conditions of a spec, on the template problem (varied parameters null)."""
 
@@ -168,9 +188,9 @@ class RequirementChecker:
             except (ValueError, ZeroDivisionError, OverflowError, TypeError):
                 x = float("nan")
             if not math.isfinite(x) or abs(x) <= TIE * max(1.0, *[abs(f) for f in floats]):
-                v = full(d.xreplace(dict(zip(syms, exact))))
-                sign = 0 if v == 0 else (1 if v.is_positive else (-1 if v.is_negative else
-                                                                  int(np.sign(float(sp.N(v, 50))))))
+                sign = _exact_sign(d.xreplace(dict(zip(syms, exact))))
+                if sign is None:         # no real value for this draw (1/0, sqrt(-1)): not met
+                    return False
             else:
                 sign = 1 if x > 0 else (-1 if x < 0 else 0)
             return {"<": sign < 0, "<=": sign <= 0, ">": sign > 0, ">=": sign >= 0}[op]

@@ -102,3 +102,23 @@ def test_batch_of_a_device_or_a_pipe_says_it_is_not_a_regular_file(tmp_path, spe
 def test_batch_of_a_folder_without_problems_says_none_found(tmp_path):
     r = runner.invoke(app, ["batch", str(tmp_path), "--out", str(tmp_path / "o")])
     assert r.exit_code == 2 and "no problem files found" in r.output
+
+
+def test_a_defect_is_one_line_saying_where_never_a_traceback():
+    """The last resort of every command (a `require` that divided by zero once ended `variants`
+    with a Python traceback): one line naming the exception and robosolve's file and line."""
+    import re
+    import subprocess
+    import sys
+
+    code = ("import robosolve.cli.common as c\n"
+            "def app():\n"
+            "    raise TypeError('Cannot convert complex to float')\n"
+            "c.app = app\n"
+            "c.main()\n")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1
+    assert "Traceback" not in r.stderr
+    assert re.match(r"internal error \(TypeError: Cannot convert complex to float, at robosolve/[\w/]+\.py:\d+\): "
+                    r"this is a bug in robosolve", r.stderr), r.stderr
+    assert r.stderr.count("\n") == 1

@@ -66,7 +66,8 @@ def test_at_value_uses_the_parameter_it_overrides(write_problem):
 @pytest.mark.parametrize("params, message", [
     ("{k: 'exp(exp(exp(exp(100))))'}", "too large"),
     ("{k: '((9**999)**999)**999'}", "too large"),
-    ("{k: '9**100', k2: 'k**9'}", "too large"),        # through a parameter
+    ("{k: '9**100', k2: 'k**9'}", "exact number of 96 digits"),   # k itself: 96 digits (MAX_EXACT_DIGITS)
+    ("{k: '9**30', k2: 'k**30'}", "too large"),        # through a parameter
     ("{k: 'exp(100)', k2: 'exp(exp(k))'}", "too large"),
 ])
 def test_huge_numbers_refused_before_evaluation(write_problem, params, message):

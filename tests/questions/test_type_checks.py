@@ -158,7 +158,7 @@ def test_forward_dynamics_massless_bodies():
 def test_equations_of_motion_at_with_forces_in_time():
     head = HEAD.replace("questions:\n", "forces: [{name: push, frame: \"2\", at: [0, 0, 0], force: [sin(t), 0, 0]}]\nquestions:\n")
     assert messages("  - {type: equations_of_motion, at: {q1: 0, q2: 0}}\n", head) == [
-        f"f.yaml:{Q + 1}: questions[0].at: the force push vary with time t, so the numbers at a "
+        f"f.yaml:{Q + 1}: questions[0].at: the force push varies with time t, so the numbers at a "
         "configuration would need a time: drop `at` (the symbolic equations keep t), or follow the "
         "motion with a forward_dynamics question"]
     assert messages("  - {type: equations_of_motion}\n", head) == []
@@ -201,3 +201,29 @@ def test_a_check_called_directly_reports_through_the_loader_checker():
     errors.clear()
     QUESTION_TYPES["dof"].check(ql, ("questions", 2), {"joints_3dof": 1}, SimpleNamespace(options={"space": "spatial"}))
     assert errors == []
+
+
+def test_inverse_kinematics_pose_target_of_the_fixed_frame():
+    """A pose target of frame 0 (or of a point fixed in it) is an input error with its line; it was
+    a solver error (exit 1) after the solve had started."""
+    target = "target: {position: [1, 1, 0], R: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}"
+    assert messages(f"  - {{type: inverse_kinematics, {target}, frame: '0'}}\n") == [
+        f"f.yaml:{Q}: questions[0].frame: frame 0 is the fixed base, which no joint moves: a pose target is "
+        "the pose of a moving frame (e.g. frame: '2', the default)"]
+    head = HEAD.replace('points: {E: {frame: "2"}}', 'points: {E: {frame: "2"}, B: {frame: "0", at: [1, 0, 0]}}')
+    assert messages(f"  - {{type: inverse_kinematics, {target}, point: B}}\n", head) == [
+        f"f.yaml:{Q}: questions[0].point: point B is fixed in frame 0, which no joint moves: a pose target's "
+        "point is fixed in a moving frame (its orientation is that frame's)"]
+    assert messages(f"  - {{type: inverse_kinematics, {target}, frame: '1'}}\n") == []
+    assert messages("  - {type: inverse_kinematics, target: {E.x: 1, E.y: 1}, frame: '0'}\n") == []
+
+
+def test_a_misspelt_joint_of_a_configuration_is_one_message_naming_the_joint_not_given():
+    """`{q9: 0, q2: 1}` for joints q1, q2: q9 stands for q1, the joint not given (its did-you-mean
+    named q2, already given, and a second message said q1 was missing)."""
+    assert messages("  - {type: motion_profile, from: {q9: 0, q2: 0}, to: {q1: 1, q2: 1}, "
+                    "max_acceleration: {q1: 1, q2: 1}}\n") == [
+        f"f.yaml:{Q}: questions[0].from.q9: unknown joint 'q9' (did you mean 'q1'?) (joints: q1, q2)"]
+    assert messages("  - {type: motion_profile, from: {q2: 0}, to: {q1: 1, q2: 1}, "
+                    "max_acceleration: {q1: 1, q2: 1}}\n") == [
+        f"f.yaml:{Q}: questions[0].from: missing joint(s) q1 (give a value for every joint)"]

@@ -67,6 +67,12 @@ def test_unknown_question_and_key_with_did_you_mean(folder):
 def test_layout_errors(folder):
     assert messages(folder, "robosolve: 1\nanswers: {}\n", problem=False) == [
         "A:1: missing required key 'robosolve-answers' (the answers format, 1) (this looks like a problem file)"]
+    # a whole problem file given as answers: that one message, not one more per key of the problem
+    assert messages(folder, "robosolve: 1\nname: arm\nparameters: {L1: 1}\njoints: []\nquestions: []\n",
+                    problem=False) == [
+        "A:1: missing required key 'robosolve-answers' (the answers format, 1) (this looks like a problem file)"]
+    assert messages(folder, "robosolve-answers: 1\nproblem: ''\nanswers: {}\n") == [
+        "A:2: problem: expected the path of the problem file, got an empty string"]
     assert messages(folder, "robosolve-answers: 2\nanswers: {}\n", problem=False) == [
         "A:1: robosolve-answers: unsupported answers format 2 (expected 1)"]
     assert messages(folder, "robosolve-answers: 1\nanswers:\n  position:\n    M: [1\n", problem=False) == [
@@ -251,3 +257,15 @@ def test_the_panda_symbolic_equations_given_back_are_right():
     result = Grader(ref).grade(sub.student, sub.answers)
     q = next(q for q in result.questions if q.id == "equations_of_motion")
     assert {k: q.keys[k].verdict for k in keys} == dict.fromkeys(keys, "correct")
+
+
+def test_a_problem_that_does_not_exist_is_said_at_its_line_with_a_did_you_mean(folder):
+    """It was said by the loader, at the problem's path, without the answers file's line."""
+    from robosolve.grading.check import problem_path
+
+    path = write(folder, "robosolve-answers: 1\nproblem: ./two_r.yaml\nanswers: {}\n")
+    with pytest.raises(InputError) as exc:
+        problem_path(read_answers(path), None)
+    assert [str(i).replace(str(path), "A") for i in exc.value.issues] == [
+        f"A:2: problem: './two_r.yaml' does not exist ({folder / 'two_r.yaml'}) (did you mean 'two-r.yaml'?)"]
+    assert str(problem_path(read_answers(path), folder / "two-r.yaml")) == str(folder / "two-r.yaml")

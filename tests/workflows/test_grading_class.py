@@ -240,6 +240,16 @@ def test_gradebook_usage_errors(course, tmp_path):
     assert not (tmp_path / "b").exists()
 
 
+def test_an_empty_gradebook_option_is_a_usage_error():
+    """`--gradebook ""` names no LMS: refused like `--gradebook ,` (it was taken as not given)."""
+    from robosolve.grading.gradebook import GradebookError, parse_lms
+
+    assert parse_lms(None) == ()
+    for text in ("", ",", " , "):
+        with pytest.raises(GradebookError, match="give some of canvas, moodle, blackboard"):
+            parse_lms(text)
+
+
 def test_moodle_needs_email_or_idnumber(tmp_path):
     (tmp_path / "arm.yaml").write_text(PROBLEM)
     (tmp_path / "class.csv").write_text("Student,Username\nJo Smith,jsmith\n")

@@ -273,6 +273,39 @@ def test_roster_collisions_are_input_errors(tmp_path):
     assert result.exit_code == 2 and "no `student` column (columns: name)" in result.output
 
 
+def test_roster_messages_give_the_line_a_row_starts_on_and_quote_long_ids_short(tmp_path):
+    """A quoted cell over two lines (a spreadsheet's note) shifted every later line number by one;
+    a 5,000-character id was quoted whole."""
+    from robosolve.errors import InputError
+    from robosolve.variants.naming import read_roster
+
+    roster = tmp_path / "class.csv"
+    roster.write_text('student,notes\nJo,"two\nlines"\nAnn,x\nann,y\n', encoding="utf-8")
+    with pytest.raises(InputError) as err:
+        read_roster(roster)
+    assert [str(i) for i in err.value.issues] == [
+        f"{roster}:5: student: 'ann' and 'Ann' (line 4) give the same folder name 'ann'"]
+    roster.write_text("student\n" + "é" * 5000 + "\n", encoding="utf-8")
+    with pytest.raises(InputError) as err:
+        read_roster(roster)
+    assert len(str(err.value.issues[0])) < 400 and "gives an empty folder name" in str(err.value.issues[0])
+
+
+@pytest.mark.parametrize("condition", ["1/(m1 - 4) > 0", "sqrt(m1 - 4) > 0", "log(m1 - 4) > -10"])
+def test_a_condition_without_value_for_a_draw_is_not_met(tmp_path, condition):
+    """m1 = 4 makes the condition 1/0, sqrt(0)... : a draw where it has no real value (or is 0
+    against > 0) is drawn again; it ended `variants` with a Python traceback (a complex number)."""
+    section = f"variants:\n  parameters:\n    m1: {{choices: [4, 5, 6]}}\n  require:\n    - \"{condition}\"\n"
+    p = problem_file(tmp_path, section)
+    r = runner.invoke(app, ["variants", str(p), "--count", "2", "--no-solve", "--out", str(tmp_path / "o")])
+    assert r.exit_code == 0, r.output
+    rows = list(csv.DictReader(io.StringIO((tmp_path / "o" / "variants.csv").read_text())))
+    assert sorted(row["m1"] for row in rows) == ["5", "6"]
+    from robosolve.variants.require import _exact_sign
+    assert _exact_sign(sp.sqrt(-1) - 0) is None and _exact_sign(sp.Integer(1) / 0) is None
+    assert _exact_sign(sp.sqrt(2) - sp.Rational(141421356237, 10**11)) == 1
+
+
 def test_roster_student_k_gets_variant_k(tmp_path):
     p = problem_file(tmp_path)
     roster = tmp_path / "class.csv"
