@@ -42,6 +42,11 @@ def batch(
     if check is None and out is None:
         err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(ExitStatus.INPUT)
+    if check is not None and not update and not Path(check).is_dir():
+        # nothing to compare with: a mistyped path, not a set of differences
+        err(f"--check {check}: no such golden folder (to make one, add --update)" if not Path(check).exists()
+            else f"--check {check}: not a folder")
+        raise typer.Exit(ExitStatus.INPUT)
     check_scheduler(scheduler)
     con = console()
     outcome = batch_mod.run(files, out=out, jobs=jobs, golden=check, update=update, formats=formats,

@@ -24,3 +24,15 @@ def test_a_golden_folder_whose_problem_was_removed_is_flagged(tmp_path):
     assert f"{golden / 'mini2'}: no problem file checked has the name 'mini2'" in r.output
     assert "golden check: 1 problem identical" in r.output
     assert f"{golden / 'mini'}:" not in r.output                                  # the kept one is fine
+
+
+def test_a_golden_folder_that_does_not_exist_is_a_usage_error(tmp_path):
+    """A mistyped --check path was 'differences found' (exit 1, every file 'missing in the golden
+    folder'): it is a usage error (exit 2) that says to add --update to make one; a file is not a
+    golden folder. Nothing is written."""
+    (tmp_path / "a.yaml").write_text(MINI)
+    r = runner.invoke(app, ["batch", str(tmp_path / "a.yaml"), "--check", str(tmp_path / "gold"), "--jobs", "1"])
+    assert r.exit_code == 2 and "no such golden folder (to make one, add --update)" in r.output
+    assert not (tmp_path / "gold").exists()
+    r = runner.invoke(app, ["batch", str(tmp_path / "a.yaml"), "--check", str(tmp_path / "a.yaml"), "--jobs", "1"])
+    assert r.exit_code == 2 and "not a folder" in r.output
