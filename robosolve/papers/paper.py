@@ -8,6 +8,8 @@ reads a solution: a paper is the same bytes whether or not the problem was solve
 
 from __future__ import annotations
 
+import re
+
 import sympy as sp
 
 from robosolve.core.prose import name_md
@@ -125,7 +127,13 @@ def teacher_text(question, say: Say) -> str:
             return token[0]
         name = (m.group(1) or "").strip()
         if name == "at":
-            return say.at(question) or "at the data's values"
+            # '{at}' reads 'at θ₁ = …'; a teacher who wrote 'at {at}' gets one 'at', and a
+            # question without a configuration is about any (its answers symbolic in the joints)
+            words = say.at(question) or "at any configuration (the joint variables as symbols)"
+            before = m.string[:m.start()]
+            if words.startswith("at ") and re.search(r"\bat\s*$", before):
+                words = words[3:]
+            return words
         s, v = params[name]
         return "null (symbolic)" if v is None else f"${say.tex(v)}$"
 

@@ -323,3 +323,17 @@ def test_the_data_table_names_questions_by_their_numbers(write_problem):
     assert "`" not in data
     report = "\n".join(render_data(problem, RobotModel(problem), Tex({})))
     assert "in `jac`" in report and "changed by a question's `at`" in report
+
+
+def test_at_placeholder_after_a_written_at_and_without_a_configuration(write_problem, tmp_path):
+    """'at {at}' read 'at at θ₁ = …' (and 'at at the data's values' without `at`): one 'at'; a
+    question without a configuration is about any (its answers symbolic in the joints)."""
+    text = ARM.replace('text: "With L1 = {L1} and {{braces}}, find M {at}."', 'text: "Find M at {at}."').replace(
+        "  - {type: jacobian, id: jac,", "  - {type: jacobian, id: jac, text: 'Find J {at}.',").replace(
+        "coordinates: [E.x, E.y], at: {theta1: 0, theta2: pi/3}}", "coordinates: [E.x, E.y]}")
+    out = tmp_path / "paper"
+    r = runner.invoke(app, ["paper", str(write_problem(text)), "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    paper = (out / "paper.md").read_text()
+    assert "Find M at $\\theta_{1} = \\frac{\\pi}{6}" in paper and "at at" not in paper
+    assert "Find J at any configuration (the joint variables as symbols)." in paper
