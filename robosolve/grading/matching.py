@@ -111,10 +111,10 @@ def _resolved(path) -> str:
 
 def _read_csv(path: Path, what: str) -> list:
     from robosolve.errors import InputError
-    from robosolve.load.yamlsource import read_text_file
+    from robosolve.load.yamlsource import read_table_file
 
     try:         # bounded, regular files only, a bad byte reported at its line
-        text = read_text_file(path, what=f"the {what}").removeprefix("\ufeff")
+        text = read_table_file(path, what=f"the {what}")
     except InputError as exc:
         raise TableError(str(exc)) from None
     try:

@@ -199,6 +199,20 @@ def read_text_file(file, line: int = 0, what: str = "the file", limit: int = MAX
     return decode_utf8(read_input_bytes(file, limit=limit, line=line, what=what), file, what)
 
 
+def read_table_file(file, line: int = 0, what: str = "the table", limit: int = MAX_FILE_BYTES) -> str:
+    """The text of a CSV table a spreadsheet saved (a roster, variants.csv): UTF-8, with or
+    without a byte-order mark, or UTF-16 with its byte-order mark (Excel's "Unicode text",
+    tab-separated), else an InputError as `read_text_file` gives."""
+    raw = read_input_bytes(file, limit=limit, line=line, what=what)
+    if raw.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        try:
+            return raw.decode("utf-16").removeprefix("\ufeff")
+        except UnicodeDecodeError:
+            raise InputError([InputIssue(str(file), 1, "", f"{what} starts as UTF-16 text but is not "
+                                         "(save it as UTF-8)")]) from None
+    return decode_utf8(raw, file, what)
+
+
 _OPENING = (yaml.FlowSequenceStartToken, yaml.FlowMappingStartToken, yaml.BlockMappingStartToken,
             yaml.BlockSequenceStartToken)
 _CLOSING = (yaml.FlowSequenceEndToken, yaml.FlowMappingEndToken, yaml.BlockEndToken)

@@ -10,7 +10,7 @@ import re
 from robosolve.core.csv_text import csv_reader
 from robosolve.errors import InputError, InputIssue
 from robosolve.load.expressions import did_you_mean, shown
-from robosolve.load.yamlsource import read_text_file
+from robosolve.load.yamlsource import read_table_file
 
 UNSAFE_RUN = re.compile(r"[^a-z0-9_-]+")
 
@@ -73,7 +73,7 @@ def roster_csv(path) -> bytes:
 def roster_table(path):
     """(ids as read_roster gives them, the header as written, each student's row as written)."""
     file = str(path)
-    text = read_text_file(path, line=1, what="the roster")
+    text = read_table_file(path, line=1, what="the roster")
     reader = csv_reader(text)          # `,` or, from a spreadsheet in many locales, `;`
     rows, lines, last = [], [], 0      # each row, and the line it starts on (a quoted cell may hold lines)
     try:
@@ -89,7 +89,11 @@ def roster_table(path):
     if "student" not in [h.casefold() for h in header]:
         raise InputError([InputIssue(file, 1, "", "no `student` column" + did_you_mean("student", header)
                                      + f" (columns: {', '.join(header) or 'none'})")])
-    col = [h.casefold() for h in header].index("student")
+    folded = [h.casefold() for h in header]
+    if folded.count("student") > 1:          # which one holds the ids? (a merged export, say)
+        raise InputError([InputIssue(file, 1, "", "the header has more than one `student` column "
+                                     "(columns: " + ", ".join(header) + "): keep one")])
+    col = folded.index("student")
     out, seen, issues, kept = [], {}, [], []
     for line, row in zip(lines[1:], rows[1:]):
         if not any(c.strip() for c in row):
