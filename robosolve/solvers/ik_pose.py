@@ -15,7 +15,7 @@ import sympy as sp
 from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.ik.pose import P_SYMS, R_SYMS, solve_pose
-from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
+from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
 
 
 def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, params, tex):
@@ -33,7 +33,7 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
         R = np.array(ctx.numeric(target.R, params), dtype=float).reshape(3, 3)
         p = np.array(ctx.numeric(target.p, params), dtype=float).reshape(3)
     except MissingValues as exc:
-        raise SolverError("a pose target is solved with numbers: no value for " + ", ".join(exc.names)) from None
+        return _numbers_missing(ans, ctx, exc.names)
     if target.note:
         ans.note(target.note)
     if not _is_rotation(R):
@@ -46,8 +46,7 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
     used = [j for j in ik_joints if any(j.symbol in f.free_symbols for f in factors)]
     extra = set().union(*(f.free_symbols for f in factors)) - q_syms
     if extra:
-        raise SolverError("a pose target is solved with numbers: no value for "
-                          + ", ".join(sorted(map(str, extra))))
+        return _numbers_missing(ans, ctx, sorted(map(str, extra)))
     if len(used) > 6:
         raise SolverError(f"a pose fixes 6 coordinates and this arm moves it with {len(used)} joints: the "
                           "target is reached along a continuum (self-motion), not at isolated solutions; "
@@ -88,6 +87,16 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
                                           if not isinstance(select, dict) else "the solution nearest the given configuration."),
                           equations=[(names[j.symbol], res.selected[j.name]) for j in used]))
     return res
+
+
+def _numbers_missing(ans: Answer, ctx: SolveContext, names) -> None:
+    """A pose target is solved with numbers (the decoupling's wrist centre, the numeric search):
+    with a null parameter in the target or the chain, no solution can be given — a note names
+    it (spec: the numeric key omitted, never an error)."""
+    ans.note(missing_note("solutions", names, ctx.problem))
+    ans.steps.append(Step("Pose of the target", "The solutions of a pose target are computed with numbers: "
+                          + missing_note("solutions", names, ctx.problem) + "."))
+    return None
 
 
 def _with_values(m, params, model):

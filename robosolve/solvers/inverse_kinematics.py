@@ -58,7 +58,8 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         for n_ in limit_notes:
             ans.note(n_)
         res = solve_pose_question(question, ctx, ans, ik_joints, params, tex)
-        figure(ans, ctx, params, res, ik_joints, question)
+        if res is not None:                   # None: a null parameter, said in a note
+            figure(ans, ctx, params, res, ik_joints, question)
         return ans
     equations, target_syms, shown, values, missing = _target_equations(opts["target"], model, ctx, params)
     ik_joints, limit_notes = _ik_joints(joints, ctx, params)

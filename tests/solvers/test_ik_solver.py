@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+
+import pytest
 from pathlib import Path
 
 from robosolve.load.loader import load_problem_text
@@ -150,3 +152,32 @@ def test_a_continuum_where_several_joints_move_together():
     notes = [n for n in a["notes"] if "continuum" in n]
     assert notes and "can take any value" not in notes[0]
     assert "q3, q4, q5 and q6 change together" in notes[0]
+
+
+NULL_POSE = """robosolve: 1
+name: null-pose
+parameters: {{L1: 0.5, L2: {l2}, X: ~}}
+joints: [{{name: q1, type: revolute}}, {{name: q2, type: revolute}}, {{name: q3, type: revolute}}]
+frames:
+  "1": {{parent: "0", pose: "Rz(q1) Tx(L1)"}}
+  "2": {{pose: "Rz(q2) Tx(L2)"}}
+  "3": {{pose: "Rz(q3) Tx(0.1)"}}
+questions:
+  - {{type: inverse_kinematics, target: {{position: [{x}, 0.1, 0], rpy: [0, 0, 0.3]}}}}
+"""
+
+
+def test_a_pose_target_with_a_null_parameter_is_answered_with_a_note():
+    """Spec (null parameters): the numeric key omitted with a note naming the parameter — a pose
+    target with X: ~ (or a null length of the chain) was an error (exit 1). With X given in `at`,
+    the solutions reach the target: the planar 3R's wrist point by the law of cosines."""
+    for l2, x, null in (("0.4", "X", "X"), ("~", "0.6", "L2")):
+        answer = solve_problem(load_problem_text(NULL_POSE.format(l2=l2, x=x), "p.yaml")).answers[0]
+        assert answer.error is None and "solutions" not in answer.numeric
+        assert answer.notes == [f"numeric solutions omitted: it needs the null parameter {null}"]
+    text = NULL_POSE.format(l2="0.4", x="X").replace("rpy: [0, 0, 0.3]}}", "rpy: [0, 0, 0.3]}, at: {X: 0.6}}")
+    answer = solve_problem(load_problem_text(text, "p.yaml")).answers[0]
+    wx, wy = 0.6 - 0.1 * math.cos(0.3), 0.1 - 0.1 * math.sin(0.3)       # the wrist point
+    c2 = (wx ** 2 + wy ** 2 - 0.25 - 0.16) / (2 * 0.5 * 0.4)
+    assert sorted(abs(s["q2"]) for s in answer.numeric["solutions"]) == [
+        pytest.approx(math.acos(c2), abs=1e-9)] * 2
