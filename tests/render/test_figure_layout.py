@@ -144,3 +144,32 @@ def test_long_names_stay_inside_the_paper_drawing(monkeypatch, tmp_path, third, 
     outside = [(t.get_text(), t.get_window_extent(renderer).bounds) for t in texts
                if t.get_window_extent(renderer).x0 < box.x0 - 1 or t.get_window_extent(renderer).x1 > box.x1 + 1]
     assert not outside
+
+
+def _profile_spec(T, switches):
+    t = sorted({*np.linspace(0.0, T, 50), *switches})
+    joint = {"name": "q1", "label": "q_1", "kind": "revolute", "q": [0.0] * len(t), "qd": [0.0] * len(t),
+             "qdd": [0.0] * len(t)}
+    return FigureSpec("profile", "motion_profile", "Synchronized trapezoidal profile",
+                      {"t": t, "T": T, "switches": list(switches), "joints": [joint]})
+
+
+@pytest.mark.parametrize("T, switches", [
+    (3.3333333, [0.1571, 0.3333333, 3.0, 3.1762]),      # two short phases at each end
+    (1.0, [0.5]),
+    (2.0, [0.001, 0.002, 1.0, 1.998, 1.999]),
+])
+def test_switching_instant_labels_never_overlap(monkeypatch, tmp_path, T, switches):
+    # measured on matplotlib's renderer: the labels of the top axis (the switching instants)
+    # drawn side by side must not overlap; the ends 0 and T are always labelled
+    fig = drawn(monkeypatch, "motion_profile", _profile_spec(T, switches), tmp_path)
+    renderer = fig.canvas.get_renderer()
+    # the secondary (top) axis is a child of the first panel, not one of the figure's axes
+    labels = [lab for ax in fig.findobj(lambda o: hasattr(o, "get_xticklabels")) if ax not in fig.axes
+              for lab in ax.get_xticklabels() if lab.get_text()]
+    assert labels
+    boxes = sorted((lab.get_window_extent(renderer) for lab in labels), key=lambda b: b.x0)
+    for left, right in zip(boxes, boxes[1:]):
+        assert left.x1 <= right.x0, [lab.get_text() for lab in labels]
+    texts = [lab.get_text() for lab in labels]
+    assert texts[0] == "0" and texts[-1] == f"{T:.3g}"
