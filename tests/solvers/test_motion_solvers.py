@@ -194,3 +194,15 @@ def test_null_acceleration_limit_keeps_the_profile_symbolic():
     assert "Max" in str(ans["prof"].symbolic["T"]) and "T" not in ans["prof"].numeric
     assert ans["joint_torques"].notes == ["numeric torques omitted: it needs the null parameter a1"]
     assert ans["p_control"].notes == ["numeric simulation omitted: it needs the null parameter a1"]
+
+
+def test_synchronized_time_shown_once_when_it_is_a_decimal_and_twice_when_exact():
+    # exact data: T = sqrt(pi) and its decimal 1.77245; decimal data: T = 1.77245 once
+    exact = run("")["prof"]
+    decimal = solve_problem(load_problem_text(ARM % ("5", """  - {type: motion_profile, id: prof, from: {theta1: 0.0, theta2: 0.0},
+     to: {theta1: 1.5, theta2: -1.0}, max_acceleration: {theta1: 2.0, theta2: 3.0}}
+""")), None).answers[0]
+    step = lambda a: next(s for s in a.steps if s.title == "Synchronized time")  # noqa: E731
+    assert [lhs for lhs, _ in step(exact).equations] == ["T = \\max_i T_i", "T"]
+    assert [lhs for lhs, _ in step(decimal).equations] == ["T = \\max_i T_i"]
+    assert float(step(decimal).equations[0][1]) == pytest.approx(math.sqrt(4 * 1.5 / 2.0), rel=1e-14)
