@@ -355,7 +355,7 @@ def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
     cf = ("" if res is None or res.closed_form is None else
           Text(" The IK engine has a closed form here, with ", Num(len(res.closed_form_values)),
                " solution(s) at `from`; the branch followed is the one of this solution."))
-    along = (" Along the path, x(q) = x_d(t) leaves a family of configurations: the joints follow the "
+    along = (" Along the path, $x(q) = x_d(t)$ leaves a family of configurations: the joints follow the "
              "minimum-norm rates $\\dot q = J^+\\dot x_d$, integrated from sample to sample (classical "
              "Runge-Kutta) and polished by Newton's method onto the path."
              if len(traj.labels) < len(names) else
