@@ -173,3 +173,21 @@ def test_switching_instant_labels_never_overlap(monkeypatch, tmp_path, T, switch
         assert left.x1 <= right.x0, [lab.get_text() for lab in labels]
     texts = [lab.get_text() for lab in labels]
     assert texts[0] == "0" and texts[-1] == f"{T:.3g}"
+
+
+def test_the_peak_text_does_not_hide_the_curve(monkeypatch, tmp_path):
+    # a force rising to its peak at T with a jump just before (a prismatic joint's F along a
+    # trapezoidal profile): the usual place, left of and below the marker, lies on the curve; the
+    # text must sit where its white box hides none of the curve's points (measured on the renderer)
+    T = 2.3
+    s = np.linspace(0.0, 1.0, 401)
+    f = np.where(s < 0.87, -11 + 25 * s, 13 + 1.6 * (s - 0.87) / 0.13)
+    spec = torques_spec(T, [(float(f[-1]), T)], [f])
+    fig = drawn(monkeypatch, "joint_torques", spec, tmp_path)
+    ax = fig.axes[0]
+    renderer = fig.canvas.get_renderer()
+    box = ax.texts[0].get_window_extent(renderer)
+    points = ax.transData.transform(np.column_stack([s * T, f]))
+    under = (points[:, 0] >= box.x0) & (points[:, 0] <= box.x1) & (points[:, 1] >= box.y0) & (points[:, 1] <= box.y1)
+    assert not under.any()
+    assert clipped(fig) == []
