@@ -199,7 +199,11 @@ def _solve_trajectory(question, ctx, ans, subs, law):
     else:
         kp = [_float(ctx, opts["gains"][n], subs, f"gains.{n}") for n in names]
         kd = [_float(ctx, opts["gains_d"][n], subs, f"gains_d.{n}") for n in names] if "gains_d" in opts else None
-    _trajectory_law_step(ans, opts["trajectory"], law, task, traj, kp, kd, duration)
+    given = None
+    if "start" in opts:      # the configuration the run starts from, as the report states it
+        syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
+        given = Text.join(", ", [Text(f"${syms[i]} = ", Num(start[i]), "$") for i in range(len(names))])
+    _trajectory_law_step(ans, opts["trajectory"], law, task, traj, kp, kd, duration, given)
     try:
         if task:
             res = simulate_task(dyn, traj.arm, traj.desired, traj.timing.breaks, law, kp, kd, start, duration,
@@ -266,7 +270,7 @@ TASK_LAW_TEX = {
 }
 
 
-def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration):
+def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration, start=None):
     if task:
         text = Text(f"Actual work-space scheme: the error is measured in the task coordinates, $e = x_d - x(q)$, "
                     f"$\\dot e = \\dot x_d - J\\,\\dot q$, along the trajectory `{ref}`; gains per coordinate: ",
@@ -279,8 +283,9 @@ def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration):
                     f"joint law follows them: {_law_sentence(law, kp)}.")
         eq = [("", LAW_TEX[law])]
     ans.steps.append(Step("Closed loop along the work-space trajectory", Text(
-        text, " The plant M(q) q̈ + c + g = τ + f_ext is integrated from the trajectory's start at rest over [0, ",
-        Num(duration), "] s."), equations=eq + [("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)")]))
+        text, " The plant $M(q)\\,\\ddot q + c + g = \\tau + f_{ext}$ is integrated from ",
+        "the trajectory's start" if start is None else start, ", at rest, over $[0, ", Num(duration), "]$ s."),
+        equations=eq + [("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)")]))
 
 
 def _task_figure(ans, traj, t, e_task, law, duration):

@@ -314,3 +314,28 @@ def test_the_task_error_of_a_joint_law_peaks_between_samples_and_is_found_there(
         crest = minimize_scalar(lambda t: -error(t, i), bounds=(ts[max(k - 1, 0)], ts[min(k + 1, ts.size - 1)]),
                                 method="bounded", options={"xatol": 1e-12})
         assert got[c] == pytest.approx(max(vals[k], -crest.fun), rel=1e-6)
+
+
+def test_the_report_states_the_start_the_run_really_starts_from():
+    # a control along a trajectory from a given `start` said "from the trajectory's start"
+    from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import solve_problem
+
+    law = ("  - {type: p_control, id: given, trajectory: line, law: pd_gravity, gains: {q1: 100, q2: 100},"
+           " gains_d: {q1: 10, q2: 10}, start: {q1: 0.1, q2: 1.3}, duration: 0.2}\n"
+           "  - {type: p_control, id: default, trajectory: line, law: pd_gravity, gains: {q1: 100, q2: 100},"
+           " gains_d: {q1: 10, q2: 10}, duration: 0.2}\n")
+    answers = {a.id: a for a in solve_problem(load_problem_text(ARM_2R + LINE + law)).answers}
+    step = lambda qid: next(s for s in answers[qid].steps if s.title.startswith("Closed loop"))  # noqa: E731
+    given, default = step("given").text, step("default").text
+    assert "integrated from $q_{1} = #$, $q_{2} = #$, at rest" in given and "trajectory's start" not in given
+    assert "integrated from the trajectory's start, at rest" in default
+
+    def numbers(text):
+        for piece in text:
+            if isinstance(piece, tuple):
+                yield from numbers(piece)
+            elif not isinstance(piece, str):
+                yield piece.value
+
+    assert [0.1, 1.3] == [v for v in numbers(given) if v in (0.1, 1.3)]
