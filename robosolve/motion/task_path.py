@@ -11,9 +11,18 @@ Timing s(t) on [0, T]: trapezoidal (accelerate at a_max, cruise at v_max, decele
 L < v_max^2 / a_max the cruise is never reached: bang-bang, T = 2 sqrt(L / a_max)) or quintic
 (s = L (10 tau^3 - 15 tau^4 + 6 tau^5), tau = t / T).
 
-Joints: at each sample, q solves x(q) = x_d(t) by Newton's method from the previous sample
-(minimum-norm steps when J is wide), then q_dot = J^+ x_dot_d and
-q_ddot = J^+ (x_ddot_d - J_dot q_dot).  Pure numpy: the arm comes in as callables.
+Joints: at each sample, q solves x(q) = x_d(t) by Newton's method from the previous sample,
+then q_dot = J^-1 x_dot_d and q_ddot = J^-1 (x_ddot_d - J_dot q_dot).  With fewer coordinates
+than joints (J wide) the joint motion is the one of the minimum-norm rates q_dot = J^+ x_dot_d:
+x(q) = x_d(t) alone leaves a family of configurations, and Newton's steps from sample to sample
+would drift along it (by about 1e-4 rad on a 3R arm), so q is integrated from sample to sample
+(classical Runge-Kutta, fixed sub-steps) and only polished by Newton (a minimum-norm correction:
+it moves q off the family's direction by round-off only).  Its acceleration is the derivative of
+J^+ x_dot_d, which has a null-space part besides J^+ (x_ddot_d - J_dot q_dot):
+
+    q_ddot = J^+ (x_ddot_d - J_dot q_dot) + (I - J^+ J) J_dot^T (J J^T)^-1 x_dot_d
+
+Pure numpy: the arm comes in as callables.
 """
 
 from __future__ import annotations
@@ -166,6 +175,17 @@ class Arm:
     J: Callable                    # q -> (m, n)
     jdot_qdot: Callable            # (q, q_dot) -> (m,)  = J_dot q_dot
     revolute: list                 # per joint
+    jdot: Callable | None = None   # (q, q_dot) -> (m, n) = J_dot (a wide J needs it; default:
+                                   # a central difference of J along q_dot)
+
+    def J_dot(self, q, qd):
+        if self.jdot is not None:
+            return self.jdot(q, qd)
+        speed = float(np.max(np.abs(qd)))
+        if speed == 0:
+            return np.zeros_like(self.J(q))
+        h = 1e-5 / speed
+        return (self.J(q + h * qd) - self.J(q - h * qd)) / (2 * h)
 
 
 def newton(arm: Arm, target, q0, tol: float = 1e-12, max_iter: int = 30):
@@ -184,13 +204,53 @@ def newton(arm: Arm, target, q0, tol: float = 1e-12, max_iter: int = 30):
 
 
 def joint_state(arm: Arm, q, xd, xdd):
-    """(q_dot, q_ddot, smallest singular value of J) at q."""
+    """(q_dot, q_ddot, smallest singular value of J) at q: q_dot = J^+ x_dot_d and q_ddot its
+    time derivative (with the null-space part when J is wide, see the module's docstring)."""
     J = arm.J(q)
     sv = np.linalg.svd(J, compute_uv=False)
     Jp = np.linalg.pinv(J)
     qd = Jp @ xd
     qdd = Jp @ (xdd - arm.jdot_qdot(q, qd))
+    m, n = J.shape
+    if m < n and sv.size and sv[-1] > 0:
+        lam = np.linalg.solve(J @ J.T, xd)            # q_dot = J^T lam
+        qdd = qdd + (np.eye(n) - Jp @ J) @ (arm.J_dot(q, qd).T @ lam)
     return qd, qdd, float(sv[-1]) if sv.size else 0.0
+
+
+def _min_norm_rates(arm: Arm, q, xd):
+    """J^+ x_dot = J^T (J J^T)^-1 x_dot (J wide, of full rank along a path that is followed)."""
+    J = arm.J(q)
+    return J.T @ np.linalg.solve(J @ J.T, xd)
+
+
+# Runge-Kutta sub-steps of the minimum-norm motion (J wide): each at most T / RK_STEPS_PER_T.
+# Classical RK4's error is O(h^4): measured on a 3R arm against DOP853 at rtol 1e-13, the end
+# configuration is off by 5e-12 rad with T/200, 3e-13 with T/800 (two sub-steps per sample).
+RK_STEPS_PER_T = 800
+
+
+def min_norm_step(arm: Arm, path: Path, timing: Timing, q, t0: float, t1: float, segment: int):
+    """q at t1 on the motion q_dot = J^+(q) x_dot_d(t) through q at t0 (within one segment of the
+    timing law): classical Runge-Kutta with sub-steps of at most T / RK_STEPS_PER_T."""
+    q = np.asarray(q, dtype=float)
+    span = t1 - t0
+    if span == 0:
+        return q
+    count = max(1, int(math.ceil(abs(span) * RK_STEPS_PER_T / timing.T)))
+    h = span / count
+
+    def f(t, y):
+        return _min_norm_rates(arm, y, task_state(path, timing, t, segment)[2])
+
+    for step in range(count):
+        t = t0 + step * h
+        k1 = f(t, q)
+        k2 = f(t + h / 2, q + h / 2 * k1)
+        k3 = f(t + h / 2, q + h / 2 * k2)
+        k4 = f(t + h, q + h * k3)
+        q = q + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    return q
 
 
 @dataclass
@@ -236,9 +296,13 @@ def follow(arm: Arm, path: Path, timing: Timing, q_start, samples: int = 401,
     out = {k: [] for k in ("s", "x", "xd", "xdd", "q", "qd", "qdd", "sigma")}
     q_prev, qd_prev, t_prev, failure = np.asarray(q_start, dtype=float), np.zeros(n), 0.0, None
     scale = max(float(np.linalg.norm(arm.J(q_prev), 2)), 1e-300)
+    wide = path.a.size < n
     for t, seg in zip(ts, segs):
         s, x, xd, xdd = task_state(path, timing, t, seg)
-        guess = q_prev + qd_prev * (t - t_prev)
+        if wide:       # the minimum-norm motion, integrated (Newton alone drifts along the family)
+            guess = min_norm_step(arm, path, timing, q_prev, t_prev, float(t), seg)
+        else:
+            guess = q_prev + qd_prev * (t - t_prev)
         q = newton(arm, x, guess)
         if q is None:
             failure = _leaving(arm, path, timing, t_prev, float(t), seg, q_prev)
@@ -266,7 +330,11 @@ def state_at(arm: Arm, path: Path, timing: Timing, conv: Conversion, t: float, s
     """(q, q_dot, q_ddot, sigma) at any t of a segment, by Newton from the nearest sample."""
     k = int(np.argmin(np.abs(conv.t - t) + 1e9 * (conv.segment != segment)))
     _s, x, xd, xdd = task_state(path, timing, t, segment)
-    q = newton(arm, x, conv.q[:, k] + conv.qd[:, k] * (t - conv.t[k]))
+    if conv.q.shape[1] and x.size < conv.q.shape[0]:
+        guess = min_norm_step(arm, path, timing, conv.q[:, k], float(conv.t[k]), float(t), segment)
+    else:
+        guess = conv.q[:, k] + conv.qd[:, k] * (t - conv.t[k])
+    q = newton(arm, x, guess)
     if q is None:
         q = conv.q[:, k]
     qd, qdd, sig = joint_state(arm, q, xd, xdd)

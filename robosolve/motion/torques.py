@@ -129,6 +129,33 @@ def golden_max(f, lo: float, hi: float, iterations: int = 64) -> float:
     return (a + b) / 2
 
 
+def _near_top_maxima(vals: np.ndarray, within: float = 1e-2, keep: int = 12) -> list[int]:
+    """Indices, in time order, of the local maxima of the samples ``vals`` (ends included) that
+    come within ``within`` (relative) of the largest: the sampled heights of two peaks differ
+    from the true ones by up to ~(pi/samples)^2, so any of them may be the true maximum.
+    At most ``keep`` of them."""
+    m = vals.size
+    if m <= 2:
+        return [int(np.argmax(vals))]
+    inner = np.nonzero((vals[1:-1] >= vals[:-2]) & (vals[1:-1] >= vals[2:]))[0] + 1
+    idx = np.concatenate([[0], inner, [m - 1]])
+    top = float(vals.max())
+    near = [int(k) for k in idx if vals[k] >= top * (1 - within)]
+    if len(near) > keep:             # a plateau (round-off ripples): its start and the highest
+        highest = sorted(near, key=lambda k: -vals[k])[:keep - 1]
+        near = sorted({near[0], *highest})
+    return near
+
+
+def _falls_from_end(f, j: int, ts: np.ndarray, value: float) -> bool:
+    """Whether sample j, an end of the interval, is itself the maximum nearby: f is lower just
+    inside (a thousandth of a step), so there is nothing to refine (the usual case at a jump)."""
+    if 0 < j < ts.size - 1:
+        return False
+    inward = ts[1] - ts[0] if j == 0 else ts[-2] - ts[-1]
+    return f(float(ts[j] + 1e-3 * inward)) < value
+
+
 def torques_along(profile: SyncProfile, dyn: NumericDynamics, names: Sequence[str],
                   samples_per_interval: int = 241) -> TorqueResult:
     """Sample tau(t) on every interval (closed at both ends) and find the signed peaks."""
@@ -152,18 +179,22 @@ def torques_along(profile: SyncProfile, dyn: NumericDynamics, names: Sequence[st
             return float(dyn.inverse(Qs[:, 0], QDs[:, 0], QDDs[:, 0], s)[i])
 
         for i in range(n):
-            j = int(np.argmax(np.abs(tau[i])))
-            cand, tc = float(tau[i, j]), float(ts[j])
-            if 0 < j < ts.size - 1:
-                x = golden_max(lambda s: abs(at(s, i)), float(ts[j - 1]), float(ts[j + 1]))
-                v = at(x, i)
-                if abs(v) > abs(cand):
-                    cand, tc = v, x
-            mag = abs(cand)
-            cur = best[i]
-            tol = 1e-12 * max(mag, cur[0], 1e-300)
-            if mag > cur[0] + tol:          # ties keep the earlier instant
-                best[i] = (mag, cand, tc)
+            # every local maximum of |tau| near the sampled one: two peaks of (nearly) equal
+            # height (a quintic's acceleration, a symmetric motion) are both refined, so the
+            # higher one wins and an exact tie goes to the earlier instant
+            for j in _near_top_maxima(np.abs(tau[i])):
+                cand, tc = float(tau[i, j]), float(ts[j])
+                lo, hi = float(ts[max(j - 1, 0)]), float(ts[min(j + 1, ts.size - 1)])
+                if not _falls_from_end(lambda s: abs(at(s, i)), j, ts, abs(cand)):
+                    x = golden_max(lambda s: abs(at(s, i)), lo, hi)
+                    v = at(x, i)
+                    if abs(v) > abs(cand) * (1 + 1e-12):   # not round-off on a plateau (kept at its start)
+                        cand, tc = v, x
+                mag = abs(cand)
+                cur = best[i]
+                tol = 1e-12 * max(mag, cur[0], 1e-300)
+                if mag > cur[0] + tol:          # ties keep the earlier instant
+                    best[i] = (mag, cand, tc)
     if not intervals:                       # nothing moves: the holding forces
         Q, QD, QDD = plan.evaluate([0.0])
         tau = dyn.inverse_many(Q, QD, QDD, np.array([0.0]))

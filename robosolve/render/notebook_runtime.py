@@ -944,7 +944,9 @@ class TaskArm:
         rates = sp.Matrix(robot.rates)
         self._x = sp.lambdify([robot.joints], list(self.expr), "numpy")
         self._J = sp.lambdify([robot.joints], J.tolist(), "numpy")
-        self._h = sp.lambdify([robot.joints, robot.rates], list((J * rates).jacobian(robot.joints) * rates), "numpy")
+        jdot = (J * rates).jacobian(robot.joints)        # J' (J = dx/dq: symmetric derivatives)
+        self._h = sp.lambdify([robot.joints, robot.rates], list(jdot * rates), "numpy")
+        self._Jd = sp.lambdify([robot.joints, robot.rates], jdot.tolist(), "numpy")
         self.revolute = [kind == "revolute" for kind in robot.kinds]
 
     def x(self, q):
@@ -970,13 +972,26 @@ class TaskArm:
             q = q + (step if big <= 0.5 else step * (0.5 / big))
         return q if float(np.max(np.abs(target - self.x(q)))) <= 1e3 * tol * scale else None
 
+    def J_dot(self, q, qd):
+        return np.asarray(self._Jd(list(q), list(qd)), dtype=float).reshape(self.m, self.n)
+
+    def min_norm_rates(self, q, xd):
+        """J+ x' = J^T (J J^T)^-1 x' (J wide)."""
+        J = self.J(q)
+        return J.T @ np.linalg.solve(J @ J.T, xd)
+
     def rates(self, q, xd, xdd):
-        """(q' = J+ x', q'' = J+ (x'' - J' q'), the smallest singular value of J) at q."""
+        """(q' = J+ x', q'' its time derivative, the smallest singular value of J) at q: q'' =
+        J+ (x'' - J' q'), plus (I - J+ J) J'^T (J J^T)^-1 x' when J is wide (fewer coordinates
+        than joints: the derivative of the minimum-norm rates has a part in J's null space)."""
         J = self.J(q)
         sv = np.linalg.svd(J, compute_uv=False)
         Jp = np.linalg.pinv(J)
         qd = Jp @ xd
-        return qd, Jp @ (xdd - self.jdot_qdot(q, qd)), float(sv[-1]) if sv.size else 0.0
+        qdd = Jp @ (xdd - self.jdot_qdot(q, qd))
+        if self.m < self.n and sv.size and sv[-1] > 0:
+            qdd = qdd + (np.eye(self.n) - Jp @ J) @ (self.J_dot(q, qd).T @ np.linalg.solve(J @ J.T, xd))
+        return qd, qdd, float(sv[-1]) if sv.size else 0.0
 
     def start(self, target, limits, given=None):
         """The configuration at `target` whose branch is followed: Newton from `given`; else, as
@@ -992,10 +1007,11 @@ class TaskArm:
 
 class TaskTrajectory:
     """The joint motion along a timed path from the branch of `start`: at each sample q solves
-    x(q) = x_d(t) by Newton from the previous sample (predicted with its rates), then
-    q' = J+ x'_d and q'' = J+ (x''_d - J' q'). The samples: `samples` over [0, T], shared out
-    between the intervals of the timing law, whose ends are sampled on both sides. Stops at the
-    first sample out of reach or at a singularity (`failure`: kind, t, x, q)."""
+    x(q) = x_d(t) by Newton from the previous sample (predicted with its rates; J wide: the
+    minimum-norm motion q' = J+ x'_d integrated from it), then q' = J+ x'_d and q'' its
+    derivative. The samples: `samples` over [0, T], shared out between the intervals of the
+    timing law, whose ends are sampled on both sides. Stops at the first sample out of reach or
+    at a singularity (`failure`: kind, t, x, q)."""
 
     def __init__(self, arm, path, timing, start, samples=401, sigma_tol=1e-6):
         self.arm, self.path, self.timing = arm, path, timing
@@ -1025,7 +1041,10 @@ class TaskTrajectory:
         scale = max(float(np.linalg.norm(arm.J(q_prev), 2)), 1e-300)
         for t, seg in zip(ts, segs):
             s, x, xd, xdd = self.state(t, seg)
-            guess = q_prev + qd_prev * (t - t_prev)
+            if arm.m < n:      # J wide: the minimum-norm motion, integrated, then Newton polishes it
+                guess = self.min_norm_step(q_prev, t_prev, float(t), seg)
+            else:
+                guess = q_prev + qd_prev * (t - t_prev)
             q = arm.newton(x, guess)
             if q is None:
                 self.failure = self._leaving(t_prev, float(t), seg, q_prev)
@@ -1057,11 +1076,34 @@ class TaskTrajectory:
         return {"kind": "unreachable", "t": float(t_out), "x": self.state(t_out, seg)[1].tolist(),
                 "q": q_last.tolist()}
 
+    def min_norm_step(self, q, t0, t1, segment, steps_per_T=800):
+        """q at t1 on the motion q' = J+(q) x'_d(t) through q at t0 (one segment of the timing
+        law): classical Runge-Kutta, sub-steps of at most T / steps_per_T."""
+        q, span = np.asarray(q, dtype=float), t1 - t0
+        if span == 0:
+            return q
+        count = max(1, int(np.ceil(abs(span) * steps_per_T / self.timing.T)))
+        h = span / count
+        f = lambda t, y: self.arm.min_norm_rates(y, self.state(t, segment)[2])   # noqa: E731
+        for step in range(count):
+            t = t0 + step * h
+            k1 = f(t, q)
+            k2 = f(t + h / 2, q + h / 2 * k1)
+            k3 = f(t + h / 2, q + h / 2 * k2)
+            k4 = f(t + h, q + h * k3)
+            q = q + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        return q
+
     def state_at(self, t, segment):
-        """(q, q', q'', sigma) at any t of a segment, by Newton from the nearest sample."""
+        """(q, q', q'', sigma) at any t of a segment, by Newton from the nearest sample (J wide:
+        from the minimum-norm motion integrated from it)."""
         k = int(np.argmin(np.abs(self.t - t) + 1e9 * (self.segment != segment)))
         _, x, xd, xdd = self.state(t, segment)
-        q = self.arm.newton(x, self.q[:, k] + self.qd[:, k] * (t - self.t[k]))
+        if self.arm.m < self.q.shape[0]:
+            guess = self.min_norm_step(self.q[:, k], float(self.t[k]), float(t), segment)
+        else:
+            guess = self.q[:, k] + self.qd[:, k] * (t - self.t[k])
+        q = self.arm.newton(x, guess)
         return (self.q[:, k] if q is None else q, *self.arm.rates(self.q[:, k] if q is None else q, xd, xdd))
 
     def _refine(self, fun, k, sign=1.0):

@@ -26,7 +26,8 @@ from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import NumericPlan
 from robosolve.simulation.forward import undefined_message
 
-__all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT", "MAX_EVALUATIONS"]
+__all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT", "MAX_EVALUATIONS",
+           "max_abs_refined"]
 
 # Work budget of one simulation, counted (not timed) so that the outcome is the same on an idle
 # or a busy machine: at most this many evaluations of the equations of motion.  An undamped P
@@ -69,6 +70,7 @@ class ControlResult:
     nfev: int = 0
     method: str = "LSODA"
     external: np.ndarray | None = None   # (n, N) generalized external forces f_ext(q), for the plots
+    dense: object = None           # t -> (q_desired, e) anywhere in [0, duration] (dense output)
 
 
 def _intervals(plan: NumericPlan, duration: float):
@@ -152,7 +154,38 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     q = q_des - err
     return ControlResult(law, duration, grid, q, q_des, err, effort, max_err, t_max, final,
                          breaks=[iv[0] for iv in intervals[1:]], nfev=nfev, method=method,
-                         external=external)
+                         external=external, dense=_dense(sols, n, plan.DEG))
+
+
+def _dense(sols, n: int, deg: int):
+    """t -> (q_desired, e) on the solver's dense output (the piece that holds t)."""
+    def at(t: float):
+        for a, b, coeffs, sol in sols:
+            if t <= b:
+                break
+        p, _dp, _ddp = _powers(t - a, deg)
+        return coeffs @ p, sol.sol(t)[:n]
+    return at
+
+
+def max_abs_refined(f, ts: np.ndarray, values: np.ndarray, xatol: float) -> tuple[float, float]:
+    """(max |f|, where) over [ts[0], ts[-1]] from the samples values = f(ts): the largest local
+    maxima of the samples (the ends included) are polished on f, so an oscillation's crest
+    between two samples is found, not the sample beside it (ties: the earliest instant)."""
+    from robosolve.core.minimize import minimize_bounded
+
+    vals = np.abs(np.asarray(values, dtype=float))
+    cands = []
+    for j in _top_local_maxima(vals):
+        lo, hi = ts[max(j - 1, 0)], ts[min(j + 1, ts.size - 1)]
+        tc, vc = float(ts[j]), float(vals[j])
+        if hi > lo:
+            res = minimize_bounded(lambda s: -abs(f(s)), (float(lo), float(hi)), xatol=xatol)
+            if -res.fun > vc:
+                tc, vc = float(res.x), float(-res.fun)
+        cands.append((vc, tc))
+    best = max(c[0] for c in cands)
+    return best, min(tc for vc, tc in cands if vc >= best - 1e-12 * max(best, 1e-300))
 
 
 def _error_rhs(dyn: NumericDynamics, fast, law, kp, kd, a, coeffs, deg):

@@ -94,8 +94,10 @@ def steps(prof: SyncProfile, shape: str, joints, syms: dict) -> list[Step]:
         "All joints must start and stop together, so the motion lasts as long as the slowest joint "
         f"(here {slow}), which keeps its limits; the others are slowed down to end at the same instant. "
         "(The course's worked example takes joint 1's time: that holds only when joint 1 is the slowest.)",
+        # the decimal value too when T is exact and not an integer (a decimal T is shown once)
         equations=[("T = \\max_i T_i", prof.T)] + ([("T", float(sp.N(prof.T)))] if prof.T.is_number
-                                                     and not prof.T.is_Integer else []),
+                                                     and not prof.T.is_Integer and not prof.T.has(sp.Float)
+                                                     else []),
     ))
 
     # -- step 3: rescaled values

@@ -199,7 +199,11 @@ def _solve_trajectory(question, ctx, ans, subs, law):
     else:
         kp = [_float(ctx, opts["gains"][n], subs, f"gains.{n}") for n in names]
         kd = [_float(ctx, opts["gains_d"][n], subs, f"gains_d.{n}") for n in names] if "gains_d" in opts else None
-    _trajectory_law_step(ans, opts["trajectory"], law, task, traj, kp, kd, duration)
+    given = None
+    if "start" in opts:      # the configuration the run starts from, as the report states it
+        syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
+        given = Text.join(", ", [Text(f"${syms[i]} = ", Num(start[i]), "$") for i in range(len(names))])
+    _trajectory_law_step(ans, opts["trajectory"], law, task, traj, kp, kd, duration, given)
     try:
         if task:
             res = simulate_task(dyn, traj.arm, traj.desired, traj.timing.breaks, law, kp, kd, start, duration,
@@ -219,12 +223,12 @@ def _solve_trajectory(question, ctx, ans, subs, law):
     ans.numeric["max_error"] = {k: float(res.max_error[i]) for i, k in enumerate(keys)}
     ans.numeric["final_error"] = {k: _above_noise(res.final_error[i], res.max_error[i]) for i, k in enumerate(keys)}
     ans.numeric["t_max_error"] = {k: float(res.t_max_error[i]) for i, k in enumerate(keys)}
-    max_task = res.max_error if task else np.max(np.abs(e_task), axis=1)
+    max_task = res.max_error if task else _max_task_error(traj, res, t_grid, e_task, duration)
     ans.numeric["max_task_error"] = {k: float(max_task[i]) for i, k in enumerate(traj.labels)}
     rows = [[f"${traj.tex[i]}$", Num(max_task[i]), Num(e_task[i, -1])] for i in range(len(traj.labels))]
     ans.steps.append(Step("Work-space errors", Text(
         "The error $x_d - x(q)$ of each task coordinate along the run (largest over the ", Num(t_grid.size),
-        " output samples" + (", refined on the solver's dense output" if task else "") + ")."),
+        " output samples, refined on the solver's dense output)."),
         table=(["coordinate", "max |x_d - x|", Text("at t = ", Num(duration), " s")], rows)))
     if not task:
         ans.steps.append(Step("Joint errors", "", table=(["joint", "max |e|", "at t (s)", "final e"], [
@@ -236,6 +240,20 @@ def _solve_trajectory(question, ctx, ans, subs, law):
         plan.breaks = np.asarray(traj.timing.breaks)     # the switching instants marked in the figure
         _figures(ans, res, _Horizon(traj.timing.T), plan, duration, law, model.joints, syms)
     return ans
+
+
+def _max_task_error(traj, res, t_grid, e_task, duration) -> np.ndarray:
+    """max |x_d - x(q)| of each coordinate under a joint law: the samples' largest crests polished
+    on the solver's dense output (an undamped loop's oscillation peaks between samples)."""
+    from robosolve.simulation.joint_control import max_abs_refined
+
+    def error(t):
+        q_des, e = res.dense(t)
+        return traj.desired(t)[0] - traj.arm.x(q_des - e)
+
+    xatol = 1e-12 * max(1.0, duration)
+    return np.array([max_abs_refined(lambda t, i=i: error(t)[i], t_grid, e_task[i], xatol)[0]
+                     for i in range(e_task.shape[0])])
 
 
 class _Horizon:
@@ -252,7 +270,7 @@ TASK_LAW_TEX = {
 }
 
 
-def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration):
+def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration, start=None):
     if task:
         text = Text(f"Actual work-space scheme: the error is measured in the task coordinates, $e = x_d - x(q)$, "
                     f"$\\dot e = \\dot x_d - J\\,\\dot q$, along the trajectory `{ref}`; gains per coordinate: ",
@@ -265,8 +283,9 @@ def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration):
                     f"joint law follows them: {_law_sentence(law, kp)}.")
         eq = [("", LAW_TEX[law])]
     ans.steps.append(Step("Closed loop along the work-space trajectory", Text(
-        text, " The plant M(q) q̈ + c + g = τ + f_ext is integrated from the trajectory's start at rest over [0, ",
-        Num(duration), "] s."), equations=eq + [("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)")]))
+        text, " The plant $M(q)\\,\\ddot q + c + g = \\tau + f_{ext}$ is integrated from ",
+        "the trajectory's start" if start is None else start, ", at rest, over $[0, ", Num(duration), "]$ s."),
+        equations=eq + [("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)")]))
 
 
 def _task_figure(ans, traj, t, e_task, law, duration):

@@ -111,16 +111,20 @@ def _arm(model, coords, subs) -> tuple[tp.Arm, sp.Matrix]:
     x = sp.Matrix([model.coordinate(c) for c in coords]).xreplace(subs)
     x = x.xreplace(subs)
     J = x.jacobian(q)
-    jdq = (J * sp.Matrix(qd)).jacobian(q) * sp.Matrix(qd)
+    # J_dot = d(J q_dot)/dq (J = dx/dq: its derivatives are symmetric in the two joints)
+    jdot = (J * sp.Matrix(qd)).jacobian(q)
+    jdq = jdot * sp.Matrix(qd)
     mods = numpy_modules()
     fx = sp.lambdify([q], list(x), modules=mods)
     fJ = sp.lambdify([q], J.tolist(), modules=mods)
     fh = sp.lambdify([q, qd], list(jdq), modules=mods)
+    fjd = sp.lambdify([q, qd], jdot.tolist(), modules=mods)
     n, m = len(q), len(coords)
     arm = tp.Arm(lambda v: np.asarray(fx(list(v)), dtype=float).reshape(m),
                  lambda v: np.asarray(fJ(list(v)), dtype=float).reshape(m, n),
                  lambda v, w: np.asarray(fh(list(v), list(w)), dtype=float).reshape(m),
-                 [j.is_revolute for j in model.joints])
+                 [j.is_revolute for j in model.joints],
+                 lambda v, w: np.asarray(fjd(list(v), list(w)), dtype=float).reshape(m, n))
     return arm, x
 
 
@@ -365,9 +369,13 @@ def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
     cf = ("" if res is None or res.closed_form is None else
           Text(" The IK engine has a closed form here, with ", Num(len(res.closed_form_values)),
                " solution(s) at `from`; the branch followed is the one of this solution."))
-    ans.steps.append(Step("Inverse-kinematics branch", Text("Start: ", how, ".", cf, " Along the path, each "
-                          "sample is solved by Newton's method from the previous one (predicted with its "
-                          "rates), which stays on that branch."),
+    along = (" Along the path, $x(q) = x_d(t)$ leaves a family of configurations: the joints follow the "
+             "minimum-norm rates $\\dot q = J^+\\dot x_d$, integrated from sample to sample (classical "
+             "Runge-Kutta) and polished by Newton's method onto the path."
+             if len(traj.labels) < len(names) else
+             " Along the path, each sample is solved by Newton's method from the previous one (predicted "
+             "with its rates), which stays on that branch.")
+    ans.steps.append(Step("Inverse-kinematics branch", Text("Start: ", how, ".", cf, along),
                           equations=[(names[i], float(q0[i])) for i in range(len(names))]))
 
 
@@ -428,10 +436,12 @@ def _joint_steps(ans, traj, model, symbols: dict, vel, acc, smin, tmin) -> None:
     ans.steps.append(Step(
         "Joint rates and accelerations",
         "At each sample: $\\dot x_d = x'(s)\\,\\dot s$, $\\ddot x_d = x''(s)\\,\\dot s^2 + x'(s)\\,\\ddot s$; "
-        + ("J is wide (fewer coordinates than joints): $J^+ = J^T (J J^T)^{-1}$, the minimum-norm rates. "
-           if wide else "") + "$J\\,\\dot q$ is the time derivative of x, hence:",
+        + ("J is wide (fewer coordinates than joints): $J^+ = J^T (J J^T)^{-1}$, the minimum-norm rates, "
+           "whose time derivative has a part in the null space of J besides $J^+(\\ddot x_d - \\dot J\\,\\dot q)$. "
+           if wide else "$J\\,\\dot q$ is the time derivative of x, hence:"),
         equations=[("\\dot q", "J^{+}\\,\\dot x_d" if wide else "J^{-1}\\,\\dot x_d"),
-                   ("\\ddot q", ("J^{+}" if wide else "J^{-1}") + "\\,(\\ddot x_d - \\dot J\\,\\dot q)")]))
+                   ("\\ddot q", "J^{+}\\,(\\ddot x_d - \\dot J\\,\\dot q) + (I - J^{+}J)\\,\\dot J^T (J J^T)^{-1}\\,\\dot x_d"
+                    if wide else "J^{-1}\\,(\\ddot x_d - \\dot J\\,\\dot q)")]))
     idx = np.unique(np.round(np.linspace(0, conv.t.size - 1, TABLE_ROWS)).astype(int))
     head = ["t (s)", "s"] + [f"${t}$" for t in traj.tex] + [f"${n}$" for n in names] + \
         [f"$\\dot {n}$" for n in names]

@@ -106,3 +106,32 @@ def test_jump_table(arm):
     assert np.allclose(res.jumps[-1][2], robot.rne(np.ones(2), np.zeros(2), np.zeros(2)))
     # just after 0: the acceleration +a = 4|D|/T^2 = 2 starts
     assert np.allclose(res.jumps[0][2], robot.rne(np.zeros(2), np.zeros(2), np.full(2, 2.0)))
+
+
+def _sliding_mass(m=2.0):
+    """One prismatic joint moving a mass m horizontally: F = m x''."""
+    x, xd = sp.symbols("x x_dot")
+    return NumericDynamics.from_symbolic(sp.Matrix([[m]]), sp.Matrix([0]), sp.Matrix([0]), [x], [xd])
+
+
+@pytest.mark.parametrize("delta", [-0.3, 0.3])
+def test_a_tie_between_two_interior_peaks_goes_to_the_earlier_one(delta):
+    # F = m x'' along a quintic: two peaks of equal magnitude m * 10|D|/(sqrt(3) T^2), at
+    # u = (3 -+ sqrt(3))/6 of T (closed form), the first with the sign of D.  Both lie inside
+    # the one interval [0, T]: the earlier must win, not whichever sample round-off favours.
+    m, a = 2.0, 2.0
+    prof = synchronize(["x"], [0], [delta], [a], shape="quintic")
+    res = torques_along(prof, _sliding_mass(m), ["F1"])
+    T = float(prof.T)
+    assert T == pytest.approx((10 * abs(delta) / (3 ** 0.5 * a)) ** 0.5, rel=1e-14)
+    assert res.peaks[0] == pytest.approx(np.sign(delta) * m * a, rel=1e-12)
+    assert res.t_peaks[0] == pytest.approx(T * (3 - 3 ** 0.5) / 6, abs=1e-7)
+
+
+def test_a_constant_force_over_an_interval_peaks_at_its_start():
+    # bang-bang on a sliding mass: F = +m a on [0, T/2], -m a on [T/2, T] (equal magnitudes,
+    # constant on each interval): the tie goes to t = 0, with the sign of the first half
+    prof = synchronize(["x"], [1], [-1], [2])
+    res = torques_along(prof, _sliding_mass(3.0), ["F1"])
+    assert res.peaks[0] == pytest.approx(-6.0, rel=1e-14)
+    assert res.t_peaks[0] == 0.0

@@ -150,3 +150,14 @@ def test_negative_gain_is_described_as_unstable(arm, plan):
 
     with pytest.raises(SimulationTooLong, match="negative gain makes the loop unstable"):
         simulate(arm, plan, "p", [-5000, 100], time_limit=None, max_evaluations=2000)
+
+
+def test_max_abs_refined_finds_a_crest_between_samples_and_the_earliest_of_a_tie():
+    from robosolve.simulation.joint_control import max_abs_refined
+
+    w = 7.3
+    ts = np.linspace(0.0, 1.0, 23)                 # coarse: the crests fall between samples
+    f = lambda t: 2.5 * np.sin(w * t)               # noqa: E731  |f| peaks at pi/(2w) and 3pi/(2w)
+    value, where = max_abs_refined(f, ts, f(ts), xatol=1e-13)
+    assert value == pytest.approx(2.5, rel=1e-12)
+    assert where == pytest.approx(np.pi / (2 * w), abs=1e-6)      # the earlier of the two equal crests

@@ -248,3 +248,94 @@ def test_an_arc_leaving_the_reach_is_an_unreachable_answer(write_problem, tmp_pa
 def test_a_parameter_without_value_is_an_answer_error_not_an_input_error(write_problem, tmp_path):
     r, res = _solve(write_problem, tmp_path, ARM_2R.replace("L2: 2/5", "L2: ~") + LINE)
     assert r.returncode == 1 and "L2" in res["answers"]["line"]["error"]
+
+
+def test_the_task_error_of_a_joint_law_peaks_between_samples_and_is_found_there():
+    # The ideal scheme with an undamped p law (tau = Kp (q_d - q)): the work-space error
+    # oscillates, and its crests fall between the output samples.  Independent reference:
+    # textbook 2R point-mass dynamics, the closed-form elbow IK for q_d(t), scipy DOP853, the
+    # error's crest refined on the dense output.  (The samples' largest value was 4e-5 low.)
+    from scipy.integrate import solve_ivp
+    from scipy.optimize import minimize_scalar
+
+    from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import solve_problem
+
+    law = "  - {type: p_control, trajectory: line, law: p, gains: {q1: 3000, q2: 3000}}\n"
+    answers = {a.id: a for a in solve_problem(load_problem_text(ARM_2R + LINE + law)).answers}
+    got = answers["p_control"].numeric["max_task_error"]
+    start = answers["line"].numeric["start"]
+    L1, L2, m1, m2, g = 0.5, 0.4, 2.0, 1.0, 9.81
+    a, b = np.array([0.7, 0.1]), np.array([0.2, 0.6])
+    L, v, acc = math.hypot(0.5, 0.5), 0.6, 3.0
+    ta, T = v / acc, L / v + v / acc
+
+    def x_d(t):
+        s = 0.5 * acc * t * t if t <= ta else (v * (t - ta / 2) if t <= T - ta else L - 0.5 * acc * (T - t) ** 2)
+        return a + (b - a) * s / L
+
+    elbow = 1.0 if start["q2"] > 0 else -1.0
+
+    def q_d(t):
+        x, y = x_d(t)
+        q2 = elbow * math.acos((x * x + y * y - L1 * L1 - L2 * L2) / (2 * L1 * L2))
+        return np.array([math.atan2(y, x) - math.atan2(L2 * math.sin(q2), L1 + L2 * math.cos(q2)), q2])
+
+    def fk(q):
+        return np.array([L1 * math.cos(q[0]) + L2 * math.cos(q[0] + q[1]), L1 * math.sin(q[0]) + L2 * math.sin(q[0] + q[1])])
+
+    def rhs(t, y):
+        q, qd = y[:2], y[2:]
+        c2, s2 = math.cos(q[1]), math.sin(q[1])
+        M = np.array([[(m1 + m2) * L1 ** 2 + m2 * L2 ** 2 + 2 * m2 * L1 * L2 * c2, m2 * L2 ** 2 + m2 * L1 * L2 * c2],
+                      [m2 * L2 ** 2 + m2 * L1 * L2 * c2, m2 * L2 ** 2]])
+        c = np.array([-m2 * L1 * L2 * s2 * (2 * qd[0] * qd[1] + qd[1] ** 2), m2 * L1 * L2 * s2 * qd[0] ** 2])
+        G = np.array([(m1 + m2) * g * L1 * math.cos(q[0]) + m2 * g * L2 * math.cos(q[0] + q[1]),
+                      m2 * g * L2 * math.cos(q[0] + q[1])])
+        return np.concatenate([qd, np.linalg.solve(M, 3000 * (q_d(t) - q) - c - G)])
+
+    q0 = np.array([start["q1"], start["q2"]])
+    assert fk(q0) == pytest.approx(a, abs=1e-12) and q_d(0.0) == pytest.approx(q0, abs=1e-12)
+    pieces, y = [], np.concatenate([q0, [0.0, 0.0]])
+    for lo, hi in ((0.0, ta), (ta, T - ta), (T - ta, T)):
+        sol = solve_ivp(rhs, (lo, hi), y, method="DOP853", rtol=1e-11, atol=1e-13, dense_output=True)
+        pieces.append((lo, hi, sol))
+        y = sol.y[:, -1]
+
+    def error(t, i):
+        sol = next(s for lo, hi, s in pieces if t <= hi)
+        return abs(x_d(t)[i] - fk(sol.sol(t)[:2])[i])
+
+    # every step of the reference solver, and its midpoints: the crests are bracketed
+    ts = np.unique(np.concatenate([np.concatenate([s.t, (s.t[1:] + s.t[:-1]) / 2]) for _lo, _hi, s in pieces]))
+    for i, c in enumerate(("E.x", "E.y")):
+        vals = np.array([error(t, i) for t in ts])
+        k = int(np.argmax(vals))
+        crest = minimize_scalar(lambda t: -error(t, i), bounds=(ts[max(k - 1, 0)], ts[min(k + 1, ts.size - 1)]),
+                                method="bounded", options={"xatol": 1e-12})
+        assert got[c] == pytest.approx(max(vals[k], -crest.fun), rel=1e-6)
+
+
+def test_the_report_states_the_start_the_run_really_starts_from():
+    # a control along a trajectory from a given `start` said "from the trajectory's start"
+    from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import solve_problem
+
+    law = ("  - {type: p_control, id: given, trajectory: line, law: pd_gravity, gains: {q1: 100, q2: 100},"
+           " gains_d: {q1: 10, q2: 10}, start: {q1: 0.1, q2: 1.3}, duration: 0.2}\n"
+           "  - {type: p_control, id: default, trajectory: line, law: pd_gravity, gains: {q1: 100, q2: 100},"
+           " gains_d: {q1: 10, q2: 10}, duration: 0.2}\n")
+    answers = {a.id: a for a in solve_problem(load_problem_text(ARM_2R + LINE + law)).answers}
+    step = lambda qid: next(s for s in answers[qid].steps if s.title.startswith("Closed loop"))  # noqa: E731
+    given, default = step("given").text, step("default").text
+    assert "integrated from $q_{1} = #$, $q_{2} = #$, at rest" in given and "trajectory's start" not in given
+    assert "integrated from the trajectory's start, at rest" in default
+
+    def numbers(text):
+        for piece in text:
+            if isinstance(piece, tuple):
+                yield from numbers(piece)
+            elif not isinstance(piece, str):
+                yield piece.value
+
+    assert [0.1, 1.3] == [v for v in numbers(given) if v in (0.1, 1.3)]

@@ -112,3 +112,40 @@ def test_fewer_coordinates_than_joints_gives_minimum_norm_rates():
         J = r.jacob0(conv.q[:, k])[:2]
         assert np.allclose(r.fkine(conv.q[:, k]).t[:2], conv.x[:, k], atol=1e-10)
         assert np.allclose(conv.qd[:, k], np.linalg.pinv(J) @ conv.xd[:, k], atol=1e-9)
+
+
+def _line_rates(t, a, b, v, acc):
+    """x_dot_d(t) on the line a -> b, trapezoidal speed (closed form, independent of the engine)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    L = float(np.linalg.norm(b - a))
+    ta, T = v / acc, L / v + v / acc
+    speed = acc * t if t <= ta else (v if t <= T - ta else acc * (T - t))
+    return speed * (b - a) / L
+
+
+def test_fewer_coordinates_than_joints_follow_the_integrated_minimum_norm_motion():
+    # x(q) = x_d(t) leaves a family of configurations: the motion is the integral of the
+    # minimum-norm rates q' = J+ x'_d (scipy DOP853 at rtol 1e-12 on RTB's Jacobian), and its
+    # acceleration the derivative of those rates (null-space part included).  Newton's steps from
+    # sample to sample drifted ~1e-4 rad along the family; q'' = J+ (x'' - J' q') alone missed the
+    # null-space part (7 % of the largest acceleration on a quintic).
+    from scipy.integrate import solve_ivp
+
+    arm, path, timing, conv = _convert(PLANAR_3R_WIDE)
+    r = _rtb("planar3r")
+
+    def rates(t, q):
+        return np.linalg.pinv(r.jacob0(q)[:2]) @ _line_rates(t, [0.8, 0.2], [0.4, 0.6], 0.5, 2.0)
+
+    ref = solve_ivp(rates, (0.0, timing.T), conv.q[:, 0], method="DOP853", rtol=1e-12, atol=1e-13,
+                    dense_output=True)
+    assert timing.T == pytest.approx(math.hypot(0.4, 0.4) / 0.5 + 0.25, rel=1e-14)
+    for k in range(conv.t.size):
+        assert np.allclose(conv.q[:, k], ref.sol(conv.t[k]), atol=1e-9), conv.t[k]
+    h = 1e-5
+    for k in range(3, conv.t.size - 3, 7):
+        t = conv.t[k]
+        if any(abs(t - b) < 3 * h for b in timing.breaks):
+            continue
+        fd = (rates(t + h, ref.sol(t + h)) - rates(t - h, ref.sol(t - h))) / (2 * h)
+        assert np.allclose(conv.qdd[:, k], fd, atol=1e-6), t

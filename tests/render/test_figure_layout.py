@@ -144,3 +144,50 @@ def test_long_names_stay_inside_the_paper_drawing(monkeypatch, tmp_path, third, 
     outside = [(t.get_text(), t.get_window_extent(renderer).bounds) for t in texts
                if t.get_window_extent(renderer).x0 < box.x0 - 1 or t.get_window_extent(renderer).x1 > box.x1 + 1]
     assert not outside
+
+
+def _profile_spec(T, switches):
+    t = sorted({*np.linspace(0.0, T, 50), *switches})
+    joint = {"name": "q1", "label": "q_1", "kind": "revolute", "q": [0.0] * len(t), "qd": [0.0] * len(t),
+             "qdd": [0.0] * len(t)}
+    return FigureSpec("profile", "motion_profile", "Synchronized trapezoidal profile",
+                      {"t": t, "T": T, "switches": list(switches), "joints": [joint]})
+
+
+@pytest.mark.parametrize("T, switches", [
+    (3.3333333, [0.1571, 0.3333333, 3.0, 3.1762]),      # two short phases at each end
+    (1.0, [0.5]),
+    (2.0, [0.001, 0.002, 1.0, 1.998, 1.999]),
+])
+def test_switching_instant_labels_never_overlap(monkeypatch, tmp_path, T, switches):
+    # measured on matplotlib's renderer: the labels of the top axis (the switching instants)
+    # drawn side by side must not overlap; the ends 0 and T are always labelled
+    fig = drawn(monkeypatch, "motion_profile", _profile_spec(T, switches), tmp_path)
+    renderer = fig.canvas.get_renderer()
+    # the secondary (top) axis is a child of the first panel, not one of the figure's axes
+    labels = [lab for ax in fig.findobj(lambda o: hasattr(o, "get_xticklabels")) if ax not in fig.axes
+              for lab in ax.get_xticklabels() if lab.get_text()]
+    assert labels
+    boxes = sorted((lab.get_window_extent(renderer) for lab in labels), key=lambda b: b.x0)
+    for left, right in zip(boxes, boxes[1:]):
+        assert left.x1 <= right.x0, [lab.get_text() for lab in labels]
+    texts = [lab.get_text() for lab in labels]
+    assert texts[0] == "0" and texts[-1] == f"{T:.3g}"
+
+
+def test_the_peak_text_does_not_hide_the_curve(monkeypatch, tmp_path):
+    # a force rising to its peak at T with a jump just before (a prismatic joint's F along a
+    # trapezoidal profile): the usual place, left of and below the marker, lies on the curve; the
+    # text must sit where its white box hides none of the curve's points (measured on the renderer)
+    T = 2.3
+    s = np.linspace(0.0, 1.0, 401)
+    f = np.where(s < 0.87, -11 + 25 * s, 13 + 1.6 * (s - 0.87) / 0.13)
+    spec = torques_spec(T, [(float(f[-1]), T)], [f])
+    fig = drawn(monkeypatch, "joint_torques", spec, tmp_path)
+    ax = fig.axes[0]
+    renderer = fig.canvas.get_renderer()
+    box = ax.texts[0].get_window_extent(renderer)
+    points = ax.transData.transform(np.column_stack([s * T, f]))
+    under = (points[:, 0] >= box.x0) & (points[:, 0] <= box.x1) & (points[:, 1] >= box.y0) & (points[:, 1] <= box.y1)
+    assert not under.any()
+    assert clipped(fig) == []

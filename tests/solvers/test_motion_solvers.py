@@ -216,3 +216,15 @@ questions:
     assert answer.numeric["velocities"]["q1"] == pytest.approx(1.0)
     assert answer.numeric["velocities"]["q2"] == pytest.approx((5 - math.sqrt(21)) / 2, rel=1e-12)
     assert "velocities" in [k.name for k in QUESTION_TYPES["motion_profile"].answers]
+
+
+def test_synchronized_time_shown_once_when_it_is_a_decimal_and_twice_when_exact():
+    # exact data: T = sqrt(pi) and its decimal 1.77245; decimal data: T = 1.77245 once
+    exact = run("")["prof"]
+    decimal = solve_problem(load_problem_text(ARM % ("5", """  - {type: motion_profile, id: prof, from: {theta1: 0.0, theta2: 0.0},
+     to: {theta1: 1.5, theta2: -1.0}, max_acceleration: {theta1: 2.0, theta2: 3.0}}
+""")), None).answers[0]
+    step = lambda a: next(s for s in a.steps if s.title == "Synchronized time")  # noqa: E731
+    assert [lhs for lhs, _ in step(exact).equations] == ["T = \\max_i T_i", "T"]
+    assert [lhs for lhs, _ in step(decimal).equations] == ["T = \\max_i T_i"]
+    assert float(step(decimal).equations[0][1]) == pytest.approx(math.sqrt(4 * 1.5 / 2.0), rel=1e-14)

@@ -24,6 +24,25 @@ def mark_switches(ax, switches, T):
     ax.axvline(T, color="0.3", lw=0.8)
 
 
+def switch_labels(ax, ticks, fontsize: float) -> list[str]:
+    """The labels of the switching-instant ticks, a label left blank where it would overlap one
+    already kept (close instants: a short acceleration phase, 0.157 s beside 0.333 s): the ends
+    0 and T first, then the others from left to right. Widths are estimated from the digits
+    (about 0.64 em each in DejaVu Sans), the axes' width from its position in the figure."""
+    width_pt = ax.get_position().width * ax.figure.get_figwidth() * 72
+    lo, hi = ax.get_xlim()
+    labels = [f"{x:.3g}" for x in ticks]
+    shown = [""] * len(ticks)
+    kept: list[tuple[float, float]] = []            # (centre, half width) in points
+    for i in [0, len(ticks) - 1] + list(range(1, len(ticks) - 1)):
+        centre = (ticks[i] - lo) / (hi - lo) * width_pt if hi > lo else 0.0
+        half = 0.32 * fontsize * len(labels[i]) + 2
+        if all(abs(centre - c) >= half + h for c, h in kept):
+            kept.append((centre, half))
+            shown[i] = labels[i]
+    return shown
+
+
 def draw(spec, path):
     d = spec.data
     t = d["t"]
@@ -40,6 +59,6 @@ def draw(spec, path):
     ticks = sorted({0.0, d["T"], *d["switches"]})
     top = axes[0].secondary_xaxis("top")
     top.set_xticks(ticks)
-    top.set_xticklabels([f"{x:.3g}" for x in ticks], fontsize=8)
+    top.set_xticklabels(switch_labels(axes[0], ticks, fontsize=8), fontsize=8)
     axes[-1].set_xlabel("t (s)")
     save(fig, path)
