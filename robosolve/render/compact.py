@@ -158,7 +158,10 @@ def _sum_lines(lhs: str, expr, tex) -> str | None:
 
 
 def display_lines(lhs: str, value, tex) -> tuple[str | None, list[str]]:
-    """(an introductory sentence or None, the display formulas) for one equation."""
+    """(an introductory sentence or None, the display formulas) for one equation. `lhs` is
+    LaTeX, or a `Text` whose numbers the one number policy writes (a decimal interval's bounds)."""
+    if not isinstance(lhs, str):
+        lhs = tex(lhs)
     whole = f"{lhs} = {tex(value)}" if lhs else tex(value)
     if _is_matrix(value) and (len(whole) > MATRIX_LIMIT or _width(value, tex) > WIDTH_LIMIT):
         rows = _rows(value)

@@ -196,8 +196,8 @@ def _step_results(model, st, run, values) -> Step:
     for i, j in enumerate(model.joints):
         u = _unit(j.kind)
         rows.append([f"${_tex(st, j.symbol)}$", Num(values[1][i], u), Num(run.final[i], u),
-                     Text(Num(run.q_min[i]), " (t = ", Num(run.t_min[i]), " s)"),
-                     Text(Num(run.q_max[i]), " (t = ", Num(run.t_max[i]), " s)"),
+                     Text(Num(run.q_min[i], u), " (t = ", Num(run.t_min[i]), " s)"),
+                     Text(Num(run.q_max[i], u), " (t = ", Num(run.t_max[i]), " s)"),
                      Num(run.final_velocity[i], _unit(j.kind, True))])
     how = ("Radau (implicit; the equations are stiff)" if run.method == "Radau"
            else "DOP853 (explicit Runge-Kutta of order 8)")

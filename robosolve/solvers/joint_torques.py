@@ -21,6 +21,13 @@ from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missi
 
 
 
+def _bound(x):
+    """An interval's end in a formula: exact as it is (sqrt(pi)/2), a decimal as a number the
+    renderer writes (1.05409, not 1.05409255338946)."""
+    x = sp.sympify(x)
+    return Num(float(x)) if x.atoms(sp.Float) else sp.latex(x)
+
+
 def _unit(kind: str) -> str:
     return "N·m" if kind == "revolute" else "N"
 
@@ -110,7 +117,7 @@ def _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines) -> None:
             eqs = []
             for k, (a, b) in enumerate(zip(bps[:-1], bps[1:])):
                 for i in range(len(joints)):
-                    eqs.append((f"{lines[i]}(t)\\big|_{{{sp.latex(a)} < t < {sp.latex(b)}}}", pieces[i][k]))
+                    eqs.append((Text(f"{lines[i]}(t)\\big|_{{", _bound(a), " < t < ", _bound(b), "}"), pieces[i][k]))
             ans.steps.append(Step(
                 "Closed form along the profile",
                 "On each interval between switching instants the profile is a polynomial in $t$; substituting "

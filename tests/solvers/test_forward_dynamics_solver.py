@@ -128,7 +128,7 @@ def test_t_in_a_statics_force_is_refused():
 
 def test_timed_force_with_a_configuration_is_refused():
     msgs = issues(ARM % ("0", "-F*sin(t)", "  - {type: equations_of_motion, at: {theta: 0}}\n"))
-    assert len(msgs) == 1 and "vary with time" in msgs[0] and "at" in msgs[0]
+    assert len(msgs) == 1 and "varies with time" in msgs[0] and "at" in msgs[0]
     # without `at` the symbolic equations keep t
     a = answers("  - {type: equations_of_motion}\n", F="3", force="-F*sin(t)")["equations_of_motion"]
     assert "sin(t)" in a.symbolic["equations"][0]
