@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.printing import ordered_terms
+
 # A display formula longer than this (LaTeX characters) is broken up.
 MATRIX_LIMIT = 1400
 SCALAR_LIMIT = 450
@@ -132,7 +134,7 @@ def _lines(expr, tex, budget: int = LINE_CHARS) -> list[str]:
             return [f"{head} \\Bigl( {inner[0]} \\Bigr)".strip()]
         return [f"{head} \\Bigl( {inner[0]}".strip(), *inner[1:-1], f"{inner[-1]} \\Bigr)"]
     out, line = [], ""
-    for k, term in enumerate(expr.as_ordered_terms()):
+    for k, term in enumerate(ordered_terms(expr)):          # the printers' order of the terms
         negative = term.could_extract_minus_sign()
         pieces = _lines(-term if negative else term, tex, budget)
         sign = "-" if negative else ("+" if k else "")
