@@ -20,6 +20,7 @@ from __future__ import annotations
 from functools import cmp_to_key
 
 import sympy as sp
+from sympy.printing.latex import LatexPrinter
 from sympy.printing.str import StrPrinter
 
 
@@ -156,8 +157,9 @@ def ordered_terms(expr, order=None) -> list:
     return [term for term, _ in ordered]
 
 
-class PrintsEachOnce:
-    """The memo of the shared printers; `_key` is what the text of an expression depends on."""
+class OrderedTerms:
+    """A printer's order of a sum's terms: `ordered_terms` (sympy's order, the same whatever the
+    hash seed), kept for every printer of the process."""
 
     def _as_ordered_terms(self, expr, order=None):
         key = (expr, order or self.order)       # the order sympy's printer would use
@@ -169,6 +171,10 @@ class PrintsEachOnce:
             if len(_ORDERED_TERMS) < _MAX_ORDERED:
                 _ORDERED_TERMS[key] = hit
         return list(hit)
+
+
+class PrintsEachOnce(OrderedTerms):
+    """The memo of the shared printers; `_key` is what the text of an expression depends on."""
 
     def _key(self, expr):
         return expr
@@ -199,3 +205,22 @@ class SharedStrPrinter(PrintsEachOnce, StrPrinter):
 
     def _key(self, expr):
         return expr, self._print_level == 0
+
+
+class _LatexPrinter(OrderedTerms, LatexPrinter):
+    pass
+
+
+class _StrPrinter(OrderedTerms, StrPrinter):
+    pass
+
+
+def latex(expr, **settings) -> str:
+    """sympy.latex(expr, **settings), a sum's terms in the order of `ordered_terms`: the text
+    robosolve writes wherever it prints LaTeX outside the report's shared printer."""
+    return _LatexPrinter(settings).doprint(expr)
+
+
+def sstr(expr, **settings) -> str:
+    """sympy.sstr(expr, **settings) (str(expr)), a sum's terms in the order of `ordered_terms`."""
+    return _StrPrinter(settings).doprint(expr)

@@ -35,6 +35,7 @@ import sympy as sp
 
 from robosolve.core.simplify import common_factors, ik_fraction, memoised
 from robosolve.core.opcount import count_ops
+from robosolve.core.printing import latex
 
 
 class NoClosedForm(Exception):
@@ -266,7 +267,7 @@ def _isolate_linear(e, unknowns, revolute_of):
     return None
 
 
-_TEX = [sp.latex]
+_TEX = [latex]
 
 
 def _tex(e):
@@ -279,11 +280,11 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None, tex=No
     `tex` renders sympy objects in the step texts (default sympy.latex).
     Raises NoClosedForm when no rule applies.  Run it under a time limit.
     """
-    _TEX[0] = tex or sp.latex
+    _TEX[0] = tex or latex
     try:
         return _derive(equations, unknowns, revolute, latex_names)
     finally:
-        _TEX[0] = sp.latex
+        _TEX[0] = latex
 
 
 def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
@@ -383,7 +384,7 @@ class _Elimination:
     def __init__(self, equations, unknowns, revolute, latex_names=None):
         self.unknowns = list(unknowns)
         self.revolute = dict(zip(self.unknowns, revolute))
-        self.names = latex_names or {q: sp.latex(q) for q in self.unknowns}
+        self.names = latex_names or {q: latex(q) for q in self.unknowns}
         self.eqs = [sp.expand(sp.sympify(e)) for e in equations]
         self.remaining = list(self.unknowns)   # still unknown and present in the equations
         self.pending = []                      # (q, kind, data): recovered once its dependencies are known

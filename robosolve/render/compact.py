@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from robosolve.core.printing import ordered_terms
+from robosolve.core.printing import ordered_terms, latex
 
 # A display formula longer than this (LaTeX characters) is broken up.
 MATRIX_LIMIT = 1400
@@ -83,7 +83,7 @@ class CompactTrig:
         parts = []
         for s in sorted(used, key=order):
             func, arg = self.meaning[s]
-            inner = sp.latex(arg, symbol_names=names)
+            inner = latex(arg, symbol_names=names)
             inner = inner if len(sp.Add.make_args(arg)) == 1 else f"({inner})"
             parts.append(f"${self.names[s]} = \\{func.__name__}{inner if inner.startswith('(') else ' ' + inner}$")
         return ("Notation (the course's): " + ", ".join(parts) + ".")

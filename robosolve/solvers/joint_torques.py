@@ -18,6 +18,7 @@ from robosolve.errors import SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
+from robosolve.core.printing import latex
 
 
 
@@ -34,7 +35,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     act_names = [str(j.actuator) for j in joints]
 
     dyn = ctx.dynamics()
-    lines = [f"{sp.latex(j.actuator)}" for j in joints]
+    lines = [f"{latex(j.actuator)}" for j in joints]
     if dyn is not None:
         tau = dyn.actuator_expressions()
         ans.steps.append(Step(
@@ -90,7 +91,7 @@ def _closed_form(ans, ctx, prof, tau, subs, joints, act_names, lines) -> None:
             eqs = []
             for k, (a, b) in enumerate(zip(bps[:-1], bps[1:])):
                 for i in range(len(joints)):
-                    eqs.append((f"{lines[i]}(t)\\big|_{{{sp.latex(a)} < t < {sp.latex(b)}}}", pieces[i][k]))
+                    eqs.append((f"{lines[i]}(t)\\big|_{{{latex(a)} < t < {latex(b)}}}", pieces[i][k]))
             ans.steps.append(Step(
                 "Closed form along the profile",
                 "On each interval between switching instants the profile is a polynomial in $t$; substituting "
@@ -109,7 +110,7 @@ def peak_steps(res, prof, joints) -> list[Step]:
     jumps = sorted({0.0, float(prof.T), *res.breaks})
     for i, j in enumerate(joints):
         at_jump = any(abs(res.t_peaks[i] - s) <= 1e-9 * max(1.0, float(prof.T)) for s in jumps)
-        rows.append([f"${sp.latex(j.actuator)}$", Num(res.peaks[i], _unit(j.kind)),
+        rows.append([f"${latex(j.actuator)}$", Num(res.peaks[i], _unit(j.kind)),
                      Text(Num(res.t_peaks[i])) + (" (a switching instant: one-sided value)" if at_jump else "")])
     steps.append(Step(
         "Peaks",
@@ -118,7 +119,7 @@ def peak_steps(res, prof, joints) -> list[Step]:
         table=(["actuator", "peak", "at t (s)"], rows),
     ))
     if res.jumps:
-        header = ["t (s)"] + [f"${sp.latex(j.actuator)}$ before → after" for j in joints]
+        header = ["t (s)"] + [f"${latex(j.actuator)}$ before → after" for j in joints]
         jrows = [[Num(t)] + [Text(Num(b[i]), " → ", Num(a[i])) for i in range(len(joints))]
                  for t, b, a in res.jumps]
         steps.append(Step(
@@ -135,7 +136,7 @@ def _figure(ans, res, prof, joints, act_names) -> None:
         "torques", "joint_torques", Text("Actuators along the profile (T = ", Num(float(prof.T)), " s)"),
         {"t": [float(x) for x in res.t],
          "T": float(prof.T), "switches": res.breaks,
-         "actuators": [{"name": act_names[i], "label": sp.latex(j.actuator), "unit": _unit(j.kind),
+         "actuators": [{"name": act_names[i], "label": latex(j.actuator), "unit": _unit(j.kind),
                         "values": [float(v) for v in res.values[i]],
                         "peak": res.peaks[i], "t_peak": res.t_peaks[i]} for i, j in enumerate(joints)]},
     ))

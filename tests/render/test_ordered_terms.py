@@ -1,7 +1,8 @@
 """core.printing.ordered_terms against sympy's Expr.as_ordered_terms (the reference it follows):
 the order of a sum's terms in every printed text, on random sums with integer, rational,
 decimal, irrational and complex coefficients, powers, roots, functions of sums, and in every
-order the printers use; core.printing.sort_key against sympy's default_sort_key; generators whose
+order the printers use; core.printing.sort_key, latex and sstr against sympy's default_sort_key,
+latex and sstr; generators whose
 sympy keys are equal (L1 + L2 and 1.0*L1 + 1.0*L2) in one order however they are met (sympy
 took them in the order of a set: the hash seed's)."""
 import itertools
@@ -10,7 +11,7 @@ import random
 import pytest
 import sympy as sp
 
-from robosolve.core.printing import _SAME_AS_TERMS, _sorted_generators, ordered_terms, sort_key
+from robosolve.core.printing import _SAME_AS_TERMS, _sorted_generators, latex, ordered_terms, sort_key, sstr
 
 x, y, z, m = sp.symbols("x y z m")
 q1, q2 = sp.symbols("q1 q2")
@@ -83,3 +84,14 @@ def test_generators_with_equal_sympy_keys_are_sorted_the_same_however_met():
     orders = {tuple(_sorted_generators(list(p))) for p in itertools.permutations(TIED + [L1, sp.sin(q)])}
     assert len(orders) == 1
 
+
+
+@pytest.mark.skipif(not _SAME_AS_TERMS, reason="this sympy sorts with its own code")
+@pytest.mark.parametrize("seed", range(30))
+def test_latex_and_sstr_are_sympys(seed):
+    rng = random.Random(1000 + seed)
+    e = _random_nested(rng)
+    names = {x: "x_{a}", m: r"\mathrm{m}"}
+    assert latex(e) == sp.latex(e)
+    assert latex(e, symbol_names=names) == sp.latex(e, symbol_names=names)
+    assert sstr(e) == sp.sstr(e) == str(e)
