@@ -6,11 +6,21 @@ occurs. A printing method depends only on the expression and the printer's setti
 `str`, on the level: a Float prints differently at the top), so the text of a subexpression
 printed without keyword arguments is kept and reused: the same text as `str(expr)` (tested in
 tests/render/test_shared_latex.py). render/printers.py builds its LaTeX printer on the same memo.
+
+The order of a sum's terms is sympy's (`ordered_terms`), made independent of the hash seed:
+sympy sorts a sum's generators out of a set by their sort keys, and two different generators
+can have equal keys (L1 + L2 and 1.0*L1 + 1.0*L2: a decimal coefficient equal to an integer
+does not count in sympy's key), which then came out in the set's order — a PYTHONHASHSEED of
+its own. Here they are taken in sympy's structural order first (`Basic.compare`), and the sort
+keys of sums are built with the same order of terms (`sort_key`).
 """
 
 from __future__ import annotations
 
+from functools import cmp_to_key
+
 import sympy as sp
+from sympy.printing.latex import LatexPrinter
 from sympy.printing.str import StrPrinter
 
 
@@ -30,24 +40,62 @@ _MAX_PRINTED = 200_000
 # sort with sympy's own
 _SAME_AS_TERMS = tuple(int(x) for x in sp.__version__.split(".")[:2]) in ((1, 12), (1, 13), (1, 14))
 
-# default_sort_key of the generators of sums (sin q₂, m₁, sin(q₂ + q₃)): a sum's sort key sorts
+# sort keys of the generators of sums (sin q₂, m₁, sin(q₂ + q₃)): a sum's sort key sorts
 # its terms again, and the same generators occur in most sums of a report
 _SORT_KEYS: dict = {}
+
+_STRUCTURAL = cmp_to_key(sp.Basic.compare)
 
 
 def _sort_key(e):
     hit = _SORT_KEYS.get(e)
     if hit is None:
-        hit = sp.default_sort_key(e)
+        hit = sort_key(e)
         if len(_SORT_KEYS) < _MAX_ORDERED:
             _SORT_KEYS[e] = hit
     return hit
 
 
+def sort_key(e):
+    """sympy's default_sort_key(e) (Expr.sort_key of 1.14, line for line), with the terms of
+    every sum inside in the order of `ordered_terms`: the same key as sympy's wherever sympy's
+    does not depend on the hash seed (tested equal), and the same key in every process."""
+    if not isinstance(e, sp.Expr) or e.is_Atom:
+        return sp.default_sort_key(e)
+    coeff, expr = e.as_coeff_Mul()
+    exp = sp.S.One
+    if expr.is_Pow:
+        expr, exp = expr.as_base_exp()
+        if expr is sp.S.Exp1:
+            expr, exp = sp.Function("exp")(exp), sp.S.One
+    if expr.is_Dummy:
+        args = (expr.sort_key(),)
+    elif expr.is_Atom:
+        args = (str(expr),)
+    else:
+        if expr.is_Add:
+            parts = ordered_terms(expr)
+        elif expr.is_Mul:
+            commutative, other = expr.args_cnc()
+            parts = sorted(commutative, key=_sort_key) + other
+        else:
+            parts = expr.args
+        args = tuple(_sort_key(a) for a in parts)
+    return expr.class_key(), (len(args), args), _sort_key(exp), coeff
+
+
+def _sorted_generators(gens: set) -> list:
+    """The generators of a sum by their sort keys, as sympy sorts them; generators whose keys
+    are equal (an exact and a decimal form of one sum) in sympy's structural order, not in the
+    set's (which follows the hash seed)."""
+    return sorted(sorted(gens, key=_STRUCTURAL), key=_sort_key)
+
+
 def _as_terms(expr):
     """sympy's Expr.as_terms (1.14) line for line, with the sort keys of the generators kept
-    (`_sort_key`) and a rational or decimal coefficient converted by float() (what complex()
-    gives for it, without evalf)."""
+    (`_sort_key`), generators with equal keys in a fixed order (`_sorted_generators`) and a
+    rational or decimal coefficient converted by float() (what complex() gives for it, without
+    evalf)."""
     from sympy.core.exprtools import decompose_power
 
     gens, terms = set(), []
@@ -71,7 +119,7 @@ def _as_terms(expr):
                 else:
                     ncpart.append(factor)
         terms.append((term, ((coeff.real, coeff.imag), cpart, tuple(ncpart))))
-    gens = sorted(gens, key=_sort_key)
+    gens = _sorted_generators(gens)
     indices = {g: i for i, g in enumerate(gens)}
     result = []
     for term, (coeff, cpart, ncpart) in terms:
@@ -109,8 +157,9 @@ def ordered_terms(expr, order=None) -> list:
     return [term for term, _ in ordered]
 
 
-class PrintsEachOnce:
-    """The memo of the shared printers; `_key` is what the text of an expression depends on."""
+class OrderedTerms:
+    """A printer's order of a sum's terms: `ordered_terms` (sympy's order, the same whatever the
+    hash seed), kept for every printer of the process."""
 
     def _as_ordered_terms(self, expr, order=None):
         key = (expr, order or self.order)       # the order sympy's printer would use
@@ -122,6 +171,10 @@ class PrintsEachOnce:
             if len(_ORDERED_TERMS) < _MAX_ORDERED:
                 _ORDERED_TERMS[key] = hit
         return list(hit)
+
+
+class PrintsEachOnce(OrderedTerms):
+    """The memo of the shared printers; `_key` is what the text of an expression depends on."""
 
     def _key(self, expr):
         return expr
@@ -152,3 +205,22 @@ class SharedStrPrinter(PrintsEachOnce, StrPrinter):
 
     def _key(self, expr):
         return expr, self._print_level == 0
+
+
+class _LatexPrinter(OrderedTerms, LatexPrinter):
+    pass
+
+
+class _StrPrinter(OrderedTerms, StrPrinter):
+    pass
+
+
+def latex(expr, **settings) -> str:
+    """sympy.latex(expr, **settings), a sum's terms in the order of `ordered_terms`: the text
+    robosolve writes wherever it prints LaTeX outside the report's shared printer."""
+    return _LatexPrinter(settings).doprint(expr)
+
+
+def sstr(expr, **settings) -> str:
+    """sympy.sstr(expr, **settings) (str(expr)), a sum's terms in the order of `ordered_terms`."""
+    return _StrPrinter(settings).doprint(expr)

@@ -22,7 +22,10 @@ solutions.  Rules, tried in this order on the remaining equations (each
    ``C^2 + S^2 = D^2`` eliminates q (the cos theta2 formula of a 2R arm), and q
    is recovered later as atan2(S, C).
 
-Everything is plain sympy; `derive` should run under a time limit.
+Rule 4 is attempted on a pair only when its Cramer numerators and determinant together have at
+most `ELIMINATION_OPS` operations (a count, the same on every machine): past it no closed form
+is derived, with the reason, and the solutions are numeric. Everything is plain sympy; `derive`
+should still run under a time limit (a safety net).
 """
 
 from __future__ import annotations
@@ -35,10 +38,27 @@ import sympy as sp
 
 from robosolve.core.simplify import common_factors, ik_fraction, memoised
 from robosolve.core.opcount import count_ops
+from robosolve.core.printing import latex
 
 
 class NoClosedForm(Exception):
     """No rule applies: the caller answers numerically."""
+
+
+# The most operations (count_ops of the Cramer numerators and determinant of a pair) a joint is
+# eliminated from: an exam arm's pairs have at most 30 (a UR5's or a KUKA's position equations:
+# 25), and their eliminated equations take milliseconds; a 3R arm with a decimal twist (alpha:
+# 1.5708, whose cosine -3.7e-6 keeps every term) gives pairs of 400-800, each eliminated in
+# seconds into an equation of 3,000 operations, and ended in no closed form only when the 20 s
+# safety net struck — at a time that followed the machine's load, and so did the answer's note.
+ELIMINATION_OPS = 300
+
+
+class _TooLong(Exception):
+    """A pair too long to eliminate a joint from (its operations)."""
+
+    def __init__(self, ops: int):
+        self.ops = ops
 
 
 def whole_floats(e):
@@ -266,7 +286,7 @@ def _isolate_linear(e, unknowns, revolute_of):
     return None
 
 
-_TEX = [sp.latex]
+_TEX = [latex]
 
 
 def _tex(e):
@@ -279,11 +299,11 @@ def derive(equations, unknowns, revolute, latex_names=None, angular=None, tex=No
     `tex` renders sympy objects in the step texts (default sympy.latex).
     Raises NoClosedForm when no rule applies.  Run it under a time limit.
     """
-    _TEX[0] = tex or sp.latex
+    _TEX[0] = tex or latex
     try:
         return _derive(equations, unknowns, revolute, latex_names)
     finally:
-        _TEX[0] = sp.latex
+        _TEX[0] = latex
 
 
 def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
@@ -329,10 +349,13 @@ def _eliminated_equation(ci, cj):
     None when D or the new equation is identically zero."""
     (Ai, Bi, Ei), (Aj, Bj, Ej) = ci, cj
     D = sp.expand(Ai * Bj - Aj * Bi)
-    if _is_zero(D):
-        return None
     Nc = sp.expand(Bi * Ej - Bj * Ei)
     Ns = sp.expand(Aj * Ei - Ai * Ej)
+    ops = count_ops(D) + count_ops(Nc) + count_ops(Ns)
+    if ops > ELIMINATION_OPS:
+        raise _TooLong(ops)
+    if _is_zero(D):
+        return None
     rotation = _is_rotation(Ai, Bi, Aj, Bj)
     if rotation:
         # (X, Y) = Rot(q)(u, w): Nc^2 + Ns^2 = D (X^2 + Y^2) and D = u^2 + w^2
@@ -383,7 +406,7 @@ class _Elimination:
     def __init__(self, equations, unknowns, revolute, latex_names=None):
         self.unknowns = list(unknowns)
         self.revolute = dict(zip(self.unknowns, revolute))
-        self.names = latex_names or {q: sp.latex(q) for q in self.unknowns}
+        self.names = latex_names or {q: latex(q) for q in self.unknowns}
         self.eqs = [sp.expand(sp.sympify(e)) for e in equations]
         self.remaining = list(self.unknowns)   # still unknown and present in the equations
         self.pending = []                      # (q, kind, data): recovered once its dependencies are known
@@ -510,16 +533,24 @@ class _Elimination:
         return None
 
     def _elimination_candidates(self, pairs) -> list[_Candidate]:
-        """Rule 4 for each pair, until one leaves an equation in one unknown (the best possible)."""
-        cands = []
+        """Rule 4 for each pair, until one leaves an equation in one unknown (the best possible);
+        pairs above ELIMINATION_OPS are not eliminated (none left: NoClosedForm says so)."""
+        cands, too_long = [], []
         for q, i, j, ci, cj in pairs:
-            found = _eliminated_equation(ci, cj)
+            try:
+                found = _eliminated_equation(ci, cj)
+            except _TooLong as exc:
+                too_long.append(exc.ops)
+                continue
             if found is None:
                 continue
             cands.append(_Candidate(1, len(_unknowns_in(found[0], self.remaining)), self.unknowns.index(q),
                                     "eliminate", q, i, j, found))
             if cands[-1].unknowns_left <= 1:
                 break
+        if not cands and too_long:
+            raise NoClosedForm(f"the equations are too long to eliminate a joint by hand "
+                               f"({min(too_long)} operations, at most {ELIMINATION_OPS})")
         return cands
 
     def _flush_pending(self):

@@ -30,6 +30,7 @@ from robosolve.ik.numeric import (
     sort_solutions,
     wrap_angle,
 )
+from robosolve.core.printing import latex
 
 LIMIT_TOL = 1e-9
 
@@ -204,7 +205,7 @@ class _Fmt:
 
     def __init__(self, tex=None, plain=False):
         self.plain = plain
-        self.tex = tex or sp.latex
+        self.tex = tex or latex
 
     def __call__(self, e) -> str:
         if self.plain:
@@ -267,7 +268,7 @@ def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt, aux
 def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt, aux=None) -> str:
     k, joint, ex = fail
     st = cf.stages[k]
-    lname = names.get(joint, sp.latex(joint))
+    lname = names.get(joint, latex(joint))
     name = F.name(lname, joint)
     dist = _distance_reason(st, target_syms, values, F, aux or {})
     if ex.what in ("acos", "asin"):
@@ -310,7 +311,7 @@ def solve_ik(
     derived before for other values of the known symbols, evaluated instead of derived again.
     """
     res = IKResult()
-    names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
+    names = latex_names or {j.symbol: latex(j.symbol) for j in joints}
     exprs = [_chop(sp.sympify(l) - sp.sympify(r)) for l, r in equations]
     kept = _leave_out_constant_equations(res, equations, exprs, joints, values, labels)
     if kept is None:
@@ -507,7 +508,7 @@ def _evaluate_closed_form(res, cf, values, joints, system, tex):
         res.reason = ("the target is incompatible with the robot: it requires "
                       + ", ".join(f"{c} = 0" for c in bad))
         res.reason_tex = ("the target is incompatible with the robot: it requires "
-                          + ", ".join(f"${(tex or sp.latex)(c)} = 0$" for c in bad))
+                          + ", ".join(f"${(tex or latex)(c)} = 0$" for c in bad))
     res.closed_form_values = sort_solutions(cf_sols, get=lambda d: [d[j.name] for j in joints])
     return cf_fail, cf_partial
 

@@ -32,6 +32,7 @@ from robosolve.ik.engine import IKJoint, in_limits, solve_ik
 from robosolve.core.angles import wrap_angle
 from robosolve.ik.numeric import DEDUPE_TOL, sort_solutions
 from robosolve.core.opcount import count_ops
+from robosolve.core.printing import latex
 
 FK_TOL = 1e-9
 R_SYMS = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"r{i + 1}{j + 1}"))
@@ -213,7 +214,7 @@ def solve_pose(factors, joints: list[IKJoint], R, p, select="limits", latex_name
     target = np.hstack([R, p[:, None]]).reshape(12)
     fk = _FK(chain)
     res = PoseResult()
-    names = latex_names or {j.symbol: sp.latex(j.symbol) for j in joints}
+    names = latex_names or {j.symbol: latex(j.symbol) for j in joints}
     wrist = find_wrist(chain)
     raw, par = None, None
     if wrist is not None:
@@ -582,7 +583,7 @@ def _parallel_step(zrow, lhs, split, names, angle) -> PoseStep:
     """The split of the UR way, in the chain's joint names (`names`: LaTeX, in joint order)."""
     n1, n2, n3, n4, n5, n6 = names
     if angle is not None:
-        planar = (f"its rotation is about $z$ by the angle ${sp.latex(angle)} = \\beta$, "
+        planar = (f"its rotation is about $z$ by the angle ${latex(angle)} = \\beta$, "
                   "$\\beta = \\operatorname{atan2}(b_{21}, b_{11})$ from the first column of the rotation, "
                   "and its position gives $b_x, b_y$: the planar 3R with its orientation, two elbow branches")
     else:

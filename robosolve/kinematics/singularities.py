@@ -37,6 +37,7 @@ from robosolve.core.simplify import (bounded_full, determinant_factors, factored
                                      jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
 from robosolve.core.opcount import count_ops
+from robosolve.core.printing import latex as print_latex
 
 __all__ = ["Condition", "SearchBudget", "SearchTooLong", "SingularityResult", "find_singularities",
            "wrap_angle"]
@@ -102,8 +103,8 @@ class Condition:
         return {str(q): _text(v) for q, v in self.values}
 
     def latex(self) -> str:
-        parts = [f"{sp.latex(q)} = {sp.latex(v)}" for q, v in self.values]
-        parts = [f"{sp.latex(e)} = 0" for e in self.equations] + parts
+        parts = [f"{print_latex(q)} = {print_latex(v)}" for q, v in self.values]
+        parts = [f"{print_latex(e)} = 0" for e in self.equations] + parts
         return r",\ ".join(parts)
 
 

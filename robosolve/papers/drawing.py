@@ -15,6 +15,7 @@ import numpy as np
 import sympy as sp
 
 from robosolve.core.prose import PLAIN_NAME, name_plot
+from robosolve.core.printing import latex
 
 PLANE_TOL = 1e-9
 IDENT = re.compile(r"[A-Za-z][A-Za-z0-9_]*")   # a name sympy's LaTeX writes as a symbol (F, F_1)
@@ -51,7 +52,7 @@ def _parameter_values(problem) -> dict:
 
 
 def _latex(sym) -> str:
-    return sp.latex(sym)
+    return latex(sym)
 
 
 LABEL_CHARS = 10     # a longer name is cut in the drawing (the paper's text gives it whole)

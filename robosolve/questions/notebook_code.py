@@ -13,16 +13,18 @@ import math
 
 import sympy as sp
 
+from robosolve.core.printing import sstr
+
 __all__ = ["text", "literal", "at_literal", "robosolve_numbers", "lines", "compare_line", "guarded",
            "coordinates", "jacobian_lines", "profile_lines", "trajectory_lines", "coordinate_values",
            "question_by_id"]
 
 def text(expr) -> str:
-    """A sympy value as the text the runtime parses (`Robot.parse`): sympy's own printing, the
-    point coordinates P.x written P_x."""
+    """A sympy value as the text the runtime parses (`Robot.parse`): str() (core/printing's, the
+    same in every process), the point coordinates P.x written P_x."""
     expr = sp.sympify(expr)
     rep = {s: sp.Symbol(s.name.replace(".", "_")) for s in expr.free_symbols if "." in s.name}
-    return str(expr.xreplace(rep)) if rep else str(expr)
+    return sstr(expr.xreplace(rep)) if rep else sstr(expr)
 
 
 def literal(value) -> str:

@@ -13,13 +13,14 @@ import sympy as sp
 from sympy.printing.conventions import split_super_sub
 
 from robosolve.load.expressions import point_symbol
+from robosolve.core.printing import latex
 
 __all__ = ["ChainNames", "elementary_latex", "symbol_latex", "upright_name"]
 
 
 def elementary_latex(op: str, arg, names: dict | None = None) -> str:
     """LaTeX of one factor of a pose string, e.g. R_z(\\theta_1)."""
-    return f"{'T' if op[0] == 'T' else 'R'}_{{{op[1]}}}\\left({sp.latex(arg, symbol_names=names or {})}\\right)"
+    return f"{'T' if op[0] == 'T' else 'R'}_{{{op[1]}}}\\left({latex(arg, symbol_names=names or {})}\\right)"
 
 
 def upright_name(name: str) -> str | None:
@@ -27,7 +28,7 @@ def upright_name(name: str) -> str | None:
     letter (`ma`, `Jg2`, `Kp`): upright, \\mathrm{ma}, so that it does not read as a product of
     italic one-letter symbols (m·a); None for the names sympy prints well (L1, m_p, theta1)."""
     base, sups, subs = split_super_sub(name)
-    if len(base) < 2 or sp.latex(sp.Symbol(base)).startswith("\\"):
+    if len(base) < 2 or latex(sp.Symbol(base)).startswith("\\"):
         return None
     out = f"\\mathrm{{{base}}}"
     if subs:
@@ -49,7 +50,7 @@ def symbol_latex(problem) -> dict:
     for j in problem.joints:
         if upright_name(j.name):
             out[j.symbol] = upright_name(j.name)
-        base = out.get(j.symbol) or sp.latex(j.symbol)
+        base = out.get(j.symbol) or latex(j.symbol)
         out[j.dot] = f"\\dot{{{base}}}" if "_" not in base else _accent(base, "dot")
         out[j.ddot] = f"\\ddot{{{base}}}" if "_" not in base else _accent(base, "ddot")
     for name in problem.points:
@@ -72,7 +73,7 @@ class ChainNames:
         names = self.symbols
 
         def tex(e):
-            return sp.latex(e, symbol_names=names)
+            return latex(e, symbol_names=names)
 
         if f.kind == "pose":
             return [elementary_latex(op, arg, names) for op, arg in f.factors]

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import sympy as sp
 
+from robosolve.core.printing import ordered_terms, latex
+
 # A display formula longer than this (LaTeX characters) is broken up.
 MATRIX_LIMIT = 1400
 SCALAR_LIMIT = 450
@@ -81,7 +83,7 @@ class CompactTrig:
         parts = []
         for s in sorted(used, key=order):
             func, arg = self.meaning[s]
-            inner = sp.latex(arg, symbol_names=names)
+            inner = latex(arg, symbol_names=names)
             inner = inner if len(sp.Add.make_args(arg)) == 1 else f"({inner})"
             parts.append(f"${self.names[s]} = \\{func.__name__}{inner if inner.startswith('(') else ' ' + inner}$")
         return ("Notation (the course's): " + ", ".join(parts) + ".")
@@ -132,7 +134,7 @@ def _lines(expr, tex, budget: int = LINE_CHARS) -> list[str]:
             return [f"{head} \\Bigl( {inner[0]} \\Bigr)".strip()]
         return [f"{head} \\Bigl( {inner[0]}".strip(), *inner[1:-1], f"{inner[-1]} \\Bigr)"]
     out, line = [], ""
-    for k, term in enumerate(expr.as_ordered_terms()):
+    for k, term in enumerate(ordered_terms(expr)):          # the printers' order of the terms
         negative = term.could_extract_minus_sign()
         pieces = _lines(-term if negative else term, tex, budget)
         sign = "-" if negative else ("+" if k else "")

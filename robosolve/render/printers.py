@@ -17,8 +17,7 @@ import math
 import sympy as sp
 from sympy.printing.latex import LatexPrinter
 
-from robosolve.core.printing import PrintsEachOnce as _PrintsEachOnce
-from robosolve.core.printing import SharedStrPrinter
+from robosolve.core.printing import PrintsEachOnce as _PrintsEachOnce, SharedStrPrinter
 from robosolve.render.numbers import REPORT_DIGITS
 
 __all__ = ["SharedLatexPrinter", "SharedStrPrinter"]

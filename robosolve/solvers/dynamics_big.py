@@ -21,6 +21,7 @@ from robosolve.dynamics.numeric import ChainDynamics
 from robosolve.core.prose import name_tex
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 from robosolve.solvers.common import potential_step
+from robosolve.core.printing import latex
 
 __all__ = ["solve_big"]
 
@@ -128,12 +129,12 @@ def _steps_lagrange(ans, eng, dyn, poly) -> None:
     )
     f = dyn.generalized_forces
     for i, j in enumerate(dyn.joints):
-        name = sp.latex(j.q)
+        name = latex(j.q)
         step.equations.append((f"\\frac{{\\partial \\mathcal{{L}}}}{{\\partial \\dot{{{name}}}}}",
                                _sum(eng, [(eng.qd[k], m[i][k]) for k in range(n)])))
         lhs = [(eng.qdd[k], m[i][k]) for k in range(n)]
         lhs += [(_rates(eng, a, b), v) for (a, b), v in c[i].items()] + [(sp.S.One, g[i])]
-        step.equations.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{sp.latex(f[i])} ", _sum(eng, lhs)))
+        step.equations.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{latex(f[i])} ", _sum(eng, lhs)))
     ans.steps.append(step)
     velocity = [_sum(eng, [(_rates(eng, a, b), v) for (a, b), v in c[i].items()]) for i in range(n)]
     ans.steps.append(Step(
@@ -169,7 +170,7 @@ def _numeric(question, ctx, ans, dyn, rates) -> None:
     ans.numeric["actuators"] = {a.name: float(t) for a, t in zip(dyn.actuators, tau)}
     eqs = [("M", ans.numeric["mass_matrix"]), ("c", ans.numeric["velocity_terms"]),
            ("g", ans.numeric["gravity_terms"])]
-    eqs += [(sp.latex(a), v) for a, v in zip(dyn.actuators, ans.numeric["actuators"].values())]
+    eqs += [(latex(a), v) for a, v in zip(dyn.actuators, ans.numeric["actuators"].values())]
     ans.steps.append(Step(
         "Numeric values",
         "At the configuration of the question, from numeric code (numpy products of the local "

@@ -16,6 +16,7 @@ from robosolve.kinematics.ellipsoids_math import ellipsoids, exact_values, joint
 from robosolve.solvers.task_space import limited, position_axes, task_space
 from robosolve.solvers.base import (
     Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note)
+from robosolve.core.printing import latex
 
 
 def _col(labels):
@@ -152,7 +153,7 @@ def _joint_rates(ans, ctx, model, velocity, subs, jn_a, square):
     ans.steps.append(Step(
         "Joint velocities for the desired velocity",
         f"{how}" + (f". {note}" if note else "") + ":",
-        equations=[("V", v)] + [(ctx.symbol_latex.get(j.dot, sp.latex(j.dot)), x)
+        equations=[("V", v)] + [(ctx.symbol_latex.get(j.dot, latex(j.dot)), x)
                                 for j, x in zip(model.joints, qd)],
     ))
 
@@ -178,7 +179,7 @@ def _eigen_step(res, exact, jn, j_exact) -> Step:
     def exact_tex(i):
         if exact is None or exact["eigenvalues"][i].is_Integer:
             return ""
-        return f" = ${sp.latex(exact['eigenvalues'][i])}$"
+        return f" = ${latex(exact['eigenvalues'][i])}$"
 
     rows = [[str(i + 1), _num(nu) + exact_tex(i),
              _vec_tex(vec)] for i, (nu, vec) in enumerate(zip(res.eigenvalues, res.eigenvectors))]
@@ -206,7 +207,7 @@ def _force_step(res, exact, kf_s, f_unit) -> Step:
         "The end-effector forces that the joints balance within the budget $K_f$ "
         "($F_q^T F_q = K_f^2$) satisfy $F^T A F = K_f^2$. Along $\\hat\\vartheta_i$, "
         "$s^2 \\nu_i = K_f^2$, so the semi-axes are $\\frac{K_f}{\\sqrt{\\nu_i}}\\,\\hat\\vartheta_i$ "
-        f"(" + note_link("ellipsoid-axes") + f"), sorted by decreasing length; here $K_f = {sp.latex(kf_s)}$ {f_unit}."
+        f"(" + note_link("ellipsoid-axes") + f"), sorted by decreasing length; here $K_f = {latex(kf_s)}$ {f_unit}."
         + (" A zero eigenvalue makes the force semi-axis infinite: forces along it are carried "
            "by the structure (reported as null)." if res.singular else ""),
         table=_axes_table(res.force, f_unit),
@@ -224,7 +225,7 @@ def _velocity_step(res, exact, kv_s, v_unit, square) -> Step:
         vel_text + " $A^{-1}$ has the same eigenvectors and eigenvalues $1/\\nu_i$, so the "
         "semi-axes are $K_v\\sqrt{\\nu_i}\\,\\hat\\vartheta_i$: the same axes as the force "
         "ellipsoid in inverse proportions (the direction of the longest force axis carries the "
-        f"shortest velocity axis). Here $K_v = {sp.latex(kv_s)}$ {v_unit}."
+        f"shortest velocity axis). Here $K_v = {latex(kv_s)}$ {v_unit}."
         + (" A zero eigenvalue flattens it: no velocity is possible along that axis."
            if res.singular else ""),
         table=_axes_table(res.velocity, v_unit),
@@ -241,8 +242,8 @@ def _compliance_step(res, exact, J, kq_s, ka_s, c_unit) -> Step:
         "$\\delta S = K_s F$ (sign aside), $K_s = J K_q J^T$. A force budget $F^T F = K_a^2$ gives "
         "$\\delta S^T K_s^{-T} K_s^{-1} \\delta S = K_a^2$ (" + note_link("compliance-ellipsoid") + "), with semi-axes "
         "$K_a\\,\\kappa_i$ along the unit eigenvectors of $K_s$ ($\\kappa_i$ its eigenvalues). "
-        f"Here $K_q = \\mathrm{{diag}}({', '.join(sp.latex(x) for x in kq_s)})$ and "
-        f"$K_a = {sp.latex(ka_s)}$ {c_unit}.",
+        f"Here $K_q = \\mathrm{{diag}}({', '.join(latex(x) for x in kq_s)})$ and "
+        f"$K_a = {latex(ka_s)}$ {c_unit}.",
         equations=[("K_s = J K_q J^T", ks_sym), ("K_s", res.Ks)]
         + ([("\\kappa_i", exact["compliance_eigenvalues"])] if exact is not None else []),
         table=_axes_table(res.compliance, c_unit),

@@ -12,7 +12,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.course_notes import note_link
-from robosolve.core.printing import SharedStrPrinter
+from robosolve.core.printing import SharedStrPrinter, latex
 from robosolve.dynamics.bridge import NUMERIC_ONLY_NOTE, numeric_energies, numeric_for
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
@@ -36,7 +36,7 @@ def _show(expr, limit: int = SHOW_OPS):
 
 
 def _latex_name(sym) -> str:
-    return sp.latex(sym)
+    return latex(sym)
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
@@ -207,7 +207,7 @@ def _steps_lagrange(ans, model, dyn):
         name = _latex_name(j.q)
         step.equations.append((f"\\frac{{\\partial \\mathcal{{L}}}}{{\\partial \\dot{{{name}}}}}",
                                _show(p)))
-        step.equations.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{sp.latex(f[i])} ",
+        step.equations.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{latex(f[i])} ",
                                _show(lhs[i])))
     ans.steps.append(step)
     ans.steps.append(Step(

@@ -21,6 +21,7 @@ from robosolve.core.prose import Num, Text
 from robosolve.core.symbols import TIME
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 from robosolve.core.opcount import count_ops
+from robosolve.core.printing import latex
 
 T = TIME
 # The run is accurate to ~1e-9 of its scale (tests: 1e-8 against pinocchio); 10 digits keep it,
@@ -163,7 +164,7 @@ def _singular_mass_is_an_error():
 
 # ---------------------------------------------------------------------- report
 def _tex(st, e) -> str:
-    return sp.latex(e, symbol_names=st.names)
+    return latex(e, symbol_names=st.names)
 
 
 def _law_tex(model, st) -> list[str]:

@@ -16,6 +16,7 @@ from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.ik.pose import P_SYMS, R_SYMS, solve_pose
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
+from robosolve.core.printing import latex
 
 
 def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, params, tex):
@@ -59,7 +60,7 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
     select = opts.get("select", "limits")
     if isinstance(select, dict):
         select = {k: ctx.numeric(v, params) for k, v in select.items()}
-    names = {j.symbol: sp.latex(j.symbol, symbol_names=dict(ctx.symbol_latex)) for j in used}
+    names = {j.symbol: latex(j.symbol, symbol_names=dict(ctx.symbol_latex)) for j in used}
     res = solve_pose(factors, used, R, p, select=select, latex_names=names, tex=tex,
                      time_limit_s=ctx.budgets.closed_form_seconds)
     ans.steps.append(_target_step(target, R, p, frame, question, c, tex))
@@ -129,7 +130,7 @@ def _target_step(target, R, p, frame, question, c, tex) -> Step:
 
 
 def _solutions_step(res, joints) -> Step:
-    header = ["#"] + [f"${sp.latex(j.symbol)}$" for j in joints] + ["joint limits"]
+    header = ["#"] + [f"${latex(j.symbol)}$" for j in joints] + ["joint limits"]
     rows = []
     rejected = {id(d): b for d, b in res.rejected}
     for k, d in enumerate(res.all_solutions, 1):

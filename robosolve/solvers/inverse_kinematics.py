@@ -25,6 +25,7 @@ from robosolve.load.problem import Question
 from robosolve.solvers.ik_pose import solve_pose_question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
+from robosolve.core.printing import latex
 
 
 
@@ -45,11 +46,11 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     ans = Answer(question.type, question.id)
     opts = question.options
     joints = model.joints
-    names = {j.symbol: sp.latex(j.symbol) for j in joints}
+    names = {j.symbol: latex(j.symbol) for j in joints}
     symnames = dict(ctx.symbol_latex)
 
     def tex(e):
-        return sp.latex(e, symbol_names=symnames)
+        return latex(e, symbol_names=symnames)
 
     subs = ctx.substitutions({s: v for s, v in question.at.items() if s in ctx.problem.parameters})
     params = {s: v for s, v in subs.items()}

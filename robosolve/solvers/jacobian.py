@@ -24,6 +24,7 @@ from robosolve.solvers.task_space import (
     joint_kinds, joint_l0, limited, over_input_budget, task_space, tidy_limited)
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 from robosolve.core.opcount import count_ops
+from robosolve.core.printing import latex
 
 
 def _col(labels):
@@ -31,7 +32,7 @@ def _col(labels):
 
 
 def _qtex(model):
-    return [sp.latex(s) for s in model.q]
+    return [latex(s) for s in model.q]
 
 
 def solve(question, ctx: SolveContext) -> Answer:
@@ -218,7 +219,7 @@ def _family_step(k: int, c) -> Step:
     return Step(f"Singular family ({k})",
                 "All of these hold together (a minor's equation, or a joint's value):",
                 equations=[("0", e) for e in c.equations]
-                + [(sp.latex(q), v) for q, v in c.values])
+                + [(latex(q), v) for q, v in c.values])
 
 
 STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its settled form
@@ -385,7 +386,7 @@ def _within_limits(cond, model, params) -> str | Text:
         except (TypeError, ValueError):
             return "depends on the other joints"
         if not (lo - 1e-12 <= val <= hi + 1e-12):
-            verdicts.append(Text(f"no (${sp.latex(s)} \\notin [", Num(lo, digits=4), ", ",
+            verdicts.append(Text(f"no (${latex(s)} \\notin [", Num(lo, digits=4), ", ",
                                  Num(hi, digits=4), "]$)"))
     return Text.join("; ", verdicts) if verdicts else "yes"
 

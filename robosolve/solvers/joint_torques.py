@@ -18,6 +18,7 @@ from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
+from robosolve.core.printing import latex
 
 
 
@@ -25,7 +26,7 @@ def _bound(x):
     """An interval's end in a formula: exact as it is (sqrt(pi)/2), a decimal as a number the
     renderer writes (1.05409, not 1.05409255338946)."""
     x = sp.sympify(x)
-    return Num(float(x)) if x.atoms(sp.Float) else sp.latex(x)
+    return Num(float(x)) if x.atoms(sp.Float) else latex(x)
 
 
 def _unit(kind: str) -> str:
@@ -41,7 +42,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     act_names = [str(j.actuator) for j in joints]
 
     dyn = ctx.dynamics()
-    lines = [f"{sp.latex(j.actuator)}" for j in joints]
+    lines = [f"{latex(j.actuator)}" for j in joints]
     if dyn is not None:
         tau = dyn.actuator_expressions()
         ans.steps.append(Step(
@@ -136,7 +137,7 @@ def peak_steps(res, prof, joints) -> list[Step]:
     jumps = sorted({0.0, float(prof.T), *res.breaks})
     for i, j in enumerate(joints):
         at_jump = any(abs(res.t_peaks[i] - s) <= 1e-9 * max(1.0, float(prof.T)) for s in jumps)
-        rows.append([f"${sp.latex(j.actuator)}$", Num(res.peaks[i], _unit(j.kind)),
+        rows.append([f"${latex(j.actuator)}$", Num(res.peaks[i], _unit(j.kind)),
                      Text(Num(res.t_peaks[i])) + (" (a switching instant: one-sided value)" if at_jump else "")])
     steps.append(Step(
         "Peaks",
@@ -145,7 +146,7 @@ def peak_steps(res, prof, joints) -> list[Step]:
         table=(["actuator", "peak", "at t (s)"], rows),
     ))
     if res.jumps:
-        header = ["t (s)"] + [f"${sp.latex(j.actuator)}$ before → after" for j in joints]
+        header = ["t (s)"] + [f"${latex(j.actuator)}$ before → after" for j in joints]
         jrows = [[Num(t)] + [Text(Num(b[i]), " → ", Num(a[i])) for i in range(len(joints))]
                  for t, b, a in res.jumps]
         steps.append(Step(
@@ -162,7 +163,7 @@ def _figure(ans, res, prof, joints, act_names) -> None:
         "torques", "joint_torques", Text("Actuators along the profile (T = ", Num(float(prof.T)), " s)"),
         {"t": [float(x) for x in res.t],
          "T": float(prof.T), "switches": res.breaks,
-         "actuators": [{"name": act_names[i], "label": sp.latex(j.actuator), "unit": _unit(j.kind),
+         "actuators": [{"name": act_names[i], "label": latex(j.actuator), "unit": _unit(j.kind),
                         "values": [float(v) for v in res.values[i]],
                         "peak": res.peaks[i], "t_peak": res.t_peaks[i]} for i, j in enumerate(joints)]},
     ))

@@ -16,6 +16,7 @@ from robosolve.errors import SolverError
 from robosolve.load.problem import Question
 from robosolve.motion.profiles import ProfileError, SyncProfile, synchronize
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step
+from robosolve.core.printing import latex
 
 T_SYMBOL = TIME
 SAMPLES = 401
@@ -31,7 +32,7 @@ def _num(e, unit: str = "") -> Text:
     try:
         return Text(Num(float(sp.N(e)), unit))
     except TypeError:
-        return Text("$" + sp.latex(e) + "$" + (" " + unit if unit else ""))
+        return Text("$" + latex(e) + "$" + (" " + unit if unit else ""))
 
 
 def compute(question: Question, ctx: SolveContext) -> SyncProfile:
@@ -64,7 +65,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     shape = question.options.get("shape", "bang-bang")
     subs = ctx.substitutions(question.at)
     joints = model.joints
-    syms = {j.name: sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in joints}
+    syms = {j.name: latex(j.symbol, symbol_names=ctx.symbol_latex) for j in joints}
     ans.steps += steps(prof, shape, joints, syms)
     # -- answers
     ans.symbolic["durations"] = {jm.name: jm.own_time for jm in prof.joints}

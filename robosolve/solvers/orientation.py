@@ -22,6 +22,7 @@ from robosolve.geometry.rotations import (
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import geometry_matrix, m_name
+from robosolve.core.printing import latex
 
 FAMILY_TEX = {"phi + psi": "\\varphi + \\psi", "phi - psi": "\\varphi - \\psi",
               "roll - yaw": "\\text{roll} - \\text{yaw}", "roll + yaw": "\\text{roll} + \\text{yaw}"}
@@ -85,7 +86,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 def _family_text(e, angles: str) -> str:
     combo, value = e.family
     v = value if isinstance(value, (sp.Basic,)) else sp.Float(value, 6)
-    return (f"**Singular:** only ${FAMILY_TEX[combo]} = {sp.latex(v)}$ is determined: every "
+    return (f"**Singular:** only ${FAMILY_TEX[combo]} = {latex(v)}$ is determined: every "
             f"{angles} with that combination gives the same R (an infinite family). The representative "
             "sets the last angle to 0.")
 

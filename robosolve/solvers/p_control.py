@@ -17,6 +17,7 @@ from robosolve.errors import SolverError
 from robosolve.load.problem import Question
 from robosolve.simulation.joint_control import simulate
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
+from robosolve.core.printing import latex
 
 SAMPLES = 2001
 
@@ -96,7 +97,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if negative and law != "computed_torque":
         ans.note("a negative gain (" + ", ".join(sorted(set(negative))) + ") makes the loop unstable: "
                  "the error grows exponentially instead of being corrected")
-    syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in joints]
+    syms = [latex(j.symbol, symbol_names=ctx.symbol_latex) for j in joints]
     gains_tex = Text.join(",\\quad ", [Text(f"K_{{p,{syms[i]}}} = ", Num(kp[i])) for i in range(len(joints))])
     if kd is not None:
         gains_tex += Text(",\\quad ", Text.join(",\\quad ", [Text(f"K_{{d,{syms[i]}}} = ", Num(kd[i]))
@@ -166,7 +167,7 @@ def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
     ))
     ans.figures.append(FigureSpec(
         "effort", "control_effort", f"{law} control: actuator effort",
-        dict(common, actuators=[{"name": str(j.actuator), "label": sp.latex(j.actuator),
+        dict(common, actuators=[{"name": str(j.actuator), "label": latex(j.actuator),
                                  "unit": "N·m" if j.kind == "revolute" else "N", "values": r(res.effort[i]),
                                  "external": _external_series(res, i, r)}
                                 for i, j in enumerate(joints)]),
@@ -201,7 +202,7 @@ def _solve_trajectory(question, ctx, ans, subs, law):
         kd = [_float(ctx, opts["gains_d"][n], subs, f"gains_d.{n}") for n in names] if "gains_d" in opts else None
     given = None
     if "start" in opts:      # the configuration the run starts from, as the report states it
-        syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
+        syms = [latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
         given = Text.join(", ", [Text(f"${syms[i]} = ", Num(start[i]), "$") for i in range(len(names))])
     _trajectory_law_step(ans, opts["trajectory"], law, task, traj, kp, kd, duration, given)
     try:
@@ -235,7 +236,7 @@ def _solve_trajectory(question, ctx, ans, subs, law):
             [n, Num(res.max_error[i]), Num(res.t_max_error[i]), Num(res.final_error[i])] for i, n in enumerate(names)])))
     _task_figure(ans, traj, t_grid, e_task, law, duration)
     if not task:
-        syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
+        syms = [latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
         plan = traj.plan()
         plan.breaks = np.asarray(traj.timing.breaks)     # the switching instants marked in the figure
         _figures(ans, res, _Horizon(traj.timing.T), plan, duration, law, model.joints, syms)

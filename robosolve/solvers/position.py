@@ -10,6 +10,7 @@ from robosolve.model.numeric import NumericChain
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, m_name, robot_drawing, symbolic_within_budget
 from robosolve.core.prose import name_md
+from robosolve.core.printing import latex
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
@@ -62,7 +63,7 @@ def symbolic_part(question: Question, ctx: SolveContext, ans: Answer) -> None:
     p0 = model.point0(point)
     ans.steps.append(Step(
         f"Position of point {point}",
-        f"Point {point} is fixed in frame {name_md(pframe)} at ${sp.latex(tuple(pat))}$; in frame 0, "
+        f"Point {point} is fixed in frame {name_md(pframe)} at ${latex(tuple(pat))}$; in frame 0, "
         f"with homogeneous coordinates:",
         equations=[(f"{{}}^{{0}}{point} = {m_name('0', pframe)} \\, {{}}^{{{frame_tex(pframe)}}}{point}",
                     p0)],

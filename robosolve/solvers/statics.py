@@ -19,10 +19,11 @@ from robosolve.kinematics.statics_math import balance_force, balance_weight, bal
 from robosolve.solvers.task_space import limited, task_space, tidy_limited
 from robosolve.solvers.base import Answer, SolveContext, Step
 from robosolve.core.prose import name_tex
+from robosolve.core.printing import latex
 
 
 def _actuator_tex(model):
-    return [sp.latex(j.actuator) for j in model.joints]
+    return [latex(j.actuator) for j in model.joints]
 
 
 def solve(question, ctx: SolveContext) -> Answer:

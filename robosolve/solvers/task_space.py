@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.kinematics.jacobian_math import analytic_jacobian, geometric_jacobian, tidy
+from robosolve.core.printing import latex, sstr
 
 __all__ = ["TaskSpace", "task_space", "limited", "over_input_budget", "tidy_limited",
            "coordinate_latex", "joint_kinds", "position_axes", "joint_l0"]
@@ -78,7 +79,7 @@ def tidy_limited(ctx, m, seconds, long_chain=False):
 def coordinate_latex(expr, names: dict) -> str:
     """LaTeX of a coordinate as the user wrote it (E.x -> E_{x}), with the problem's symbol
     names (`ctx.symbol_latex`)."""
-    return sp.latex(expr, symbol_names=names)
+    return latex(expr, symbol_names=names)
 
 
 def position_axes(question, model, coords_raw) -> list | None:
@@ -131,7 +132,7 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
     else:
         coords = [model.coordinate(c) for c in raw]
         labels = [coordinate_latex(c, ctx.symbol_latex) for c in raw]
-        texts = [sp.sstr(c) for c in raw]
+        texts = [sstr(c) for c in raw]
     # the model's coordinates are already trig-tidied: their derivatives need no more
     J = analytic_jacobian(coords, q)
     return TaskSpace(coords, labels, texts, J, geometric=False, default=default)

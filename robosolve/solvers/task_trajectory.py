@@ -22,6 +22,7 @@ from robosolve.motion import task_path as tp
 from robosolve.motion.profiles import NumericPlan
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
+from robosolve.core.printing import latex, sstr
 
 SAMPLES = 401
 TABLE_ROWS = 11
@@ -198,7 +199,7 @@ def _setup(question, ctx: SolveContext):
     for c, x in zip(coords, x_expr):
         if not x.free_symbols & set(model.q):
             raise BadInput("coordinates" if "coordinates" in opts else "type",
-                           f"{c} does not move with the joints (it is {sp.sstr(x)} in every configuration): "
+                           f"{c} does not move with the joints (it is {sstr(x)} in every configuration): "
                            "each task coordinate must change as the arm moves"
                            + ("" if "coordinates" in opts else "; give `coordinates` (e.g. [E.x, E.y])"))
     a = _values(ctx, opts["from"], coords, "from", subs)
@@ -277,7 +278,7 @@ def solve(question, ctx: SolveContext) -> Answer:
         raise SolverError(f"the trajectory needs numeric data ({exc})") from None
     names = [j.name for j in model.joints]
     labels = [str(c) for c in coords]
-    tex = [sp.latex(c, symbol_names=ctx.symbol_latex) for c in coords]
+    tex = [latex(c, symbol_names=ctx.symbol_latex) for c in coords]
     ans.numeric["T"] = timing.T
     ans.numeric["length"] = path.length
     if outside is not None:
@@ -321,7 +322,7 @@ def _figures(ans, ctx, traj, subs, question) -> None:
                                                            else "turns singular"))
     ans.figures.append(FigureSpec("path", "task_path", title,
                                   {"trace": trace, "poses": poses, "point": question.point}))
-    syms = [sp.latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
+    syms = [latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
     ans.figures.append(FigureSpec("joints", "joint_motion", "Joint positions, rates and accelerations",
                                   {"t": [float(v) for v in conv.t], "T": traj.timing.T,
                                    "switches": [float(v) for v in traj.timing.breaks[1:-1]],
@@ -359,7 +360,7 @@ def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
     ans.steps.append(_timing_step(timing))
     if traj.conv is None:           # the path starts out of reach: no branch to follow
         return
-    names = [sp.latex(j.symbol, symbol_names=symbols) for j in model.joints]
+    names = [latex(j.symbol, symbol_names=symbols) for j in model.joints]
     q0 = traj.conv.q[:, 0]
     how = ("the configuration given as `start`, brought onto `from` by Newton's method"
            if "start" in question.options else
@@ -431,7 +432,7 @@ def _failure(ans, traj, model) -> None:
 
 def _joint_steps(ans, traj, model, symbols: dict, vel, acc, smin, tmin) -> None:
     conv = traj.conv
-    names = [sp.latex(j.symbol, symbol_names=symbols) for j in model.joints]
+    names = [latex(j.symbol, symbol_names=symbols) for j in model.joints]
     wide = len(traj.labels) < len(names)
     ans.steps.append(Step(
         "Joint rates and accelerations",

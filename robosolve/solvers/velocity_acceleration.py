@@ -19,6 +19,7 @@ from robosolve.model.numeric import NumericChain, rigid_inverse
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import frame_tex, m_name, rel_name, symbolic_within_budget
 from robosolve.core.prose import name_md
+from robosolve.core.printing import latex
 
 
 def _composition_step(title, text, model, chain, letter, relative, absolute, composed) -> Step:
@@ -107,7 +108,7 @@ def _l_matrices_step(model, chain) -> Step:
         parent = model.frames[f].parent
         for i in model.joints_in(f):
             j = model.joints[i]
-            q = sp.latex(j.symbol)
+            q = latex(j.symbol)
             lstep.equations.append((f"{{}}^{{{frame_tex(parent)}}}L_{{{q}}}", model.L_local(i, f)))
             if parent != "0":
                 lstep.equations.append((f"{{}}^{{0}}L_{{{q}}} = {m_name('0', parent)}\\,"

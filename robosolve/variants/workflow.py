@@ -20,6 +20,7 @@ import yaml
 
 from robosolve.errors import ExitStatus, InputError, InputIssue
 from robosolve.run.execution import make_task, run_tasks
+from robosolve.core.printing import sstr
 
 # what a variants folder holds, for the working directory written in place (robosolve.run.outputs)
 OWN_FILES = ("variants.csv", "roster.csv", "*/problem.yaml", "*/report.md", "*/report.html",
@@ -71,7 +72,7 @@ def yaml_value(value):
 
     if isinstance(value, sp.Integer):
         return int(value)
-    return sp.sstr(value)
+    return sstr(value)
 
 
 def variant_data(data: dict, name: str, values: dict) -> dict:
@@ -165,7 +166,7 @@ def variants_csv(plan: Plan) -> bytes:
     names = [p.name for p in plan.spec.parameters]
     w.writerow(["variant", "student", "seed"] + names)
     for v in plan.variants:
-        w.writerow([v.id, v.student, plan.seed] + [sp.sstr(v.values[n]) for n in names])
+        w.writerow([v.id, v.student, plan.seed] + [sstr(v.values[n]) for n in names])
     return buf.getvalue().encode("utf-8")
 
 
@@ -217,7 +218,7 @@ def _invalid_variant_message(plan: Plan, bad: list) -> str:
     import sympy as sp
 
     variant, result = bad[0]
-    drawn = ", ".join(f"{p.name} = {sp.sstr(variant.values[p.name])}" for p in plan.spec.parameters)
+    drawn = ", ".join(f"{p.name} = {sstr(variant.values[p.name])}" for p in plan.spec.parameters)
     first = result.messages[0] if result.messages else "it does not load"
     where = re.match(r"^.*?problem\.yaml:(\d+): ", first)
     what = first[where.end():] if where else first

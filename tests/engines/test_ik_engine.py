@@ -250,3 +250,40 @@ def test_whole_number_floats_of_a_chain_with_numbers_print_as_integers():
     red = _reduce_pythagoras(sp.Float(2.0) * S**2 + sp.Float(0.5) * C, [(C, S)])
     assert "2.0" not in sp.sstr(red) and "0.5" in sp.sstr(red)
     assert whole_floats(sp.Float(3.0) * px + sp.Float(1.5)) == 3 * px + sp.Float(1.5)
+
+
+def test_a_pair_too_long_to_eliminate_is_decided_by_a_count():
+    """A 3R arm whose DH twists are the decimal 1.5708 (cos 1.5708 = -3.7e-6 keeps every term)
+    and whose first joint has an offset of 1/3 rad: each pair of its position equations has
+    400-800 operations; eliminating a joint from it took seconds, and the derivation ended after
+    20 s of CPU, as long as the safety net, so its note ("within 20 s" or "no pattern") followed
+    the machine's load. Now a count stops it at once, with the reason; the numeric solutions
+    reach the target (the forward kinematics evaluated here with numpy)."""
+    import time
+
+    from robosolve.core.transforms import dh_standard
+
+    a1, a2, a3 = 0.5, 0.52, 0.2
+    M = (dh_standard(t1 + sp.Rational(1, 3), 0, L1, sp.Float(1.5708))
+         * dh_standard(t2, L2, L2, sp.Float(1.5708)) * dh_standard(t3, 0, L3, 0))
+    exprs = [sp.expand(M[k, 3]) for k in range(3)]
+    start = time.process_time()
+    with pytest.raises(cfm.NoClosedForm, match="too long to eliminate a joint by hand"):
+        cfm.derive([e - c for e, c in zip(exprs, (x, y, z))], [t1, t2, t3], [True] * 3)
+    assert time.process_time() - start < 5
+
+    def fk_numpy(q):
+        out = np.eye(4)
+        for theta, d, a, alpha in ((q[0] + 1 / 3, 0, a1, 1.5708), (q[1], a2, a2, 1.5708), (q[2], 0, a3, 0)):
+            ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
+            out = out @ np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st],
+                                  [0, sa, ca, d], [0, 0, 0, 1]])
+        return out[:3, 3]
+
+    target = fk_numpy([0.4, -0.9, 1.1])
+    values = {L1: a1, L2: a2, L3: a3}
+    res = solve_ik([(e, float(c)) for e, c in zip(exprs, target)], [IKJoint(t1), IKJoint(t2), IKJoint(t3)],
+                   values)
+    assert "too long" in res.closed_form_note and res.all_solutions
+    for sol in res.all_solutions:
+        assert np.allclose(fk_numpy([sol["theta1"], sol["theta2"], sol["theta3"]]), target, atol=1e-9)
