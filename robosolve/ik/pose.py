@@ -260,28 +260,65 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
         return None
     arm_cf = _arm_closed_form(res, arm, wc, names) if not shoulder else None
     R3 = head[:3, :3]
-    tail = chain.product(split, len(chain.factors))[:3, :3]
+    tail, Rc = _wrist_and_tool(chain, split)
     wrist_joints = [IKJoint(j.symbol, True, None) for j in chain.joints[3:]]
     A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{i + 1}{j + 1}"))
     raw, wrist_cf, singular_seen = [], None, False
     R3f = sp.lambdify(chain.q[:3], R3, modules=numpy_modules())
-    for sol in arm_sols:
+    Rcf = np.array(Rc, dtype=float)
+    for k, sol in enumerate(arm_sols):
         q123 = [sol[j.name] for j in arm_joints]
-        a = np.array(R3f(*q123), dtype=float).T @ R
-        ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, wrist_cf is None)
+        a = np.array(R3f(*q123), dtype=float).T @ R @ Rcf.T
+        # the derivation is in the symbols a_ij, the same for every arm branch: tried once
+        ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, k == 0)
         singular_seen |= singular
         if cf is not None and wrist_cf is None:
             wrist_cf = cf
         raw += [(q123 + list(wq), singular or ("shoulder" if shoulder else False)) for wq in ws]
-    res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen))
+    res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen, Rc))
     if wrist_cf is not None and arm_cf is not None:
-        sub = {A[i, j]: (R3.T * R_SYMS)[i, j] for i in range(3) for j in range(3)}
+        sub = {A[i, j]: (R3.T * R_SYMS * Rc.T)[i, j] for i in range(3) for j in range(3)}
         res.closed_form = [{**a_b, **{k: v.xreplace(sub) for k, v in w_b.items()}}
                            for a_b in arm_cf for w_b in wrist_cf]
     if not raw and res.status == "ok":
         res.status = "unreachable"
         res.reason = "the orientation is not attainable: the wrist cannot give ³R₆ = (⁰R₃)ᵀ·R"
     return raw
+
+
+def _wrist_and_tool(chain, split):
+    """The wrist's rotation ³R₆(q4, q5, q6) up to the last joint's own frame, and the constant
+    rotation R_c after it (a tool frame: Tz(d) Ry(π/6), say, as a frame of its own or written
+    after the last joint's rotation in the same pose): the target frame's ³R = ³R₆·R_c, so the
+    wrist is solved from ³R₆ = (⁰R₃)ᵀ·R·R_cᵀ, the product of its own three rotations (ZYZ-like).
+    In the last joint's pose P·Rz(q6)·Q the rotation Q after the joint is found from the joint's
+    axis u in the target frame (Qᵀ·z = u): the rotation turning z onto u about z × u."""
+    n = len(chain.factors)
+    last = max(k for k in range(split, n) if chain.joints_of(k, k + 1))
+    Rc = chain.product(last + 1, n)[:3, :3]
+    tail = chain.product(split, last + 1)[:3, :3]
+    Q = _after_last_axis(chain.factors[last][:3, :3], chain.q[5])
+    if Q is not None:
+        # in floats: an exact √3/2 of the pose times Q's 0.866… would not cancel
+        tail, Rc = _chop(sp.expand((tail * Q.T).evalf(15))), Q * Rc
+    return tail, _chop(Rc)
+
+
+def _after_last_axis(F, q):
+    """The rotation Q with F(q) = P·Rz(q)·Q and Qᵀ·z = u, the joint's axis in F's end frame (the
+    rotation turning z onto u about z × u); None when the axis is already ±z."""
+    f = sp.lambdify([q], F, modules=numpy_modules())
+    df = sp.lambdify([q], F.diff(q), modules=numpy_modules())
+    W = np.array(f(0.0), dtype=float).T @ np.array(df(0.0), dtype=float)
+    u = np.array([W[2, 1], W[0, 2], W[1, 0]])
+    if abs(np.linalg.norm(u) - 1.0) > 1e-9 or math.hypot(u[0], u[1]) < 1e-12:
+        return None
+    axis = np.cross([0.0, 0.0, 1.0], u)
+    k = axis / np.linalg.norm(axis)
+    angle = math.atan2(np.linalg.norm(axis), u[2])
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    Qt = np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K   # z -> u
+    return _chop(sp.Matrix(Qt.T).applyfunc(lambda v: sp.Float(float(v), 15)))
 
 
 def _arm_representatives(arm, arm_joints, W, w):
@@ -760,9 +797,12 @@ def _centre_step(c_t, wc, w, split, names, chain) -> PoseStep:
         [("\\vec c", c), ("{}^{0}\\vec{r}_W", sp.Matrix(wc)), ("{}^{0}\\vec{r}_W", [[float(v)] for v in w])])
 
 
-def _wrist_step(R3, tail, A, names, tex, singular) -> PoseStep:
+def _wrist_step(R3, tail, A, names, tex, singular, Rc=None) -> PoseStep:
+    tool = Rc is not None and Rc != sp.eye(3)
     text = ("With the first three joints known, the wrist's rotation is "
-            "${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R$ (written $a_{ij}$ below); equating it to the wrist's "
+            + ("${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R\\,R_{t}^{T}$, $R_{t}$ the constant rotation of the target "
+               "frame after the last joint's frame, " if tool else "${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R$ ")
+            + "(written $a_{ij}$ below); equating it to the wrist's "
             "product of rotations gives the last three angles as Euler-like (ZYZ) angles: two branches, "
             "from the sign of the middle angle's sine.")
     if singular:
@@ -772,4 +812,4 @@ def _wrist_step(R3, tail, A, names, tex, singular) -> PoseStep:
         text += " The wrist is singular where the middle wrist angle's sine vanishes (first and last axes aligned)."
     return PoseStep("Kinematic decoupling: the wrist", text,
                     [("{}^{3}R_{6}(" + ", ".join(names.get(s, str(s)) for s in sorted(tail.free_symbols, key=str)) + ")",
-                      tail), ("{}^{3}R_{6}", A)])
+                      tail), ("{}^{3}R_{6}", A)] + ([("R_{t}", Rc)] if tool else []))
