@@ -267,7 +267,9 @@ def _counted_search(ctx, model, kinds, params, j=None, det=None, minors=None):
     from robosolve.errors import SymbolicTimeout
     from robosolve.kinematics.singularities import SearchBudget, SearchTooLong
 
-    why = over_input_budget(ctx, (j, model.q, kinds, params, det)) if j is not None else None
+    # with det J by structure the search reads the det alone (J only for its shape): that is its input
+    searched = (det, model.q, kinds, params) if det is not None else (j, model.q, kinds, params, det)
+    why = over_input_budget(ctx, searched) if j is not None else None
     if why is not None:
         return None, why
     try:
