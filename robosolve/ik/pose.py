@@ -304,6 +304,25 @@ def _wrist_and_tool(chain, split):
     return tail, _chop(Rc)
 
 
+def _without_tool(chain):
+    """(chain, C): the chain up to the last joint's rotation (the constant factors after the last
+    joint dropped, and the rotation after its axis in its own pose taken off, `_after_last_axis`),
+    and the constant pose C of the target frame in that frame; (chain, I) when there is none."""
+    n = len(chain.factors)
+    last = max(k for k in range(n) if chain.joints_of(k, k + 1))
+    C = chain.product(last + 1, n)
+    F = chain.factors[last]
+    moved = chain.joints_of(last, last + 1)
+    Q = _after_last_axis(F[:3, :3], next(iter(moved))) if len(moved) == 1 else None
+    if Q is not None:
+        Q4 = sp.diag(Q, 1)
+        F, C = _chop(sp.expand((F * Q4.T).evalf(15))), Q4 * C
+    if last == n - 1 and Q is None:
+        return chain, sp.eye(4)
+    # in floats: cos(3/10)·sin(1/5) products kept exact swell every equation of the target
+    return _Chain(chain.factors[:last] + [F], chain.joints, chain.q), _chop(C.evalf(15))
+
+
 def _after_last_axis(F, q):
     """The rotation Q with F(q) = P·Rz(q)·Q and Qᵀ·z = u, the joint's axis in F's end frame (the
     rotation turning z onto u about z × u); None when the axis is already ±z."""
@@ -412,10 +431,12 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     """The UR way: in frame 1 (axes 2, 3, 4 along z) the z row of ¹M₆ depends on q5, q6 only;
     with q1 it gives q1, q5, q6, then the planar 3R gives q2, q3, q4."""
     split, Q = par
+    from robosolve.core.transforms import rigid_inverse
+    chain, tool = _without_tool(chain)
     n = len(chain.factors)
     head, tail = chain.product(0, split), chain.product(split, n)
-    from robosolve.core.transforms import rigid_inverse
-    Msym = sp.Matrix(sp.BlockMatrix([[R_SYMS, P_SYMS], [sp.zeros(1, 3), sp.ones(1, 1)]]))
+    # the frame after the last joint's rotation is given: ⁰M₆ = M·(tool)⁻¹, in the target's symbols
+    Msym = sp.Matrix(sp.BlockMatrix([[R_SYMS, P_SYMS], [sp.zeros(1, 3), sp.ones(1, 1)]])) * rigid_inverse(tool)
     lhs = (Q * rigid_inverse(head) * Msym).applyfunc(sp.expand)       # of q1 and the target
     rhs = (Q * tail).applyfunc(sp.expand)                               # of q2..q6
     q = chain.q
@@ -431,7 +452,7 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     res.method = "three parallel axes"
     eqs2, known, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
     angle = next((lhs_ for lhs_, rhs_ in eqs2 if rhs_ == BETA), None)
-    res.steps.append(_parallel_step(zrow, lhs, split, [names[x] for x in q], angle))
+    res.steps.append(_parallel_step(zrow, lhs, split, [names[x] for x in q], angle, tool))
     if st1.status == "unreachable":
         res.status, res.reason = "unreachable", "the pose is beyond the reach or its orientation is not attainable: " + str(st1.reason)
         return []
@@ -615,9 +636,17 @@ def _independent_of(rhs, zrow, q) -> bool:
     return True
 
 
-def _parallel_step(zrow, lhs, split, names, angle) -> PoseStep:
-    """The split of the UR way, in the chain's joint names (`names`: LaTeX, in joint order)."""
+def _parallel_step(zrow, lhs, split, names, angle, tool=None) -> PoseStep:
+    """The split of the UR way, in the chain's joint names (`names`: LaTeX, in joint order); `tool`:
+    the constant pose of the target frame after the last joint's rotation (identity: none)."""
     n1, n2, n3, n4, n5, n6 = names
+    given, given_row = "({}^{0}M_{1})^{-1} M", "[({}^{0}M_{1})^{-1} M]_{3}"
+    tool_text, eqs = "", []
+    if tool is not None and tool != sp.eye(4):
+        given, given_row = "({}^{0}M_{1})^{-1} M\\,T_{t}^{-1}", "[({}^{0}M_{1})^{-1} M\\,T_{t}^{-1}]_{3}"
+        tool_text = (" The target frame is fixed after the last joint's rotation at the constant pose $T_{t}$ "
+                     "(a tool), so frame 6 is at $M\\,T_{t}^{-1}$.")
+        eqs = [("T_{t}", tool)]
     if angle is not None:
         planar = (f"its rotation is about $z$ by the angle ${sp.latex(angle)} = \\beta$, "
                   "$\\beta = \\operatorname{atan2}(b_{21}, b_{11})$ from the first column of the rotation, "
@@ -628,14 +657,14 @@ def _parallel_step(zrow, lhs, split, names, angle) -> PoseStep:
     return PoseStep(
         "Three parallel axes: the row along them",
         f"The axes of joints 2, 3 and 4 are parallel (the UR family). Written in frame {split} (axes turned so "
-        "that they lie along $z$), ${}^{1}M_{6} = ({}^{0}M_{1})^{-1} M$; rotations about $z$ leave the $z$ row "
+        f"that they lie along $z$), ${{}}^{{1}}M_{{6}} = {given}$; rotations about $z$ leave the $z$ row "
         f"unchanged, so the third row of ${{}}^{{1}}M_{{6}}$ depends on ${n5}$, ${n6}$ only: four equations for "
         f"${n1}$, ${n5}$, ${n6}$. The first two rows are then a planar 3R problem for ${n2}$, ${n3}$, ${n4}$: "
         "${}^{1}M_{4} = {}^{1}M_{6}\\,({}^{4}M_{6})^{-1}$ is known; " + planar + ". The wrist is not "
         f"spherical: where $\\sin {n5} = 0$ the axes of joints 4 and 6 are parallel (with those of joints 2 "
         f"and 3), not aligned; the row then does not determine ${n6}$, and such a pose is reached along a "
-        "continuum of configurations, or not at all.",
-        [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), ("[({}^{0}M_{1})^{-1} M]_{3}", sp.Matrix([list(lhs[2, :])]))])
+        "continuum of configurations, or not at all." + tool_text,
+        eqs + [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), (given_row, sp.Matrix([list(lhs[2, :])]))])
 
 
 def _numeric(res, chain, R, p, no_wrist):

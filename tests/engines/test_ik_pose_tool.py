@@ -142,3 +142,50 @@ def test_rotation_after_the_last_joint_is_read_from_its_axis(rotation):
     P = [np.array(FQt(v), dtype=float) @ np.array(Rz(v), dtype=float).T for v in (0.0, 0.7, -2.1)]
     assert np.allclose(P[0], P[1], atol=1e-12) and np.allclose(P[0], P[2], atol=1e-12)
     assert _after_last_axis(rot_z(q)[:3, :3], q) is None
+
+
+# -- the UR family with a tool: the row along the parallel axes is the one of ¹M₆ = (⁰M₁)⁻¹·M·T_t⁻¹ --
+
+UR5E = [(0.1625, 0.0, PI / 2), (0.0, -0.425, 0.0), (0.0, -0.3922, 0.0), (0.1333, 0.0, PI / 2),
+        (0.0997, 0.0, -PI / 2), (0.0996, 0.0, 0.0)]       # d, a, alpha
+UR_TOOL = SE3.Tz(0.05) * SE3.Rx(PI / 7) * SE3.Tz(0.07) * SE3.Rz(0.3) * SE3.Ry(0.2)
+
+
+def _ur_factors():
+    q = sp.symbols("q1:7")
+    factors = [dh_standard(qi, d, a, al) for qi, (d, a, al) in zip(q, UR5E)]
+    factors[5] = factors[5] * trans_z(sp.Rational(1, 20)) * rot_x(sp.pi / 7)
+    factors.append(trans_z(sp.Rational(7, 100)) * rot_z(sp.Rational(3, 10)) * rot_y(sp.Rational(1, 5)))
+    return factors, q
+
+
+def test_ur_family_with_a_tool_keeps_the_closed_form():
+    """It fell back to no closed form (the z row of ¹M_tool depends on q2, q3, q4) and took 20 s."""
+    factors, q = _ur_factors()
+    robot = rtb.DHRobot([rtb.RevoluteDH(d=d, a=a, alpha=al) for d, a, al in UR5E], tool=UR_TOOL)
+    q0 = [0.3, -1.1, 1.2, -0.4, 0.9, 0.5]
+    T = robot.fkine(q0).A
+    res = solve_pose(factors, [IKJoint(s, True, None) for s in q], T[:3, :3], T[:3, 3])
+    assert res.method == "three parallel axes" and res.closed_form, res.notes
+    names = [str(s) for s in q]
+    got = [[s[n] for n in names] for s in res.solutions]
+    assert len(got) == 8 and any(_wrapped_close(g, q0, 1e-9) for g in got)
+    for g in got:
+        assert np.max(np.abs(robot.fkine(g).A - T)) < 1e-9
+    assert any(eq[0] == "T_{t}" for s in res.steps for eq in s.equations)
+
+
+@pytest.mark.slow
+def test_ur_family_with_a_tool_every_solution_and_branch():
+    factors, q = _ur_factors()
+    robot = rtb.DHRobot([rtb.RevoluteDH(d=d, a=a, alpha=al) for d, a, al in UR5E], tool=UR_TOOL)
+    T = robot.fkine([2.1, -0.6, -1.9, 0.8, -2.4, 1.3]).A
+    res = solve_pose(factors, [IKJoint(s, True, None) for s in q], T[:3, :3], T[:3, 3])
+    names = [str(s) for s in q]
+    got = [[s[n] for n in names] for s in res.solutions]
+    ref = _rtb_solutions(robot, T, seeds=120)
+    assert len(got) == len(ref)
+    assert all(any(_wrapped_close(g, r, 1e-4) for g in got) for r in ref)
+    reached = [v for b in res.closed_form if (v := _branch_values(b, T[:3, :3], T[:3, 3], names)) is not None
+               and np.max(np.abs(robot.fkine(v).A - T)) < 1e-9]
+    assert all(any(_wrapped_close(g, r, 1e-8) for r in reached) for g in got)
