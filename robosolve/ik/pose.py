@@ -61,7 +61,7 @@ class PoseResult:
     closed_form: list[dict] | None = None   # joint name -> expression in r11..r33, px, py, pz
     steps: list[PoseStep] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-    reason: str | None = None
+    reason: str | Text | None = None   # prose: numbers as Num, formatted by the renderer
     wrist_centre: list[float] | None = None
     centre_in_frame: list[float] | None = None
     joints: list = field(default_factory=list)
@@ -243,7 +243,9 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
     res.steps.append(_centre_step(c_t, wc, w, split, names, chain))
     if arm.status == "unreachable":
         res.status = "unreachable"
-        res.reason = "the wrist centre is beyond the reach of the arm: " + str(arm.reason)
+        # (Text + Text: a reason's numbers stay numbers for the renderer, never a repr)
+        res.reason = ("the wrist centre is reached only with the arm's joints outside their limits: "
+                      if arm.rejected else "the wrist centre is beyond the reach of the arm: ") + Text(arm.reason or "")
         return []
     arm_sols, shoulder = arm.all_solutions, False
     if arm.status == "family":
@@ -454,7 +456,8 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     angle = next((lhs_ for lhs_, rhs_ in eqs2 if rhs_ == BETA), None)
     res.steps.append(_parallel_step(zrow, lhs, split, [names[x] for x in q], angle, tool))
     if st1.status == "unreachable":
-        res.status, res.reason = "unreachable", "the pose is beyond the reach or its orientation is not attainable: " + str(st1.reason)
+        res.status = "unreachable"
+        res.reason = "the pose is beyond the reach or its orientation is not attainable: " + Text(st1.reason or "")
         return []
     firsts = [(sol, False) for sol in st1.all_solutions]
     if st1.status != "ok":
@@ -488,14 +491,14 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
         if cf2 is None and st2.closed_form is not None:
             cf2 = st2
         if st2.status == "unreachable" and st2.reason:
-            reasons.append(str(st2.reason))
+            reasons.append(st2.reason)
         for d in st2.all_solutions:
             raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
                         singular))
     if not raw:
         res.status = "unreachable"
         res.reason = ("the pose is beyond the reach: for every value of q1, q5, q6 the planar arm of joints "
-                      "2, 3, 4 cannot reach the point it must" + (" (" + reasons[0] + ")" if reasons else ""))
+                      "2, 3, 4 cannot reach the point it must" + (Text(" (", reasons[0], ")") if reasons else ""))
     if cf2 is not None:
         for stp in cf2.closed_form.steps:
             res.steps.append(PoseStep("q2, q3, q4: " + stp.title, stp.text, list(stp.equations)))
@@ -795,8 +798,8 @@ def _finish(res: PoseResult, select):
     if res.status == "ok" and not res.solutions:
         res.status = "unreachable"
         if res.rejected:
-            res.reason = "every solution breaks a joint limit: " + str(
-                Text.join("; ", [Text.join(", ", b) for _, b in res.rejected]))
+            res.reason = Text("every solution breaks a joint limit: ",
+                              Text.join("; ", [Text.join(", ", b) for _, b in res.rejected]))
         else:
             res.reason = res.reason or "the pose is beyond the reach or its orientation is not attainable"
     if not res.solutions:
