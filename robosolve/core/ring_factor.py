@@ -32,6 +32,11 @@ SMALL = 100
 def factor_list_by_contents(p):
     """(coefficient, [(factor, multiplicity)]) of a PolyElement, as `p.factor_list()`."""
     domain = p.ring.domain
+    if domain.is_PolynomialRing and not (domain.dom.is_ZZ or domain.dom.is_QQ):
+        # over RR[a, cos(π/7), ...] (a float in a pose beside symbols) sympy's factor_list fails
+        # (dmp_factor_list multiplies the domain's elements as ground numbers); over the flat
+        # ring, the parameters as generators, it factors as sympy's factor of the expression does
+        return _back(p, *_flat(p).factor_list())
     if p.is_ground:
         return p.factor_list()
     certified = _certified_irreducible(p)

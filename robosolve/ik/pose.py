@@ -62,7 +62,7 @@ class PoseResult:
     closed_form: list[dict] | None = None   # joint name -> expression in r11..r33, px, py, pz
     steps: list[PoseStep] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-    reason: str | None = None
+    reason: str | Text | None = None   # prose: numbers as Num, formatted by the renderer
     wrist_centre: list[float] | None = None
     centre_in_frame: list[float] | None = None
     joints: list = field(default_factory=list)
@@ -244,7 +244,9 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
     res.steps.append(_centre_step(c_t, wc, w, split, names, chain))
     if arm.status == "unreachable":
         res.status = "unreachable"
-        res.reason = "the wrist centre is beyond the reach of the arm: " + str(arm.reason)
+        # (Text + Text: a reason's numbers stay numbers for the renderer, never a repr)
+        res.reason = ("the wrist centre is reached only with the arm's joints outside their limits: "
+                      if arm.rejected else "the wrist centre is beyond the reach of the arm: ") + Text(arm.reason or "")
         return []
     arm_sols, shoulder = arm.all_solutions, False
     if arm.status == "family":
@@ -261,28 +263,84 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
         return None
     arm_cf = _arm_closed_form(res, arm, wc, names) if not shoulder else None
     R3 = head[:3, :3]
-    tail = chain.product(split, len(chain.factors))[:3, :3]
+    tail, Rc = _wrist_and_tool(chain, split)
     wrist_joints = [IKJoint(j.symbol, True, None) for j in chain.joints[3:]]
     A = sp.Matrix(3, 3, lambda i, j: sp.Symbol(f"a{i + 1}{j + 1}"))
     raw, wrist_cf, singular_seen = [], None, False
     R3f = sp.lambdify(chain.q[:3], R3, modules=numpy_modules())
-    for sol in arm_sols:
+    Rcf = np.array(Rc, dtype=float)
+    for k, sol in enumerate(arm_sols):
         q123 = [sol[j.name] for j in arm_joints]
-        a = np.array(R3f(*q123), dtype=float).T @ R
-        ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, wrist_cf is None)
+        a = np.array(R3f(*q123), dtype=float).T @ R @ Rcf.T
+        # the derivation is in the symbols a_ij, the same for every arm branch: tried once
+        ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, k == 0)
         singular_seen |= singular
         if cf is not None and wrist_cf is None:
             wrist_cf = cf
         raw += [(q123 + list(wq), singular or ("shoulder" if shoulder else False)) for wq in ws]
-    res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen))
+    res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen, Rc))
     if wrist_cf is not None and arm_cf is not None:
-        sub = {A[i, j]: (R3.T * R_SYMS)[i, j] for i in range(3) for j in range(3)}
+        sub = {A[i, j]: (R3.T * R_SYMS * Rc.T)[i, j] for i in range(3) for j in range(3)}
         res.closed_form = [{**a_b, **{k: v.xreplace(sub) for k, v in w_b.items()}}
                            for a_b in arm_cf for w_b in wrist_cf]
     if not raw and res.status == "ok":
         res.status = "unreachable"
         res.reason = "the orientation is not attainable: the wrist cannot give ³R₆ = (⁰R₃)ᵀ·R"
     return raw
+
+
+def _wrist_and_tool(chain, split):
+    """The wrist's rotation ³R₆(q4, q5, q6) up to the last joint's own frame, and the constant
+    rotation R_c after it (a tool frame: Tz(d) Ry(π/6), say, as a frame of its own or written
+    after the last joint's rotation in the same pose): the target frame's ³R = ³R₆·R_c, so the
+    wrist is solved from ³R₆ = (⁰R₃)ᵀ·R·R_cᵀ, the product of its own three rotations (ZYZ-like).
+    In the last joint's pose P·Rz(q6)·Q the rotation Q after the joint is found from the joint's
+    axis u in the target frame (Qᵀ·z = u): the rotation turning z onto u about z × u."""
+    n = len(chain.factors)
+    last = max(k for k in range(split, n) if chain.joints_of(k, k + 1))
+    Rc = chain.product(last + 1, n)[:3, :3]
+    tail = chain.product(split, last + 1)[:3, :3]
+    Q = _after_last_axis(chain.factors[last][:3, :3], chain.q[5])
+    if Q is not None:
+        # in floats: an exact √3/2 of the pose times Q's 0.866… would not cancel
+        tail, Rc = _chop(sp.expand((tail * Q.T).evalf(15))), Q * Rc
+    return tail, _chop(Rc)
+
+
+def _without_tool(chain):
+    """(chain, C): the chain up to the last joint's rotation (the constant factors after the last
+    joint dropped, and the rotation after its axis in its own pose taken off, `_after_last_axis`),
+    and the constant pose C of the target frame in that frame; (chain, I) when there is none."""
+    n = len(chain.factors)
+    last = max(k for k in range(n) if chain.joints_of(k, k + 1))
+    C = chain.product(last + 1, n)
+    F = chain.factors[last]
+    moved = chain.joints_of(last, last + 1)
+    Q = _after_last_axis(F[:3, :3], next(iter(moved))) if len(moved) == 1 else None
+    if Q is not None:
+        Q4 = sp.diag(Q, 1)
+        F, C = _chop(sp.expand((F * Q4.T).evalf(15))), Q4 * C
+    if last == n - 1 and Q is None:
+        return chain, sp.eye(4)
+    # in floats: cos(3/10)·sin(1/5) products kept exact swell every equation of the target
+    return _Chain(chain.factors[:last] + [F], chain.joints, chain.q), _chop(C.evalf(15))
+
+
+def _after_last_axis(F, q):
+    """The rotation Q with F(q) = P·Rz(q)·Q and Qᵀ·z = u, the joint's axis in F's end frame (the
+    rotation turning z onto u about z × u); None when the axis is already ±z."""
+    f = sp.lambdify([q], F, modules=numpy_modules())
+    df = sp.lambdify([q], F.diff(q), modules=numpy_modules())
+    W = np.array(f(0.0), dtype=float).T @ np.array(df(0.0), dtype=float)
+    u = np.array([W[2, 1], W[0, 2], W[1, 0]])
+    if abs(np.linalg.norm(u) - 1.0) > 1e-9 or math.hypot(u[0], u[1]) < 1e-12:
+        return None
+    axis = np.cross([0.0, 0.0, 1.0], u)
+    k = axis / np.linalg.norm(axis)
+    angle = math.atan2(np.linalg.norm(axis), u[2])
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    Qt = np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K   # z -> u
+    return _chop(sp.Matrix(Qt.T).applyfunc(lambda v: sp.Float(float(v), 15)))
 
 
 def _arm_representatives(arm, arm_joints, W, w):
@@ -376,10 +434,12 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     """The UR way: in frame 1 (axes 2, 3, 4 along z) the z row of ¹M₆ depends on q5, q6 only;
     with q1 it gives q1, q5, q6, then the planar 3R gives q2, q3, q4."""
     split, Q = par
+    from robosolve.core.transforms import rigid_inverse
+    chain, tool = _without_tool(chain)
     n = len(chain.factors)
     head, tail = chain.product(0, split), chain.product(split, n)
-    from robosolve.core.transforms import rigid_inverse
-    Msym = sp.Matrix(sp.BlockMatrix([[R_SYMS, P_SYMS], [sp.zeros(1, 3), sp.ones(1, 1)]]))
+    # the frame after the last joint's rotation is given: ⁰M₆ = M·(tool)⁻¹, in the target's symbols
+    Msym = sp.Matrix(sp.BlockMatrix([[R_SYMS, P_SYMS], [sp.zeros(1, 3), sp.ones(1, 1)]])) * rigid_inverse(tool)
     lhs = (Q * rigid_inverse(head) * Msym).applyfunc(sp.expand)       # of q1 and the target
     rhs = (Q * tail).applyfunc(sp.expand)                               # of q2..q6
     q = chain.q
@@ -395,9 +455,10 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     res.method = "three parallel axes"
     eqs2, known, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
     angle = next((lhs_ for lhs_, rhs_ in eqs2 if rhs_ == BETA), None)
-    res.steps.append(_parallel_step(zrow, lhs, split, [names[x] for x in q], angle))
+    res.steps.append(_parallel_step(zrow, lhs, split, [names[x] for x in q], angle, tool))
     if st1.status == "unreachable":
-        res.status, res.reason = "unreachable", "the pose is beyond the reach or its orientation is not attainable: " + str(st1.reason)
+        res.status = "unreachable"
+        res.reason = "the pose is beyond the reach or its orientation is not attainable: " + Text(st1.reason or "")
         return []
     firsts = [(sol, False) for sol in st1.all_solutions]
     if st1.status != "ok":
@@ -431,14 +492,14 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
         if cf2 is None and st2.closed_form is not None:
             cf2 = st2
         if st2.status == "unreachable" and st2.reason:
-            reasons.append(str(st2.reason))
+            reasons.append(st2.reason)
         for d in st2.all_solutions:
             raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
                         singular))
     if not raw:
         res.status = "unreachable"
         res.reason = ("the pose is beyond the reach: for every value of q1, q5, q6 the planar arm of joints "
-                      "2, 3, 4 cannot reach the point it must" + (" (" + reasons[0] + ")" if reasons else ""))
+                      "2, 3, 4 cannot reach the point it must" + (Text(" (", reasons[0], ")") if reasons else ""))
     if cf2 is not None:
         for stp in cf2.closed_form.steps:
             res.steps.append(PoseStep("q2, q3, q4: " + stp.title, stp.text, list(stp.equations)))
@@ -579,9 +640,17 @@ def _independent_of(rhs, zrow, q) -> bool:
     return True
 
 
-def _parallel_step(zrow, lhs, split, names, angle) -> PoseStep:
-    """The split of the UR way, in the chain's joint names (`names`: LaTeX, in joint order)."""
+def _parallel_step(zrow, lhs, split, names, angle, tool=None) -> PoseStep:
+    """The split of the UR way, in the chain's joint names (`names`: LaTeX, in joint order); `tool`:
+    the constant pose of the target frame after the last joint's rotation (identity: none)."""
     n1, n2, n3, n4, n5, n6 = names
+    given, given_row = "({}^{0}M_{1})^{-1} M", "[({}^{0}M_{1})^{-1} M]_{3}"
+    tool_text, eqs = "", []
+    if tool is not None and tool != sp.eye(4):
+        given, given_row = "({}^{0}M_{1})^{-1} M\\,T_{t}^{-1}", "[({}^{0}M_{1})^{-1} M\\,T_{t}^{-1}]_{3}"
+        tool_text = (" The target frame is fixed after the last joint's rotation at the constant pose $T_{t}$ "
+                     "(a tool), so frame 6 is at $M\\,T_{t}^{-1}$.")
+        eqs = [("T_{t}", tool)]
     if angle is not None:
         planar = (f"its rotation is about $z$ by the angle ${latex(angle)} = \\beta$, "
                   "$\\beta = \\operatorname{atan2}(b_{21}, b_{11})$ from the first column of the rotation, "
@@ -592,14 +661,14 @@ def _parallel_step(zrow, lhs, split, names, angle) -> PoseStep:
     return PoseStep(
         "Three parallel axes: the row along them",
         f"The axes of joints 2, 3 and 4 are parallel (the UR family). Written in frame {split} (axes turned so "
-        "that they lie along $z$), ${}^{1}M_{6} = ({}^{0}M_{1})^{-1} M$; rotations about $z$ leave the $z$ row "
+        f"that they lie along $z$), ${{}}^{{1}}M_{{6}} = {given}$; rotations about $z$ leave the $z$ row "
         f"unchanged, so the third row of ${{}}^{{1}}M_{{6}}$ depends on ${n5}$, ${n6}$ only: four equations for "
         f"${n1}$, ${n5}$, ${n6}$. The first two rows are then a planar 3R problem for ${n2}$, ${n3}$, ${n4}$: "
         "${}^{1}M_{4} = {}^{1}M_{6}\\,({}^{4}M_{6})^{-1}$ is known; " + planar + ". The wrist is not "
         f"spherical: where $\\sin {n5} = 0$ the axes of joints 4 and 6 are parallel (with those of joints 2 "
         f"and 3), not aligned; the row then does not determine ${n6}$, and such a pose is reached along a "
-        "continuum of configurations, or not at all.",
-        [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), ("[({}^{0}M_{1})^{-1} M]_{3}", sp.Matrix([list(lhs[2, :])]))])
+        "continuum of configurations, or not at all." + tool_text,
+        eqs + [("[{}^{1}M_{6}]_{3}", sp.Matrix([zrow])), (given_row, sp.Matrix([list(lhs[2, :])]))])
 
 
 def _numeric(res, chain, R, p, no_wrist):
@@ -730,8 +799,8 @@ def _finish(res: PoseResult, select):
     if res.status == "ok" and not res.solutions:
         res.status = "unreachable"
         if res.rejected:
-            res.reason = "every solution breaks a joint limit: " + str(
-                Text.join("; ", [Text.join(", ", b) for _, b in res.rejected]))
+            res.reason = Text("every solution breaks a joint limit: ",
+                              Text.join("; ", [Text.join(", ", b) for _, b in res.rejected]))
         else:
             res.reason = res.reason or "the pose is beyond the reach or its orientation is not attainable"
     if not res.solutions:
@@ -761,9 +830,12 @@ def _centre_step(c_t, wc, w, split, names, chain) -> PoseStep:
         [("\\vec c", c), ("{}^{0}\\vec{r}_W", sp.Matrix(wc)), ("{}^{0}\\vec{r}_W", [[float(v)] for v in w])])
 
 
-def _wrist_step(R3, tail, A, names, tex, singular) -> PoseStep:
+def _wrist_step(R3, tail, A, names, tex, singular, Rc=None) -> PoseStep:
+    tool = Rc is not None and Rc != sp.eye(3)
     text = ("With the first three joints known, the wrist's rotation is "
-            "${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R$ (written $a_{ij}$ below); equating it to the wrist's "
+            + ("${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R\\,R_{t}^{T}$, $R_{t}$ the constant rotation of the target "
+               "frame after the last joint's frame, " if tool else "${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R$ ")
+            + "(written $a_{ij}$ below); equating it to the wrist's "
             "product of rotations gives the last three angles as Euler-like (ZYZ) angles: two branches, "
             "from the sign of the middle angle's sine.")
     if singular:
@@ -773,4 +845,4 @@ def _wrist_step(R3, tail, A, names, tex, singular) -> PoseStep:
         text += " The wrist is singular where the middle wrist angle's sine vanishes (first and last axes aligned)."
     return PoseStep("Kinematic decoupling: the wrist", text,
                     [("{}^{3}R_{6}(" + ", ".join(names.get(s, str(s)) for s in sorted(tail.free_symbols, key=str)) + ")",
-                      tail), ("{}^{3}R_{6}", A)])
+                      tail), ("{}^{3}R_{6}", A)] + ([("R_{t}", Rc)] if tool else []))

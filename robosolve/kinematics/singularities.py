@@ -150,6 +150,22 @@ def _numeric(expr, subs) -> complex | None:
     return val
 
 
+def _vanishes_with_the_values(expr, joints, params: Mapping) -> bool:
+    """True when a factor of expr free of the joints is 0 with the given parameter values: d3 − d5
+    of a KUKA iiwa (d3 = d5 = 0.4) makes a minor vanish whatever the joints, so the configurations
+    it leaves singular are singular on this arm (a search for generic parameters missed them)."""
+    for f in sp.Mul.make_args(expr):
+        base = f.base if f.is_Pow else f
+        if not base.free_symbols or any(base.has(q) for q in joints) or base.free_symbols - set(params):
+            continue
+        terms = [_numeric(t, dict(params)) for t in sp.Add.make_args(base)]
+        if len(terms) < 2 or any(t is None for t in terms):
+            continue
+        if abs(sum(terms)) <= 1e-12 * sum(abs(t) for t in terms):
+            return True
+    return False
+
+
 def _is_real_value(value, params: Mapping) -> bool | None:
     """True/False when the value can be evaluated with the parameters, else None."""
     value = sp.sympify(value)
@@ -366,7 +382,7 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
         if fixed and e2.has(sp.Abs):
             e3 = _signed_abs(e2, sample)
             e2 = factored_determinant(e3) if e3 is not e2 else e2
-        if e2 == 0:
+        if e2 == 0 or _vanishes_with_the_values(e2, joints, sample):
             continue
         if not any(e2.has(q) for q in joints):
             return []                # a non-zero parameter expression: never singular here

@@ -10,6 +10,7 @@ in the spec ("Singularities") and robosolve.kinematics.singularities.
 
 from __future__ import annotations
 
+import copy
 import math
 
 import sympy as sp
@@ -115,7 +116,7 @@ def _singularity_steps(ans, question, ctx, ts):
     kinds = joint_kinds(model)
     params = {s: v for s, v in ctx.parameter_values(
         {s: v for s, v in question.at.items() if s in ctx.problem.parameters}).items()}
-    res, err, wide, det_parts = _rank_conditions(ans, question, ctx, ts, kinds, params)
+    res, err, wide, det_parts = _rank_conditions_exact(ans, question, ctx, ts, kinds, params)
     if res is None:
         ans.note(f"The rank conditions (singular configurations) were not derived symbolically ({err}); "
                  "the numeric answers are given, with the distance from singularity at the question's "
@@ -225,6 +226,86 @@ def _family_step(k: int, c) -> Step:
 STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its settled form
 
 
+def _rank_conditions_exact(ans, question, ctx, ts, kinds, params):
+    """`_rank_conditions`, with the decimals of a chain that also has parameters (a tool Tz(0.12)
+    after d6, one DH entry written as a number) searched as symbols of their own, then written
+    back: over RR[d6, …] nothing cancels exactly, and the search of a 6-joint arm's minors ran
+    past its budget (or sympy's factoring failed); as symbols they factor like parameters."""
+    shadow = _decimal_shadow(ctx)
+    if shadow is None:
+        return _rank_conditions(ans, question, ctx, ts, kinds, params)
+    sctx, back = shadow
+    sts = task_space(question, sctx, ctx.step_seconds, geometric=ts.geometric)
+    first = len(ans.steps)
+    res, err, wide, det_parts = _rank_conditions(ans, question, sctx, sts, kinds, {**params, **back})
+    for st in ans.steps[first:]:
+        st.equations = [(lhs, _xreplaced(rhs, back)) for lhs, rhs in st.equations]
+    if det_parts is not None:
+        det_parts = tuple((_xreplaced(d, back), tag) for d, tag in det_parts)
+    if res is not None:
+        res = _xreplaced_result(res, back)
+    return res, err, wide, det_parts
+
+
+def _decimal_shadow(ctx):
+    """(a context whose model has each decimal of the chain's poses and points as a positive
+    symbol, {symbol: decimal}), or None when the chain has no decimal beside a parameter."""
+    import dataclasses
+
+    from robosolve.model import RobotModel
+
+    problem = ctx.problem
+    exprs = [e for f in problem.frames.values() for e in _frame_exprs(f)]
+    exprs += [e for pt in problem.points.values() for e in pt.at]
+    exprs = [sp.sympify(e) for e in exprs]
+    joints = set(problem.joint_symbols)
+    if not any(e.free_symbols - joints for e in exprs):
+        return None
+    mags = sorted({abs(v) for e in exprs for v in e.atoms(sp.Float) if v != int(v)})
+    if not mags:
+        return None
+    named = {v: sp.Dummy(f"decimal{k}", positive=True) for k, v in enumerate(mags)}
+
+    def sym(x):
+        if isinstance(x, (list, tuple)):
+            return type(x)(sym(y) for y in x)
+        if not isinstance(x, sp.Basic):
+            return x
+        return x.xreplace({v: (sp.Integer(int(v)) if v == int(v) else named[abs(v)] if v > 0 else -named[abs(v)])
+                           for v in x.atoms(sp.Float)})
+
+    frames = {n: dataclasses.replace(f, factors=sym(list(f.factors)), matrix=None if f.matrix is None else sym(f.matrix))
+              for n, f in problem.frames.items()}
+    points = {n: dataclasses.replace(pt, at=sym(pt.at)) for n, pt in problem.points.items()}
+    shadow = dataclasses.replace(problem, frames=frames, points=points)
+    sctx = copy.copy(ctx)
+    sctx.problem, sctx.model = shadow, RobotModel(shadow)
+    return sctx, {d: v for v, d in named.items()}
+
+
+def _frame_exprs(f):
+    if f.kind == "pose":
+        return [e for _, e in f.factors]
+    return list(f.matrix) if f.kind == "matrix" else list(f.factors)
+
+
+def _xreplaced(x, back):
+    if isinstance(x, (list, tuple)):
+        return type(x)(_xreplaced(y, back) for y in x)
+    return x.xreplace(back) if isinstance(x, sp.Basic) else x
+
+
+def _xreplaced_result(res, back):
+    from dataclasses import replace
+
+    res.measure = _xreplaced(res.measure, back)
+    res.minors = [_xreplaced(m, back) for m in res.minors]
+    res.conditions = [replace(c, values=tuple((q, _xreplaced(v, back)) for q, v in c.values),
+                              equations=tuple(_xreplaced(e, back) for e in c.equations),
+                              factor=_xreplaced(c.factor, back)) for c in res.conditions]
+    return res
+
+
 def _rank_conditions(ans, question, ctx, ts, kinds, params):
     """(result or None, why not, WideMinors or None, det parts): det J by structure (square), the
     minors by structure (wide, 5+ joints), else the direct route; each within its counted budget."""
@@ -268,7 +349,9 @@ def _counted_search(ctx, model, kinds, params, j=None, det=None, minors=None):
     from robosolve.errors import SymbolicTimeout
     from robosolve.kinematics.singularities import SearchBudget, SearchTooLong
 
-    why = over_input_budget(ctx, (j, model.q, kinds, params, det)) if j is not None else None
+    # with det J by structure the search reads the det alone (J only for its shape): that is its input
+    searched = (det, model.q, kinds, params) if det is not None else (j, model.q, kinds, params, det)
+    why = over_input_budget(ctx, searched) if j is not None else None
     if why is not None:
         return None, why
     try:

@@ -176,3 +176,23 @@ def test_polynomial_factor_list_leaves_the_rest_to_sympy():
     assert _polynomial_factor_list(0.5 * a + b) is None
     assert _polynomial_factor_list(a / b + 1) is None
     assert _polynomial_factor_list(sp.sqrt(a + b) * a) is None
+
+
+def test_over_a_real_polynomial_domain_as_sympy_factors_the_expression():
+    """A decimal in a pose beside parameters (a tool Tz(0.12) after d6) puts the coefficients in
+    RR[d6, cos(π/7), …], where sympy's own factor_list fails (TypeError: PolyElement * PolyElement
+    inside dmp_factor_list: the jacobian question ended in an internal error). The reference is
+    sympy's factor_list of the expression with every symbol a generator."""
+    import sympy as sp
+    from sympy import RR
+
+    R, s1, c1, c2 = ring("s1,c1,c2", RR[sp.Symbol("d6"), sp.cos(sp.pi / 7)])
+    d6, cp = (R.domain.convert(g) for g in R.domain.gens)
+    p = (s1 * (d6 + 0.12) + c1 * cp * 0.5) * (c2 * 2.0 + d6) * s1
+    coeff, factors = factor_list_by_contents(p)
+    product = R.domain.to_sympy(coeff) * sp.Mul(*[f.as_expr() ** k for f, k in factors])
+    assert sp.expand(product - p.as_expr()) == 0
+    gens = (*sp.symbols("s1 c1 c2 d6"), sp.cos(sp.pi / 7))
+    ref = sp.factor_list(p.as_expr(), *gens)
+    assert len(factors) == len(ref[1]) == 3
+    assert sorted(k for _, k in factors) == sorted(k for _, k in ref[1])
