@@ -33,8 +33,8 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.angles import wrap_angle
-from robosolve.core.simplify import (bounded_full, determinant_factors, factored, factored_determinant, full, is_zero,
-                                     jacobian_entry)
+from robosolve.core.simplify import (bounded_full, determinant_factors, factored, factored_determinant,
+                                     float_placeholders, full, is_zero, jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
 from robosolve.core.opcount import count_ops
 
@@ -534,6 +534,22 @@ def _subsumed(small: Condition, big: Condition) -> bool:
     return all(q in bv and is_zero(bv[q] - v) for q, v in sv.items())
 
 
+def _exact_floats(j: sp.Matrix, params: dict):
+    """J with each float coefficient as a positive symbol (a tool offset of 0.02 m), the sample
+    values with them, and the way back: the search then factors exactly (with the floats, a
+    substituted minor kept round-off terms, 1e-13·c²·cos θ2, that no factoring takes apart)."""
+    to, back = float_placeholders(j)
+    if not to:
+        return j, params, {}
+    return j.xreplace(to), {**params, **back}, back
+
+
+def _put_back(cond: Condition, back: dict) -> Condition:
+    return Condition(values=tuple((q, v.xreplace(back)) for q, v in cond.values),
+                     equations=tuple(e.xreplace(back) for e in cond.equations),
+                     factor=None if cond.factor is None else cond.factor.xreplace(back), names=cond.names)
+
+
 def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping,
                        params: Mapping | None = None, det=None, minors=None,
                        work: SearchBudget | None = None) -> SingularityResult:
@@ -551,6 +567,7 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
     j = sp.Matrix(j) if j is not None else None
     joints = list(joints)
     params = dict(params or {})
+    j, sample, back = _exact_floats(j, params) if det is None and minors is None else (j, params, {})
     if det is not None and j is not None and j.shape[0] == j.shape[1]:
         kind, measure = "det", det
     elif minors is not None:
@@ -570,7 +587,10 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
         minors = list(given) if given is not None else [factored_determinant(m) for m in _maximal_minors(j)]
         exprs = [m for m in minors if m != 0]
         measure = sp.Add(*[m**2 for m in exprs])
-    conds = _search(exprs, joints, kinds, {}, params, work=work) if exprs else [Condition()]
+    conds = _search(exprs, joints, kinds, {}, sample, work=work) if exprs else [Condition()]
+    if back:
+        conds = [_put_back(c, back) for c in conds]
+        measure, minors = measure.xreplace(back), [m.xreplace(back) for m in minors]
     if not exprs:
         notes.append("J has rank below full in every configuration (all maximal minors vanish).")
     conds = [_canonical(c, joints) for c in conds]
