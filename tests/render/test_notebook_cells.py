@@ -55,3 +55,47 @@ def test_the_velocity_of_a_point_fixed_in_another_frame_than_the_question_s(tmp_
     assert np.allclose(_recomputed(printed, "acceleration"),
                        [-r * wd * s - r * w * w * c, r * wd * c - r * w * w * s, 0], atol=1e-9)
     assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 4
+
+
+ARM_LOADS = """\
+robosolve: 1
+name: loads-on-a-2r
+parameters: {L1: 0.6, L2: 0.4, m: 2, g: 9.81, P: ~}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: tip, frame: "2", mass: m, point: [0, 0, 0]}
+questions:
+  - {type: statics, force: [3, -4, 0], torque: [0, 0, 1.5], weight: true, at: {q1: 0.5, q2: -1.1}}
+  - {type: statics, force: [P, 0, 0], at: {q1: 0.5, q2: -1.1}}
+  - type: displacement
+    frame: "1"
+    at: {q1: 0.5, q2: 0}
+    from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    to: [[cos(0.3), -sin(0.3), 0, 0.1], [sin(0.3), cos(0.3), 0, 0.2], [0, 0, 1, 0.3], [0, 0, 0, 1]]
+"""
+
+
+def test_every_load_of_a_statics_question_and_a_displacement_in_a_frame(tmp_path, capsys):
+    """Force, torque and weight together (by hand on the 2R: Fq = -J_P^T (F + m g) - J_w^T tau,
+    J_w = [1, 1]); a null parameter: the cell shows the formula and evaluates nothing; a displacement
+    given in frame 0 and written in frame 1: Q_1 = 0M_1^-1 Q 0M_1 (by hand: rotation Rz(0.3), the
+    translation Rz(-q1)((Rz(0.3) - I) p1 + t), p1 the origin of frame 1)."""
+    printed = _run_cells(tmp_path, ARM_LOADS, capsys)
+    q1, q2, L1, L2 = 0.5, -1.1, 0.6, 0.4
+    s1, c1, s12, c12 = np.sin(q1), np.cos(q1), np.sin(q1 + q2), np.cos(q1 + q2)
+    jp = np.array([[-L1 * s1 - L2 * s12, -L2 * s12], [L1 * c1 + L2 * c12, L2 * c12]])
+    load = np.array([3.0, -4.0 - 2 * 9.81])
+    assert np.allclose(_recomputed(printed, "Fq"), -jp.T @ load - 1.5, atol=1e-9)
+    rz = lambda a: np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+    p1 = np.array([L1 * c1, L1 * s1, 0])
+    q_k = np.eye(4)
+    q_k[:3, :3] = rz(0.3)
+    q_k[:3, 3] = rz(-q1) @ ((rz(0.3) - np.eye(3)) @ p1 + [0.1, 0.2, 0.3])
+    assert np.allclose(_recomputed(printed, "Q"), q_k, atol=1e-9)
+    assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 7
