@@ -384,13 +384,30 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
             results.append(Condition(values=tuple(fixed.items()), equations=eqs, factor=fac))
             continue
         q, vals = iso
-        for v in vals:
-            sub = dict(fixed)
-            sub[q] = v
-            for cond in _search(rest, joints, kinds, sub, sample, depth + 1, work):
+        branches = [({**fixed, q: v}, rest) for v in vals]
+        # a·q + b = 0 solved as q = −b/a misses where a and b vanish together (q free there)
+        branches += [(fixed, both + rest) for both in [_vanishing_coefficient(fac, q, free, kinds)] if both]
+        for sub, left in branches:
+            for cond in _search(left, joints, kinds, sub, sample, depth + 1, work):
                 results.append(Condition(values=cond.values, equations=cond.equations,
                                          factor=cond.factor if cond.factor is not None else fac))
     return results
+
+
+def _vanishing_coefficient(f, q, free, kinds) -> list:
+    """[a, b] when f = a·q + b is linear in the prismatic joint q with a coefficient a that
+    holds other joints (a·d4 + b = 0 with a = cos(q2 + q3): the configurations where a = b = 0
+    are singular for every d4), else []."""
+    if kinds[q] != "prismatic":
+        return []
+    try:
+        poly = sp.Poly(f, q)
+    except sp.PolynomialError:
+        return []
+    if poly.degree() != 1:
+        return []
+    a, b = poly.all_coeffs()
+    return [a, b] if any(a.has(p) for p in free if p != q) else []
 
 
 _INVERSE_TRIG = (sp.acos, sp.asin, sp.atan, sp.atan2)

@@ -347,3 +347,27 @@ def test_float_coefficients_lose_no_singular_configuration():
                 found += 1
                 assert covered(fit.x, s0), fit.x
     assert found >= 4 and len(res.conditions) == 8
+
+
+def test_a_prismatic_value_with_a_vanishing_coefficient_keeps_the_configurations_where_it_vanishes():
+    """An arm raised by q2, bent by q3, stretched by d4 along the forearm, turned by q1: the point is
+    on the axis of joint 1 where r = a2 cos q2 + d4 cos(q2 + q3) = 0 (by hand), so with q2 = ±pi/2
+    and q2 + q3 = ±pi/2 the arm is singular for every d4 — the solution d4 = -a2 cos q2 / cos(q2 + q3)
+    is 0/0 there, and those configurations were missing."""
+    q1, q2, q3, d4, a, h = sp.symbols("q1 q2 q3 d4 a h")
+    r = a * sp.cos(q2) + d4 * sp.cos(q2 + q3)
+    J = sp.Matrix([r * sp.cos(q1), r * sp.sin(q1), h + a * sp.sin(q2) + d4 * sp.sin(q2 + q3)]).jacobian(
+        [q1, q2, q3, d4])
+    params = {a: 0.3, h: 0.4}
+    res = find_singularities(J, [q1, q2, q3, d4], {q1: "revolute", q2: "revolute", q3: "revolute",
+                                                   d4: "prismatic"}, params)
+    num = sp.lambdify([q1, q2, q3, d4], J.subs(params), "numpy")
+    for cond in res.conditions:
+        at = {q1: 0.7, q2: -0.4, q3: 1.9, d4: 0.55}
+        at.update({k: float(v.subs(params).subs(at)) for k, v in cond.values})
+        assert np.linalg.svd(num(*at.values()), compute_uv=False)[-1] < 1e-9, cond.mapping()
+    for s2, s3 in ((np.pi / 2, 0.0), (np.pi / 2, np.pi), (-np.pi / 2, 0.0), (-np.pi / 2, np.pi)):
+        assert np.linalg.svd(num(0.7, s2, s3, 0.55), compute_uv=False)[-1] < 1e-12   # on the axis
+        at = {q1: 0.7, q2: s2, q3: s3, d4: 0.55}
+        assert any(all(abs(np.angle(np.exp(1j * (at[k] - float(v.subs(params).subs(at)))))) < 1e-9
+                       for k, v in c.values) for c in res.conditions if c.values and d4 not in dict(c.values)), (s2, s3)
