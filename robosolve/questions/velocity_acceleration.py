@@ -19,6 +19,9 @@ def notebook_cell(q, answer, problem):
         "# the point is fixed in another frame than the question's: it moves with that frame's W and H\n"
         f"W_P, H_P = chain.W({carrier!r}), chain.H({carrier!r})")
     w_p, h_p = ("W", "H") if moved_by is None else ("W_P", "H_P")
+    if "W" not in answer.numeric:                 # a value is not given (a rate, a null parameter)
+        return lines(f"at = {at_literal(q)}", f"W, H = robot.velocity_matrices({q.frame!r})",
+                     "show(W.subs(robot.fixed(at)), H.subs(robot.fixed(at)))")
     return lines(
         f"at = {at_literal(q)}",
         "# W and H of 0M in frame 0 at these numbers, by Rivals (W = W_0p + sum 0L_i q_i') and Coriolis",

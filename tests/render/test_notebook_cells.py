@@ -99,3 +99,41 @@ def test_every_load_of_a_statics_question_and_a_displacement_in_a_frame(tmp_path
     q_k[:3, 3] = rz(-q1) @ ((rz(0.3) - np.eye(3)) @ p1 + [0.1, 0.2, 0.3])
     assert np.allclose(_recomputed(printed, "Q"), q_k, atol=1e-9)
     assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 7
+
+
+MISSING_VALUES = """\
+robosolve: 1
+name: values-not-given
+parameters: {L1: ~, L2: 0.4, k: ~}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: position, at: {q1: 0.5, q2: -1.1}}
+  - {type: jacobian, coordinates: [E.x, E.y], at: {q1: 0.5, q2: -1.1}}
+  - {type: jacobian, id: geometric, geometric: true, at: {q1: 0.5, q2: -1.1}}
+  - {type: ellipsoids, coordinates: [E.x, E.y], joint_compliance: [k, k], at: {q1: 0.5, q2: -1.1, L1: 0.6}}
+  - {type: orientation, at: {q2: 0.3}}
+  - {type: velocity_acceleration, at: {q1: 0.5, q2: -1.1, L1: 0.6}}
+  - {type: displacement, from: {q1: 0, q2: 0}, to: {q1: 0.5, q2: 0.1}}
+"""
+
+
+def test_cells_of_answers_without_numbers_show_the_formulas_and_evaluate_nothing(tmp_path, capsys):
+    """A null parameter (L1, k), a joint missing from `at` (orientation), rates missing (W, H):
+    robosolve gives no numbers, so the cells show the formulas; the notebook runs on (each cell used
+    to stop it with TypeError: Cannot convert expression to float)."""
+    path = tmp_path / "problem.yaml"
+    path.write_text(MISSING_VALUES, encoding="utf-8")
+    problem = load_problem(path)
+    report = solve_problem(problem)
+    main = {"position": "M", "jacobian": "J", "geometric": "J", "ellipsoids": "compliance", "orientation": "zyz",
+            "velocity_acceleration": "W", "displacement": "Q"}
+    assert all(main[a.id] not in a.numeric for a in report.answers), [(a.id, list(a.numeric)) for a in report.answers]
+    namespace = dict(vars(rt))
+    for source in code_cells(problem, report.answers)[1:]:
+        exec(source, namespace)
+    assert "DIFFERS" not in capsys.readouterr().out
