@@ -28,19 +28,22 @@ _TEX_SPECIAL = {"\\": "\\backslash{}", "{": "\\{", "}": "\\}", "$": "\\$", "&": 
                 "%": "\\%", "_": "\\_", "^": "\\hat{}", "~": "\\sim{}", " ": "\\ ", "<": "\\lt{}",
                 ">": "\\gt{}"}
 _MD_SPECIAL = set("\\`*_[]<>$~&")          # (a table cell escapes its | itself)
+# A line break in a name (YAML "a\nb") is shown as a space: a formula and a sentence stay on their
+# line (an inline formula never spans lines; "a\n# b" would start a heading).
+_LINE_BREAK = re.compile("\r\n|[\n\r\v\f\x1c\x1d\x1e\x85\u2028\u2029]")
 
 
 def name_tex(name: str, plain_digits: bool = True) -> str:
     """A name inside a formula, upright (\\mathrm); a frame's number as it is (frame 1)."""
     if plain_digits and name.isdigit():
         return name
-    return "\\mathrm{" + "".join(_TEX_SPECIAL.get(c, c) for c in name) + "}"
+    return "\\mathrm{" + "".join(_TEX_SPECIAL.get(c, c) for c in _LINE_BREAK.sub(" ", name)) + "}"
 
 
 def name_md(name: str) -> str:
     """A name inside Markdown prose or a table cell: its ASCII punctuation backslash-escaped
     (CommonMark), so it shows as written."""
-    return "".join("\\" + c if c in _MD_SPECIAL else c for c in name)
+    return "".join("\\" + c if c in _MD_SPECIAL else c for c in _LINE_BREAK.sub(" ", name))
 
 
 def name_plot(name: str) -> str:

@@ -187,6 +187,13 @@ def chain_product(expr, max_ops: int = DEFAULT_BUDGETS.chain_ops, *,
         raise _Incomplete(expr) from None
 
 
+def float_placeholders(expr) -> tuple[dict, dict]:
+    """(Float -> ±symbol, symbol -> Float) for exact algebra on inexact coefficients (the rank
+    search: float round-off leaves 1e-13 terms that no factoring takes apart); the symbols are
+    positive Dummies, one per magnitude; ({}, {}) when there is no float or one sits in an angle."""
+    return _float_placeholders(expr)
+
+
 def _float_placeholders(expr) -> tuple[dict, dict]:
     """(Float -> ±Dummy, Dummy -> Float): one positive symbol per float magnitude of expr (so
     that 0.3 and -0.3 cancel as symbols do); ({}, {}) when there is no float, or when a float is

@@ -33,8 +33,8 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.angles import wrap_angle
-from robosolve.core.simplify import (bounded_full, determinant_factors, factored, factored_determinant, full, is_zero,
-                                     jacobian_entry)
+from robosolve.core.simplify import (bounded_full, determinant_factors, factored, factored_determinant,
+                                     float_placeholders, full, is_zero, jacobian_entry)
 from robosolve.kinematics.jacobian_math import rank_measure
 from robosolve.core.opcount import count_ops
 from robosolve.core.printing import latex as print_latex
@@ -401,13 +401,30 @@ def _search(exprs, joints, kinds, fixed, sample, depth=0, work=None):
             results.append(Condition(values=tuple(fixed.items()), equations=eqs, factor=fac))
             continue
         q, vals = iso
-        for v in vals:
-            sub = dict(fixed)
-            sub[q] = v
-            for cond in _search(rest, joints, kinds, sub, sample, depth + 1, work):
+        branches = [({**fixed, q: v}, rest) for v in vals]
+        # a·q + b = 0 solved as q = −b/a misses where a and b vanish together (q free there)
+        branches += [(fixed, both + rest) for both in [_vanishing_coefficient(fac, q, free, kinds)] if both]
+        for sub, left in branches:
+            for cond in _search(left, joints, kinds, sub, sample, depth + 1, work):
                 results.append(Condition(values=cond.values, equations=cond.equations,
                                          factor=cond.factor if cond.factor is not None else fac))
     return results
+
+
+def _vanishing_coefficient(f, q, free, kinds) -> list:
+    """[a, b] when f = a·q + b is linear in the prismatic joint q with a coefficient a that
+    holds other joints (a·d4 + b = 0 with a = cos(q2 + q3): the configurations where a = b = 0
+    are singular for every d4), else []."""
+    if kinds[q] != "prismatic":
+        return []
+    try:
+        poly = sp.Poly(f, q)
+    except sp.PolynomialError:
+        return []
+    if poly.degree() != 1:
+        return []
+    a, b = poly.all_coeffs()
+    return [a, b] if any(a.has(p) for p in free if p != q) else []
 
 
 _INVERSE_TRIG = (sp.acos, sp.asin, sp.atan, sp.atan2)
@@ -551,6 +568,22 @@ def _subsumed(small: Condition, big: Condition) -> bool:
     return all(q in bv and is_zero(bv[q] - v) for q, v in sv.items())
 
 
+def _exact_floats(j: sp.Matrix, params: dict):
+    """J with each float coefficient as a positive symbol (a tool offset of 0.02 m), the sample
+    values with them, and the way back: the search then factors exactly (with the floats, a
+    substituted minor kept round-off terms, 1e-13·c²·cos θ2, that no factoring takes apart)."""
+    to, back = float_placeholders(j)
+    if not to:
+        return j, params, {}
+    return j.xreplace(to), {**params, **back}, back
+
+
+def _put_back(cond: Condition, back: dict) -> Condition:
+    return Condition(values=tuple((q, v.xreplace(back)) for q, v in cond.values),
+                     equations=tuple(e.xreplace(back) for e in cond.equations),
+                     factor=None if cond.factor is None else cond.factor.xreplace(back), names=cond.names)
+
+
 def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping,
                        params: Mapping | None = None, det=None, minors=None,
                        work: SearchBudget | None = None) -> SingularityResult:
@@ -568,6 +601,7 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
     j = sp.Matrix(j) if j is not None else None
     joints = list(joints)
     params = dict(params or {})
+    j, sample, back = _exact_floats(j, params) if det is None and minors is None else (j, params, {})
     if det is not None and j is not None and j.shape[0] == j.shape[1]:
         kind, measure = "det", det
     elif minors is not None:
@@ -587,7 +621,10 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
         minors = list(given) if given is not None else [factored_determinant(m) for m in _maximal_minors(j)]
         exprs = [m for m in minors if m != 0]
         measure = sp.Add(*[m**2 for m in exprs])
-    conds = _search(exprs, joints, kinds, {}, params, work=work) if exprs else [Condition()]
+    conds = _search(exprs, joints, kinds, {}, sample, work=work) if exprs else [Condition()]
+    if back:
+        conds = [_put_back(c, back) for c in conds]
+        measure, minors = measure.xreplace(back), [m.xreplace(back) for m in minors]
     if not exprs:
         notes.append("J has rank below full in every configuration (all maximal minors vanish).")
     conds = [_canonical(c, joints) for c in conds]

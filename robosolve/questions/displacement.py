@@ -111,17 +111,24 @@ def notebook_cell(q, answer, problem):
             "Q = screw_displacement(axis, alpha_given, through, h_given)",
         ]
     else:
-        if "matrix" in o["from"] and "matrix" in o["to"] and problem.frames and o.get("frame"):
-            return None                              # Q written in another frame: not rebuilt here
+        in_frame = ("matrix" in o["from"] and "matrix" in o["to"] and problem.frames and q.frame_given
+                    and q.frame != "0")
         head = [
             "# Q = M_to M_from^-1: every body point P2 = Q P1 (in frame 0)",
             f"at = {at_literal(q)}",
             f"M_from = {_pose_source(o['from'], q)}",
             f"M_to = {_pose_source(o['to'], q)}",
-            "Q = robot.number(M_to * inverse_pose(M_from), at)",
+            "Q = M_to * inverse_pose(M_from)",
+            *(["# written in the question's frame k (its pose 0M_k at `at`): Q_k = 0M_k^-1 Q 0M_k",
+               f"M_k = robot.pose({q.frame!r})",
+               "Q = inverse_pose(M_k) * Q * M_k"] if in_frame else []),
+            "Q = robot.number(Q, at)" if "Q" in answer.numeric else "show(Q)",
         ]
     keys = ["Q", "u", "alpha", "h", "P", "pitch"] + (["L"] if "axis" in o else [])
     compared = [compare_line(k, k if k != "L" else "screw_matrix(u, P, pitch)") for k in keys if k in answer.numeric]
+    if "Q" not in answer.numeric:                    # a value is not given (a null parameter)
+        return lines(*head) if "axis" not in o else \
+            "# robosolve gives no numbers here (a value is not given): nothing to recompute"
     return lines(
         *head,
         "u, alpha, h, P, pitch = helical_axis(Q)",

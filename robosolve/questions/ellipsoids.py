@@ -84,11 +84,14 @@ def notebook_cell(q, answer, problem):
     if "condition_number" in answer.numeric:            # None: infinite (singular)
         cond = answer.numeric["condition_number"]
         want["condition_number"] = math.inf if cond is None else cond
-    kq_arg = "" if not kq else f", Kq=robot.number(robot.vector({literal([text(x) for x in kq])}), at).ravel()"
+    kq_arg = ("" if not kq or "compliance" not in answer.numeric      # (k null: no compliance numbers)
+              else f", Kq=robot.number(robot.vector({literal([text(x) for x in kq])}), at).ravel()")
     compared = [compare_line(k, f"axes[{k if k != 'eigenvalues' else 'nu'!r}]") for k in want
                 if k != "condition_number" and (k != "compliance" or kq)]
     if "condition_number" in want:
         compared.append(compare_line("condition_number", "axes['condition_number']"))
+    if "A" not in answer.numeric:                 # a value is not given (a null parameter): the formula
+        return lines(*jacobian_lines(q)[:-1], "show(J * J.T)")
     return lines(
         *jacobian_lines(q),
         "# A = J J^T: force semi-axes K_f / sqrt(nu), velocity K_v sqrt(nu), compliance K_a kappa",

@@ -85,6 +85,8 @@ def notebook_cell(q, answer, problem):
                 "Jn = robot.number(J, at)"]
     else:
         head = jacobian_lines(q)
+    if "J" not in answer.numeric:                 # a value is not given (a null parameter): the formula
+        return lines(*head[:-1], "show(J)")
     return lines(
         *head,
         "show(J)",

@@ -56,6 +56,8 @@ def notebook_cell(q, answer, problem):
             "axis": (n.get("axis_angle") or {}).get("axis"), "angle": (n.get("axis_angle") or {}).get("angle"),
             "quaternion": n.get("quaternion")}
     want = {k: v for k, v in want.items() if v is not None}
+    if not want:                                  # a joint or a value is not given: the matrix
+        return lines(f"at = {at_literal(q)}", f"R = {source}[:3, :3].subs(robot.values(at))", "show(R)")
     calls = {"zyz": "euler_zyz(R)", "rpy": "euler_rpy(R)", "axis": "axis_angle(R)[1]", "angle": "axis_angle(R)[0]",
              "quaternion": "quaternion(R)"}
     return lines(

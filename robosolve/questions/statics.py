@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP, QuestionType, _k
-from robosolve.questions.notebook_code import at_literal, compare_line, jacobian_lines, lines, literal, robosolve_numbers, text
+from robosolve.questions.notebook_code import at_literal, compare_line, coordinates, lines, literal, robosolve_numbers, text
 
 
 def _check(ql, path, item, q):
@@ -39,25 +39,24 @@ def _statement(q, say) -> str:
 
 
 def notebook_cell(q, answer, problem):
-    """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
-    force, torque, weight = q.options.get("force"), q.options.get("torque"), q.options.get("weight")
-    if weight and force is None and torque is None:
-        return lines(
-            f"at = {at_literal(q)}",
-            "# the bodies' own weight: Fq = -sum J_G^T m g (J_G the Jacobian of a centre of mass)",
-            "Fq = robot.weight_forces(at)",
-            "show(Fq)",
-            robosolve_numbers(answer, ["Fq"]),
-            compare_line("Fq", "robot.number(Fq, at).ravel()") if "Fq" in answer.numeric else None,
-        )
-    if force is None or torque is not None or weight:
-        return None
+    """The notebook's cell that recomputes the answer (questions/notebook_code.py): each load's
+    share, Fq = -J^T F - J_w^T tau - sum J_G^T m g; symbolic only when robosolve has no numbers
+    (a null parameter), so the cell never evaluates what is not given."""
+    o = q.options
+    force, torque = o.get("force"), o.get("torque")
+    numeric = "Fq" in answer.numeric
     return lines(
-        *jacobian_lines(q),
-        f"F = robot.number(robot.vector({literal([text(x) for x in force])}), at).ravel()",
-        "Fq = -Jn.T @ F          # what the joints exert to balance F",
+        f"at = {at_literal(q)}",
+        f"Fq = sp.zeros({len(problem.joints)}, 1)",
+        *([f"J = robot.jacobian({coordinates(q)})",
+           f"F = robot.vector({literal([text(x) for x in force])})",
+           "Fq -= J.T * F          # what the joints exert to balance F"] if force is not None else []),
+        *([f"tau = robot.vector({literal([text(x) for x in torque])})",
+           f"Fq -= robot.angular_jacobian({q.frame!r}).T * tau    # a pure torque on the frame: -J_w^T tau"]
+          if torque is not None else []),
+        "Fq += robot.weight_forces(at)    # the bodies' own weight: -sum J_G^T m g" if o.get("weight") else None,
         robosolve_numbers(answer, ["Fq"]),
-        compare_line("Fq", "Fq") if "Fq" in answer.numeric else None,
+        compare_line("Fq", "robot.number(Fq, at).ravel()") if numeric else "show(Fq)",
     )
 
 

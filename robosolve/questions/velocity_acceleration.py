@@ -14,17 +14,26 @@ from robosolve.questions.notebook_code import at_literal, compare_line, guarded,
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
+    carrier = problem.points[q.point].frame
+    moved_by = None if carrier == q.frame else (
+        "# the point is fixed in another frame than the question's: it moves with that frame's W and H\n"
+        f"W_P, H_P = chain.W({carrier!r}), chain.H({carrier!r})")
+    w_p, h_p = ("W", "H") if moved_by is None else ("W_P", "H_P")
+    if "W" not in answer.numeric:                 # a value is not given (a rate, a null parameter)
+        return lines(f"at = {at_literal(q)}", f"W, H = robot.velocity_matrices({q.frame!r})",
+                     "show(W.subs(robot.fixed(at)), H.subs(robot.fixed(at)))")
     return lines(
         f"at = {at_literal(q)}",
         "# W and H of 0M in frame 0 at these numbers, by Rivals (W = W_0p + sum 0L_i q_i') and Coriolis",
         "# (H = H_0p + 2 W_0p W_pj + H_pj); robot.velocity_matrices gives them as M' M^-1, M'' M^-1",
         "chain = robot.chain_at(at)",
         f"W, H = chain.W({q.frame!r}), chain.H({q.frame!r})",
+        moved_by,
         f"P = np.append(chain.point({q.point!r}), 1.0)       # the point, homogeneous",
         robosolve_numbers(answer, ["W", "H", "velocity", "acceleration"]),
         *guarded(answer, ("W", compare_line("W", "W")), ("H", compare_line("H", "H")),
-                 ("velocity", compare_line("velocity", "(W @ P)[:3]")),
-                 ("acceleration", compare_line("acceleration", "(H @ P)[:3]"))),
+                 ("velocity", compare_line("velocity", f"({w_p} @ P)[:3]")),
+                 ("acceleration", compare_line("acceleration", f"({h_p} @ P)[:3]"))),
     )
 
 def _words(q, say) -> dict:

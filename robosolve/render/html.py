@@ -23,6 +23,8 @@ from pathlib import Path
 NOTE_ANCHOR = re.compile(r'<a id="(note-[a-z0-9-]+)"></a>')
 DISPLAY = re.compile(r"^\$\$\n(.*?)\n\$\$$", re.S | re.M)
 INLINE = re.compile(r"(?<![\\$])\$(?!\$)([^$\n]+?)(?<!\\)\$")
+# `$$...$$` within one line (a description may write display math so, as Jupyter reads it)
+DISPLAY_IN_LINE = re.compile(r"(?<![\\$])\$\$(?!\$)([^$\n]+?)(?<!\\)\$\$(?!\$)")
 TOKEN = re.compile(r"RSMATH(\d+)X")
 FENCED_MATRIX = re.compile(
     r'<mo stretchy="true" fence="true" form="prefix">([\[(|])</mo>(<mtable>)(.*?)</mtable>'
@@ -71,6 +73,7 @@ def _protect_math(md: str) -> tuple[str, list[tuple[str, bool]]]:
     lines = []
     for line in md.split("\n"):
         in_table = line.startswith("|")
+        line = DISPLAY_IN_LINE.sub(lambda m: keep(m.group(1), True), line)
         lines.append(INLINE.sub(
             lambda m: keep(m.group(1).replace("\\|", "|") if in_table else m.group(1), False), line))
     return "\n".join(lines), found

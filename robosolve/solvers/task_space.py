@@ -113,9 +113,10 @@ def task_space(question, ctx, seconds, geometric=False) -> TaskSpace:
             J, _err = limited(ctx, seconds, geometric_jacobian_ring, model, pframe,
                               model.point_local(point)[1], frame)
         if J is None:
-            l_point = [joint_l0(model, i, pframe) for i in range(len(q))]
+            # the velocity rows: the point's tidy coordinates differentiated (= [u_i] P + t_i, written
+            # short: a 4-joint arm with a tool stays within the symbolic budget)
             l_frame = [joint_l0(model, i, frame) for i in range(len(q))]
-            jp = geometric_jacobian(l_point, p0)[:3, :]
+            jp = analytic_jacobian(list(p0), q)
             jw = geometric_jacobian(l_frame, p0)[3:, :]
             J = tidy_limited(ctx, sp.Matrix.vstack(jp, jw), seconds, long_chain=len(q) > 4)
         coords = list(p0)

@@ -299,3 +299,75 @@ def test_an_equation_that_cannot_vanish_for_the_parameters_is_not_a_condition():
     # a prismatic joint (unbounded) or an unknown parameter: no claim
     assert not _never_zero(e, [q2, q3], {q2: "revolute", q3: "prismatic"}, far)
     assert not _never_zero(e, [q2, q3], kinds, {a1: 0.3246, a2: 0.1908})
+
+
+def test_float_coefficients_lose_no_singular_configuration():
+    """A tool point given in floats (0.02, 0, 0.01) after a fixed Rz(pi/6): the rank conditions of the
+    2x3 Jacobian of (x, y). Float round-off once left 1e-13 terms in the substituted minors, so two
+    of the (theta2, theta4) pairs were lost (or the search stopped with a PolynomialError). The
+    reference is numeric: every configuration where all three 2x2 minors vanish (least squares from
+    a grid of starts, s fixed at random) is one of the conditions, and every condition loses rank."""
+    from scipy.optimize import least_squares
+
+    th2, s, th4, a, c = sp.symbols("theta2 s theta4 a c")
+    ct, st = sp.cos, sp.sin
+    rx = lambda x: sp.Matrix([[1, 0, 0, 0], [0, ct(x), -st(x), 0], [0, st(x), ct(x), 0], [0, 0, 0, 1]])
+    rz = lambda x: sp.Matrix([[ct(x), -st(x), 0, 0], [st(x), ct(x), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
+    tr = lambda x, y, z: sp.Matrix([[1, 0, 0, x], [0, 1, 0, y], [0, 0, 1, z], [0, 0, 0, 1]])
+    pose = rx(sp.pi / 2) * rz(th2) * tr(0, 0, s) * rx(th4) * tr(a, c, 0) * rz(sp.pi / 6)
+    q = [th2, s, th4]
+    J = sp.Matrix((pose * sp.Matrix([0.02, 0, 0.01, 1]))[:2, :]).jacobian(q)
+    params = {a: 0.25, c: 0.05}
+    res = find_singularities(J, q, {th2: "revolute", s: "prismatic", th4: "revolute"}, params)
+    num = sp.lambdify(q, J.subs(params), "numpy")
+    for cond in res.conditions:                      # each condition: sigma_min = 0
+        at = {th2: 0.7, s: -0.4, th4: 1.9}
+        for _ in range(2):
+            at.update({k: float(v.subs(params).subs(at)) for k, v in cond.values})
+        assert np.linalg.svd(num(*at.values()), compute_uv=False)[-1] < 1e-9, cond.mapping()
+
+    def minors(x, s0):
+        m = np.array(num(x[0], s0, x[1]), dtype=float)
+        return [np.linalg.det(m[:, [i, k]]) for i, k in ((0, 1), (0, 2), (1, 2))]
+
+    def covered(x, s0):
+        for cond in res.conditions:
+            at = {th2: x[0], s: s0, th4: x[1]}
+            want = {k: float(v.subs(params).subs(at)) for k, v in cond.values}
+            gaps = [(at[k] - v) if k == s else (at[k] - v + np.pi) % (2 * np.pi) - np.pi for k, v in want.items()]
+            if max(abs(g) for g in gaps) < 1e-6:
+                return True
+        return False
+
+    s0, found = 0.37, 0
+    for x0 in np.linspace(-3, 3, 5):
+        for y0 in np.linspace(-3, 3, 5):
+            fit = least_squares(minors, [x0, y0], args=(s0,), xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            if max(abs(v) for v in fit.fun) < 1e-12:
+                found += 1
+                assert covered(fit.x, s0), fit.x
+    assert found >= 4 and len(res.conditions) == 8
+
+
+def test_a_prismatic_value_with_a_vanishing_coefficient_keeps_the_configurations_where_it_vanishes():
+    """An arm raised by q2, bent by q3, stretched by d4 along the forearm, turned by q1: the point is
+    on the axis of joint 1 where r = a2 cos q2 + d4 cos(q2 + q3) = 0 (by hand), so with q2 = ±pi/2
+    and q2 + q3 = ±pi/2 the arm is singular for every d4 — the solution d4 = -a2 cos q2 / cos(q2 + q3)
+    is 0/0 there, and those configurations were missing."""
+    q1, q2, q3, d4, a, h = sp.symbols("q1 q2 q3 d4 a h")
+    r = a * sp.cos(q2) + d4 * sp.cos(q2 + q3)
+    J = sp.Matrix([r * sp.cos(q1), r * sp.sin(q1), h + a * sp.sin(q2) + d4 * sp.sin(q2 + q3)]).jacobian(
+        [q1, q2, q3, d4])
+    params = {a: 0.3, h: 0.4}
+    res = find_singularities(J, [q1, q2, q3, d4], {q1: "revolute", q2: "revolute", q3: "revolute",
+                                                   d4: "prismatic"}, params)
+    num = sp.lambdify([q1, q2, q3, d4], J.subs(params), "numpy")
+    for cond in res.conditions:
+        at = {q1: 0.7, q2: -0.4, q3: 1.9, d4: 0.55}
+        at.update({k: float(v.subs(params).subs(at)) for k, v in cond.values})
+        assert np.linalg.svd(num(*at.values()), compute_uv=False)[-1] < 1e-9, cond.mapping()
+    for s2, s3 in ((np.pi / 2, 0.0), (np.pi / 2, np.pi), (-np.pi / 2, 0.0), (-np.pi / 2, np.pi)):
+        assert np.linalg.svd(num(0.7, s2, s3, 0.55), compute_uv=False)[-1] < 1e-12   # on the axis
+        at = {q1: 0.7, q2: s2, q3: s3, d4: 0.55}
+        assert any(all(abs(np.angle(np.exp(1j * (at[k] - float(v.subs(params).subs(at)))))) < 1e-9
+                       for k, v in c.values) for c in res.conditions if c.values and d4 not in dict(c.values)), (s2, s3)

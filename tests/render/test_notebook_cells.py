@@ -1,0 +1,139 @@
+"""report.ipynb's recomputing cells run in-process (the runtime's namespace, the notebook's own data
+cell) and recompute the right values, checked against closed forms by hand."""
+
+import re
+
+import numpy as np
+
+from robosolve.load.loader import load_problem
+from robosolve.render import notebook_runtime as rt
+from robosolve.render.notebook import code_cells
+from robosolve.run.pipeline import solve_problem
+
+ARM_2R = """\
+robosolve: 1
+name: point-on-link-one
+parameters: {L1: 0.6, L2: 0.4}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+points:
+  G: {frame: "1", at: [-0.3, 0, 0]}
+questions:
+  - type: velocity_acceleration
+    point: G
+    at: {q1: 0.5, q2: -1.1, q1_dot: 1.5, q2_dot: -0.7, q1_ddot: 0.3, q2_ddot: 0.9}
+"""
+
+
+def _run_cells(tmp_path, text, capsys):
+    path = tmp_path / "problem.yaml"
+    path.write_text(text, encoding="utf-8")
+    problem = load_problem(path)
+    report = solve_problem(problem)
+    namespace = dict(vars(rt))
+    for source in code_cells(problem, report.answers)[1:]:      # the data cell, then the answers'
+        exec(source, namespace)
+    return capsys.readouterr().out
+
+
+def _recomputed(printed, key):
+    m = re.search(rf"recomputed {key} = (\[.*?\])\n", printed)
+    return np.array(eval(m.group(1)))                           # a printed list of floats
+
+
+def test_the_velocity_of_a_point_fixed_in_another_frame_than_the_question_s(tmp_path, capsys):
+    """G is fixed in frame 1, the question's frame is 2: G moves with frame 1 (by hand, G at
+    r = 0.3 m from the base on link 1: v = r q1'(-s1, c1), a = r q1''(-s1, c1) - r q1'^2 (c1, s1))."""
+    printed = _run_cells(tmp_path, ARM_2R, capsys)
+    r, q1, w, wd = 0.3, 0.5, 1.5, 0.3
+    c, s = np.cos(q1), np.sin(q1)
+    assert np.allclose(_recomputed(printed, "velocity"), [-r * w * s, r * w * c, 0], atol=1e-9)
+    assert np.allclose(_recomputed(printed, "acceleration"),
+                       [-r * wd * s - r * w * w * c, r * wd * c - r * w * w * s, 0], atol=1e-9)
+    assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 4
+
+
+ARM_LOADS = """\
+robosolve: 1
+name: loads-on-a-2r
+parameters: {L1: 0.6, L2: 0.4, m: 2, g: 9.81, P: ~}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: tip, frame: "2", mass: m, point: [0, 0, 0]}
+questions:
+  - {type: statics, force: [3, -4, 0], torque: [0, 0, 1.5], weight: true, at: {q1: 0.5, q2: -1.1}}
+  - {type: statics, force: [P, 0, 0], at: {q1: 0.5, q2: -1.1}}
+  - type: displacement
+    frame: "1"
+    at: {q1: 0.5, q2: 0}
+    from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    to: [[cos(0.3), -sin(0.3), 0, 0.1], [sin(0.3), cos(0.3), 0, 0.2], [0, 0, 1, 0.3], [0, 0, 0, 1]]
+"""
+
+
+def test_every_load_of_a_statics_question_and_a_displacement_in_a_frame(tmp_path, capsys):
+    """Force, torque and weight together (by hand on the 2R: Fq = -J_P^T (F + m g) - J_w^T tau,
+    J_w = [1, 1]); a null parameter: the cell shows the formula and evaluates nothing; a displacement
+    given in frame 0 and written in frame 1: Q_1 = 0M_1^-1 Q 0M_1 (by hand: rotation Rz(0.3), the
+    translation Rz(-q1)((Rz(0.3) - I) p1 + t), p1 the origin of frame 1)."""
+    printed = _run_cells(tmp_path, ARM_LOADS, capsys)
+    q1, q2, L1, L2 = 0.5, -1.1, 0.6, 0.4
+    s1, c1, s12, c12 = np.sin(q1), np.cos(q1), np.sin(q1 + q2), np.cos(q1 + q2)
+    jp = np.array([[-L1 * s1 - L2 * s12, -L2 * s12], [L1 * c1 + L2 * c12, L2 * c12]])
+    load = np.array([3.0, -4.0 - 2 * 9.81])
+    assert np.allclose(_recomputed(printed, "Fq"), -jp.T @ load - 1.5, atol=1e-9)
+    rz = lambda a: np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+    p1 = np.array([L1 * c1, L1 * s1, 0])
+    q_k = np.eye(4)
+    q_k[:3, :3] = rz(0.3)
+    q_k[:3, 3] = rz(-q1) @ ((rz(0.3) - np.eye(3)) @ p1 + [0.1, 0.2, 0.3])
+    assert np.allclose(_recomputed(printed, "Q"), q_k, atol=1e-9)
+    assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 7
+
+
+MISSING_VALUES = """\
+robosolve: 1
+name: values-not-given
+parameters: {L1: ~, L2: 0.4, k: ~}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: position, at: {q1: 0.5, q2: -1.1}}
+  - {type: jacobian, coordinates: [E.x, E.y], at: {q1: 0.5, q2: -1.1}}
+  - {type: jacobian, id: geometric, geometric: true, at: {q1: 0.5, q2: -1.1}}
+  - {type: ellipsoids, coordinates: [E.x, E.y], joint_compliance: [k, k], at: {q1: 0.5, q2: -1.1, L1: 0.6}}
+  - {type: orientation, at: {q2: 0.3}}
+  - {type: velocity_acceleration, at: {q1: 0.5, q2: -1.1, L1: 0.6}}
+  - {type: displacement, from: {q1: 0, q2: 0}, to: {q1: 0.5, q2: 0.1}}
+"""
+
+
+def test_cells_of_answers_without_numbers_show_the_formulas_and_evaluate_nothing(tmp_path, capsys):
+    """A null parameter (L1, k), a joint missing from `at` (orientation), rates missing (W, H):
+    robosolve gives no numbers, so the cells show the formulas; the notebook runs on (each cell used
+    to stop it with TypeError: Cannot convert expression to float)."""
+    path = tmp_path / "problem.yaml"
+    path.write_text(MISSING_VALUES, encoding="utf-8")
+    problem = load_problem(path)
+    report = solve_problem(problem)
+    main = {"position": "M", "jacobian": "J", "geometric": "J", "ellipsoids": "compliance", "orientation": "zyz",
+            "velocity_acceleration": "W", "displacement": "Q"}
+    assert all(main[a.id] not in a.numeric for a in report.answers), [(a.id, list(a.numeric)) for a in report.answers]
+    namespace = dict(vars(rt))
+    for source in code_cells(problem, report.answers)[1:]:
+        exec(source, namespace)
+    assert "DIFFERS" not in capsys.readouterr().out
