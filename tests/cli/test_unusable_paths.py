@@ -78,7 +78,9 @@ def test_an_answers_problem_too_long_is_said_at_its_line(tmp_path, command):
     assert r.exception is None or isinstance(r.exception, SystemExit), repr(r.exception)
     assert r.exit_code == (2 if command == "check" else 1), r.output
     words = " ".join(r.output.replace("│", " ").split())
-    assert f"{a}:2: problem:" in words, words
+    # rich folds a long line wherever the terminal ends (a longer tmp path moves the fold), so
+    # the place is looked for with the whitespace taken out
+    assert f"{a}:2:problem:" in "".join(words.split()), words
     assert "has 305 characters" in words
 
 

@@ -52,39 +52,72 @@ def fk(rows, conv, kinds, q):
     return M
 
 
+def _fk_batch(rows, conv, kinds, Q):
+    """The forward kinematics of many configurations at once (Q: starts × joints)."""
+    S = Q.shape[0]
+    M = np.broadcast_to(np.eye(4), (S, 4, 4)).copy()
+    for k, ((th, d, a, al), kind) in enumerate(zip(rows, kinds)):
+        th = th + Q[:, k] if kind == "R" else np.full(S, th)
+        d = d + Q[:, k] if kind == "P" else np.full(S, d)
+        c, s, ca, sa = np.cos(th), np.sin(th), math.cos(al), math.sin(al)
+        A = np.zeros((S, 4, 4))
+        A[:, 3, 3] = 1.0
+        if conv == "standard":  # Rz(th) Tz(d) Tx(a) Rx(al)
+            A[:, 0] = np.stack([c, -s * ca, s * sa, a * c], axis=1)
+            A[:, 1] = np.stack([s, c * ca, -c * sa, a * s], axis=1)
+            A[:, 2, 1], A[:, 2, 2], A[:, 2, 3] = sa, ca, d
+        else:  # Rx(al) Tx(a) Rz(th) Tz(d)
+            A[:, 0, 0], A[:, 0, 1], A[:, 0, 3] = c, -s, a
+            A[:, 1] = np.stack([s * ca, c * ca, np.full(S, -sa), -sa * d], axis=1)
+            A[:, 2] = np.stack([s * sa, c * sa, np.full(S, ca), ca * d], axis=1)
+        M = M @ A
+    return M
+
+
 def reference_solutions(rows, conv, kinds, T, boxes, starts=300, seed=0):
-    """Every solution a 300-start LM search finds (wrapped, deduplicated to 1e-6)."""
+    """Every solution a 300-start Levenberg-Marquardt search finds (wrapped, deduplicated to 1e-6).
+
+    The starts run side by side (one numpy array); each keeps its own damping."""
     rng = np.random.default_rng(seed)
     n = len(rows)
     lo, hi = np.array([b[0] for b in boxes]), np.array([b[1] for b in boxes])
     tgt = T[:3, :4].reshape(12)
+    assert np.allclose(_fk_batch(rows, conv, kinds, np.zeros((1, n)))[0],
+                       fk(rows, conv, kinds, np.zeros(n)))
 
-    def res(q):
-        return fk(rows, conv, kinds, q)[:3, :4].reshape(12) - tgt
+    def res(Q):
+        return _fk_batch(rows, conv, kinds, Q)[:, :3, :4].reshape(len(Q), 12) - tgt
 
-    def jac(q, r):
-        J = np.empty((12, n))
+    def jac(Q, R):
+        J = np.empty((len(Q), 12, n))
         for k in range(n):
-            h = q.copy()
-            h[k] += 1e-7
-            J[:, k] = (res(h) - r) / 1e-7
+            H = Q.copy()
+            H[:, k] += 1e-7
+            J[:, :, k] = (res(H) - R) / 1e-7
         return J
 
+    Q = lo + rng.uniform(size=(starts, n)) * (hi - lo)
+    lam, R = np.full(starts, 1e-2), res(Q)
+    live = np.ones(starts, bool)
+    for _ in range(150):
+        idx = np.flatnonzero(live)
+        if idx.size == 0:
+            break
+        q, r, la = Q[idx], R[idx], lam[idx]
+        J = jac(q, r)
+        JT = np.transpose(J, (0, 2, 1))
+        A = JT @ J + la[:, None, None] * np.eye(n)
+        step = -np.linalg.solve(A, (JT @ r[:, :, None]))[:, :, 0]
+        norm = np.linalg.norm(step, axis=1)
+        step *= np.minimum(1.0, 0.5 / np.maximum(norm, 1e-300))[:, None]
+        rn = res(q + step)
+        better = np.einsum("ij,ij->i", rn, rn) < np.einsum("ij,ij->i", r, r)
+        Q[idx[better]] += step[better]
+        R[idx[better]] = rn[better]
+        lam[idx] = np.where(better, np.maximum(la / 3, 1e-12), np.minimum(la * 5, 1e8))
+        live[idx] = np.einsum("ij,ij->i", R[idx], R[idx]) >= 1e-26
     sols = []
-    for q in lo + rng.uniform(size=(starts, n)) * (hi - lo):
-        lam, r = 1e-2, res(q)
-        for _ in range(150):
-            J = jac(q, r)
-            step = -np.linalg.solve(J.T @ J + lam * np.eye(n), J.T @ r)
-            if np.linalg.norm(step) > 0.5:
-                step *= 0.5 / np.linalg.norm(step)
-            rn = res(q + step)
-            if rn @ rn < r @ r:
-                q, r, lam = q + step, rn, max(lam / 3, 1e-12)
-            else:
-                lam = min(lam * 5, 1e8)
-            if r @ r < 1e-26:
-                break
+    for q, r in zip(Q, R):
         if np.max(np.abs(r)) > 1e-10:
             continue
         qw = np.array([wrap_angle(v) if k == "R" else v for v, k in zip(q, kinds)])
