@@ -22,7 +22,9 @@ def draw(spec, path):
     d = spec.data
     js = d["joints"]
     # suptitle above the panel titles
-    fig, axes = time_panels(len(js), 2, width=10, row_height=2.6, top=0.75, wgap=0.9)
+    # the gap holds the error column's tick labels (an error of a few mrad: −0.0035, seven
+    # characters) and its axis label, clear of the trajectory column
+    fig, axes = time_panels(len(js), 2, width=10, row_height=2.6, top=0.75, wgap=1.1)
     for k, j in enumerate(js):
         c = COLOURS[k % len(COLOURS)]
         ax = axes[k, 0]
