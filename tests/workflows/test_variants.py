@@ -134,6 +134,16 @@ def test_invalid_sections_give_file_line_messages(section, expected):
     assert errors(BASE + section) == [expected]
 
 
+def test_a_condition_on_a_parameter_defined_from_a_varied_one_follows_the_draw(tmp_path):
+    """`Lc: L1/2` follows a drawn L1 (docs/variants.md), so "Lc > 0.2" is a condition on L1 —
+    it was refused as one that 'involves no varied parameter'. By hand: L1/2 > 0.2 keeps 0.5
+    and 0.6 of the three choices."""
+    base = BASE.replace("parameters: {L1: 1/2,", "parameters: {Lc: L1/2, L1: 1/2,")
+    section = "variants:\n  parameters:\n    L1: {choices: [0.3, 0.5, 0.6]}\n  require:\n    - \"Lc > 0.2\"\n"
+    plan = plan_variants(problem_file(tmp_path, section, base=base), [("1", ""), ("2", "")], seed=0)
+    assert sorted(v.values["L1"] for v in plan.variants) == [sp.Rational(1, 2), sp.Rational(3, 5)]
+
+
 def test_cli_solve_and_validate_reject_a_bad_section(tmp_path):
     p = problem_file(tmp_path, "variants:\n  parameters:\n    L1: {range: [0.3, 0.6], step: 0}\n")
     result = runner.invoke(app, ["validate", str(p)])
