@@ -207,8 +207,10 @@ def _chop(m):
 # the solver
 
 def solve_pose(factors, joints: list[IKJoint], R, p, select="limits", latex_names=None, tex=None,
-               time_limit_s: float | None = 20.0) -> PoseResult:
-    """Every configuration of `joints` with the chain's last frame at (R, p). See the module docstring."""
+               time_limit_s: float | None = 20.0, derive: bool = True) -> PoseResult:
+    """Every configuration of `joints` with the chain's last frame at (R, p). See the module docstring.
+    `derive=False`: the same solutions without the closed form (no symbolic derivation: a variant's
+    `reachable` condition asks this for every draw)."""
     chain = _Chain([_chop(sp.Matrix(f)) for f in factors], list(joints), [j.symbol for j in joints])
     R, p = np.asarray(R, dtype=float), np.asarray(p, dtype=float)
     target = np.hstack([R, p[:, None]]).reshape(12)
@@ -218,9 +220,9 @@ def solve_pose(factors, joints: list[IKJoint], R, p, select="limits", latex_name
     wrist = find_wrist(chain)
     raw, par = None, None
     if wrist is not None:
-        raw = _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s)
+        raw = _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s, derive)
     elif (par := find_parallel(chain)) is not None:
-        raw = _three_parallel(res, chain, par, R, p, names, tex, time_limit_s)
+        raw = _three_parallel(res, chain, par, R, p, names, tex, time_limit_s, derive)
     if raw is None:
         raw = _numeric(res, chain, R, p, wrist is None and par is None)
     _verify(res, fk, raw, target, chain)
@@ -228,7 +230,7 @@ def solve_pose(factors, joints: list[IKJoint], R, p, select="limits", latex_name
     return res
 
 
-def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
+def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s, derive=True):
     """Arm from the wrist centre, wrist from ³R₆; raw solutions (lists), or None to fall back."""
     split, c_t, c_s = wrist
     w = p + R @ np.array(c_t)
@@ -238,7 +240,7 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
     # a prismatic arm joint keeps its limits: they set the box of the numeric search
     arm_joints = [IKJoint(j.symbol, j.revolute, None if j.revolute else j.limits) for j in chain.joints[:3]]
     arm = solve_ik([(sp.expand(W[k]), W_SYMS[k]) for k in range(3)], arm_joints,
-                   dict(zip(W_SYMS, map(float, w))), closed_form=True, time_limit_s=time_limit_s,
+                   dict(zip(W_SYMS, map(float, w))), closed_form=derive, time_limit_s=time_limit_s,
                    target_symbols=W_SYMS, latex_names=names, tex=tex)
     wc = _wrist_centre_symbols(c_t)
     res.steps.append(_centre_step(c_t, wc, w, split, names, chain))
@@ -273,7 +275,7 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s):
         q123 = [sol[j.name] for j in arm_joints]
         a = np.array(R3f(*q123), dtype=float).T @ R @ Rcf.T
         # the derivation is in the symbols a_ij, the same for every arm branch: tried once
-        ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, k == 0)
+        ws, cf, singular = _wrist(tail, A, a, wrist_joints, names, tex, time_limit_s, derive and k == 0)
         singular_seen |= singular
         if cf is not None and wrist_cf is None:
             wrist_cf = cf
@@ -430,7 +432,7 @@ def find_parallel(chain: _Chain):
     return split, Q.T       # Q.T·u = z: rows of Q.T are the new axes
 
 
-def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
+def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s, derive=True):
     """The UR way: in frame 1 (axes 2, 3, 4 along z) the z row of ¹M₆ depends on q5, q6 only;
     with q1 it gives q1, q5, q6, then the planar 3R gives q2, q3, q4."""
     split, Q = par
@@ -450,7 +452,7 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
     vals.update({P_SYMS[i]: float(p[i]) for i in range(3)})
     first = [IKJoint(q[k], True, None) for k in (0, 4, 5)]
     eqs1 = _first_equations(zrow, lhs, q)
-    st1 = solve_ik(eqs1, first, vals, closed_form=True, time_limit_s=time_limit_s,
+    st1 = solve_ik(eqs1, first, vals, closed_form=derive, time_limit_s=time_limit_s,
                    target_symbols=set(vals), latex_names=names, tex=tex)
     res.method = "three parallel axes"
     eqs2, known, planar = _planar_equations(chain, split, Q, lhs, rhs, Msym, q)
@@ -486,7 +488,8 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s):
         # the closed form from the first branch whose planar arm reaches (an unreachable branch
         # stops before deriving it)
         # (the later branches evaluate it: the same equations, other values of the known entries)
-        st2 = solve_ik(eqs2, rest, v2, closed_form=bool(planar) and cf2 is None, time_limit_s=time_limit_s,
+        st2 = solve_ik(eqs2, rest, v2, closed_form=derive and bool(planar) and cf2 is None,
+                       time_limit_s=time_limit_s,
                        target_symbols=set(v2), latex_names=names, tex=tex,
                        derived=cf2.closed_form if cf2 is not None and len(eqs2) == len(rest) else None)
         if cf2 is None and st2.closed_form is not None:

@@ -238,7 +238,7 @@ def _require(builder, value, varied: set | None) -> list:
         line = chk.src.line(ipath)
         where = f"variants.require[{i}]"
         if isinstance(item, str):
-            r = _inequality(chk, ipath, item, params, varied)
+            r = _inequality(chk, ipath, item, params, varied, builder.parameters)
             if r is not None:
                 lhs, op, rhs = r
                 out.append(Requirement("inequality", item, line, where, lhs=lhs, op=op, rhs=rhs))
@@ -289,7 +289,24 @@ def _question_ref(chk, builder, path, kind, qid, questions):
     return q
 
 
-def _inequality(chk, path, text, ns, varied):
+def _depends_on(e, varied: set, parameters: dict) -> bool:
+    """Whether `e` depends on a varied parameter, directly or through the parameters defined
+    from it (`Lc: L1/2` follows a drawn L1)."""
+    seen, todo = set(), list(e.free_symbols)
+    while todo:
+        s = todo.pop()
+        if s in seen:
+            continue
+        seen.add(s)
+        if s.name in varied:
+            return True
+        value = parameters.get(s)
+        if value is not None:
+            todo.extend(sp.sympify(value).free_symbols)
+    return False
+
+
+def _inequality(chk, path, text, ns, varied, parameters):
     ops = INEQUALITY_RE.findall(text)
     if len(ops) != 1 or ops[0] not in OPERATORS:
         chk.error(path, f"expected one inequality such as \"L1 > L2\" (operators < <= > >=), got {text!r}")
@@ -300,8 +317,7 @@ def _inequality(chk, path, text, ns, varied):
     except ExpressionError as exc:
         chk.error(path, str(exc))
         return None
-    used = {s.name for s in (lhs - rhs).free_symbols}
-    if varied is not None and not used & varied:
+    if varied is not None and not _depends_on(lhs - rhs, varied, parameters):
         chk.error(path, f"{text!r} involves no varied parameter: it would hold for every variant or for none")
         return None
     return lhs, ops[0], rhs

@@ -30,14 +30,14 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
     if not chain:
         raise SolverError("a pose target needs a frame other than 0")
     try:
-        factors = [_with_values(model.M_local(f), params, model) for f in chain]
+        factors = [with_values(model.M_local(f), params, model) for f in chain]
         R = np.array(ctx.numeric(target.R, params), dtype=float).reshape(3, 3)
         p = np.array(ctx.numeric(target.p, params), dtype=float).reshape(3)
     except MissingValues as exc:
         return _numbers_missing(ans, ctx, exc.names)
     if target.note:
         ans.note(target.note)
-    if not _is_rotation(R):
+    if not is_rotation(R):
         raise SolverError("the target's R is not a rotation (RᵀR ≠ I or det R ≠ 1 within 1e-3)")
     c = None
     if question.point_given:
@@ -100,13 +100,13 @@ def _numbers_missing(ans: Answer, ctx: SolveContext, names) -> None:
     return None
 
 
-def _with_values(m, params, model):
+def with_values(m, params, model):
     q = set(model.q)
     out = m.xreplace({k: v for k, v in params.items() if k not in q})
     return out.evalf() if out.atoms(sp.Float) else out
 
 
-def _is_rotation(R) -> bool:
+def is_rotation(R) -> bool:
     return (float(np.max(np.abs(R.T @ R - np.eye(3)))) < 1e-3 + 1e-12
             and abs(float(np.linalg.det(R)) - 1) < 1e-3)
 

@@ -175,9 +175,12 @@ def _figures(ans, res, prof, plan, duration, law, joints, syms) -> None:
 
 
 # -- along a work-space trajectory (course summary §1.2.2) ---------------------------------
-def _task_gains(opts, key, traj):
+def _task_gains(ctx, opts, key, traj, subs):
+    """The gains per coordinate of the trajectory, in its order (numbers or parameters: a
+    variant draws `gains: {E.y: Kp}`)."""
     given = opts[key]["coordinates"]
-    return [float(next(v for _t, lhs, v in given if sp.expand(lhs - c) == 0)) for c in traj.coords]
+    return [_float(ctx, next(v for _t, lhs, v in given if sp.expand(lhs - c) == 0), subs, f"{key}.{c}")
+            for c in traj.coords]
 
 
 def _solve_trajectory(question, ctx, ans, subs, law):
@@ -196,7 +199,7 @@ def _solve_trajectory(question, ctx, ans, subs, law):
         return ans
     task = law in TASK_LAWS
     if task:
-        kp, kd = _task_gains(opts, "gains", traj), _task_gains(opts, "gains_d", traj)
+        kp, kd = _task_gains(ctx, opts, "gains", traj, subs), _task_gains(ctx, opts, "gains_d", traj, subs)
     else:
         kp = [_float(ctx, opts["gains"][n], subs, f"gains.{n}") for n in names]
         kd = [_float(ctx, opts["gains_d"][n], subs, f"gains_d.{n}") for n in names] if "gains_d" in opts else None

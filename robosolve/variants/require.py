@@ -11,7 +11,8 @@ evaluation per distinct sub-combination, not one per combination.
   times the largest (J from robosolve.kinematics' analytic / geometric Jacobian);
 - `reachable`: the IK engine's numeric search (robosolve.ik.numeric.solve_all, the same
   multi-start search and the same joint-limit rule as the inverse kinematics solver)
-  finds at least one solution inside the limits.
+  finds at least one solution inside the limits; for a pose target, the solver's own pose
+  IK (robosolve.ik.pose.solve_pose) without its closed form.
 
 The checks run on a *template* problem in which the varied parameters are null (plain
 real symbols): the base problem's symbols may carry `positive=True`, which would be wrong
@@ -243,7 +244,7 @@ class RequirementChecker:
 
         q = self._question(r.question)
         if not isinstance(q.options["target"], list):
-            raise _Unusable("cannot be checked: `reachable` works with coordinate targets, not a pose")
+            return self._reachable_pose(r, q)
         model = self.model
         params, _ = self._at_values(q)
         qs = list(model.q)
@@ -295,6 +296,52 @@ class RequirementChecker:
                 if any(not in_limits({j.name: v for j, v in zip(joints, s.q)}, joints) for s in res.solutions):
                     return True
             return False
+
+        return Condition(r, rel, evaluate)
+
+
+    def _reachable_pose(self, r, q) -> Condition:
+        """A pose target: the solver's own pose IK (robosolve.ik.pose.solve_pose: decoupling at a
+        spherical wrist, the UR way, else the numeric search) with the draw's values, without
+        deriving the closed form; reachable when a solution lies inside the limits."""
+        from robosolve.ik.engine import IKJoint
+        from robosolve.ik.pose import solve_pose
+        from robosolve.solvers.ik_pose import is_rotation, with_values
+
+        model, target = self.model, q.options["target"]
+        params, _ = self._at_values(q)
+        frame, c = q.frame, None
+        if q.point_given:
+            frame, c = model.point_local(q.point)
+            c = sp.Matrix(c).xreplace(params)
+        factors = [with_values(model.M_local(f), params, model) for f in model.chain(frame)]
+        R, p = target.R.xreplace(params), target.p.xreplace(params)
+        limits = [tuple(sp.sympify(v).xreplace(params) for v in j.limits) if j.limits is not None else None
+                  for j in model.joints]
+        qs = set(model.q)
+        used = [j for j in model.joints if any(j.symbol in f.free_symbols for f in factors)]
+        if not used or len(used) > 6:
+            raise _Unusable(f"cannot be checked: the pose of frame {frame} moves with {len(used)} joints "
+                            "(a pose target is solved for 1 to 6)")
+        given = list(R) + list(p) + (list(c) if c is not None else []) + [v for lim in limits if lim for v in lim]
+        self._only_varied(factors, allowed=qs)
+        self._only_varied(given)
+        rel = self._relevant(factors + given)
+        syms = [self.symbols[i] for i in rel]
+
+        def evaluate(exact, floats):
+            draw = dict(zip(syms, exact))
+            Rn = np.array(sp.N(R.xreplace(draw)), dtype=float).reshape(3, 3)
+            pn = np.array(sp.N(p.xreplace(draw)), dtype=float).reshape(3)
+            if not (np.all(np.isfinite(Rn)) and np.all(np.isfinite(pn)) and is_rotation(Rn)):
+                return False                # the solver refuses such a target: no solution
+            if c is not None:
+                pn = pn - Rn @ np.array(sp.N(c.xreplace(draw)), dtype=float).reshape(3)
+            lims = {j.symbol: lim for j, lim in zip(model.joints, limits)}
+            joints = [IKJoint(j.symbol, j.is_revolute, None if lims[j.symbol] is None else
+                              tuple(float(sp.N(v.xreplace(draw))) for v in lims[j.symbol])) for j in used]
+            chain = [with_values(f, draw, model) for f in factors]
+            return bool(solve_pose(chain, joints, Rn, pn, derive=False).solutions)
 
         return Condition(r, rel, evaluate)
 

@@ -117,13 +117,16 @@ def test_a_line_through_a_singularity_is_an_answer_not_a_crash():
 def test_solver_answers_and_pd_matches_an_independent_integration(write_problem, tmp_path):
     from scipy.integrate import solve_ivp
 
+    # the gains are parameters, as a variant draws them (literal gains: the workspace-2r-line
+    # golden); parameters stopped the question with an internal error (a symbol to float)
     law = """  - type: p_control
     trajectory: line
     law: task_pd_gravity
-    gains: {E.x: 800, E.y: 800}
-    gains_d: {E.x: 60, E.y: 60}
+    gains: {E.x: Kp, E.y: Kp}
+    gains_d: {E.x: Kd, E.y: Kd}
 """
-    r, res = _solve(write_problem, tmp_path, ARM_2R + LINE + law)
+    arm_2r = ARM_2R.replace("g: 9.81}", "g: 9.81, Kp: 800, Kd: 60}")
+    r, res = _solve(write_problem, tmp_path, arm_2r + LINE + law)
     assert r.returncode == 0, r.stderr
     a = res["answers"]["line"]["numeric"]
     assert a["length"] == pytest.approx(math.hypot(0.5, 0.5))

@@ -134,6 +134,16 @@ def test_invalid_sections_give_file_line_messages(section, expected):
     assert errors(BASE + section) == [expected]
 
 
+def test_a_condition_on_a_parameter_defined_from_a_varied_one_follows_the_draw(tmp_path):
+    """`Lc: L1/2` follows a drawn L1 (docs/variants.md), so "Lc > 0.2" is a condition on L1 —
+    it was refused as one that 'involves no varied parameter'. By hand: L1/2 > 0.2 keeps 0.5
+    and 0.6 of the three choices."""
+    base = BASE.replace("parameters: {L1: 1/2,", "parameters: {Lc: L1/2, L1: 1/2,")
+    section = "variants:\n  parameters:\n    L1: {choices: [0.3, 0.5, 0.6]}\n  require:\n    - \"Lc > 0.2\"\n"
+    plan = plan_variants(problem_file(tmp_path, section, base=base), [("1", ""), ("2", "")], seed=0)
+    assert sorted(v.values["L1"] for v in plan.variants) == [sp.Rational(1, 2), sp.Rational(3, 5)]
+
+
 def test_cli_solve_and_validate_reject_a_bad_section(tmp_path):
     p = problem_file(tmp_path, "variants:\n  parameters:\n    L1: {range: [0.3, 0.6], step: 0}\n")
     result = runner.invoke(app, ["validate", str(p)])
@@ -304,6 +314,53 @@ def test_a_condition_without_value_for_a_draw_is_not_met(tmp_path, condition):
     from robosolve.variants.require import _exact_sign
     assert _exact_sign(sp.sqrt(-1) - 0) is None and _exact_sign(sp.Integer(1) / 0) is None
     assert _exact_sign(sp.sqrt(2) - sp.Rational(141421356237, 10**11)) == 1
+
+
+PLANAR_3R_POSE = """\
+robosolve: 1
+name: p3
+parameters: {L1: 1/2, L2: 2/5, L3: 1/10, x: 0.6, y: 0.2, phi: 0}
+joints:
+  - {name: q1, type: revolute, limits: [-pi, pi]}
+  - {name: q2, type: revolute, limits: [0, deg(150)]}
+  - {name: q3, type: revolute, limits: [-pi, pi]}
+frames:
+  "1": {pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+  "3": {pose: "Rz(q3) Tx(L3)"}
+questions:
+  - {type: inverse_kinematics, id: ik, target: {position: [x, y, 0], rpy: [0, 0, phi]}}
+variants:
+  parameters:
+    x: {choices: [0.2, 0.6]}
+    phi: {choices: [0, pi]}
+  require:
+    - {reachable: ik}
+"""
+
+
+def test_reachable_of_a_pose_target_agrees_with_the_planar_3r_closed_form(tmp_path):
+    """`reachable` on an IK question with a pose target (it stopped `variants` with 'cannot be
+    checked'): the reference is the planar 3R by hand — the wrist point p − L3·(cos φ, sin φ),
+    then the law of cosines with q2 in its limits [0, 150°]."""
+    from robosolve.variants.require import RequirementChecker
+    from robosolve.variants.workflow import load_source, template_problem
+
+    p = problem_file(tmp_path, "", base=PLANAR_3R_POSE)
+    problem, data = load_source(p)
+    spec = problem.variants
+    checker = RequirementChecker(template_problem(data, problem), spec, str(p))
+
+    def by_hand(x, phi, y=0.2, L1=0.5, L2=0.4, L3=0.1):
+        wx, wy = x - L3 * math.cos(phi), y - L3 * math.sin(phi)
+        c = (wx * wx + wy * wy - L1 * L1 - L2 * L2) / (2 * L1 * L2)
+        return abs(c) <= 1 and 0 <= math.acos(c) <= math.radians(150)
+
+    # (0.2, 0): the elbow would need 154°, beyond its limit; (0.6, 0): reachable
+    for idx in ((0, 0), (1, 0)):
+        x, phi = (float(par.value(i)) for par, i in zip(spec.parameters, idx))
+        assert (checker.first_failure(idx) is None) == by_hand(x, phi), (x, phi)
+    assert not by_hand(0.2, 0) and by_hand(0.6, 0)
 
 
 def test_roster_student_k_gets_variant_k(tmp_path):
