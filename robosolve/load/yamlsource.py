@@ -220,8 +220,10 @@ _CLOSING = (yaml.FlowSequenceEndToken, yaml.FlowMappingEndToken, yaml.BlockEndTo
 
 def _deep_line(text: str) -> int:
     """The line where the nesting first goes deeper than MAX_DEPTH levels (PyYAML's scanner is
-    not recursive: it reads any depth)."""
-    depth = 0
+    not recursive: it reads any depth). The top-level mapping opens a level of the scan but is
+    depth 0 of the converter: the line must be the converter's, which says it when composing
+    does not run out of stack first (a larger recursion limit, a deeper caller)."""
+    depth = -1
     try:
         for token in yaml.scan(text, Loader=yaml.SafeLoader):
             if isinstance(token, _OPENING):

@@ -32,6 +32,23 @@ def test_a_nul_byte_is_reported_at_its_line_in_words():
     assert "<unicode string>" not in found[0] and "position" not in found[0]
 
 
+@pytest.mark.parametrize("limit", [None, 20000])
+def test_deep_nesting_is_said_at_one_line_whatever_the_stack(limit):
+    """Composing a file nested 600 deep runs out of Python's stack at the default recursion limit
+    (the line then comes from a scan of the tokens) and not at a larger one (it comes from the
+    converter): both say the same line, the first sequence 41 levels below the top mapping."""
+    import sys
+
+    deep = "x:\n" + "".join(" " * i + "- \n" for i in range(1, 600))
+    old = sys.getrecursionlimit()
+    sys.setrecursionlimit(limit or 1000)
+    try:
+        [m] = messages(HEAD + deep)
+    finally:
+        sys.setrecursionlimit(old)
+    assert m == "p.yaml:45: nesting deeper than 40 levels"
+
+
 def test_another_control_character():
     [m] = messages(HEAD + "x: \x07\n")
     assert m.startswith("p.yaml:4: the control character U+0007 at column 4")
@@ -47,7 +64,7 @@ def test_deep_nesting_is_reported_where_it_gets_too_deep(deep):
     line = int(m.split(":")[1])
     assert line >= 4 and m.endswith("nesting deeper than 40 levels"), m
     if deep.startswith("x:\n"):
-        assert line == 4 + 40, m                                 # the first line past 40 levels
+        assert line == 4 + 41, m                     # the first line past 40 levels below the top
 
 
 @pytest.mark.parametrize("encoding", ["utf-16", "utf-16-le", "utf-16-be"])
