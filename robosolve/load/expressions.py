@@ -27,6 +27,7 @@ MAX_LOG10 = 300          # |value| < 1e300 (the range of floating-point numbers,
 # net), 40 digits for 17 s, 20 digits for 2 s (0.7 s with L1). An exam's exact numbers have a few
 # digits (0.0125 = 1/80, deg(30) = pi/6).
 MAX_EXACT_DIGITS = 30
+SHORT_NUMBER_CHARS = 40  # a longer number in a message is said by its size and value, not quoted
 SHOWN_CHARS = 200        # a message quotes at most this much of a text (an answers file may hold 1 MB)
 
 
@@ -237,14 +238,16 @@ def exact_digits(e) -> int:
     return max((len(str(max(abs(r.p), abs(r.q)))) for r in e.atoms(sp.Rational)), default=0)
 
 
-def digits_issue(what: str, v, approx: float) -> str | None:
-    """Why the value `v` (about `approx`) of `what` holds an exact number too long, or None."""
+def digits_issue(what: str, v, approx: float, advice: str = "write it as a decimal number") -> str | None:
+    """Why the value `v` (about `approx`) of `what` (the text the user wrote) holds an exact
+    number too long, or None. The message quotes `what` when it is short: a 301-digit fraction
+    (a variant's drawn value, written for the user by `robosolve variants`) is said by its size."""
     digits = exact_digits(v)
     if digits <= MAX_EXACT_DIGITS:
         return None
+    what = what if len(what) <= SHORT_NUMBER_CHARS else "the value"
     return (f"{what} is an exact number of {digits} digits (about {approx:.3g}): robosolve keeps exact "
-            f"numbers of at most {MAX_EXACT_DIGITS} digits, whose arithmetic stays fast; write it as a "
-            "decimal number")
+            f"numbers of at most {MAX_EXACT_DIGITS} digits, whose arithmetic stays fast; {advice}")
 
 
 def number(value) -> sp.Expr:
