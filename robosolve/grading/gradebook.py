@@ -16,10 +16,10 @@ in). Columns copied from the roster are found without regard to case.
 from __future__ import annotations
 
 import csv
-import difflib
 import io
 
 from robosolve.grading.record import number_text
+from robosolve.load.expressions import did_you_mean
 
 LMS = ("canvas", "moodle", "blackboard")
 CANVAS_COLUMNS = ("Student", "ID", "SIS User ID", "SIS Login ID", "Section")
@@ -36,8 +36,7 @@ def parse_lms(text: str | None) -> tuple:
     names = [n.strip().lower() for n in text.split(",") if n.strip()]
     for n in names:
         if n not in LMS:
-            close = difflib.get_close_matches(n, LMS, n=1, cutoff=0.5)
-            hint = f" (did you mean '{close[0]}'?)" if close else ""
+            hint = did_you_mean(n, LMS)
             raise GradebookError(f"--gradebook: unknown LMS '{n}'{hint} (expected some of: {', '.join(LMS)})")
     if not names:
         raise GradebookError(f"--gradebook: give some of {', '.join(LMS)}, separated by commas")

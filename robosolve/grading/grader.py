@@ -9,6 +9,7 @@ diagnoses of `diagnose.py`. Scores are exact fractions of the marks.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
 
@@ -139,9 +140,18 @@ def _show(tree) -> str:
         return str(tree).lower()
     if isinstance(tree, float) or (isinstance(tree, sp.Basic) and tree.is_Float):
         return f"{float(tree):.4g}"
-    if isinstance(tree, sp.Basic) and tree.is_number and not tree.is_Rational and tree.free_symbols == set():
-        return plain(tree) if len(plain(tree)) <= 12 else f"{float(sp.N(tree)):.4g}"
+    if isinstance(tree, sp.Basic) and tree.is_number and tree.free_symbols == set():
+        text = plain(tree)       # 1/3 and pi/6 as written; a 400-digit integer as 7.778e+399
+        return text if len(text) <= 12 else _approximately(tree)
     return plain(tree) if isinstance(tree, sp.Basic) else str(tree)
+
+
+def _approximately(number) -> str:
+    """A long exact number in 4 significant digits (beyond floats' range too: 10**400)."""
+    value = float(sp.N(number))
+    if math.isfinite(value):
+        return f"{value:.4g}"
+    return str(sp.N(number, 4))
 
 
 def as_written(value) -> str:

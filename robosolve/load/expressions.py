@@ -27,6 +27,7 @@ MAX_LOG10 = 300          # |value| < 1e300 (the range of floating-point numbers,
 # net), 40 digits for 17 s, 20 digits for 2 s (0.7 s with L1). An exam's exact numbers have a few
 # digits (0.0125 = 1/80, deg(30) = pi/6).
 MAX_EXACT_DIGITS = 30
+SHORT_NUMBER_CHARS = 40  # a longer number in a message is said by its size and value, not quoted
 SHOWN_CHARS = 200        # a message quotes at most this much of a text (an answers file may hold 1 MB)
 
 
@@ -62,18 +63,40 @@ def point_symbol(point: str, axis: str) -> sp.Symbol:
     return sp.Symbol(f"{point}.{axis}", real=True)
 
 
+def closest(name: str, candidates, cutoff: float = 0.5) -> str | None:
+    """The candidate a misspelt `name` most likely stands for, or None (every did-you-mean).
+
+    Ranked by: differing from `name` by case alone; then difflib's similarity with case ignored
+    (at least `cutoff`); then with case; a tie goes to the last candidate in sorted order, as in
+    difflib's `get_close_matches` (theta3 among theta1, theta2: theta2). `get_close_matches`
+    alone compares with case, so 'l1' among L1 and m1 (0.5 both) was said to mean 'm1'."""
+    if not isinstance(name, str):
+        return None
+    folded = name.casefold()
+    best, best_rank = None, None
+    for c in sorted(candidates, key=str):
+        c_folded = str(c).casefold()
+        matcher = difflib.SequenceMatcher(None, folded, c_folded)
+        if matcher.real_quick_ratio() < cutoff or matcher.quick_ratio() < cutoff:
+            continue
+        ratio = matcher.ratio()
+        if ratio < cutoff:
+            continue
+        rank = (c_folded == folded, ratio, difflib.SequenceMatcher(None, name, str(c)).ratio())
+        if best_rank is None or rank >= best_rank:
+            best, best_rank = c, rank
+    return best
+
+
 def did_you_mean(name: str, candidates) -> str:
-    close = difflib.get_close_matches(name, sorted(candidates), n=1, cutoff=0.5)
-    return f" (did you mean '{close[0]}'?)" if close else ""
+    close = closest(name, candidates)
+    return f" (did you mean '{close}'?)" if close is not None else ""
 
 
 def meant_value(value, choices):
     """The choice a misspelt word stands for (its did-you-mean), or None: after the message about
     it, the rest of the file is checked with that choice (one mistake, one message)."""
-    if not isinstance(value, str):
-        return None
-    close = difflib.get_close_matches(value, sorted(choices), n=1, cutoff=0.5)
-    return close[0] if close else None
+    return closest(value, choices)
 
 
 def degrees_hint(e) -> str | None:
@@ -215,14 +238,16 @@ def exact_digits(e) -> int:
     return max((len(str(max(abs(r.p), abs(r.q)))) for r in e.atoms(sp.Rational)), default=0)
 
 
-def digits_issue(what: str, v, approx: float) -> str | None:
-    """Why the value `v` (about `approx`) of `what` holds an exact number too long, or None."""
+def digits_issue(what: str, v, approx: float, advice: str = "write it as a decimal number") -> str | None:
+    """Why the value `v` (about `approx`) of `what` (the text the user wrote) holds an exact
+    number too long, or None. The message quotes `what` when it is short: a 301-digit fraction
+    (a variant's drawn value, written for the user by `robosolve variants`) is said by its size."""
     digits = exact_digits(v)
     if digits <= MAX_EXACT_DIGITS:
         return None
+    what = what if len(what) <= SHORT_NUMBER_CHARS else "the value"
     return (f"{what} is an exact number of {digits} digits (about {approx:.3g}): robosolve keeps exact "
-            f"numbers of at most {MAX_EXACT_DIGITS} digits, whose arithmetic stays fast; write it as a "
-            "decimal number")
+            f"numbers of at most {MAX_EXACT_DIGITS} digits, whose arithmetic stays fast; {advice}")
 
 
 def number(value) -> sp.Expr:

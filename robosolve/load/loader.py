@@ -608,7 +608,7 @@ class _ProblemBuilder:
                 vals = self._values()
                 flo, fhi = float(sp.N(lo.xreplace(vals))), float(sp.N(hi.xreplace(vals)))
                 if not flo < fhi:
-                    chk.error(path, f"lower limit {lo} is not below upper limit {hi}")
+                    chk.error(path, f"lower limit {raw[0]} is not below upper limit {raw[1]}")    # as written
                     continue
                 if j.kind == REVOLUTE and max(abs(flo), abs(fhi)) > 2 * math.pi + 0.01:  # rounded ±6.2832 is a turn
                     chk.error(path, _degrees_hint(raw))

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import re
 
+from robosolve.core.printing import sstr
 from robosolve.load.expressions import Namespace, did_you_mean
 
 PLACEHOLDER = re.compile(r"\{\{|\}\}|\{([^{}]*)\}|[{}]")
@@ -65,8 +66,8 @@ def load_paper(builder, value) -> dict:
             continue
         j = joints[name]
         if j.limits is not None and not _within(chk, e, j.limits):
-            chk.error(path + (name,), f"{v!r} is outside the limits of {name} "
-                      f"[{j.limits[0]}, {j.limits[1]}]")
+            lo, hi = (sstr(x, full_prec=False) for x in j.limits)      # 0.5, not 0.500000000000000
+            chk.error(path + (name,), f"{v!r} is outside the limits of {name} [{lo}, {hi}]")
             continue
         out[j.symbol] = e
     return out

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from robosolve.core.simplify import full, is_zero
-from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean
+from robosolve.load.expressions import ExpressionError, Namespace, did_you_mean, digits_issue
 from robosolve.load.questions import may_be_refused
 from robosolve.questions.registry import types_where
 
@@ -94,9 +94,10 @@ def exact(e: sp.Expr) -> sp.Expr:
 
 
 def _real_number(chk, path, value, ns) -> sp.Expr | None:
-    """An exact, finite, real constant (numbers, pi, sqrt, deg...: no parameters)."""
+    """An exact, finite, real constant (numbers, pi, sqrt, deg...: no parameters), of at most
+    MAX_EXACT_DIGITS digits: a step of 1e-300 is 1/10**300, every value drawn from it as long."""
     if isinstance(value, float) and math.isfinite(value):
-        return sp.Rational(repr(value))
+        return _short_enough(chk, path, repr(value), sp.Rational(repr(value)), value)
     e = chk.expr(path, value, ns)
     if e is None:
         return None
@@ -108,6 +109,15 @@ def _real_number(chk, path, value, ns) -> sp.Expr | None:
         return None
     if abs(v.imag) > 1e-12 or not math.isfinite(v.real):
         chk.error(path, f"{value!r} is not a finite real number")
+        return None
+    return _short_enough(chk, path, str(value), e, v.real)
+
+
+def _short_enough(chk, path, text: str, e: sp.Expr, approx: float) -> sp.Expr | None:
+    issue = digits_issue(text, e, approx, advice="a variant's values are exact (a decimal as written), "
+                         "so give it fewer digits")
+    if issue is not None:
+        chk.error(path, issue)
         return None
     return e
 

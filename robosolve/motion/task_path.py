@@ -34,7 +34,7 @@ from typing import Callable
 import numpy as np
 
 __all__ = ["PathError", "Path", "line", "circle", "Timing", "trapezoidal", "quintic", "Arm",
-           "Conversion", "newton", "joint_state", "follow", "extremes"]
+           "Conversion", "newton", "nearest_solution", "joint_state", "follow", "extremes"]
 
 
 class PathError(ValueError):
@@ -201,6 +201,54 @@ def newton(arm: Arm, target, q0, tol: float = 1e-12, max_iter: int = 30):
         q = q + (step if big <= 0.5 else step * (0.5 / big))
     r = np.asarray(target, dtype=float) - arm.x(q)
     return q if float(np.max(np.abs(r))) <= 1e3 * tol * scale else None
+
+
+# The least-distance iteration of `nearest_solution`: its steps, then the same with half steps;
+# its other starts: q0 moved by this much along each joint, both ways.
+NEAREST_ITERATIONS = (200, 400)
+NEAREST_SPREAD = 0.5
+
+
+def nearest_solution(arm: Arm, target, q0, tol: float = 1e-12):
+    """The solution of x(q) = target nearest q0 (|q - q0| least), for a wide J, where the
+    solutions form a family and Newton's point depends on its steps; None when Newton's method
+    from q0 does not reach the target.
+
+    The family may hold several points where q - q0 is normal to it (an elbow up and an elbow
+    down): each is sought from Newton's point of q0 and of q0 moved by NEAREST_SPREAD along each
+    joint both ways, and the nearest kept (an earlier one unless nearer by 1e-9)."""
+    q_newton = newton(arm, target, q0, tol)
+    if q_newton is None:
+        return None
+    q0 = np.asarray(q0, dtype=float)
+    best, best_distance = None, math.inf
+    moves = [np.zeros_like(q0)] + [sign * NEAREST_SPREAD * e for e in np.eye(q0.size) for sign in (1.0, -1.0)]
+    for move in moves:
+        q_start = q_newton if not move.any() else newton(arm, target, q0 + move, tol)
+        q = None if q_start is None else _least_distance(arm, target, q0, q_start, tol)
+        if q is not None and float(np.linalg.norm(q - q0)) < best_distance - 1e-9:
+            best, best_distance = q, float(np.linalg.norm(q - q0))
+    return q_newton if best is None else best
+
+
+def _least_distance(arm: Arm, target, q0, q, tol: float):
+    """From q on the solutions, the least-distance iteration (x linearised at q, the point of that
+    linear set nearest q0): q <- q0 + J^+(q) (target - x(q) + J(q) (q - q0)); its fixed points
+    are on the family with q - q0 normal to it (q - q0 = J^T lambda). Half steps when whole
+    ones do not settle; None when neither does."""
+    target = np.asarray(target, dtype=float)
+    for iterations, share in zip(NEAREST_ITERATIONS, (1.0, 0.5)):
+        p = q
+        for _ in range(iterations):
+            J = arm.J(p)
+            p_next = q0 + np.linalg.lstsq(J, target - arm.x(p) + J @ (p - q0), rcond=None)[0]
+            move = float(np.max(np.abs(p_next - p)))
+            p = p + share * (p_next - p)
+            if not np.all(np.isfinite(p)):
+                break
+            if move <= 1e-14 * max(1.0, float(np.max(np.abs(p)))):
+                return newton(arm, target, p, tol)      # onto x(q) = target to `tol`
+    return None
 
 
 def joint_state(arm: Arm, q, xd, xdd):

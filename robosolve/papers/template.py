@@ -18,6 +18,20 @@ from robosolve.render.numbers import marks_number
 PLAIN_KEY = re.compile(r"^[A-Za-z_][A-Za-z0-9_.]*$")
 
 
+# What a YAML double-quoted scalar may not hold as it is (YAML 1.1 / 1.2 "printable", §5.1):
+# the C0 controls (a line break inside quotes is read as a space, a tab may be trimmed), DEL and
+# the C1 controls, surrogates, U+FFFE / U+FFFF; and what a YAML reader takes for a line break
+# (NEL, U+2028 / U+2029) or strips (BOM U+FEFF).
+NOT_AS_IS = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029\ud800-\udfff\ufeff\ufffe\uffff]")
+
+
+def quoted(text: str) -> str:
+    """A YAML double-quoted string: UTF-8 as it is (`"José Álvarez"`, students read the file),
+    only a quote, a backslash and the characters YAML cannot hold written as escapes."""
+    inner = text.replace("\\", "\\\\").replace('"', '\\"')
+    return '"' + NOT_AS_IS.sub(lambda m: f"\\u{ord(m.group()):04x}", inner) + '"'
+
+
 def flow(value) -> str:
     """A placeholder tree in YAML flow style: ~, [~, ~], {theta1: ~}."""
     if value is None:
@@ -26,12 +40,12 @@ def flow(value) -> str:
         return "[" + ", ".join(flow(v) for v in value) + "]"
     if isinstance(value, dict):
         return "{" + ", ".join(f"{yaml_key(k)}: {flow(v)}" for k, v in value.items()) + "}"
-    return json.dumps(value)
+    return quoted(value) if isinstance(value, str) else json.dumps(value)
 
 
 def yaml_key(key: str) -> str:
     return key if PLAIN_KEY.fullmatch(key) and key not in ("y", "n", "yes", "no", "on", "off",
-                                                            "true", "false", "null") else json.dumps(key)
+                                                            "true", "false", "null") else quoted(key)
 
 
 def marks_text(marks) -> str:
@@ -133,8 +147,8 @@ def render_template(problem, problem_path: str, student: str = "", name: str | N
              "# A value is a number or an expression in the problem's names, e.g. \"L1*cos(theta1)\";",
              "# a matrix may also be one string such as \"[1 0; 0 1]\", and ^ means a power.",
              "robosolve-answers: 1",
-             f"problem: {json.dumps(problem_path)}",
-             f"student: {json.dumps(student)}",
+             f"problem: {quoted(problem_path)}",
+             f"student: {quoted(student)}",
              "answers:"]
     for i, q in enumerate(problem.questions, 1):
         keys = graded_keys(q, problem)

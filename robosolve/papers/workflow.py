@@ -46,11 +46,9 @@ def parse_paper_formats(text: str | None) -> tuple:
     names = [t.strip().lower() for t in text.split(",") if t.strip()]
     for n in names:
         if n not in PAPER_FORMATS:
-            import difflib
+            from robosolve.load.expressions import did_you_mean
 
-            near = difflib.get_close_matches(n, PAPER_FORMATS, n=1)
-            raise ValueError(f"--format: unknown paper format '{n}'"
-                             + (f" (did you mean '{near[0]}'?)" if near else "")
+            raise ValueError(f"--format: unknown paper format '{n}'" + did_you_mean(n, PAPER_FORMATS)
                              + f"; choose from {', '.join(PAPER_FORMATS)}")
     if "html" in names:
         import importlib.util

@@ -45,10 +45,9 @@ def parse_formats(text: str | None) -> tuple[str, ...]:
         raise ValueError("--format needs at least one of " + ", ".join(FORMATS))
     for n in names:
         if n not in FORMATS:
-            import difflib
+            from robosolve.load.expressions import did_you_mean
 
-            near = difflib.get_close_matches(n, list(FORMATS), n=1)
-            hint = f" (did you mean '{near[0]}'?)" if near else ""
+            hint = did_you_mean(n, FORMATS)
             raise ValueError(f"--format: unknown format '{n}'{hint}; choose from {', '.join(FORMATS)}")
     names = tuple(dict.fromkeys(names))
     missing = {n: [m for m in FORMATS[n].needs if importlib.util.find_spec(m) is None] for n in names}

@@ -993,14 +993,48 @@ class TaskArm:
             qdd = qdd + (np.eye(self.n) - Jp @ J) @ (self.J_dot(q, qd).T @ np.linalg.solve(J @ J.T, xd))
         return qd, qdd, float(sv[-1]) if sv.size else 0.0
 
+    def nearest(self, target, q0, tol=1e-12):
+        """The solution of x(q) = target nearest q0 (J wide: a family of solutions): the least-
+        distance iteration from Newton's point of q0 and of q0 moved by 0.5 along each joint both
+        ways, the nearest result kept (an earlier one unless nearer by 1e-9)."""
+        q_newton = self.newton(target, q0, tol)
+        if q_newton is None:
+            return None
+        q0 = np.asarray(q0, dtype=float)
+        best, best_distance = None, np.inf
+        moves = [np.zeros_like(q0)] + [sign * 0.5 * e for e in np.eye(q0.size) for sign in (1.0, -1.0)]
+        for move in moves:
+            q_start = q_newton if not move.any() else self.newton(target, q0 + move, tol)
+            q = None if q_start is None else self.least_distance(target, q0, q_start, tol)
+            if q is not None and float(np.linalg.norm(q - q0)) < best_distance - 1e-9:
+                best, best_distance = q, float(np.linalg.norm(q - q0))
+        return q_newton if best is None else best
+
+    def least_distance(self, target, q0, q, tol):
+        """q <- q0 + J+(q) (target - x(q) + J(q) (q - q0)) (x linearised at q, the nearest point
+        of that linear set to q0) until it settles (then half steps); None when it does not."""
+        target = np.asarray(target, dtype=float)
+        for iterations, share in ((200, 1.0), (400, 0.5)):
+            p = q
+            for _ in range(iterations):
+                J = self.J(p)
+                p_next = q0 + np.linalg.lstsq(J, target - self.x(p) + J @ (p - q0), rcond=None)[0]
+                move = float(np.max(np.abs(p_next - p)))
+                p = p + share * (p_next - p)
+                if not np.all(np.isfinite(p)):
+                    break
+                if move <= 1e-14 * max(1.0, float(np.max(np.abs(p)))):
+                    return self.newton(target, p, tol)
+        return None
+
     def start(self, target, limits, given=None):
-        """The configuration at `target` whose branch is followed: Newton from `given`; else, as
-        many coordinates as joints, the first of the sorted IK solutions within the limits;
-        else (J wide) Newton from q = 0."""
+        """The configuration at `target` whose branch is followed: as many coordinates as joints,
+        Newton from `given`, else the first of the sorted IK solutions within the limits; J
+        wide, the solution nearest `given` (else nearest q = 0)."""
+        if self.m < self.n:
+            return self.nearest(target, np.zeros(self.n) if given is None else given)
         if given is not None:
             return self.newton(target, given)
-        if self.m < self.n:
-            return self.newton(target, np.zeros(self.n))
         solutions = newton_solutions(self.expr - sp.Matrix(list(target)), self.joints, limits, self.revolute)
         return solutions[0] if solutions else None
 

@@ -154,7 +154,7 @@ def _ik_joints(model, ctx, subs):
 
 def _ik(ctx, model, x_expr, target, subs):
     """(configuration, IKResult or None) reaching ``target``: the IK engine's selected
-    solution; for fewer coordinates than joints, Newton's minimum-norm steps from 0."""
+    solution; for fewer coordinates than joints, none here (the solution nearest q = 0)."""
     n, m = len(model.q), len(target)
     values = {s: float(v) for s, v in subs.items() if getattr(v, "is_number", False)}
     if m < n:
@@ -214,16 +214,19 @@ def _setup(question, ctx: SolveContext):
         q_from, res = _ik(ctx, model, x_expr, a, subs)
     except OutOfReach as exc:            # the reason may be prose with numbers (Text)
         q_from, res, outside = None, None, exc.reason
+    # J wide (fewer coordinates than joints): `from` has a family of solutions, and the start is
+    # the one nearest the given `start` (or q = 0), not wherever Newton's steps happen to stop
+    onto_from = tp.nearest_solution if a.size < len(model.q) else tp.newton
     if "start" in opts and outside is None:
         q0 = np.array([float(ctx.numeric(opts["start"][j.name], subs)) for j in model.joints])
-        q_from = tp.newton(arm, a, q0)
+        q_from = onto_from(arm, a, q0)
         if q_from is None:
             if tp.newton(arm, a, np.zeros(len(model.q))) is None and res is None:
                 outside = "Newton's method reaches it neither from `start` nor from q = 0"
             else:
                 raise BadInput("start", "Newton's method from this configuration does not reach `from`")
     elif q_from is None and outside is None:
-        q_from = tp.newton(arm, a, np.zeros(len(model.q)))
+        q_from = onto_from(arm, a, np.zeros(len(model.q)))
         if q_from is None:
             outside = "Newton's method from q = 0 does not reach it"
     return coords, arm, path, timing, q_from, res, subs, outside
@@ -362,11 +365,15 @@ def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
         return
     names = [latex(j.symbol, symbol_names=symbols) for j in model.joints]
     q0 = traj.conv.q[:, 0]
-    how = ("the configuration given as `start`, brought onto `from` by Newton's method"
+    wide = path.a.size < len(model.q)
+    how = ("the configuration of `from` nearest the one given as `start` (fewer coordinates than joints: "
+           "a family of solutions; the least |q − start|)" if wide and "start" in question.options else
+           "the configuration given as `start`, brought onto `from` by Newton's method"
            if "start" in question.options else
            "the inverse-kinematics solution of `from` that `select: limits` picks (the first of the "
            "sorted solutions inside the joint limits)" if res is not None else
-           "Newton's minimum-norm steps from q = 0 (fewer coordinates than joints: a family of solutions)")
+           "the configuration of `from` nearest q = 0 (fewer coordinates than joints: a family of "
+           "solutions; the least |q|)")
     cf = ("" if res is None or res.closed_form is None else
           Text(" The IK engine has a closed form here, with ", Num(len(res.closed_form_values)),
                " solution(s) at `from`; the branch followed is the one of this solution."))

@@ -21,6 +21,8 @@ import yaml
 from robosolve.errors import ExitStatus, InputError, InputIssue
 from robosolve.run.execution import make_task, run_tasks
 from robosolve.core.printing import sstr
+from robosolve.load.expressions import SHORT_NUMBER_CHARS
+from robosolve.render.numbers import prose_number
 
 # what a variants folder holds, for the working directory written in place (robosolve.run.outputs)
 OWN_FILES = ("variants.csv", "roster.csv", "*/problem.yaml", "*/report.md", "*/report.html",
@@ -218,7 +220,7 @@ def _invalid_variant_message(plan: Plan, bad: list) -> str:
     import sympy as sp
 
     variant, result = bad[0]
-    drawn = ", ".join(f"{p.name} = {sstr(variant.values[p.name])}" for p in plan.spec.parameters)
+    drawn = ", ".join(_drawn_text(p.name, variant.values[p.name]) for p in plan.spec.parameters)
     first = result.messages[0] if result.messages else "it does not load"
     where = re.match(r"^.*?problem\.yaml:(\d+): ", first)
     what = first[where.end():] if where else first
@@ -227,6 +229,15 @@ def _invalid_variant_message(plan: Plan, bad: list) -> str:
     return (f"{plan.problem.file}:{plan.spec.line}: variants: variant {variant.id} draws {drawn}, "
             f"which is not a valid problem: {what}{at}{more}. Narrow the ranges or add a `require` "
             "condition; nothing was written")
+
+
+def _drawn_text(name: str, value) -> str:
+    """`L1 = 3/10` as drawn; a value whose exact text is long (a fine step over a wide range) by
+    its decimal value: `L1 ≈ 98.1472`, not a 61-character fraction."""
+    exact_text = sstr(value)
+    if len(exact_text) <= SHORT_NUMBER_CHARS:
+        return f"{name} = {exact_text}"
+    return f"{name} ≈ {prose_number(float(value))}"
 
 
 class VariantInvalid(Exception):

@@ -149,3 +149,47 @@ def test_fewer_coordinates_than_joints_follow_the_integrated_minimum_norm_motion
             continue
         fd = (rates(t + h, ref.sol(t + h)) - rates(t - h, ref.sol(t - h))) / (2 * h)
         assert np.allclose(conv.qdd[:, k], fd, atol=1e-6), t
+
+
+WIDE_STARTS = {
+    # the probe's start: Newton's steps (capped at 0.5 rad) landed 1e-2 rad from the nearest solution
+    "planar-3r-given": (PLANAR_3R_WIDE.replace("from: {E.x: 0.8, E.y: 0.2}, to: {E.x: 0.4, E.y: 0.6}",
+                                               "from: {E.x: 0.8, E.y: 0.3}, to: {E.x: 0.5, E.y: 0.6}")
+                        .replace("start: {q1: 0.2, q2: -0.3, q3: 0.4}", "start: {q1: 0.1, q2: 0.6, q3: 0.5}"),
+                        "planar3r", [0, 1], [0.8, 0.3], [0.1, 0.6, 0.5]),
+    "planar-3r-far": (PLANAR_3R_WIDE.replace("start: {q1: 0.2, q2: -0.3, q3: 0.4}",
+                                             "start: {q1: -1.0, q2: 2.0, q3: -0.5}"),
+                      "planar3r", [0, 1], [0.8, 0.2], [-1.0, 2.0, -0.5]),
+    "planar-3r-default": (PLANAR_3R_WIDE.replace(", start: {q1: 0.2, q2: -0.3, q3: 0.4}", ""),
+                          "planar3r", [0, 1], [0.8, 0.2], [0.0, 0.0, 0.0]),
+    "anthropomorphic-x-z": (ANTHRO.replace("from: {E.x: 0.5, E.y: 0.1, E.z: 0.6}, to: {E.x: 0.2, E.y: 0.5, E.z: 0.3}",
+                                           "coordinates: [E.x, E.z], from: {E.x: 0.5, E.z: 0.6}, to: {E.x: 0.2, E.z: 0.3}")
+                            .replace("max_acceleration: 2}", "max_acceleration: 2, start: {q1: 0.4, q2: 0.3, q3: 1.2}}"),
+                            "anthro", [0, 2], [0.5, 0.6], [0.4, 0.3, 1.2]),
+}
+
+
+@pytest.mark.parametrize("key", list(WIDE_STARTS))
+def test_a_wide_j_starts_at_the_solution_of_from_nearest_start(key):
+    """Fewer coordinates than joints: `from` has a family of solutions, and the reported start is
+    the one nearest `start` (q = 0 when none is given). Independent: scipy's SLSQP minimising
+    |q − start|² subject to RTB's forward kinematics at `from`, from 16 random starts about
+    `start`, the nearest of its answers."""
+    from scipy.optimize import minimize
+
+    from robosolve.run.pipeline import solve_problem
+
+    text, robot, rows, target, given = WIDE_STARTS[key]
+    answer = solve_problem(load_problem_text(text, "r.yaml")).answers[0]
+    got = np.array(list(answer.numeric["start"].values()))
+    r, q0, target = _rtb(robot), np.array(given), np.array(target)
+    found = []
+    for x0 in q0 + np.random.default_rng(5).uniform(-1.5, 1.5, (16, q0.size)):
+        ref = minimize(lambda q: (q - q0) @ (q - q0), x0, jac=lambda q: 2 * (q - q0), method="SLSQP",
+                       constraints=[{"type": "eq", "fun": lambda q: r.fkine(q).t[rows] - target,
+                                     "jac": lambda q: r.jacob0(q)[rows]}], options={"ftol": 1e-15, "maxiter": 500})
+        if ref.success and np.allclose(r.fkine(ref.x).t[rows], target, atol=1e-12):
+            found.append(ref.x)
+    nearest = min(found, key=lambda q: float(np.linalg.norm(q - q0)))
+    assert got == pytest.approx(nearest, abs=1e-7)
+    assert np.allclose(r.fkine(got).t[rows], target, atol=1e-12)

@@ -501,3 +501,15 @@ def test_the_cell_of_a_path_that_cannot_be_followed_runs_and_says_so(edit, print
     exec(data_cell(problem) + "\n" + notebook_cell(q, answer, problem), namespace)
     out = capsys.readouterr().out
     assert printed in out and "DIFFERS" not in out and out.count("agrees with robosolve") >= 2
+
+
+def test_a_wide_j_starts_where_the_engine_starts_from_a_given_start_and_from_zero():
+    """The nearest solution of `from` (J wide) in the notebook is the engine's; a start where
+    Newton's steps (capped at 0.5 rad) stop 1e-2 rad off it (robosolve against its own copy)."""
+    from robosolve.motion import task_path as tp
+
+    _, _, (coords, arm, _p, _t, _q, _r, _s, _o), ns = _trajectory_setup("3r-wide-bang-bang-from-start")
+    for target, given in (([0.8, 0.3], [0.1, 0.6, 0.5]), ([0.8, 0.2], None), ([0.5, 0.5], [-1.0, 2.0, -0.5])):
+        want = tp.nearest_solution(arm, target, np.zeros(3) if given is None else given)
+        got = ns["arm"].start(target, [[-math.pi, math.pi]] * 3, given)
+        assert got == pytest.approx(want, abs=1e-12)
