@@ -104,3 +104,12 @@ def test_a_small_real_change_is_not_flattened(monkeypatch, tmp_path):
     lo, hi = fig.axes[2].get_ylim()
     assert hi - lo < 1e-6
     assert not any("round-off" in t.get_text() for t in fig.axes[3].texts)
+    # its offset text (×10⁻⁸+4×10⁻¹) clear of the panel above and of that panel's tick marks
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    tick_marks = fig.axes[0].xaxis.get_major_ticks()[0].tick1line.get_markersize() * fig.dpi / 72
+    for below, above in ((fig.axes[2], fig.axes[0]), (fig.axes[3], fig.axes[1])):
+        offset = below.yaxis.get_offset_text()
+        assert offset.get_text()
+        assert offset.get_window_extent(renderer).y1 + tick_marks < above.get_window_extent(renderer).y0
+    assert clipped(fig) == []

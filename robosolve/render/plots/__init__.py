@@ -113,37 +113,61 @@ def fixed_layout(fig, nrows=1, ncols=1, *, left=0.85, right=0.2, top=0.45, botto
 TEXT_CLEARANCE = 0.06
 
 
+def matplotlib_rc(key):
+    return setup().rcParams[key]
+
+
+def _reach(fig, layout) -> dict:
+    """How far (inches) the 2-D panels' axes draw beyond their boxes, measured on the renderer:
+    {"left", "right": per column; "above", "below": per row} (tick labels, offset texts, labels)."""
+    renderer = fig.canvas.get_renderer()
+    reach = {"left": [0.0] * layout["ncols"], "right": [0.0] * layout["ncols"],
+             "above": [0.0] * layout["nrows"], "below": [0.0] * layout["nrows"]}
+    for ax in fig.axes:
+        spec = ax.get_subplotspec()
+        if spec is None or ax.name != "rectilinear" or not ax.axison:
+            continue
+        box = ax.get_window_extent(renderer)
+        for axis in (ax.xaxis, ax.yaxis):
+            drawn = axis.get_tightbbox(renderer)
+            if drawn is None:
+                continue
+            for side, at, beyond in (("left", spec.colspan.start, box.x0 - drawn.x0),
+                                     ("right", spec.colspan.stop - 1, drawn.x1 - box.x1),
+                                     ("above", spec.rowspan.start, drawn.y1 - box.y1),
+                                     ("below", spec.rowspan.stop - 1, box.y0 - drawn.y0)):
+                reach[side][at] = max(reach[side][at], beyond / fig.dpi)
+    return reach
+
+
+def _relayout(fig, layout, wanted) -> dict:
+    if wanted != layout:
+        fixed_layout(fig, **wanted)
+    return wanted
+
+
 def fit_margins(fig) -> bool:
-    """Widen the left and right margins and the gaps between columns of a `fixed_layout` figure
-    where its 2-D panels' axes draw further than the layout gave them: the y axis' tick labels,
-    offset text and label left of a panel, the x tick labels' overhang right of it, measured on
-    the renderer. Panels keep their heights (so their tick labels stay as measured); nothing is
-    ever narrowed. Whether the layout changed."""
+    """Widen the gaps between rows, then the left and right margins and the gaps between
+    columns, of a `fixed_layout` figure where its 2-D panels' axes draw further than the layout
+    gave them (`_reach`): an offset text (×10⁻⁸+4×10⁻¹) above a panel, the y axis' tick labels
+    (−1.57175) and label left of it. The rows first: their heights decide the y ticks, which
+    the columns' widths do not change. Nothing is ever narrowed. Whether the layout changed."""
     layout = getattr(fig, "robosolve_layout", None)
     if layout is None:
         return False
-    renderer = fig.canvas.get_renderer()
-    ncols = layout["ncols"]
-    reach_left, reach_right = [0.0] * ncols, [0.0] * ncols      # inches beyond the panel's box
-    for ax in fig.axes:
-        spec = ax.get_subplotspec()
-        if spec is None or ax.name != "rectilinear":
-            continue
-        box = ax.get_window_extent(renderer)
-        first, last = spec.colspan.start, spec.colspan.stop - 1
-        for axis in (ax.xaxis, ax.yaxis):
-            drawn = axis.get_tightbbox(renderer)
-            if drawn is not None:
-                reach_left[first] = max(reach_left[first], (box.x0 - drawn.x0) / fig.dpi)
-                reach_right[last] = max(reach_right[last], (drawn.x1 - box.x1) / fig.dpi)
-    wanted = dict(layout, left=max(layout["left"], reach_left[0] + TEXT_CLEARANCE),
-                  right=max(layout["right"], reach_right[-1] + TEXT_CLEARANCE),
-                  wgap=max([layout["wgap"]] + [reach_right[c - 1] + reach_left[c] + TEXT_CLEARANCE
-                                               for c in range(1, ncols)]))
-    if wanted == layout:
-        return False
-    fixed_layout(fig, wanted.pop("nrows"), wanted.pop("ncols"), **wanted)
-    return True
+    reach = _reach(fig, layout)
+    # below a panel, its x tick marks at least (they point out, into the gap)
+    ticks = matplotlib_rc("xtick.major.size") / 72 if matplotlib_rc("xtick.direction") == "out" else 0.0
+    rows = [max(reach["below"][r - 1], ticks) + reach["above"][r] + TEXT_CLEARANCE
+            for r in range(1, layout["nrows"])]
+    settled = _relayout(fig, layout, dict(layout, hgap=max([layout["hgap"], *rows])))
+    if settled != layout:
+        reach = _reach(fig, settled)
+    columns = [reach["right"][c - 1] + reach["left"][c] + TEXT_CLEARANCE for c in range(1, layout["ncols"])]
+    settled = _relayout(fig, settled, dict(settled, wgap=max([settled["wgap"], *columns]),
+                                           left=max(settled["left"], reach["left"][0] + TEXT_CLEARANCE),
+                                           right=max(settled["right"], reach["right"][-1] + TEXT_CLEARANCE)))
+    return settled != layout
 
 
 # a spread of values below this fraction of their size is round-off (or integration noise), not

@@ -65,8 +65,7 @@ def _settled_rows(fig, ax, ticks, labels) -> list[int]:
         top = TOP + max(rows) * ROW_STEP / 72
         if fig.robosolve_layout["top"] == top:
             return rows
-        layout = dict(fig.robosolve_layout, top=top)
-        fixed_layout(fig, layout.pop("nrows"), layout.pop("ncols"), **layout)
+        fixed_layout(fig, **dict(fig.robosolve_layout, top=top))
     settle_layout(fig)
     return label_rows(ax, ticks, labels)
 
