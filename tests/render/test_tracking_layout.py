@@ -113,3 +113,18 @@ def test_a_small_real_change_is_not_flattened(monkeypatch, tmp_path):
         assert offset.get_text()
         assert offset.get_window_extent(renderer).y1 + tick_marks < above.get_window_extent(renderer).y0
     assert clipped(fig) == []
+
+
+def test_a_joint_at_rest_is_drawn_flat_and_its_rate_zero(monkeypatch, tmp_path):
+    # forward dynamics from an equilibrium (hanging at −π/2): the run's value and rate are its
+    # integration noise (1e-13 rad, 1e-12 rad/s); both panels flat with plain ticks
+    from tests.render.test_long_tick_labels import T, forward_dynamics_spec
+
+    fig = drawn(monkeypatch, "forward_dynamics", forward_dynamics_spec(-np.pi / 2 + 1e-13 * np.sin(19 * T)), tmp_path)
+    value, rate = fig.axes
+    for ax in (value, rate):
+        ticks, offset = shown(fig, ax)
+        assert offset == "" and all("×" not in t and len(t) <= 6 for t in ticks)
+    assert any(float(t.replace("−", "-")) == 0 for t in shown(fig, rate)[0])
+    assert any("round-off" in t.get_text() for t in rate.texts)
+    assert clipped(fig) == []

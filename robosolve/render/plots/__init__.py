@@ -180,6 +180,19 @@ def is_roundoff(spread: float, scale: float) -> bool:
     return math.isfinite(spread) and abs(spread) <= ROUNDOFF * abs(scale)
 
 
+def plot_or_zero(ax, t, values, scale, note, unit, **style):
+    """Plot `values` against `t`; values that are all round-off relative to `scale` (a tracking
+    error that is zero in exact arithmetic, the rate of a joint at rest) are drawn as the zero
+    line, with `note` (what is bounded) and their bound in `unit` written in the panel, not as 10⁻¹² noise under a ×10ⁿ."""
+    largest = max((abs(v) for v in values), default=0.0)
+    if largest > 0 and is_roundoff(largest, scale):
+        ax.plot(t, [0.0] * len(t), **style)
+        ax.text(0.5, 0.75, f"zero to round-off: {note} ≤ {figure_number(largest, 2)} {unit}", transform=ax.transAxes,
+                ha="center", va="center", fontsize=8, color="0.25", bbox=dict(fc="white", ec="none", alpha=0.85))
+    else:
+        ax.plot(t, values, **style)
+
+
 def flat_when_constant(ax) -> None:
     """A panel whose data are one constant to round-off (a coordinate that stays in its plane):
     its y range is the one matplotlib gives an exact constant, so the values are drawn as a flat

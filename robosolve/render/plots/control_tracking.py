@@ -7,7 +7,7 @@ error_title (a work-space error: x_d - x).
 
 from __future__ import annotations
 
-from robosolve.render.plots import figure_number, is_roundoff, save, time_panels
+from robosolve.render.plots import plot_or_zero, save, time_panels
 from robosolve.render.plots.motion_profile import COLOURS
 
 
@@ -19,18 +19,10 @@ def _marks(ax, d):
 
 
 def _error_panel(ax, t, j, colour):
-    """The error against time; an error that is round-off relative to the coordinate's values
-    (computed torque started on the reference: zero in exact arithmetic) is drawn as the zero
-    line with its bound written in the panel, not as noise under a ×10⁻¹² offset."""
-    largest = max((abs(e) for e in j["error"]), default=0.0)
+    """The error against time; round-off relative to the coordinate's values (computed torque
+    started on the reference: zero in exact arithmetic) is drawn as the zero line."""
     scale = max(abs(x) for x in [*j["q"], *j["q_desired"], 0.0])
-    if largest > 0 and is_roundoff(largest, scale):
-        ax.plot(t, [0.0] * len(t), color=colour, lw=1.2)
-        ax.text(0.5, 0.75, f"zero to round-off: |e| ≤ {figure_number(largest, 2)} {j['unit']}",
-                transform=ax.transAxes, ha="center", va="center", fontsize=8, color="0.25",
-                bbox=dict(fc="white", ec="none", alpha=0.85))
-    else:
-        ax.plot(t, j["error"], color=colour, lw=1.2)
+    plot_or_zero(ax, t, j["error"], scale, "$|e|$", j["unit"], color=colour, lw=1.2)
     ax.axhline(0.0, color="0.6", lw=0.6)
 
 
