@@ -158,21 +158,33 @@ def _profile_spec(T, switches):
     (3.3333333, [0.1571, 0.3333333, 3.0, 3.1762]),      # two short phases at each end
     (1.0, [0.5]),
     (2.0, [0.001, 0.002, 1.0, 1.998, 1.999]),
+    # a synchronized trapezoid of three joints: 0.208, 0.292 and 0.4 s; 1.25, 1.358 and 1.442 s
+    (1.65, [0.2083333, 0.2916667, 0.4, 1.25, 1.3583333, 1.4416667]),
+    (123456.7, [0.5, 61728.35, 123456.2]),                   # long numbers at the right end
 ])
-def test_switching_instant_labels_never_overlap(monkeypatch, tmp_path, T, switches):
-    # measured on matplotlib's renderer: the labels of the top axis (the switching instants)
-    # drawn side by side must not overlap; the ends 0 and T are always labelled
+def test_every_switching_instant_is_labelled_without_overlap(monkeypatch, tmp_path, T, switches):
+    # measured on matplotlib's renderer: every switching instant (and 0, T) has its label above the
+    # first panel, centred on it; labels never overlap one another or the title, all inside the figure
     fig = drawn(monkeypatch, "motion_profile", _profile_spec(T, switches), tmp_path)
+    fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
-    # the secondary (top) axis is a child of the first panel, not one of the figure's axes
-    labels = [lab for ax in fig.findobj(lambda o: hasattr(o, "get_xticklabels")) if ax not in fig.axes
-              for lab in ax.get_xticklabels() if lab.get_text()]
-    assert labels
-    boxes = sorted((lab.get_window_extent(renderer) for lab in labels), key=lambda b: b.x0)
-    for left, right in zip(boxes, boxes[1:]):
-        assert left.x1 <= right.x0, [lab.get_text() for lab in labels]
-    texts = [lab.get_text() for lab in labels]
-    assert texts[0] == "0" and texts[-1] == f"{T:.3g}"
+    ax = fig.axes[0]
+    labels = [t for t in ax.texts if t.get_text()]
+    instants = sorted({0.0, T, *switches})
+    assert sorted(float(lab.get_position()[0]) for lab in labels) == instants
+    for lab in labels:
+        assert float(lab.get_text()) == pytest.approx(lab.get_position()[0], rel=5e-3, abs=5e-4)
+    assert len({lab.get_text() for lab in labels}) == len(labels)    # close instants told apart
+    boxes = [lab.get_window_extent(renderer) for lab in labels]
+    for lab, box in zip(labels, boxes):
+        x = ax.transData.transform((lab.get_position()[0], 0))[0]
+        assert box.x0 < x < box.x1                                   # over its own instant
+        assert box.y0 >= ax.get_window_extent(renderer).y1            # above the panel
+    for i, a in enumerate(boxes):
+        assert not a.overlaps(ax.title.get_window_extent(renderer)), labels[i].get_text()
+        for j in range(i + 1, len(boxes)):
+            assert not a.overlaps(boxes[j]), (labels[i].get_text(), labels[j].get_text())
+    assert clipped(fig) == []
 
 
 def test_the_peak_text_does_not_hide_the_curve(monkeypatch, tmp_path):

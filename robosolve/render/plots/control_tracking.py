@@ -7,7 +7,7 @@ error_title (a work-space error: x_d - x).
 
 from __future__ import annotations
 
-from robosolve.render.plots import save, time_panels
+from robosolve.render.plots import plot_or_zero, save, time_panels
 from robosolve.render.plots.motion_profile import COLOURS
 
 
@@ -16,6 +16,14 @@ def _marks(ax, d):
         ax.axvline(s, color="0.5", ls="--", lw=0.8)
     if d["T"] < d["duration"]:
         ax.axvline(d["T"], color="0.3", lw=0.8)
+
+
+def _error_panel(ax, t, j, colour):
+    """The error against time; round-off relative to the coordinate's values (computed torque
+    started on the reference: zero in exact arithmetic) is drawn as the zero line."""
+    scale = max(abs(x) for x in [*j["q"], *j["q_desired"], 0.0])
+    plot_or_zero(ax, t, j["error"], scale, "$|e|$", j["unit"], color=colour, lw=1.2)
+    ax.axhline(0.0, color="0.6", lw=0.6)
 
 
 def draw(spec, path):
@@ -34,8 +42,7 @@ def draw(spec, path):
         ax.set_ylabel(f"${j['label']}$ ({j['unit']})")
         ax.legend(loc="best", fontsize=8)
         ax = axes[k, 1]
-        ax.plot(d["t"], j["error"], color=c, lw=1.2)
-        ax.axhline(0.0, color="0.6", lw=0.6)
+        _error_panel(ax, d["t"], j, c)
         _marks(ax, d)
         ax.set_ylabel(f"$e_{{{j['label']}}}$ ({j['unit']})")
     axes[0, 0].set_title("trajectory")

@@ -5,7 +5,7 @@ Data: t, q, qd, label, rate_label, unit, rate_unit, max, t_max, min, t_min.
 
 from __future__ import annotations
 
-from robosolve.render.plots import figure_number, fixed_layout, save, subplots
+from robosolve.render.plots import figure_number, fixed_layout, plot_or_zero, save, subplots
 from robosolve.render.plots.motion_profile import COLOURS
 
 
@@ -18,7 +18,12 @@ def draw(spec, path):
     ax.plot([d["t_min"]], [d["min"]], "^", color="0.55", ms=6, label=f"min {figure_number(d['min'], 6)} {d['unit']}")
     ax.set_ylabel(f"${d['label']}$ ({d['unit']})")
     ax.legend(loc="best", fontsize=8)
-    axr.plot(d["t"], d["qd"], color=COLOURS[1 % len(COLOURS)], lw=1.3, label=f"${d['rate_label']}(t)$")
+    # a joint at rest (at an equilibrium): a rate of round-off beside the joint's value over the
+    # run, drawn as zero, as its value is drawn flat
+    duration = d["t"][-1] - d["t"][0]
+    rate_scale = max(abs(d["max"]), abs(d["min"])) / duration if duration > 0 else 0.0
+    plot_or_zero(axr, d["t"], d["qd"], rate_scale, f"$|{d['rate_label']}|$", d["rate_unit"],
+                 color=COLOURS[1 % len(COLOURS)], lw=1.3, label=f"${d['rate_label']}(t)$")
     axr.axhline(0.0, color="0.6", lw=0.6)
     axr.set_ylabel(f"${d['rate_label']}$ ({d['rate_unit']})")
     axr.set_xlabel("t (s)")
