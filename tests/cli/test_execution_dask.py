@@ -55,6 +55,7 @@ def test_batch_on_dask_writes_the_same_bytes_as_a_local_run(scheduler, tmp_path)
     assert r3.exit_code == 0 and "golden check: 3 problems identical" in r3.output
 
 
+@pytest.mark.slow      # the batch test above covers the Dask route in the default run
 def test_variants_on_dask_equal_the_local_pool(scheduler, tmp_path):
     from tests.workflows.test_variants import problem_file
 

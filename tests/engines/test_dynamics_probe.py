@@ -83,7 +83,13 @@ CASES = {
 }
 
 
-@pytest.mark.parametrize("name", list(CASES))
+# the default run keeps one case of each kind (modified DH, a prismatic joint with gravity along
+# y and oblique, an external force); the others run with the long checks
+LONG_CASES = {"std-3r", "mdh-3r-b", "std-3r-payload", "std-3r-force-in-0"}
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in LONG_CASES else n
+                                  for n in CASES])
 def test_three_joint_full_inertia_arms_against_rtb(name):
     _check(CASES[name], seed=sum(map(ord, name)))
 
