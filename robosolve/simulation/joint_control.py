@@ -75,18 +75,25 @@ class ControlResult:
 
 def _intervals(plan: NumericPlan, duration: float):
     """(t_a, t_b, coeffs about t_a) covering [0, duration]."""
+    # A break a rounding away from the duration (0.19999999999999998 against 0.2: a path's
+    # samples k·Δt) is the duration: an interval of 1e-17 s is no interval (LSODA refuses it as
+    # illegal input and the run fell back to Radau with a warning on the console).
+    tol = 1e-12 * max(1.0, duration)
     out = []
     for k, c in enumerate(plan.coeffs):
         a, b = float(plan.breaks[k]), float(plan.breaks[k + 1])
-        if a >= duration:
+        if a >= duration - tol:
             break
         if b > a:
-            out.append((a, min(b, duration), c))
+            out.append((a, duration if b >= duration - tol else b, c))
     end = out[-1][1] if out else 0.0
     if duration > end:
         hold = np.zeros_like(plan.coeffs[0])
         hold[:, 0] = plan.hold
-        out.append((end, duration, hold))
+        if out and duration - end <= tol:
+            out[-1] = (out[-1][0], duration, out[-1][2])
+        else:
+            out.append((end, duration, hold))
     return out
 
 

@@ -342,3 +342,21 @@ def test_the_report_states_the_start_the_run_really_starts_from():
                 yield piece.value
 
     assert [0.1, 1.3] == [v for v in numbers(given) if v in (0.1, 1.3)]
+
+
+def test_a_run_ending_a_rounding_after_a_path_sample_leaves_no_empty_interval():
+    """duration 0.2 against a path sampled at k·Δt (a break at 0.19999999999999998): the last
+    interval was 2.8e-17 s long, LSODA refused it ("illegal input") and the run fell back to
+    Radau with a warning on the console. Now no warning, and the run ends at the duration."""
+    import warnings
+
+    from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import solve_problem
+
+    law = ("  - {type: p_control, id: default, trajectory: line, law: pd_gravity, gains: {q1: 100, q2: 100},"
+           " gains_d: {q1: 10, q2: 10}, duration: 0.2}\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        answers = {a.id: a for a in solve_problem(load_problem_text(ARM_2R + LINE + law)).answers}
+    values = answers["default"].numeric
+    assert values["t_max_error"] == {"q1": 0.2, "q2": 0.2}, values
