@@ -33,6 +33,8 @@ from typing import Callable
 
 import numpy as np
 
+from robosolve.core.extremes import first_of_ties, tie_tolerance
+
 __all__ = ["PathError", "Path", "line", "circle", "Timing", "trapezoidal", "quintic", "Arm",
            "Conversion", "newton", "nearest_solution", "joint_state", "follow", "extremes"]
 
@@ -415,9 +417,30 @@ def extremes(arm: Arm, path: Path, timing: Timing, conv: Conversion):
             k = int(np.argmax(np.abs(arr[i])))
             out[i] = _refine(lambda tt, sg, i=i, w=which: abs(state_at(arm, path, timing, conv, tt, sg)[w][i]),
                              conv, k)[0]
-    k = int(np.argmin(conv.sigma))
-    smin, tmin = _refine(lambda tt, sg: state_at(arm, path, timing, conv, tt, sg)[3], conv, k, sign=-1.0)
+    sig = conv.sigma
+    cands = [_refine(lambda tt, sg: state_at(arm, path, timing, conv, tt, sg)[3], conv, k, sign=-1.0)
+             for k in _near_bottom_minima(sig)]
+    # dips within the conversion's error of the lowest tie: the first is reported (core/extremes.py)
+    smin, tmin = first_of_ties(cands, tie_tolerance(float(np.max(sig)), CONVERSION_RTOL))
     return vel, acc, (-smin, tmin)
+
+
+# the conversion's relative error on q (Newton to 1e-12; the minimum-norm motion's RK4 5e-12 rad)
+CONVERSION_RTOL = 1e-11
+
+
+def _near_bottom_minima(vals: np.ndarray, within: float = 1e-2, keep: int = 12) -> list[int]:
+    """Indices, in time order, of the local minima of the samples (ends included) within
+    ``within`` of the lowest, relative to the range: the earliest and the lowest, ``keep`` in all."""
+    m = vals.size
+    if m <= 2:
+        return [int(np.argmin(vals))]
+    inner = np.nonzero((vals[1:-1] <= vals[:-2]) & (vals[1:-1] <= vals[2:]))[0] + 1
+    idx = np.concatenate([[0], inner, [m - 1]])
+    low, span = float(vals.min()), float(vals.max() - vals.min())
+    near = [int(k) for k in idx if vals[k] <= low + within * max(span, abs(low))]
+    lowest = sorted(near, key=lambda k: vals[k])[:keep - keep // 4]
+    return sorted(set(lowest) | set(near[:keep // 4]))
 
 
 def _singular_between(arm, path, timing, conv, tol):

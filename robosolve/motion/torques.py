@@ -18,6 +18,7 @@ from typing import Sequence
 import numpy as np
 import sympy as sp
 
+from robosolve.core.extremes import tie_tolerance
 from robosolve.core.simplify import common_factors, factored
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import SyncProfile
@@ -188,12 +189,11 @@ def torques_along(profile: SyncProfile, dyn: NumericDynamics, names: Sequence[st
                 if not _falls_from_end(lambda s: abs(at(s, i)), j, ts, abs(cand)):
                     x = golden_max(lambda s: abs(at(s, i)), lo, hi)
                     v = at(x, i)
-                    if abs(v) > abs(cand) * (1 + 1e-12):   # not round-off on a plateau (kept at its start)
+                    if abs(v) > abs(cand) + tie_tolerance(cand):   # not round-off on a plateau (kept at its start)
                         cand, tc = v, x
                 mag = abs(cand)
                 cur = best[i]
-                tol = 1e-12 * max(mag, cur[0], 1e-300)
-                if mag > cur[0] + tol:          # ties keep the earlier instant
+                if mag > cur[0] + tie_tolerance(max(mag, cur[0])):   # ties keep the earlier instant (core/extremes.py)
                     best[i] = (mag, cand, tc)
     if not intervals:                       # nothing moves: the holding forces
         Q, QD, QDD = plan.evaluate([0.0])

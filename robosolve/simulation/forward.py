@@ -10,7 +10,8 @@ module compiles them into one scalar function and integrates it (``integrate``).
 
 Accuracy: DOP853 (explicit, 8th order) at rtol 1e-10, atol 1e-12 on the state: the
 tests ask for 1e-8 relative to the run's scale against an independent integration.
-Extremes are found on the dense output (roots of q'_i), not at samples.  The work of
+Extremes are found on the dense output (roots of q'_i), not at samples; values within the
+run's error of an extreme tie, and the first instant of the tie is reported (core/extremes.py).  The work of
 the non-conservative forces (tau + f_ext) . q' is integrated as an extra state, so the
 energy balance E_end - E_start = W can be shown even when W has no closed form.
 
@@ -30,6 +31,8 @@ from typing import Callable, Sequence
 
 import numpy as np
 import sympy as sp
+
+from robosolve.core.extremes import first_of_ties, tie_tolerance
 
 __all__ = ["Plant", "Run", "RunTooLong", "RunUndefined", "compile_plant", "integrate", "MAX_EVALUATIONS",
            "RTOL", "ATOL"]
@@ -270,15 +273,15 @@ def integrate(plant: Plant, q0, qd0, duration: float, *, rtol: float = RTOL, ato
         break
     if not sol.success:
         raise RunTooLong(f"the integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
-    return _collect(plant, sol, duration, samples, total, attempts[-1][0], notes)
+    return _collect(plant, sol, duration, samples, total, attempts[-1][0], notes, (rtol, atol))
 
 
-def _collect(plant, sol, duration, samples, evaluations, method, notes) -> Run:
+def _collect(plant, sol, duration, samples, evaluations, method, notes, tolerances) -> Run:
     n = plant.n
     ts = np.linspace(0.0, duration, samples)
     ys = sol.sol(ts)
     ys[:, 0], ys[:, -1] = sol.y[:, 0], sol.y[:, -1]
-    q_max, t_max, q_min, t_min = _extremes(sol, n, duration)
+    q_max, t_max, q_min, t_min = _extremes(sol, n, duration, tolerances)
     final = sol.y[:n, -1].copy()
     run = Run(duration, ts, ys[:n], ys[n:2 * n], final, sol.y[n:2 * n, -1].copy(), q_max, t_max,
               q_min, t_min, float(sol.y[-1, -1]), evaluations=evaluations, steps=len(sol.t) - 1,
@@ -295,8 +298,9 @@ def _collect(plant, sol, duration, samples, evaluations, method, notes) -> Run:
     return run
 
 
-def _extremes(sol, n, duration):
-    """max/min of each q_i over [0, duration]: the ends and every root of q'_i (dense output)."""
+def _extremes(sol, n, duration, tolerances):
+    """max/min of each q_i over [0, duration]: the ends and every root of q'_i (dense output);
+    ``tolerances``: the run's (rtol, atol), which decide the ties."""
     from scipy.optimize import brentq
 
     steps = sol.t
@@ -316,9 +320,9 @@ def _extremes(sol, n, duration):
             cands.append((float(sol.sol(r)[i]), r))
         for k in np.nonzero(v == 0)[0]:
             cands.append((float(vals[i, k]), float(grid[k])))
-        # ties go to the earliest instant
-        hi = max(c[0] for c in cands)
-        lo = min(c[0] for c in cands)
-        q_max[i], t_max[i] = hi, min(c[1] for c in cands if c[0] == hi)
-        q_min[i], t_min[i] = lo, min(c[1] for c in cands if c[0] == lo)
+        # values within the run's error of the extreme tie, and the first of them is reported
+        # (core/extremes.py): an arm at rest at an equilibrium stays at its start, t = 0
+        tol = tie_tolerance(float(np.max(np.abs(vals[i]))), *tolerances, len(steps) - 1)
+        q_max[i], t_max[i] = first_of_ties(cands, tol, largest=True)
+        q_min[i], t_min[i] = first_of_ties(cands, tol, largest=False)
     return q_max, t_max, q_min, t_min

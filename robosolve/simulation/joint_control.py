@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from robosolve.core.extremes import first_of_ties, tie_tolerance
 from robosolve.dynamics.numeric import NumericDynamics
 from robosolve.motion.profiles import NumericPlan
 from robosolve.simulation.forward import undefined_message
@@ -156,7 +157,7 @@ def simulate(dyn: NumericDynamics, plan: NumericPlan, law: str, kp, kd=None, sta
     sols, nfev = _integrate(dyn, plan.DEG, law, kp, kd, intervals, y, budget, method, rtol, atol)
     grid, q_des, err, effort, external = _samples(dyn, plan.DEG, law, kp, kd, sols, intervals,
                                                   duration, samples)
-    max_err, t_max = _max_errors(sols, n, duration)
+    max_err, t_max = _max_errors(sols, n, duration, rtol, np.broadcast_to(atol, (2 * n,)))
     final = sols[-1][3].y[:n, -1].copy()
     q = q_des - err
     return ControlResult(law, duration, grid, q, q_des, err, effort, max_err, t_max, final,
@@ -192,7 +193,7 @@ def max_abs_refined(f, ts: np.ndarray, values: np.ndarray, xatol: float) -> tupl
                 tc, vc = float(res.x), float(-res.fun)
         cands.append((vc, tc))
     best = max(c[0] for c in cands)
-    return best, min(tc for vc, tc in cands if vc >= best - 1e-12 * max(best, 1e-300))
+    return best, first_of_ties(cands, tie_tolerance(best))[1]
 
 
 def _error_rhs(dyn: NumericDynamics, fast, law, kp, kd, a, coeffs, deg):
@@ -265,16 +266,17 @@ def _samples(dyn: NumericDynamics, deg, law, kp, kd, sols, intervals, duration, 
     return grid, q_des, err, effort, external
 
 
-def _max_errors(sols, n, duration):
-    """(max |e|, instant) per joint, arrays of n."""
+def _max_errors(sols, n, duration, rtol, atol):
+    """(max |e|, instant) per joint, arrays of n; the run's tolerances ``rtol``, ``atol`` (on
+    the state e, edot) decide the ties."""
     max_err = np.zeros(n)
     t_max = np.zeros(n)
     for i in range(n):
-        max_err[i], t_max[i] = _max_abs_error(sols, i, duration)
+        max_err[i], t_max[i] = _max_abs_error(sols, i, duration, (rtol, float(atol[i])))
     return max_err, t_max
 
 
-def _max_abs_error(sols, i, duration):
+def _max_abs_error(sols, i, duration, tolerances):
     """max |e_i| and where: the solver's own steps sample every oscillation finely; the best
     few local maxima are then polished on the dense output."""
     from robosolve.core.minimize import minimize_bounded
@@ -293,11 +295,12 @@ def _max_abs_error(sols, i, duration):
                 if -res.fun > vc:
                     tc, vc = float(res.x), float(-res.fun)
             cands.append((vc, tc))
-    best, tbest = max(cands, key=lambda c: (c[0], -c[1]))
-    # ties (within round-off) go to the earliest instant
-    tol = 1e-12 * max(best, 1e-300)
-    tbest = min(tc for vc, tc in cands if vc >= best - tol)
-    return best, tbest
+    # crests within the run's error of the largest tie, and the first of them is reported
+    # (core/extremes.py): an undamped loop's equal crests give the first one, not the one the
+    # integrator's error lifted
+    scale = max(c[0] for c in cands)
+    steps = sum(len(sol.t) - 1 for *_, sol in sols)
+    return first_of_ties(cands, tie_tolerance(scale, *tolerances, steps))
 
 
 class _Budget:
@@ -377,7 +380,9 @@ def _fast_rhs(fast, a: float, coeffs: list, n: int, timed: bool = False):
 
 
 def _top_local_maxima(vals: np.ndarray, keep: int = 12) -> list[int]:
-    """Indices of the largest local maxima of vals (ends included), at most ``keep``."""
+    """Indices, in time order, of the largest local maxima of vals (ends included), at most
+    ``keep``: the highest ones and the earliest ones within 1 % of the top (the first of crests
+    that tie, core/extremes.py, is among them however many crests there are)."""
     m = len(vals)
     if m <= 2:
         return [int(np.argmax(vals))]
@@ -386,8 +391,8 @@ def _top_local_maxima(vals: np.ndarray, keep: int = 12) -> list[int]:
     top = vals[idx]
     best = top.max()
     near = idx[top >= best * (1 - 1e-2)]
-    order = np.argsort(-vals[near], kind="stable")[:keep]
-    return sorted(int(near[k]) for k in order)
+    order = np.argsort(-vals[near], kind="stable")[:keep - keep // 4]
+    return sorted({int(near[k]) for k in order} | {int(k) for k in near[:keep // 4]})
 
 
 def _external_many(dyn, q, qd, ts=None):

@@ -5,7 +5,8 @@ coordinates e = x_d - x(q) drives the actuators.
 * ``task_computed_torque``: tau = M J^-1 (x_ddot_d + Kd e_dot + Kp e - J_dot q_dot) + c + g
 
 integrated on the plant M q_ddot + c + g = tau + f_ext with state (q, q_dot), restarted at each
-switching instant of the timing law; the errors' extremes are refined on the dense output.
+switching instant of the timing law; the errors' extremes are refined on the dense output (crests
+within the run's error of the largest tie, the first is reported: core/extremes.py).
 """
 
 from __future__ import annotations
@@ -14,7 +15,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robosolve.simulation.joint_control import MAX_EVALUATIONS, TIME_LIMIT, SimulationTooLong, _Budget
+from robosolve.core.extremes import first_of_ties, tie_tolerance
+from robosolve.simulation.joint_control import (MAX_EVALUATIONS, TIME_LIMIT, SimulationTooLong, _Budget,
+                                                 _top_local_maxima)
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 RTOL = 1e-10
@@ -113,18 +116,26 @@ def _result(dyn, arm, desired, law, kp, kd, sols, duration, samples, nfev):
         x = arm.x(q)
         for k, v in zip(cols, (q, x, xd, xd - x, task_torque(law, kp, kd, arm, q, qd, xd, vd, ad, m, c, g))):
             cols[k].append(v)
-    e = np.array(cols["e"]).T
+    e, xs = np.array(cols["e"]).T, np.array(cols["x"]).T
     mx, tm = np.zeros(e.shape[0]), np.zeros(e.shape[0])
+    steps = sum(len(sol.t) - 1 for *_, sol in sols)
     for i in range(e.shape[0]):
-        k = int(np.argmax(np.abs(e[i])))
-        lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-        mx[i], tm[i] = abs(e[i, k]), grid[k]
-        if hi > lo:
-            res = minimize_bounded(lambda s: -abs(_error_at(arm, desired, sols, s)[i]), (lo, hi),
-                                   xatol=1e-12 * max(1.0, duration))
-            if -res.fun > mx[i]:
-                mx[i], tm[i] = -res.fun, res.x
-    return TaskControlResult(law, duration, grid, np.array(cols["q"]).T, np.array(cols["x"]).T,
+        cands = []
+        for k in _top_local_maxima(np.abs(e[i])):
+            lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+            vc, tc = abs(float(e[i, k])), float(grid[k])
+            if hi > lo:
+                res = minimize_bounded(lambda s: -abs(_error_at(arm, desired, sols, s)[i]), (lo, hi),
+                                       xatol=1e-12 * max(1.0, duration))
+                if -res.fun > vc:
+                    vc, tc = float(-res.fun), float(res.x)
+            cands.append((vc, tc))
+        # crests within the run's error of the largest tie: the first is reported (core/extremes.py);
+        # the state is q, so e = x_d - x(q) is known to the integrator's tolerance on x, not on e
+        scale = max(max(c[0] for c in cands), float(np.max(np.abs(xs[i]))))
+        tol = tie_tolerance(scale, RTOL, ATOL, steps)
+        mx[i], tm[i] = first_of_ties(cands, tol)
+    return TaskControlResult(law, duration, grid, np.array(cols["q"]).T, xs,
                              np.array(cols["xd"]).T, e, np.array(cols["tau"]).T, mx, tm, e[:, -1].copy(), nfev)
 
 
