@@ -25,7 +25,8 @@ from robosolve.grading.pieces import has_piecewise, split_pieces, wrong_interval
 from robosolve.grading.points import evaluate, sample, single_point
 from robosolve.grading.reach import set_reaches
 from robosolve.grading.reference import Reference, lookup
-from robosolve.grading.values import Equation, Pieces, Reader, ValueProblem, blanks, free_symbols, substitute
+from robosolve.grading.values import (Equation, Pieces, Reader, ValueProblem, blanks, entry_names, free_symbols,
+                                      substitute)
 from robosolve.questions import registry as R
 from robosolve.questions.registry import question_type
 
@@ -257,7 +258,7 @@ class Grader:
 
     def _read_and_compare(self, qref, ak, key, given, sym, num) -> KeyResult:
         try:
-            g = self.reader.read(ak, given.value)
+            g = self.reader.read(ak, given.value, entries=entry_names(self.ref.problem, qref.id, key))
         except ValueProblem as exc:
             return KeyResult(INVALID, diagnosis="wrong_shape" if exc.wrong_shape else "", feedback=str(exc))
         try:
