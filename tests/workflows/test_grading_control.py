@@ -103,3 +103,26 @@ def test_control_errors_as_a_vector_of_another_length_are_a_wrong_shape(ref, err
     result = grade_text(ref, _answers("task", {"max_error": f"[{mx:.4g}, {mx:.4g}, 0]"}))
     assert key(result, "task", "max_error").verdict == "invalid"
     assert key(result, "task", "max_error").diagnosis == "wrong_shape"
+
+
+@pytest.fixture(scope="module")
+def ref_proportional():
+    return reference_of(PP.replace("name: pp", "name: pp-proportional") + "grading: {entries: proportional}\n")
+
+
+def test_entries_proportional_credits_each_right_error_of_a_control_question(ref_proportional, errors):
+    """`entries: proportional` gives a per-coordinate or per-joint error the share of its entries
+    that are right, as it does a per-joint Fq (grading.md)."""
+    from fractions import Fraction
+
+    (mx, fx), (my, fy) = errors
+    task = grade_text(ref_proportional, _answers("task", {
+        "max_error": f"{{E.x: {mx:.4g}, E.y: {2 * my:.4g}}}", "final_error": f"{{E.x: {fx:.4g}, E.y: {fy:.4g}}}",
+        "max_task_error": f"{{E.x: {2 * mx:.4g}, E.y: {my:.4g}}}"}))
+    assert key(task, "task", "max_error").credit == Fraction(1, 2)
+    assert key(task, "task", "max_task_error").credit == Fraction(1, 2)
+    question = next(q for q in task.questions if q.id == "task")
+    assert question.score == Fraction(1, 3) * (Fraction(1, 2) + 1 + Fraction(1, 2))
+    joint = grade_text(ref_proportional, _answers("joint", {"max_error": f"[{mx:.4g}, 1]",
+                                                            "final_error": f"[{fx:.4g}, {fy:.4g}]"}))
+    assert key(joint, "joint", "max_error").credit == Fraction(1, 2)
