@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from robosolve.load.expressions import ExpressionError, shown, typed_math
+from robosolve.load.expressions import ExpressionError, did_you_mean, shown, typed_math
 from robosolve.load.loader import type_name
 from robosolve.questions import registry as R
 
@@ -129,6 +129,17 @@ class Reader:
             values[names[q]] = sp.expand(q - r / slope)
         return {name: values[name] for name, _ in self.joints if name in values}
 
+    def _joints_only(self, element, where):
+        """A set element written as a mapping is keyed by joint names (an IK solution, a
+        singular condition): any other name is no value the key can have."""
+        names = [name for name, _ in self.joints]
+        if not isinstance(element, dict) or not names:
+            return
+        for k in element:
+            if k not in names:
+                raise ValueProblem(f"{_label(where)}'{k}' is not a joint (the joints: {', '.join(names)})"
+                                   + did_you_mean(k, names))
+
     # -- leaves -----------------------------------------------------------
     def scalar(self, value, where=""):
         if value is None:
@@ -223,7 +234,11 @@ class Reader:
                     items = [part for v in items for part in _alternatives(v)]
                 items = [self._in_joint_order(v) for v in items]
             out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}")) for i, v in enumerate(items)]
-            return out if self.expected else [self._as_joint_values(x) for x in out]
+            if self.expected:
+                return out
+            for i, x in enumerate(out):
+                self._joints_only(x, _join(where, f"element {i + 1}"))
+            return [self._as_joint_values(x) for x in out]
         if kind == R.AXES:      # an infinite semi-axis (a force ellipse at a singularity) is null
             return [None if v is None else self.vector(v, _join(where, f"element {i + 1}"))
                     for i, v in enumerate(self._list(value, where))]
