@@ -129,6 +129,8 @@ def show(tree) -> str:
 
 
 def _show(tree) -> str:
+    if isinstance(tree, sp.MatrixBase):     # a reference's matrix (a key not given): as rows
+        return _show(tree.tolist())
     if isinstance(tree, dict):
         return "{" + ", ".join(f"{k}: {_show(v)}" for k, v in tree.items()) + "}"
     if isinstance(tree, (list, tuple)):

@@ -165,6 +165,17 @@ def test_an_ik_solution_without_a_value_for_a_joint_says_so(ref):
     assert r.verdict == "incorrect" and "element 2: no value for q2" in r.feedback
 
 
+def test_a_missing_matrix_shows_its_expected_value_as_rows(ref):
+    """The expected J of a key not given is written as rows, as every other feedback writes a
+    matrix (and as an answer would be typed), not as sympy's `Matrix([[…]])`."""
+    symbolic_only = reference_of(TWO_R.replace("name: two-r", "name: two-r-symbolic").replace(
+        "{type: jacobian, coordinates: [E.x, E.y], at: {q1: pi/6, q2: pi/3}}", "{type: jacobian, coordinates: [E.x, E.y]}"))
+    res = grade_text(symbolic_only, answers("  jacobian:\n    det: L1*L2*sin(q2)\n"))
+    r = key(res, "jacobian", "J")
+    assert r.verdict == "missing"
+    assert "Matrix" not in r.feedback and "J = [[-L1*sin(q1) - L2*sin(q1 + q2), -L2*sin(q1 + q2)], [" in r.feedback
+
+
 def test_singularities_any_order_and_form(ref):
     assert one(ref, "jacobian", "singularities", "[{q2: pi}, {q2: 0}]").verdict == "correct"
     # as numbers, and -pi for pi (modulo 2π)
