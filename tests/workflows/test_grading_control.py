@@ -37,6 +37,7 @@ questions:
      gains: {E.x: 400, E.y: 900}, gains_d: {E.x: 40, E.y: 30}, grade: [max_error, final_error, max_task_error]}
   - {type: p_control, id: joint, trajectory: line, law: pd_gravity,
      gains: {d1: 400, d2: 900}, gains_d: {d1: 40, d2: 30}}
+grading: {entries: proportional}      # (verdicts do not depend on it; one problem solved for every test)
 """
 
 
@@ -105,24 +106,19 @@ def test_control_errors_as_a_vector_of_another_length_are_a_wrong_shape(ref, err
     assert key(result, "task", "max_error").diagnosis == "wrong_shape"
 
 
-@pytest.fixture(scope="module")
-def ref_proportional():
-    return reference_of(PP.replace("name: pp", "name: pp-proportional") + "grading: {entries: proportional}\n")
-
-
-def test_entries_proportional_credits_each_right_error_of_a_control_question(ref_proportional, errors):
+def test_entries_proportional_credits_each_right_error_of_a_control_question(ref, errors):
     """`entries: proportional` gives a per-coordinate or per-joint error the share of its entries
     that are right, as it does a per-joint Fq (grading.md)."""
     from fractions import Fraction
 
     (mx, fx), (my, fy) = errors
-    task = grade_text(ref_proportional, _answers("task", {
+    task = grade_text(ref, _answers("task", {
         "max_error": f"{{E.x: {mx:.4g}, E.y: {2 * my:.4g}}}", "final_error": f"{{E.x: {fx:.4g}, E.y: {fy:.4g}}}",
         "max_task_error": f"{{E.x: {2 * mx:.4g}, E.y: {my:.4g}}}"}))
     assert key(task, "task", "max_error").credit == Fraction(1, 2)
     assert key(task, "task", "max_task_error").credit == Fraction(1, 2)
     question = next(q for q in task.questions if q.id == "task")
     assert question.score == Fraction(1, 3) * (Fraction(1, 2) + 1 + Fraction(1, 2))
-    joint = grade_text(ref_proportional, _answers("joint", {"max_error": f"[{mx:.4g}, 1]",
+    joint = grade_text(ref, _answers("joint", {"max_error": f"[{mx:.4g}, 1]",
                                                             "final_error": f"[{fx:.4g}, {fy:.4g}]"}))
     assert key(joint, "joint", "max_error").credit == Fraction(1, 2)
