@@ -63,7 +63,7 @@ def read_back(sub, problem) -> list[tuple[str, str, str]]:
     """(question, key, how the value was read) for every key the submission gives (`--echo`):
     the value as robosolve understood it, or why it cannot be read."""
     from robosolve.grading.grader import show
-    from robosolve.grading.values import Reader, ValueProblem, answers_namespace, blanks
+    from robosolve.grading.values import Reader, ValueProblem, answers_namespace, blanks, entry_names
     from robosolve.questions.registry import question_type
 
     reader = Reader(answers_namespace(problem),
@@ -81,7 +81,7 @@ def read_back(sub, problem) -> list[tuple[str, str, str]]:
                 out.append((qid, key, "not filled in (~)"))
                 continue
             try:
-                out.append((qid, key, show(reader.read(ak, given.value))))
+                out.append((qid, key, show(reader.read(ak, given.value, entries=entry_names(problem, qid, key)))))
             except ValueProblem as exc:
                 out.append((qid, key, f"cannot be read: {exc}"))
     return out

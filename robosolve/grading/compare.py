@@ -202,7 +202,20 @@ def _set(g, e, angle_of, rules, by_value: bool = False) -> Outcome:
     matched = max_matching(adj) if g and e else 0
     ok = matched == len(e) == len(g)
     wrong = [] if ok else [f"{matched} of the {len(e)} expected elements matched, {len(g)} given"]
+    if not ok:
+        wrong += _elements_short(g, e)
     return Outcome(ok, wrong, matched=matched, n_given=len(g), n_expected=len(e))
+
+
+def _elements_short(g: list, e: list) -> list[str]:
+    """"element 2: no value for q2" for each given mapping that leaves out a joint every
+    expected element has (an IK solution; singular conditions name different joints)."""
+    keys = {tuple(sorted(b)) for b in e if isinstance(b, dict)}
+    if len(keys) != 1 or len(e) != sum(isinstance(b, dict) for b in e):
+        return []
+    names = [k for k in e[0]]
+    return [f"element {i + 1}: no value for " + ", ".join(k for k in names if k not in a)
+            for i, a in enumerate(g) if isinstance(a, dict) and any(k not in a for k in names)]
 
 
 def _axes(g, e, rules, sign_free: bool) -> Outcome:

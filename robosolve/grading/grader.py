@@ -25,7 +25,8 @@ from robosolve.grading.pieces import has_piecewise, split_pieces, wrong_interval
 from robosolve.grading.points import evaluate, sample, single_point
 from robosolve.grading.reach import set_reaches
 from robosolve.grading.reference import Reference, lookup
-from robosolve.grading.values import Equation, Pieces, Reader, ValueProblem, blanks, free_symbols, substitute
+from robosolve.grading.values import (ORDERED_MAP_KINDS, Equation, Pieces, Reader, ValueProblem, blanks, entry_names,
+                                      free_symbols, substitute)
 from robosolve.questions import registry as R
 from robosolve.questions.registry import question_type
 
@@ -128,6 +129,8 @@ def show(tree) -> str:
 
 
 def _show(tree) -> str:
+    if isinstance(tree, sp.MatrixBase):     # a reference's matrix (a key not given): as rows
+        return _show(tree.tolist())
     if isinstance(tree, dict):
         return "{" + ", ".join(f"{k}: {_show(v)}" for k, v in tree.items()) + "}"
     if isinstance(tree, (list, tuple)):
@@ -180,12 +183,13 @@ def _wrong_given(outcome, g) -> str:
 
 
 def _entry_count(ak, e) -> int:
-    """The entries of a vector, matrix or per-joint mapping (0 for other kinds)."""
+    """The entries of a vector, matrix or per-joint mapping (per joint, actuator or task
+    coordinate: a control question's errors) (0 for other kinds)."""
     if ak.kind == R.MATRIX and isinstance(e, list) and e and isinstance(e[0], list):
         return sum(len(row) for row in e)
     if ak.kind == R.VECTOR and isinstance(e, list):
         return len(e)
-    if ak.kind in (R.JOINT_MAP,) and isinstance(e, dict):
+    if ak.kind in ORDERED_MAP_KINDS and isinstance(e, dict):
         return len(e)
     return 0
 
@@ -257,7 +261,7 @@ class Grader:
 
     def _read_and_compare(self, qref, ak, key, given, sym, num) -> KeyResult:
         try:
-            g = self.reader.read(ak, given.value)
+            g = self.reader.read(ak, given.value, entries=entry_names(self.ref.problem, qref.id, key))
         except ValueProblem as exc:
             return KeyResult(INVALID, diagnosis="wrong_shape" if exc.wrong_shape else "", feedback=str(exc))
         try:

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from robosolve.load.expressions import ExpressionError, shown, typed_math
+from robosolve.load.expressions import ExpressionError, did_you_mean, shown, typed_math
 from robosolve.load.loader import type_name
 from robosolve.questions import registry as R
 
@@ -44,6 +44,9 @@ class Pieces:
 
 MAP_KINDS = (R.JOINT_MAP, R.ACTUATOR_MAP, R.BODY_MAP, R.COORDINATE_MAP, R.CONTROL_MAP)
 ARRAY_KINDS = (R.VECTOR, R.MATRIX, R.VECTOR_SET, R.AXES)
+#: mappings a student may write as a vector, one value per entry in a known order: joints,
+#: actuators, and a control question's errors (per joint, or per task coordinate)
+ORDERED_MAP_KINDS = (R.JOINT_MAP, R.ACTUATOR_MAP, R.CONTROL_MAP, R.COORDINATE_MAP)
 SET_KINDS = (R.JOINT_MAP_SET, R.VECTOR_SET)
 
 
@@ -66,6 +69,20 @@ def answers_namespace(problem):
         names.update({n: sp.Symbol(n) for n in entries if n not in names})
     return Namespace(names, problem.points.keys(), what="name", max_chars=ANSWER_MAX_CHARS,
                      max_nodes=ANSWER_MAX_NODES, piecewise=True)
+
+
+def entry_names(problem, question_id: str, key: str):
+    """The names of the entries of a mapping answer in the order the question's paper lists
+    them (its type's `paper_layout`: a control question's errors per joint or per task
+    coordinate), or None when the question does not decide them."""
+    from robosolve.questions.registry import question_type
+
+    question = next((q for q in problem.questions if q.id == question_id), None)
+    layout = question_type(question.type).paper_layout if question is not None else None
+    if layout is None:
+        return None
+    entries = layout(question, problem).get(key, (None, None))[0]
+    return None if entries is None else [str(e) for e in entries]
 
 
 def _label(where: str) -> str:
@@ -111,6 +128,17 @@ class Reader:
                 return element
             values[names[q]] = sp.expand(q - r / slope)
         return {name: values[name] for name, _ in self.joints if name in values}
+
+    def _joints_only(self, element, where):
+        """A set element written as a mapping is keyed by joint names (an IK solution, a
+        singular condition): any other name is no value the key can have."""
+        names = [name for name, _ in self.joints]
+        if not isinstance(element, dict) or not names:
+            return
+        for k in element:
+            if k not in names:
+                raise ValueProblem(f"{_label(where)}'{k}' is not a joint (the joints: {', '.join(names)})"
+                                   + did_you_mean(k, names))
 
     # -- leaves -----------------------------------------------------------
     def scalar(self, value, where=""):
@@ -167,7 +195,9 @@ class Reader:
         return self.mapping(value, self.scalar, where)
 
     # -- by kind ----------------------------------------------------------
-    def read(self, ak, value, where=""):
+    def read(self, ak, value, where="", entries=None):
+        """The tree of `value` for answer key `ak`; `entries`: the names of a mapping's entries
+        in the order the question lists them (`entry_names`), for one written as a vector."""
         kind = ak.kind
         if isinstance(value, str) and value.strip().startswith("[") and kind in ARRAY_KINDS:
             value = self.array_text(ak, value, where)
@@ -183,10 +213,12 @@ class Reader:
             return self.matrix(value, where)
         if kind == R.MATRIX_LIST:
             return [self.matrix(m, _join(where, f"matrix {i + 1}")) for i, m in enumerate(self._list(value, where))]
-        if kind in (R.JOINT_MAP, R.ACTUATOR_MAP) and not self.expected:
-            if isinstance(value, str) and value.strip().startswith("["):
-                value = self._typed_vector(value, where)
-            value = self._in_joint_order(value, self.actuators if kind == R.ACTUATOR_MAP else None)
+        if kind in ORDERED_MAP_KINDS and not self.expected:
+            names = {R.JOINT_MAP: None, R.ACTUATOR_MAP: self.actuators}.get(kind, entries)
+            if kind == R.JOINT_MAP or names is not None:
+                if isinstance(value, str) and value.strip().startswith("["):
+                    value = self._typed_vector(value, where)
+                value = self._in_joint_order(value, names)
         if kind in MAP_KINDS:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:
@@ -202,7 +234,11 @@ class Reader:
                     items = [part for v in items for part in _alternatives(v)]
                 items = [self._in_joint_order(v) for v in items]
             out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}")) for i, v in enumerate(items)]
-            return out if self.expected else [self._as_joint_values(x) for x in out]
+            if self.expected:
+                return out
+            for i, x in enumerate(out):
+                self._joints_only(x, _join(where, f"element {i + 1}"))
+            return [self._as_joint_values(x) for x in out]
         if kind == R.AXES:      # an infinite semi-axis (a force ellipse at a singularity) is null
             return [None if v is None else self.vector(v, _join(where, f"element {i + 1}"))
                     for i, v in enumerate(self._list(value, where))]

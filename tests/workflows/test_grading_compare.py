@@ -147,6 +147,35 @@ def test_ik_incomplete_and_extra(ref):
     assert (r.verdict, r.diagnosis) == ("incorrect", "extra_in_set")
 
 
+def test_a_set_element_naming_no_joint_is_invalid_with_a_did_you_mean(ref):
+    """An IK solution or a singular condition keyed by a name that is no joint (`q3` on a 2R arm)
+    cannot be read (grading.md: a value naming a symbol the problem does not know is `invalid`
+    with the reason), as in a per-joint mapping; it was graded `incorrect` without a word."""
+    (a1, a2), (b1, b2) = ik_solutions()
+    r = one(ref, "inverse_kinematics", "solutions", f"[{{q1: {a1:.5f}, q2: {a2:.5f}}}, {{q1: {b1:.5f}, q3: {b2:.5f}}}]")
+    assert r.verdict == "invalid"
+    assert "element 2" in r.feedback and "'q3' is not a joint" in r.feedback and "did you mean" in r.feedback
+    r = one(ref, "jacobian", "singularities", "[{q2: 0}, {theta2: pi}]")
+    assert r.verdict == "invalid" and "element 2" in r.feedback and "'theta2' is not a joint" in r.feedback
+
+
+def test_an_ik_solution_without_a_value_for_a_joint_says_so(ref):
+    (a1, a2), (b1, b2) = ik_solutions()
+    r = one(ref, "inverse_kinematics", "solutions", f"[{{q1: {a1:.5f}, q2: {a2:.5f}}}, {{q1: {b1:.5f}}}]")
+    assert r.verdict == "incorrect" and "element 2: no value for q2" in r.feedback
+
+
+def test_a_missing_matrix_shows_its_expected_value_as_rows(ref):
+    """The expected J of a key not given is written as rows, as every other feedback writes a
+    matrix (and as an answer would be typed), not as sympy's `Matrix([[…]])`."""
+    symbolic_only = reference_of(TWO_R.replace("name: two-r", "name: two-r-symbolic").replace(
+        "{type: jacobian, coordinates: [E.x, E.y], at: {q1: pi/6, q2: pi/3}}", "{type: jacobian, coordinates: [E.x, E.y]}"))
+    res = grade_text(symbolic_only, answers("  jacobian:\n    det: L1*L2*sin(q2)\n"))
+    r = key(res, "jacobian", "J")
+    assert r.verdict == "missing"
+    assert "Matrix" not in r.feedback and "J = [[-L1*sin(q1) - L2*sin(q1 + q2), -L2*sin(q1 + q2)], [" in r.feedback
+
+
 def test_singularities_any_order_and_form(ref):
     assert one(ref, "jacobian", "singularities", "[{q2: pi}, {q2: 0}]").verdict == "correct"
     # as numbers, and -pi for pi (modulo 2π)
