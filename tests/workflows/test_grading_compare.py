@@ -595,3 +595,18 @@ def test_a_set_typed_as_one_string(ref):
     assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set")
     assert one(ref, "jacobian", "singularities", '"q2 = 0 or q2 = pi"').verdict == "correct"
     assert one(ref, "jacobian", "singularities", '[{q2: "0°"}, {q2: "180°"}]').verdict == "correct"
+
+
+def test_unreachable_true_alone_is_the_empty_set_of_solutions():
+    """The reference of an unreachable target writes `solutions: []` and `unreachable: true`; a
+    student who writes only `unreachable: true` has said the set is empty. The 2R's reach is
+    L1 + L2 = 0.9 (by hand): (1.2, 0.3) lies beyond it, (0.6, 0.3) within."""
+    far = reference_of(TWO_R.replace("target: {E.x: 0.6, E.y: 0.3}", "target: {E.x: 1.2, E.y: 0.3}"))
+    for written in ("unreachable: true", "unreachable: true\n    solutions: []"):
+        result = grade_text(far, f"robosolve-answers: 1\nanswers:\n  inverse_kinematics:\n    {written}\n")
+        assert key(result, "inverse_kinematics", "solutions").verdict == "correct", written
+    near = reference_of(TWO_R)
+    result = grade_text(near, "robosolve-answers: 1\nanswers:\n  inverse_kinematics:\n    unreachable: true\n")
+    assert key(result, "inverse_kinematics", "solutions").verdict == "incorrect"
+    result = grade_text(near, "robosolve-answers: 1\nanswers:\n  inverse_kinematics:\n    unreachable: false\n")
+    assert key(result, "inverse_kinematics", "solutions").verdict == "missing"
