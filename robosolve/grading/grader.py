@@ -511,13 +511,14 @@ def _gather(qt, key, given: dict):
     """The Given for a graded key; a record key may be given field by field (dotted)."""
     if key in given:
         return given[key]
+    ak = qt.key(key)
     said = given.get("unreachable")
-    if key == "solutions" and qt.name == "inverse_kinematics" and said is not None and said.value is True:
+    if (said is not None and said.value is True and qt.key("unreachable") is not None
+            and ak is not None and ak.kind == R.JOINT_MAP_SET):
         # `unreachable: true` alone says the set of solutions is empty, as the reference writes
         # it (`solutions: []` beside it): graded as that empty set, right or wrong
         from robosolve.grading.answers import Given
-        return Given(key, [], said.path[:-1] + ("solutions",), said.line)
-    ak = qt.key(key)
+        return Given(key, [], said.path[:-1] + (key,), said.line)
     if ak is not None and ak.kind == R.RECORD:
         parts = {k[len(key) + 1:]: v for k, v in given.items() if k.startswith(key + ".")}
         if parts:
