@@ -223,6 +223,8 @@ class Reader:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:
             return self.mapping(value, self.matrix, where)
+        if kind == R.JOINT_MAP_SET and not self.expected and isinstance(value, dict) and value:
+            value = [value]       # one solution (one condition) written alone: the set of it
         if kind == R.JOINT_MAP_SET and not self.expected and isinstance(value, str):
             # typed as one string: "[-0.17 1.47; 1.10 -1.47]" (a row per element, in joint
             # order), or "theta2 = 0 or theta2 = pi"
