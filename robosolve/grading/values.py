@@ -293,9 +293,11 @@ class Reader:
                 return self.mapping(v, self.scalar, w)
             return self.mapping(value, record, where)
         if kind == R.BOOL:
-            if value is not None and not isinstance(value, bool):
-                raise ValueProblem(f"{_label(where)}expected true or false, got {type_name(value)}")
-            return value
+            said = as_bool(value)
+            if value is not None and said is None:
+                raise ValueProblem(f"{_label(where)}expected true or false, got "
+                                   + (repr(shown(value)) if isinstance(value, str) else type_name(value)))
+            return said
         if kind == R.TEXT:
             return None if value is None else str(value)
         raise ValueProblem(f"answers of kind {kind} cannot be checked")
@@ -385,6 +387,22 @@ def _alternatives(value) -> list:
     if not isinstance(value, str) or not re.search(r"\bor\b", value):
         return [value]
     return [part.strip() for part in re.split(r"\bor\b", value)]
+
+
+#: YAML's spellings of true and false, which a student may quote (`unreachable: 'yes'`)
+TRUE_WORDS = frozenset({"true", "yes", "y", "on"})
+FALSE_WORDS = frozenset({"false", "no", "n", "off"})
+
+
+def as_bool(value):
+    """A true/false answer as written: a YAML boolean, or one of YAML's spellings of one typed
+    as text (`'true'`, `'Yes'`, `'off'`, in any case); None for anything else."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, str):
+        word = value.strip().lower()
+        return True if word in TRUE_WORDS else False if word in FALSE_WORDS else None
+    return None
 
 
 #: words that say a set has no element (compared in lower case, spaces and a final stop dropped)

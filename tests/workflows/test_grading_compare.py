@@ -686,8 +686,17 @@ def test_true_and_false_typed_as_text(far, ref, written, said):
     far_result, near_result = grade_text(far, answers(text)), grade_text(ref, answers(text))
     flag = key(far_result, "inverse_kinematics", "unreachable")
     assert flag.verdict == ("correct" if said else "incorrect"), (written, flag)
-    assert key(near_result, "inverse_kinematics", "unreachable").verdict == ("incorrect" if said else "correct")
     solutions = key(far_result, "inverse_kinematics", "solutions")
     assert solutions.verdict == ("correct" if said else "missing"), (written, solutions)
+    solutions = key(near_result, "inverse_kinematics", "solutions")     # two solutions within the reach
+    assert solutions.verdict == ("incorrect" if said else "missing"), (written, solutions)
     r = one(far, "inverse_kinematics", "unreachable", "'maybe'")
     assert r.verdict == "invalid" and "true or false" in r.feedback, r
+
+
+def test_a_record_flag_typed_as_text(ref):
+    """R = Rz(90°): RPY (roll, pitch, yaw) = (0, 0, pi/2) or (pi, pi, -pi/2), pitch ≠ ±pi/2 so not
+    singular (by hand): `singular: 'No'` is false (it was `invalid`)."""
+    sols = "[[pi, pi, -pi/2], [0, 0, pi/2]]"
+    assert one(ref, "orientation", "rpy", f"{{solutions: {sols}, singular: 'No'}}").verdict == "correct"
+    assert one(ref, "orientation", "rpy", f"{{solutions: {sols}, singular: 'yes'}}").verdict == "incorrect"
