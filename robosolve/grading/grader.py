@@ -25,8 +25,8 @@ from robosolve.grading.pieces import has_piecewise, split_pieces, wrong_interval
 from robosolve.grading.points import evaluate, sample, single_point
 from robosolve.grading.reach import set_reaches
 from robosolve.grading.reference import Reference, lookup
-from robosolve.grading.values import (ORDERED_MAP_KINDS, Equation, Pieces, Reader, ValueProblem, blanks, entry_names,
-                                      free_symbols, substitute)
+from robosolve.grading.values import (ORDERED_MAP_KINDS, Equation, Pieces, Reader, ValueProblem, as_bool, blanks,
+                                      entry_names, free_symbols, substitute)
 from robosolve.questions import registry as R
 from robosolve.questions.registry import question_type
 
@@ -513,7 +513,7 @@ def _gather(qt, key, given: dict):
         return given[key]
     ak = qt.key(key)
     said = given.get("unreachable")
-    if (said is not None and said.value is True and qt.key("unreachable") is not None
+    if (said is not None and as_bool(said.value) is True and qt.key("unreachable") is not None
             and ak is not None and ak.kind == R.JOINT_MAP_SET):
         # `unreachable: true` alone says the set of solutions is empty, as the reference writes
         # it (`solutions: []` beside it): graded as that empty set, right or wrong

@@ -188,11 +188,43 @@ class Reader:
                                wrong_shape=True)
         return {str(k): leaf(v, _join(where, str(k))) for k, v in value.items()}
 
-    def joint_map_or_equations(self, value, where=""):
-        """A set element: a mapping joint -> value, or an equation string (singularities)."""
-        if isinstance(value, str):
+    def joint_map_or_equations(self, value, where="", equations=True):
+        """A set element: a mapping joint -> value, or an equation string (singularities);
+        `equations`: whether the key's elements may be equations (for what the message asks)."""
+        if isinstance(value, str) and (self.expected or "=" in value):
             return tuple(self.equation(part, where) for part in _split_equations(value))
+        if not isinstance(value, dict):
+            written = repr(shown(value)) if isinstance(value, str) else type_name(value)
+            raise ValueProblem(f"{_label(where)}expected a mapping joint -> value ({self._example()})"
+                               + (' or an equation "lhs = rhs"' if equations else "") + f", got {written}",
+                               wrong_shape=not isinstance(value, str))
         return self.mapping(value, self.scalar, where)
+
+    def _example(self) -> str:
+        """A mapping of every joint, as the message of an unreadable set element shows it."""
+        return "{" + ", ".join(f"{name}: …" for name, _ in self.joints) + "}"
+
+    def _joint_set(self, ak, value, where):
+        """A set of joint values as people write it, as the list of its elements: one mapping
+        alone is the set of it; a text saying there is none (`none`, `no solution`, `∅`, `{}`)
+        the empty set; a matrix typed as one string a row per element; "theta2 = 0 or theta2 =
+        pi" its conditions. Anything else is no set (the message says what one looks like)."""
+        if _says_none(value) or value == {} or (isinstance(value, list) and len(value) == 1
+                                                and _says_none(value[0])):
+            return []
+        if isinstance(value, dict):
+            return [value]        # one solution (one condition) written alone: the set of it
+        if isinstance(value, str) and value.strip().startswith("["):
+            return self._typed_rows(value, where)
+        if isinstance(value, str) and "=" in value:
+            return [value]
+        if isinstance(value, (list, tuple)):
+            return value
+        written = repr(shown(value)) if isinstance(value, str) else type_name(value)
+        raise ValueProblem(f"{_label(where)}expected a set of joint values: a list of mappings joint -> value, "
+                           f"[{self._example()}, …]"
+                           + (', or of equations "lhs = rhs"' if ak.by_value else "")
+                           + f", or [] for none; got {written}", wrong_shape=not isinstance(value, str))
 
     # -- by kind ----------------------------------------------------------
     def read(self, ak, value, where="", entries=None):
@@ -223,17 +255,16 @@ class Reader:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:
             return self.mapping(value, self.matrix, where)
-        if kind == R.JOINT_MAP_SET and not self.expected and isinstance(value, str):
-            # typed as one string: "[-0.17 1.47; 1.10 -1.47]" (a row per element, in joint
-            # order), or "theta2 = 0 or theta2 = pi"
-            value = self._typed_rows(value, where) if value.strip().startswith("[") else [value]
+        if kind == R.JOINT_MAP_SET and not self.expected:
+            value = self._joint_set(ak, value, where)
         if kind in (R.JOINT_MAP_SET, R.JOINT_MAP_LIST):
             items = self._list(value, where)
             if not self.expected:
                 if kind == R.JOINT_MAP_SET:      # "theta2 = 0 or theta2 = pi": two conditions
                     items = [part for v in items for part in _alternatives(v)]
                 items = [self._in_joint_order(v) for v in items]
-            out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}")) for i, v in enumerate(items)]
+            out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}"), ak.by_value)
+                   for i, v in enumerate(items)]
             if self.expected:
                 return out
             for i, x in enumerate(out):
@@ -262,9 +293,11 @@ class Reader:
                 return self.mapping(v, self.scalar, w)
             return self.mapping(value, record, where)
         if kind == R.BOOL:
-            if value is not None and not isinstance(value, bool):
-                raise ValueProblem(f"{_label(where)}expected true or false, got {type_name(value)}")
-            return value
+            said = as_bool(value)
+            if value is not None and said is None:
+                raise ValueProblem(f"{_label(where)}expected true or false, got "
+                                   + (repr(shown(value)) if isinstance(value, str) else type_name(value)))
+            return said
         if kind == R.TEXT:
             return None if value is None else str(value)
         raise ValueProblem(f"answers of kind {kind} cannot be checked")
@@ -354,6 +387,32 @@ def _alternatives(value) -> list:
     if not isinstance(value, str) or not re.search(r"\bor\b", value):
         return [value]
     return [part.strip() for part in re.split(r"\bor\b", value)]
+
+
+#: YAML's spellings of true and false, which a student may quote (`unreachable: 'yes'`)
+TRUE_WORDS = frozenset({"true", "yes", "y", "on"})
+FALSE_WORDS = frozenset({"false", "no", "n", "off"})
+
+
+def as_bool(value):
+    """A true/false answer as written: a YAML boolean, or one of YAML's spellings of one typed
+    as text (`'true'`, `'Yes'`, `'off'`, in any case); None for anything else."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, str):
+        word = value.strip().lower()
+        return True if word in TRUE_WORDS else False if word in FALSE_WORDS else None
+    return None
+
+
+#: words that say a set has no element (compared in lower case, spaces and a final stop dropped)
+NO_ELEMENT = frozenset({"none", "nothing", "empty", "emptyset", "∅", "{}", "[]", "nosolution", "nosolutions",
+                        "norealsolution", "norealsolutions", "nosingularity", "nosingularities", "unreachable"})
+
+
+def _says_none(value) -> bool:
+    """`value` is text saying there is no element: `none`, `None`, `no solution`, `∅`, `"{}"`."""
+    return isinstance(value, str) and "".join(value.lower().split()).rstrip(".!") in NO_ELEMENT
 
 
 def _split_equations(text: str) -> list[str]:

@@ -610,3 +610,93 @@ def test_unreachable_true_alone_is_the_empty_set_of_solutions():
     assert key(result, "inverse_kinematics", "solutions").verdict == "incorrect"
     result = grade_text(near, "robosolve-answers: 1\nanswers:\n  inverse_kinematics:\n    unreachable: false\n")
     assert key(result, "inverse_kinematics", "solutions").verdict == "missing"
+
+
+@pytest.fixture(scope="module")
+def far():
+    """The 2R with a target beyond its reach L1 + L2 = 0.9 (by hand): no IK solution."""
+    return reference_of(TWO_R.replace("target: {E.x: 0.6, E.y: 0.3}", "target: {E.x: 1.2, E.y: 0.3}"))
+
+
+def test_one_solution_written_as_a_mapping_is_the_set_of_it(ref):
+    """`solutions: {q1: …, q2: …}` is the set of that one solution, graded as the list of one
+    would be (it was `invalid`, wrong_shape). The target (0.6, 0.3) has two solutions (law of
+    cosines, by hand), so one is `incomplete_set`; a one-joint target with one solution, and a
+    singular set of one condition (det J = L1·L2·sin q2 = 0 at q2 = 0 and π), likewise."""
+    (a1, a2), (b1, b2) = ik_solutions()
+    for q1, q2 in ((a1, a2), (b1, b2)):
+        r = one(ref, "inverse_kinematics", "solutions", f"{{q1: {q1:.4f}, q2: {q2:.4f}}}")
+        assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set"), r
+    r = one(ref, "inverse_kinematics", "solutions", f"{{q1: {a1 + 0.3:.4f}, q2: {a2:.4f}}}")
+    assert r.verdict == "incorrect" and r.diagnosis != "incomplete_set", r
+    r = one(ref, "jacobian", "singularities", "{q2: 0}")
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set"), r
+
+
+def test_one_solution_as_a_mapping_is_right_when_the_reference_has_one():
+    """A 1R arm of length L (E.x = L·cos q1, E.y = L·sin q1) reaching (0, L) has the one solution
+    q1 = π/2 (by hand): written as a mapping it is right."""
+    one_r = reference_of("""
+        robosolve: 1
+        name: one-r
+        parameters: {L: 1/2}
+        joints: [{name: q1, type: revolute}]
+        frames: {"1": {parent: "0", pose: "Rz(q1) Tx(L)"}}
+        questions:
+          - {type: inverse_kinematics, target: {E.x: 0, E.y: 0.5}}
+    """)
+    r = one(one_r, "inverse_kinematics", "solutions", "{q1: pi/2}")
+    assert r.verdict == "correct", r
+    r = one(one_r, "inverse_kinematics", "solutions", "{q1: -pi/2}")
+    assert r.verdict == "incorrect", r
+
+
+@pytest.mark.parametrize("written", ["none", "None", "no solution", "No solutions.", '"[]"', "'none'", "'{}'",
+                                     "{}", "∅", "empty set", "[none]"])
+def test_no_solution_written_in_words_is_the_empty_set(far, ref, written):
+    """`solutions: none` (and its kin) says the set is empty: right for a target beyond the
+    reach L1 + L2 = 0.9 (by hand), wrong within it; it was `invalid` ('expected an equation')."""
+    r = one(far, "inverse_kinematics", "solutions", written)
+    assert r.verdict == "correct", (written, r)
+    r = one(ref, "inverse_kinematics", "solutions", written)
+    assert (r.verdict, r.diagnosis) == ("incorrect", "incomplete_set"), (written, r)
+
+
+def test_an_unreadable_set_speaks_of_joint_values(far):
+    """Text that says nothing readable is `invalid`, and the feedback speaks of the set of
+    joint mappings asked for, not of an equation nobody wrote."""
+    for written in ("hello", "42", "true"):
+        r = one(far, "inverse_kinematics", "solutions", written)
+        assert r.verdict == "invalid", (written, r)
+        assert "a list of mappings joint -> value" in r.feedback and "lhs = rhs" not in r.feedback, r.feedback
+        assert "[] for none" in r.feedback, r.feedback
+    r = one(far, "jacobian", "singularities", "hello")       # conditions may be equations
+    assert r.verdict == "invalid" and "a list of mappings joint -> value" in r.feedback, r.feedback
+    r = one(far, "jacobian", "singularities", '"q2 = 0 = pi"')    # an equation mistyped is told so
+    assert r.verdict == "invalid" and "lhs = rhs" in r.feedback, r.feedback
+
+
+@pytest.mark.parametrize("written, said", [("'true'", True), ("'yes'", True), ("'True'", True), ("'YES'", True),
+                                           ("'on'", True), ("'false'", False), ("'no'", False), ("'Off'", False)])
+def test_true_and_false_typed_as_text(far, ref, written, said):
+    """`unreachable: 'true'` (quoted) is true, as `unreachable: true` is: the flag is right for
+    the target beyond the reach L1 + L2 = 0.9 (by hand) and alone stands for `solutions: []`
+    (it was `invalid`, and the solutions `missing`)."""
+    text = f"  inverse_kinematics:\n    unreachable: {written}\n"
+    far_result, near_result = grade_text(far, answers(text)), grade_text(ref, answers(text))
+    flag = key(far_result, "inverse_kinematics", "unreachable")
+    assert flag.verdict == ("correct" if said else "incorrect"), (written, flag)
+    solutions = key(far_result, "inverse_kinematics", "solutions")
+    assert solutions.verdict == ("correct" if said else "missing"), (written, solutions)
+    solutions = key(near_result, "inverse_kinematics", "solutions")     # two solutions within the reach
+    assert solutions.verdict == ("incorrect" if said else "missing"), (written, solutions)
+    r = one(far, "inverse_kinematics", "unreachable", "'maybe'")
+    assert r.verdict == "invalid" and "true or false" in r.feedback, r
+
+
+def test_a_record_flag_typed_as_text(ref):
+    """R = Rz(90°): RPY (roll, pitch, yaw) = (0, 0, pi/2) or (pi, pi, -pi/2), pitch ≠ ±pi/2 so not
+    singular (by hand): `singular: 'No'` is false (it was `invalid`)."""
+    sols = "[[pi, pi, -pi/2], [0, 0, pi/2]]"
+    assert one(ref, "orientation", "rpy", f"{{solutions: {sols}, singular: 'No'}}").verdict == "correct"
+    assert one(ref, "orientation", "rpy", f"{{solutions: {sols}, singular: 'yes'}}").verdict == "incorrect"
