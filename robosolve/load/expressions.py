@@ -238,7 +238,12 @@ def exact_digits(e) -> int:
     return max((len(str(max(abs(r.p), abs(r.q)))) for r in e.atoms(sp.Rational)), default=0)
 
 
-def digits_issue(what: str, v, approx: float, advice: str = "write it as a decimal number") -> str | None:
+# the advice of a value typed in a problem file too long to stay exact (`robosolve variants`
+# gives its own for a drawn value, which nobody typed)
+DECIMAL_ADVICE = "write it as a decimal number"
+
+
+def digits_issue(what: str, v, approx: float, advice: str = DECIMAL_ADVICE) -> str | None:
     """Why the value `v` (about `approx`) of `what` (the text the user wrote) holds an exact
     number too long, or None. The message quotes `what` when it is short: a 301-digit fraction
     (a variant's drawn value, written for the user by `robosolve variants`) is said by its size."""

@@ -43,6 +43,7 @@ class VariedParameter:
     start: sp.Expr = None           # kind == "range": start + i*step, i < count
     step: sp.Expr = None
     count: int = 0
+    written: str = ""               # the entry as written: `range [1, 100], step 1e-29` or `choices`
 
     @property
     def size(self) -> int:
@@ -177,7 +178,8 @@ def _parameters(builder, value) -> list:
                 continue
             p = _choices(chk, ppath + ("choices",), item["choices"], consts)
             if p is not None:
-                out.append(VariedParameter(name, declared[name], "choices", line, choices=p))
+                out.append(VariedParameter(name, declared[name], "choices", line, choices=p,
+                                           written="its choices"))
         else:
             if "step" not in item:
                 chk.error(ppath, "a range needs a step (values range[0] + k*step within the range)")
@@ -185,9 +187,16 @@ def _parameters(builder, value) -> list:
             r = _range(chk, ppath, item["range"], item["step"], consts)
             if r is not None:
                 start, step, count = r
+                written = (f"range [{_as_written(item['range'][0])}, {_as_written(item['range'][1])}], "
+                           f"step {_as_written(item['step'])}")
                 out.append(VariedParameter(name, declared[name], "range", line,
-                                           start=start, step=step, count=count))
+                                           start=start, step=step, count=count, written=written))
     return out
+
+
+def _as_written(value) -> str:
+    """A number of the section as the teacher wrote it (YAML read 1e-29 as a float)."""
+    return repr(value) if isinstance(value, float) else str(value)
 
 
 def _choices(chk, path, value, ns):

@@ -102,6 +102,8 @@ class Run:
     evaluations: int = 0
     steps: int = 0
     method: str = "DOP853"
+    # per joint: the whole run stays within the run's error of the start (position and rate 0)
+    still: np.ndarray | None = None
     notes: list = field(default_factory=list)
 
 
@@ -281,11 +283,11 @@ def _collect(plant, sol, duration, samples, evaluations, method, notes, toleranc
     ts = np.linspace(0.0, duration, samples)
     ys = sol.sol(ts)
     ys[:, 0], ys[:, -1] = sol.y[:, 0], sol.y[:, -1]
-    q_max, t_max, q_min, t_min = _extremes(sol, n, duration, tolerances)
+    q_max, t_max, q_min, t_min, still = _extremes(sol, n, duration, tolerances)
     final = sol.y[:n, -1].copy()
     run = Run(duration, ts, ys[:n], ys[n:2 * n], final, sol.y[n:2 * n, -1].copy(), q_max, t_max,
               q_min, t_min, float(sol.y[-1, -1]), evaluations=evaluations, steps=len(sol.t) - 1,
-              method=method, notes=list(notes))
+              method=method, notes=list(notes), still=still)
     if plant.energy is not None:
         kin, pot = plant.energy(sol.y[:n], sol.y[n:2 * n])
         e = kin + pot
@@ -300,7 +302,9 @@ def _collect(plant, sol, duration, samples, evaluations, method, notes, toleranc
 
 def _extremes(sol, n, duration, tolerances):
     """max/min of each q_i over [0, duration]: the ends and every root of q'_i (dense output);
-    ``tolerances``: the run's (rtol, atol), which decide the ties."""
+    ``tolerances``: the run's (rtol, atol), which decide the ties; and whether each joint stays
+    at its start: every extreme within the run's error of the start, the rate within its error
+    of 0 all along (a joint only so slow that a short run hides its motion is not still)."""
     from scipy.optimize import brentq
 
     steps = sol.t
@@ -310,6 +314,7 @@ def _extremes(sol, n, duration, tolerances):
     grid = np.union1d(steps, inner)
     vals = sol.sol(grid)
     q_max, t_max, q_min, t_min = (np.empty(n) for _ in range(4))
+    still = np.zeros(n, dtype=bool)
     for i in range(n):
         cands = [(float(sol.y[i, 0]), 0.0), (float(sol.y[i, -1]), float(duration))]
         v = vals[n + i]
@@ -325,4 +330,7 @@ def _extremes(sol, n, duration, tolerances):
         tol = tie_tolerance(float(np.max(np.abs(vals[i]))), *tolerances, len(steps) - 1)
         q_max[i], t_max[i] = first_of_ties(cands, tol, largest=True)
         q_min[i], t_min[i] = first_of_ties(cands, tol, largest=False)
-    return q_max, t_max, q_min, t_min
+        start, rates = cands[0][0], np.abs(v)
+        rate_tol = tie_tolerance(float(np.max(rates)), *tolerances, len(steps) - 1)
+        still[i] = max(abs(c[0] - start) for c in cands) <= tol and float(np.max(rates)) <= rate_tol
+    return q_max, t_max, q_min, t_min, still

@@ -140,7 +140,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     for n in run.notes:
         ans.note(n)
     _limit_notes(ans, model, run, values[0])
-    ans.steps.append(_step_results(model, st, run, values))
+    ans.steps.append(_step_results(question, model, st, run, values))
     ans.steps.append(_step_energy(question, model, st, run, values[0], ans.numeric["energy"]))
     ans.figures.extend(_figures(model, st, run))
     return ans
@@ -192,7 +192,32 @@ def _steps_setup(question, model, dyn, st) -> list:
     return [Step("Start, laws and equations of motion", text, equations=eqs)]
 
 
-def _step_results(model, st, run, values) -> Step:
+def _and(items) -> str:
+    return ", ".join(items[:-1]) + (" and " if len(items) > 1 else "") + items[-1]
+
+
+def _stillness(question, model, st, run) -> str:
+    """The joints that stay at their start all along the run (within its error: the rule of the
+    extremes, core/extremes.py), said in words; every joint: the start is an equilibrium."""
+    still = [j for i, j in enumerate(model.joints) if run.still is not None and run.still[i]]
+    if not still:
+        return ""
+    start = question.options.get("start", {})
+    syms = [f"${_tex(st, j.symbol)}$" for j in still]
+    vals = [f"${_tex(st, start.get(j.name, 0))}$" for j in still]
+    if len(still) == len(model.joints):
+        each = [f"{syms[0]} stays at its start, {vals[0]},"] + [f"{s} at {v}," for s, v in zip(syms[1:], vals[1:])]
+        if len(each) > 1:
+            each[-1] = "and " + each[-1]
+        return (f" {' '.join(each)} all along the run "
+                "(within the run's error): the start is an equilibrium, the arm does not move.")
+    if len(still) == 1:
+        return f" {syms[0]} does not move: it stays at its start, {vals[0]}, all along the run (within its error)."
+    return (f" {_and(syms)} do not move: they stay at their starts, {_and(vals)}, all along the run "
+            "(within its error).")
+
+
+def _step_results(question, model, st, run, values) -> Step:
     rows = []
     for i, j in enumerate(model.joints):
         u = _unit(j.kind)
@@ -207,7 +232,8 @@ def _step_results(model, st, run, values) -> Step:
         f"Integrated numerically with {how}, relative tolerance $10^{{-10}}$ on the state, in "
         f"{run.steps} steps. The joint values are continuous (unwrapped): a joint that turns keeps "
         "counting its turns. The extremes are the ends or the instants where the joint's rate is "
-        "zero, located on the integrator's continuous solution (not only at samples).",
+        "zero, located on the integrator's continuous solution (not only at samples)."
+        + _stillness(question, model, st, run),
         table=(["joint", "start", Text("at t = ", Num(run.duration), " s"), "min", "max", "final rate"],
                rows),
     )

@@ -21,7 +21,7 @@ import yaml
 from robosolve.errors import ExitStatus, InputError, InputIssue
 from robosolve.run.execution import make_task, run_tasks
 from robosolve.core.printing import sstr
-from robosolve.load.expressions import SHORT_NUMBER_CHARS
+from robosolve.load.expressions import DECIMAL_ADVICE, SHORT_NUMBER_CHARS
 from robosolve.render.numbers import prose_number
 
 # what a variants folder holds, for the working directory written in place (robosolve.run.outputs)
@@ -226,9 +226,32 @@ def _invalid_variant_message(plan: Plan, bad: list) -> str:
     what = first[where.end():] if where else first
     at = f" (line {where.group(1)} of its problem.yaml)" if where else ""
     more = f"; {len(bad) - 1} more variant{'s' if len(bad) > 2 else ''} too" if len(bad) > 1 else ""
+    if what.endswith("; " + DECIMAL_ADVICE):
+        return _too_many_digits(plan, variant, drawn, what[:-len(DECIMAL_ADVICE) - 2], more)
     return (f"{plan.problem.file}:{plan.spec.line}: variants: variant {variant.id} draws {drawn}, "
             f"which is not a valid problem: {what}{at}{more}. Narrow the ranges or add a `require` "
             "condition; nothing was written")
+
+
+def _too_many_digits(plan: Plan, variant: Variant, drawn: str, what: str, more: str) -> str:
+    """A drawn value too long to stay exact: the loader's advice is for a value typed in a
+    problem file, but this one was drawn, so the message is told at the varied parameter that
+    drew it (the one named, or else the one whose draw has the most digits: a parameter computed
+    from it) with advice about its range and step, or its choices."""
+    import re
+
+    from robosolve.load.expressions import exact_digits
+
+    named = re.match(r"parameters\.([^:\s]+): ", what)
+    source = plan.spec.parameter(named.group(1)) if named else None
+    if source is None:
+        source = max(plan.spec.parameters, key=lambda p: exact_digits(variant.values[p.name]))
+    fix = ("use a coarser step (fewer digits in the step and the range's ends)" if source.kind == "range"
+           else "give the choices fewer digits")
+    cause = (f"the values drawn from {source.written} are that long" if named and named.group(1) == source.name
+             else f"it is computed from {source.name}, whose values drawn from {source.written} have too many digits")
+    return (f"{plan.problem.file}:{source.line}: variants.parameters.{source.name}: variant {variant.id} "
+            f"draws {drawn}, which is not a valid problem: {what}; {cause}: {fix}{more}; nothing was written")
 
 
 def _drawn_text(name: str, value) -> str:

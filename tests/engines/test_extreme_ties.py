@@ -49,6 +49,16 @@ def test_an_arm_at_rest_at_an_equilibrium_stays_at_its_start():
     run = integrate(two_r_hanging(), start, [0.0, 0.0], 0.5)
     assert list(run.q_max) == start and list(run.q_min) == start
     assert list(run.t_max) == [0.0, 0.0] and list(run.t_min) == [0.0, 0.0]
+    assert list(run.still) == [True, True]
+
+
+def test_a_joint_is_still_only_when_its_rate_stays_zero_too():
+    # x'' = -1 from rest for 1e-6 s moves x by 5e-13, below the run's error on x; the rate
+    # reaches 1e-6, far above it: the joint moves (a short run does not make it still)
+    falling = compile_plant([[1]], [0], [1], [0], [sp.Symbol("x")], [sp.Symbol("v")], T_SYM)
+    assert not integrate(falling, [0.0], [0.0], 1e-6).still[0]
+    assert not integrate(oscillator(1.0), [1.0], [0.0], 3.0).still[0]
+    assert integrate(oscillator(1.0), [0.0], [0.0], 3.0).still[0]
 
 
 def oscillator(w2):

@@ -50,6 +50,40 @@ def test_a_drawn_value_of_too_many_digits_is_shown_by_its_decimal_value(tmp_path
     assert _longest_digit_run(r.output) <= 12 and not (tmp_path / "o").exists()
 
 
+def _variants_message(tmp_path, text: str) -> str:
+    p = tmp_path / "p.yaml"
+    p.write_text(text, encoding="utf-8")
+    r = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve"])
+    assert r.exit_code == 2 and not (tmp_path / "o").exists(), r.output
+    lines = [x for x in r.output.splitlines() if x.strip()]
+    assert len(lines) == 1, r.output
+    return lines[0].replace(str(p), "p.yaml")
+
+
+def test_a_drawn_value_of_too_many_digits_gets_advice_about_its_range_not_about_typing_it(tmp_path):
+    """A drawn value of 1 + k/10^29 in [10, 100] has a numerator of 31 digits (by hand): nobody
+    typed it, so the advice is the loader's for a typed value no more ("write it as a decimal
+    number") but about the range and step that drew it, told at that entry's line (58)."""
+    line = _variants_message(tmp_path, RODS + "variants:\n  parameters:\n    L1: {range: [1, 100], step: 1e-29}\n")
+    assert line.startswith("p.yaml:58: variants.parameters.L1: variant 2 draws L1 ≈ "), line
+    assert "parameters.L1: the value is an exact number of 31 digits" in line
+    assert "decimal number" not in line and "of its problem.yaml" not in line
+    assert line.endswith("the values drawn from range [1, 100], step 1e-29 are that long: use a coarser step "
+                         "(fewer digits in the step and the range's ends); nothing was written"), line
+
+
+def test_a_parameter_computed_from_a_draw_names_the_draw_it_comes_from(tmp_path):
+    """L2 = L1/11 with L1 = k/10^29 (30 digits at most): its denominator 11·10^29 has 31 digits
+    (by hand), so L2 is refused; the message is told at L1's entry, the draw that made it."""
+    text = RODS.replace("L2: 1/2", "L2: L1/11") + "variants:\n  parameters:\n    L1: {range: [0, 1], step: 1e-29}\n"
+    assert len(str(11 * 10**29)) == 31
+    line = _variants_message(tmp_path, text)
+    assert line.startswith("p.yaml:58: variants.parameters.L1: variant "), line
+    assert "parameters.L2: L1/11 is an exact number of 31 digits" in line and "decimal number" not in line
+    assert "it is computed from L1, whose values drawn from range [0, 1], step 1e-29 have too many digits: " \
+           "use a coarser step" in line, line
+
+
 def test_a_long_exact_parameter_is_said_by_its_size():
     digits = "1" * 45
     out = _issues(RODS.replace("L2: 1/2", f"L2: {digits}"))

@@ -261,3 +261,72 @@ questions:
 """
     (a,) = solve_problem(load_problem_text(text)).answers
     assert a.error and "mass matrix M(q) is singular" in a.error and "internal" not in a.error
+
+
+HANGING_2R = """
+robosolve: 1
+name: hanging
+parameters: {L: 0.1, m: 0.01, g: 9.81}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+frames: {"1": {parent: "0", pose: "Rz(q1) Tx(L)"}, "2": {parent: "1", pose: "Rz(q2) Tx(L)"}}
+gravity: [0, -g, 0]
+bodies:
+  - {name: b1, frame: "1", mass: m, rod: {from: [-L, 0, 0], to: [0, 0, 0]}}
+  - {name: b2, frame: "2", mass: m, point: [0, 0, 0]}
+questions: [{type: forward_dynamics, id: fd, start: {q1: %s, q2: 0}, duration: 0.5}]
+"""
+FD_KEYS = {"final", "max", "min", "final_velocity", "energy"}     # the spec's keys, nothing more
+
+
+def run_step(answer):
+    return next(s for s in answer.steps if s.title == "The run")
+
+
+def test_an_arm_started_at_an_equilibrium_is_said_not_to_move():
+    # by hand: the gravity torques of the 2R, g1 = L g m (3/2 cos q1 + cos(q1 + q2)),
+    # g2 = L g m cos(q1 + q2), vanish hanging down (q1 = -pi/2, q2 = 0): it stays there
+    q1, q2 = -math.pi / 2, 0.0
+    assert abs(1.5 * math.cos(q1) + math.cos(q1 + q2)) < 1e-15 and abs(math.cos(q1 + q2)) < 1e-15
+    a = answers_of(HANGING_2R % "-pi/2")["fd"]
+    assert set(a.numeric) == FD_KEYS
+    for key in ("final", "max", "min"):
+        assert a.numeric[key] == {"q1": pytest.approx(q1, abs=1e-12), "q2": pytest.approx(q2, abs=1e-12)}
+    text = run_step(a).text
+    assert "$q_{1}$ stays at its start, $- \\frac{\\pi}{2}$, and $q_{2}$ at $0$" in text
+    assert "the start is an equilibrium" in text
+
+
+def test_an_arm_that_swings_gets_no_sentence_of_rest():
+    # a small swing about the hanging equilibrium: both joints move (q1 starts 0.1 rad off)
+    a = answers_of(HANGING_2R % "-pi/2 + 0.1")["fd"]
+    assert a.numeric["min"]["q1"] < -math.pi / 2 + 0.1 - 1e-3
+    text = run_step(a).text
+    assert "equilibrium" not in text and "not move" not in text and "stays at" not in text
+    free = answers("  - {id: free, type: forward_dynamics, duration: 3}\n")["free"]
+    assert "not move" not in run_step(free).text
+
+
+def test_a_joint_that_does_not_move_is_named():
+    # a Cartesian PP arm, gravity along -y: d1 (along x) feels no force and stays at its start,
+    # d2 (along y) falls freely, d2(t) = d2(0) - g t^2 / 2 (closed form)
+    text = """
+robosolve: 1
+name: pp
+parameters: {m: 2, g: 9.81}
+joints: [{name: d1, type: prismatic}, {name: d2, type: prismatic}]
+frames: {"1": {parent: "0", pose: "Tx(d1)"}, "2": {parent: "1", pose: "Ty(d2)"}}
+gravity: [0, -g, 0]
+bodies: [{name: b, frame: "2", mass: m, point: [0, 0, 0]}]
+questions: [{type: forward_dynamics, id: fd, start: {d1: 0.3, d2: 1}, duration: 0.4}]
+"""
+    a = answers_of(text)["fd"]
+    assert set(a.numeric) == FD_KEYS
+    assert a.numeric["final"]["d1"] == pytest.approx(0.3, abs=1e-12)
+    assert a.numeric["final"]["d2"] == pytest.approx(1 - 9.81 * 0.4**2 / 2, rel=1e-9)
+    step = run_step(a).text
+    assert "$d_{1}$ does not move: it stays at its start, $0.3$" in step
+    assert "d_{2}$ does not move" not in step and "equilibrium" not in step
+
+
+def answers_of(text):
+    return {a.id: a for a in solve_problem(load_problem_text(text)).answers}
