@@ -224,13 +224,34 @@ def _invalid_variant_message(plan: Plan, bad: list) -> str:
     first = result.messages[0] if result.messages else "it does not load"
     where = re.match(r"^.*?problem\.yaml:(\d+): ", first)
     what = first[where.end():] if where else first
-    at = f" (line {where.group(1)} of its problem.yaml)" if where else ""
+    line = _source_line(plan.problem.file, what)
+    at = f" (line {line} of {Path(plan.problem.file).name})" if line else ""
     more = f"; {len(bad) - 1} more variant{'s' if len(bad) > 2 else ''} too" if len(bad) > 1 else ""
     if what.endswith("; " + DECIMAL_ADVICE):
         return _too_many_digits(plan, variant, drawn, what[:-len(DECIMAL_ADVICE) - 2], more)
     return (f"{plan.problem.file}:{plan.spec.line}: variants: variant {variant.id} draws {drawn}, "
             f"which is not a valid problem: {what}{at}{more}. Narrow the ranges or add a `require` "
             "condition; nothing was written")
+
+
+def _source_line(file: str, what: str) -> int | None:
+    """The line in the source problem of the entry a variant's message names (`bodies[0].mass:
+    …`): the variant's own problem.yaml is dumped from data, never written, so its line numbers
+    would point nowhere. None when the message names no entry of the source."""
+    import re
+
+    from robosolve.load.yamlsource import parse_yaml, read_text_file
+
+    named = re.match(r"^([A-Za-z_][\w.\[\]-]*): ", what)
+    if not named or named.group(1) in ("variants", "parameters"):
+        return None
+    path = tuple(int(m.group(2)) if m.group(2) else m.group(1)
+                 for m in re.finditer(r"([^.\[\]]+)|\[(\d+)\]", named.group(1)))
+    try:
+        source, _ = parse_yaml(read_text_file(Path(file), line=1), file)
+    except Exception:           # the source loaded a moment ago; if it cannot now, say no line
+        return None
+    return source.lines.get(path[:1]) and source.line(path)
 
 
 def _too_many_digits(plan: Plan, variant: Variant, drawn: str, what: str, more: str) -> str:

@@ -109,3 +109,14 @@ def test_a_huge_given_answer_is_shown_in_four_digits(tmp_path):
     r = runner.invoke(app, ["check", str(tmp_path / "a.yaml"), "--json", "-"])
     expected = f"given {Decimal(given):.3e}".replace("E+", "e+")         # 7.778e+399
     assert expected in r.output and _longest_digit_run(r.output) < 20, r.output
+
+
+def test_a_draw_that_breaks_a_rule_is_placed_at_the_line_of_the_source_it_breaks(tmp_path):
+    """A negative mass drawn for m1: the variant's problem.yaml is never written (and is dumped
+    from data, its lines are not the source's), so the message cites the source's line of
+    bodies[0].mass — found here by reading the file's text."""
+    text = RODS + "variants:\n  parameters:\n    m1: {choices: [-2, -1]}\n"
+    mass_line = next(i for i, x in enumerate(text.splitlines(), 1) if "mass: m1" in x)
+    line = _variants_message(tmp_path, text)
+    assert "bodies[0].mass: a mass cannot be negative" in line, line
+    assert f"(line {mass_line} of p.yaml)" in line and "its problem.yaml" not in line, line
