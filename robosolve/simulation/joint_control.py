@@ -28,7 +28,7 @@ from robosolve.motion.profiles import NumericPlan
 from robosolve.simulation.forward import undefined_message
 
 __all__ = ["LAWS", "ControlResult", "simulate", "SimulationTooLong", "TIME_LIMIT", "MAX_EVALUATIONS",
-           "max_abs_refined"]
+           "max_abs_refined", "polished_crests"]
 
 # Work budget of one simulation, counted (not timed) so that the outcome is the same on an idle
 # or a busy machine: at most this many evaluations of the equations of motion.  An undamped P
@@ -180,6 +180,14 @@ def max_abs_refined(f, ts: np.ndarray, values: np.ndarray, xatol: float) -> tupl
     """(max |f|, where) over [ts[0], ts[-1]] from the samples values = f(ts): the largest local
     maxima of the samples (the ends included) are polished on f, so an oscillation's crest
     between two samples is found, not the sample beside it (ties: the earliest instant)."""
+    cands = polished_crests(f, ts, values, xatol)
+    best = max(c[0] for c in cands)
+    return best, first_of_ties(cands, tie_tolerance(best))[1]
+
+
+def polished_crests(f, ts: np.ndarray, values, xatol: float) -> list[tuple[float, float]]:
+    """[(|f|, t)] at the largest local maxima of |values| (samples of f at ts, the ends included),
+    each polished on |f| between its neighbouring samples (a crest between two samples)."""
     from robosolve.core.minimize import minimize_bounded
 
     vals = np.abs(np.asarray(values, dtype=float))
@@ -192,8 +200,7 @@ def max_abs_refined(f, ts: np.ndarray, values: np.ndarray, xatol: float) -> tupl
             if -res.fun > vc:
                 tc, vc = float(res.x), float(-res.fun)
         cands.append((vc, tc))
-    best = max(c[0] for c in cands)
-    return best, first_of_ties(cands, tie_tolerance(best))[1]
+    return cands
 
 
 def _error_rhs(dyn: NumericDynamics, fast, law, kp, kd, a, coeffs, deg):
@@ -279,22 +286,10 @@ def _max_errors(sols, n, duration, rtol, atol):
 def _max_abs_error(sols, i, duration, tolerances):
     """max |e_i| and where: the solver's own steps sample every oscillation finely; the best
     few local maxima are then polished on the dense output."""
-    from robosolve.core.minimize import minimize_bounded
-
     cands = []
     for a, b, _c, sol in sols:
-        vals = np.abs(sol.y[i])
-        ts = sol.t
-        m = len(vals)
-        for j in _top_local_maxima(vals):
-            lo_t, hi_t = ts[max(j - 1, 0)], ts[min(j + 1, m - 1)]
-            tc, vc = float(ts[j]), float(vals[j])
-            if hi_t > lo_t:
-                res = minimize_bounded(lambda s, sol=sol: -abs(sol.sol(s)[i]), (lo_t, hi_t),
-                                       xatol=1e-12 * max(1.0, duration))
-                if -res.fun > vc:
-                    tc, vc = float(res.x), float(-res.fun)
-            cands.append((vc, tc))
+        cands += polished_crests(lambda s, sol=sol: sol.sol(s)[i], sol.t, sol.y[i],
+                                 xatol=1e-12 * max(1.0, duration))
     # crests within the run's error of the largest tie, and the first of them is reported
     # (core/extremes.py): an undamped loop's equal crests give the first one, not the one the
     # integrator's error lifted

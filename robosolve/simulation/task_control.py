@@ -17,7 +17,7 @@ import numpy as np
 
 from robosolve.core.extremes import first_of_ties, tie_tolerance
 from robosolve.simulation.joint_control import (MAX_EVALUATIONS, TIME_LIMIT, SimulationTooLong, _Budget,
-                                                 _top_local_maxima)
+                                                 polished_crests)
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 RTOL = 1e-10
@@ -103,8 +103,6 @@ def _error_at(arm, desired, sols, t):
 
 
 def _result(dyn, arm, desired, law, kp, kd, sols, duration, samples, nfev):
-    from robosolve.core.minimize import minimize_bounded
-
     grid = np.union1d(np.linspace(0.0, duration, samples), [s[0] for s in sols] + [duration])
     n = dyn.n
     cols = {k: [] for k in ("q", "x", "xd", "e", "tau")}
@@ -120,16 +118,8 @@ def _result(dyn, arm, desired, law, kp, kd, sols, duration, samples, nfev):
     mx, tm = np.zeros(e.shape[0]), np.zeros(e.shape[0])
     steps = sum(len(sol.t) - 1 for *_, sol in sols)
     for i in range(e.shape[0]):
-        cands = []
-        for k in _top_local_maxima(np.abs(e[i])):
-            lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-            vc, tc = abs(float(e[i, k])), float(grid[k])
-            if hi > lo:
-                res = minimize_bounded(lambda s: -abs(_error_at(arm, desired, sols, s)[i]), (lo, hi),
-                                       xatol=1e-12 * max(1.0, duration))
-                if -res.fun > vc:
-                    vc, tc = float(-res.fun), float(res.x)
-            cands.append((vc, tc))
+        cands = polished_crests(lambda s: _error_at(arm, desired, sols, s)[i], grid, e[i],
+                                xatol=1e-12 * max(1.0, duration))
         # crests within the run's error of the largest tie: the first is reported (core/extremes.py);
         # the state is q, so e = x_d - x(q) is known to the integrator's tolerance on x, not on e
         scale = max(max(c[0] for c in cands), float(np.max(np.abs(xs[i]))))
