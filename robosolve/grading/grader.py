@@ -509,6 +509,8 @@ def invalid_result(reference: Reference | None, student: str, error: str, reason
 
 def _gather(qt, key, given: dict):
     """The Given for a graded key; a record key may be given field by field (dotted)."""
+    from robosolve.grading.answers import Given
+
     if key in given:
         return given[key]
     ak = qt.key(key)
@@ -517,13 +519,11 @@ def _gather(qt, key, given: dict):
             and ak is not None and ak.kind == R.JOINT_MAP_SET):
         # `unreachable: true` alone says the set of solutions is empty, as the reference writes
         # it (`solutions: []` beside it): graded as that empty set, right or wrong
-        from robosolve.grading.answers import Given
         return Given(key, [], said.path[:-1] + (key,), said.line)
     if ak is not None and ak.kind == R.RECORD:
         parts = {k[len(key) + 1:]: v for k, v in given.items() if k.startswith(key + ".")}
         if parts:
             first = next(iter(parts.values()))
-            from robosolve.grading.answers import Given
             return Given(key, {k: v.value for k, v in parts.items()}, first.path[:-1], first.line)
     return None
 
