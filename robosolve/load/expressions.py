@@ -279,10 +279,13 @@ TYPOGRAPHY = {"\u2212": "-", "\u2013": "-", "\u00d7": "*", "\u00b7": "*", "\u22c
 
 def typed_math(text: str) -> str:
     """A student's typed expression in the parser's ASCII: `−0.45` (a Unicode minus), `2·L1`,
-    `π/2`, `L1²`, `√3/4` and `√(a + b)` (a root of one number, name or parenthesis), `30°`
-    (degrees, as deg(30))."""
+    `π/2`, `2π` and `2√2` (products by juxtaposition), `L1²`, `√3/4` and `√(a + b)` (a root of
+    one number, name or parenthesis), `30°` (degrees, as deg(30))."""
     import re
 
+    # print writes a product by juxtaposition (`2π`, `3π/4`, `2√2`, `√2π`): the factors touch,
+    # so a space (which separates a typed matrix's entries) never becomes a product
+    text = re.sub(r"(?<=[\d.)\u03c0\u00b2\u00b3])(?=[\u03c0\u221a])", "*", text)
     for mark, ascii_text in TYPOGRAPHY.items():
         text = text.replace(mark, ascii_text)
     text = re.sub(r"\u221a\s*(\d+(?:\.\d*)?|[A-Za-z_]\w*)", r"sqrt(\1)", text)

@@ -128,6 +128,15 @@ def test_matlab_typed_without_quotes_is_read_as_typed(tmp_path):
     ("√L1", "sqrt(L1)"),
     ("30°", "pi/6"),               # degrees: was invalid ("write deg(30)")
     ("-22.5° + L1", "-pi/8 + L1"),
+    # a product printed by juxtaposition (was invalid: '2pi', '2sqrt(2)')
+    ("2π", "2*pi"),
+    ("3π/4", "3*pi/4"),
+    ("2√2", "2*sqrt(2)"),
+    ("√2π", "sqrt(2)*pi"),
+    ("π√2", "pi*sqrt(2)"),
+    ("0.5√(L1 + L2)", "sqrt(L1 + L2)/2"),
+    ("(L1 + L2)π", "(L1 + L2)*pi"),
+    ("2π²", "2*pi**2"),
 ])
 def test_typography_of_pasted_answers(typed, read):
     import sympy as sp
