@@ -32,10 +32,12 @@ def statement_text(question, problem) -> str:
 def _paper_statement(question, problem) -> str:
     """The statement the paper prints (the teacher's `text`, else the type's own)."""
     from robosolve.papers.paper import Say, statement
+    from robosolve.render.chain_names import symbol_latex
     from robosolve.render.markdown import Tex
 
     try:
-        return statement(question, Say(problem, Tex({})))
+        # the problem's LaTeX names, as the paper's: sympy's own print q1_dot as q_{1 dot}
+        return statement(question, Say(problem, Tex(symbol_latex(problem))))
     except Exception:  # noqa: BLE001 - a statement bug must not lose the feedback page
         return ""
 

@@ -287,3 +287,22 @@ def test_matching_rules_in_order(tmp_path):
     with pytest.raises(MatchError) as exc:
         table.match("ann@x.orgg", None)
     assert str(exc.value) == f"student 'ann@x.orgg' is not in the roster of {tmp_path}; did you mean 'ann@x.org'?"
+
+
+def test_feedback_statement_is_the_papers_with_rates_named(tmp_path):
+    """The feedback page states a question as the paper does: the rates `q1_dot`, `q1_ddot` in
+    the problem's notation (q̇₁, q̈₁), not sympy's default print of the names (q_{1 dot})."""
+    (tmp_path / "p.yaml").write_text(PROBLEM.split("questions:")[0] + """questions:
+  - {type: velocity_acceleration, at: {q1: pi/6, q2: pi/3, q1_dot: 1, q2_dot: 2, q1_ddot: 0, q2_ddot: 1}}
+""", encoding="utf-8")
+    (tmp_path / "s.yaml").write_text("robosolve-answers: 1\nproblem: p.yaml\nanswers: {}\n")
+    r = runner.invoke(app, ["paper", str(tmp_path / "p.yaml"), "--out", str(tmp_path / "paper")])
+    assert r.exit_code == 0, r.output
+    r = runner.invoke(app, ["grade", str(tmp_path / "s.yaml"), "--out", str(tmp_path / "g"), "--jobs", "1"])
+    assert r.exit_code == 0, r.output
+    paper = (tmp_path / "paper" / "paper.md").read_text(encoding="utf-8")
+    page = (tmp_path / "g" / "feedback" / "s.md").read_text(encoding="utf-8")
+    statement = re.search(r"## 1\. velocity_acceleration\n\n(.*)\n", page).group(1)
+    assert "\\dot{q}_{1} = 1" in statement and "\\ddot{q}_{2} = 1" in statement, statement
+    assert "dot}" not in statement.replace("\\dot{q}", "").replace("\\ddot{q}", ""), statement
+    assert statement in paper
