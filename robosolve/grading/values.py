@@ -232,9 +232,9 @@ class Reader:
         in the order the question lists them (`entry_names`), for one written as a vector."""
         kind = ak.kind
         if isinstance(value, str) and value.strip().startswith("[") and kind in ARRAY_KINDS:
-            value = self.array_text(ak, value, where)
+            value = self.array_text(kind, value, where)
         elif kind in (R.VECTOR, R.MATRIX) and self._typed_unquoted(value):
-            value = self.array_text(ak, "[" + ", ".join(str(v) for v in value) + "]", where)
+            value = self.array_text(kind, "[" + ", ".join(str(v) for v in value) + "]", where)
         if kind == R.SCALAR:
             return self.scalar(value, where)
         if kind in (R.VECTOR, R.MATRIX) and all_null(value):
@@ -244,7 +244,8 @@ class Reader:
         if kind == R.MATRIX:
             return self.matrix(value, where)
         if kind == R.MATRIX_LIST:
-            return [self.matrix(m, _join(where, f"matrix {i + 1}")) for i, m in enumerate(self._list(value, where))]
+            return [self._typed(R.MATRIX, m, _join(where, f"matrix {i + 1}"))
+                    for i, m in enumerate(self._list(value, where))]
         if kind in ORDERED_MAP_KINDS and not self.expected:
             names = {R.JOINT_MAP: None, R.ACTUATOR_MAP: self.actuators}.get(kind, entries)
             if kind == R.JOINT_MAP or names is not None:
@@ -254,7 +255,7 @@ class Reader:
         if kind in MAP_KINDS:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:
-            return self.mapping(value, self.matrix, where)
+            return self.mapping(value, lambda v, w: self._typed(R.MATRIX, v, w), where)
         if kind == R.JOINT_MAP_SET and not self.expected:
             value = self._joint_set(ak, value, where)
         if kind in (R.JOINT_MAP_SET, R.JOINT_MAP_LIST):
@@ -271,10 +272,11 @@ class Reader:
                 self._joints_only(x, _join(where, f"element {i + 1}"))
             return [self._as_joint_values(x) for x in out]
         if kind == R.AXES:      # an infinite semi-axis (a force ellipse at a singularity) is null
-            return [None if v is None else self.vector(v, _join(where, f"element {i + 1}"))
+            return [None if v is None else self._typed(R.VECTOR, v, _join(where, f"element {i + 1}"))
                     for i, v in enumerate(self._list(value, where))]
         if kind == R.VECTOR_SET:
-            return [self.vector(v, _join(where, f"element {i + 1}")) for i, v in enumerate(self._list(value, where))]
+            return [self._typed(R.VECTOR, v, _join(where, f"element {i + 1}"))
+                    for i, v in enumerate(self._list(value, where))]
         if kind == R.EQUATIONS:
             return [self.equation(v, _join(where, f"equation {i + 1}")) for i, v in enumerate(self._list(value, where))]
         if kind == R.RECORD:
@@ -302,17 +304,25 @@ class Reader:
             return None if value is None else str(value)
         raise ValueProblem(f"answers of kind {kind} cannot be checked")
 
-    def array_text(self, ak, value, where=""):
-        """A matrix or vector typed as one string (MATLAB or Python notation)."""
+    def _typed(self, kind, value, where):
+        """One matrix (`kind` MATRIX) or vector (VECTOR) of a list or mapping of them (a chain's
+        poses, the centre-of-mass Jacobians, semi-axes, Euler triples), which may be typed as
+        one string like a key's whole value."""
+        if isinstance(value, str) and value.strip().startswith("[") and not self.expected:
+            value = self.array_text(kind, value, where)
+        return self.matrix(value, where) if kind == R.MATRIX else self.vector(value, where)
+
+    def array_text(self, kind, value, where=""):
+        """A matrix or vector (`kind`) typed as one string (MATLAB or Python notation)."""
         from robosolve.grading.typed import ArrayTextError, parse_array
 
         try:
             out = parse_array(value)
         except ArrayTextError as exc:
             raise ValueProblem(f"{_label(where)}cannot read {shown(value)!r} as a matrix or vector: {exc}") from None
-        if ak.kind == R.VECTOR and out and all(isinstance(r, list) and len(r) == 1 for r in out):
+        if kind == R.VECTOR and out and all(isinstance(r, list) and len(r) == 1 for r in out):
             out = [r[0] for r in out]             # a column [a; b; c]
-        if ak.kind == R.MATRIX and out and not isinstance(out[0], list):
+        if kind == R.MATRIX and out and not isinstance(out[0], list):
             out = [out]                           # one row
         return out
 

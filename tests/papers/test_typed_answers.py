@@ -156,3 +156,51 @@ def test_a_pasted_minus_and_a_decimal_comma_in_check(tmp_path):
     r = runner.invoke(app, ["check", str(f), "--json", str(tmp_path / "r.json")])
     assert r.exit_code == 1
     assert "decimals are written with a point: 0.5" in (tmp_path / "r.json").read_text()
+
+
+def test_each_matrix_or_vector_of_a_list_may_be_typed(tmp_path):
+    """A list (or mapping) of matrices or vectors — a chain's poses, the centre-of-mass
+    Jacobians, ellipse semi-axes, Euler triples — may have each element typed as one MATLAB
+    string, like a key's whole value (was `invalid`: "expected a matrix as a list of rows")."""
+    import numpy as np
+
+    problem = ARM.replace("questions:\n  - {type: position, at: {theta1: 0, theta2: pi/2}}\n", """\
+bodies:
+  - {name: tip, frame: "2", mass: 1, point: [0, 0, 0]}
+questions:
+  - {type: position, at: {theta1: 0, theta2: pi/2}, grade: [chain]}
+  - {type: jacobian, coordinates: [E.x, E.y], bodies: true, at: {theta1: 0, theta2: pi/2}, grade: [com_jacobians]}
+  - {type: ellipsoids, coordinates: [E.x, E.y], at: {theta1: 0, theta2: pi/2}, grade: [force.semi_axes]}
+  - {type: orientation, matrix: [[1, 0, 0], [0, 0, -1], [0, 1, 0]], grade: [zyz]}
+""")
+    (tmp_path / "arm.yaml").write_text(problem, encoding="utf-8")
+    # the force ellipse at theta = (0, pi/2): J = [[-L2, -L2], [L1, 0]], semi-axes (1/sqrt(nu))·v
+    J = np.array([[-0.4, -0.4], [0.5, 0.0]])
+    nu, V = np.linalg.eigh(J @ J.T)                  # ascending nu: decreasing force lengths
+    axes = [-(V[:, i] / np.sqrt(nu[i])) for i in range(2)]     # each axis's sign is free
+    typed_axes = [f"[{a[0]:.5f} {a[1]:.5f}]" for a in axes]
+    # Rx(pi/2) = Rz(-pi/2)·Ry(pi/2)·Rz(pi/2), and the other triple (phi + pi, -theta, psi + pi)
+    rz = lambda a: np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])  # noqa: E731
+    ry = lambda a: np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])  # noqa: E731
+    for phi, theta, psi in [(-np.pi / 2, np.pi / 2, np.pi / 2), (np.pi / 2, -np.pi / 2, -np.pi / 2)]:
+        assert np.allclose(rz(phi) @ ry(theta) @ rz(psi), [[1, 0, 0], [0, 0, -1], [0, 1, 0]])
+    answers = {
+        "robosolve-answers": 1, "problem": "arm.yaml",
+        "answers": {
+            "position": {"chain": [
+                "[cos(theta1) -sin(theta1) 0 L1*cos(theta1); sin(theta1) cos(theta1) 0 L1*sin(theta1); 0 0 1 0; 0 0 0 1]",
+                "[cos(theta2), -sin(theta2), 0, L2*cos(theta2); sin(theta2), cos(theta2), 0, L2*sin(theta2);"
+                " 0, 0, 1, 0; 0, 0, 0, 1]"]},
+            "jacobian": {"com_jacobians": {"tip": (
+                "[-L1*sin(theta1) - L2*sin(theta1 + theta2) -L2*sin(theta1 + theta2);"
+                " L1*cos(theta1) + L2*cos(theta1 + theta2) L2*cos(theta1 + theta2); 0 0]")}},
+            "ellipsoids": {"force.semi_axes": typed_axes},
+            "orientation": {"zyz": {"solutions": ["[-pi/2 pi/2 pi/2]", "[pi/2; -pi/2; -pi/2]"], "singular": False}},
+        }}
+    (tmp_path / "a.yaml").write_text(json.dumps(answers), encoding="utf-8")
+    r = runner.invoke(app, ["check", str(tmp_path / "a.yaml"), "--json", str(tmp_path / "r.json")])
+    record = json.loads((tmp_path / "r.json").read_text())
+    verdicts = {(q, k): v["verdict"] for q, rec in record["questions"].items() for k, v in rec["keys"].items()}
+    assert verdicts == {("position", "chain"): "correct", ("jacobian", "com_jacobians"): "correct",
+                        ("ellipsoids", "force.semi_axes"): "correct", ("orientation", "zyz"): "correct"}, verdicts
+    assert r.exit_code == 0, r.output
