@@ -104,6 +104,9 @@ class Reader:
         the mapping joint -> value they are in joint order, when there is one per joint
         (`names`: the actuators', for actuator values)."""
         names = [name for name, _ in self.joints] if names is None else names
+        if (len(names or ()) == 1 and isinstance(value, (int, float, str)) and not isinstance(value, bool)
+                and not (isinstance(value, str) and "=" in value)):
+            return {names[0]: value}        # one joint (a pendulum): its value written alone
         if (names and isinstance(value, (list, tuple)) and len(value) == len(names)
                 and not any(isinstance(v, (list, tuple, dict)) for v in value)):
             return dict(zip(names, value))

@@ -700,3 +700,40 @@ def test_a_record_flag_typed_as_text(ref):
     sols = "[[pi, pi, -pi/2], [0, 0, pi/2]]"
     assert one(ref, "orientation", "rpy", f"{{solutions: {sols}, singular: 'No'}}").verdict == "correct"
     assert one(ref, "orientation", "rpy", f"{{solutions: {sols}, singular: 'yes'}}").verdict == "incorrect"
+
+
+PENDULUM_1 = """
+robosolve: 1
+name: pendulum-1
+parameters: {L: 0.8, m: 3, g: 9.81}
+joints: [{name: q, type: revolute}]
+frames: {"1": {parent: "0", pose: "Rz(q) Tx(L)"}}
+gravity: [0, -g, 0]
+bodies: [{name: rod, frame: "1", mass: m, rod: {from: [-L, 0, 0], to: [0, 0, 0]}}]
+questions:
+  - {type: inverse_kinematics, target: {E.y: 0.4}}
+  - {type: statics, force: [5], coordinates: [E.y], at: {q: 0.3}}
+  - {type: jacobian, coordinates: [E.y], at: {q: 0.3}, grade: [singularities]}
+  - {type: equations_of_motion, at: {q: 0.3, q_dot: 1, q_ddot: 2}, grade: [actuators, generalized_forces]}
+"""
+
+
+def test_one_joint_values_written_alone():
+    """A one-joint arm (a rod pendulum, I = m·L²/3 about the pivot): a per-joint value written as
+    the number (or expression) alone is the mapping of that joint, and a set of IK solutions a
+    list of numbers (was `invalid`, "expected a mapping name -> value, got a number"). Closed
+    forms: L·sin q = 0.4 gives q = asin(1/2) and pi − asin(1/2); Fq = −Jᵀ·F = −5·L·cos q;
+    C1 = (m·L²/3)·q̈ + m·g·(L/2)·cos q; J = L·cos q is singular at ±pi/2."""
+    ref = reference_of(PENDULUM_1)
+    L, m, g = 0.8, 3, 9.81
+    q1, q2 = math.asin(0.4 / L), math.pi - math.asin(0.4 / L)
+    c1 = m * L * L / 3 * 2 + m * g * L / 2 * math.cos(0.3)
+    res = grade_text(ref, answers(
+        f"  inverse_kinematics:\n    solutions: [{q2:.5f}, {q1:.5f}]\n"
+        f"  statics:\n    Fq: {-5 * L * math.cos(0.3):.5f}\n"
+        "  jacobian:\n    singularities: [\"q = pi/2\", -pi/2]\n"
+        f"  equations_of_motion:\n    actuators: {c1:.5f}\n    generalized_forces: C1\n"))
+    verdicts = {(q.id, k): v.verdict for q in res.questions for k, v in q.keys.items()}
+    assert set(verdicts.values()) == {"correct"}, verdicts
+    res = grade_text(ref, answers(f"  statics:\n    Fq: {5 * L * math.cos(0.3):.5f}\n"))
+    assert (key(res, "statics", "Fq").verdict, key(res, "statics", "Fq").diagnosis) == ("incorrect", "negated")
