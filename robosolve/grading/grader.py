@@ -262,12 +262,13 @@ class Grader:
     def _read_and_compare(self, qref, ak, key, given, sym, num) -> KeyResult:
         try:
             g = self.reader.read(ak, given.value, entries=entry_names(self.ref.problem, qref.id, key))
-        except ValueProblem as exc:
-            return KeyResult(INVALID, diagnosis="wrong_shape" if exc.wrong_shape else "", feedback=str(exc))
-        try:
             return self._compare(qref, ak, key, g, sym, num)
         except ValueProblem as exc:
-            return KeyResult(INVALID, diagnosis="wrong_shape" if exc.wrong_shape else "", feedback=str(exc))
+            # a shape refused as it is read (three values for two joints) is the same mistake as
+            # one found comparing (a 2x3 matrix for a 2x2): the same diagnosis, the same share
+            diagnosis = "wrong_shape" if exc.wrong_shape else ""
+            return KeyResult(INVALID, diagnosis=diagnosis, feedback=str(exc),
+                             credit=self.partial.get(diagnosis, Fraction(0)) if diagnosis else Fraction(0))
 
     def _reference(self, qref, ak, key):
         if ak.top:

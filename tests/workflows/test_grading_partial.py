@@ -104,3 +104,19 @@ def test_diagnoses_of_the_loader_are_the_graders():
     from robosolve.load.grading_options import DIAGNOSES
 
     assert set(ORDER) <= set(DIAGNOSES)
+
+
+def test_a_wrong_shape_earns_its_share_however_it_is_found():
+    """`wrong_shape` is one diagnosis whether the shape is refused as the value is read (three
+    values for the two joints of Fq) or found comparing (a 4x3 M for the 4x4): with a share for
+    it, both earn it (the first earned nothing)."""
+    ref = reference_of(ARM + "grading:\n  partial: {wrong_shape: 1/4}\n")
+    m_cut = [row[:3] for row in M]
+    text = (f"robosolve-answers: 1\nstudent: s1\nanswers:\n  position: {{M: {m_cut}}}\n"
+            "  statics: {Fq: [2.165, 0, 0]}\n")
+    result = grade_text(ref, text)
+    for question, name in (("position", "M"), ("statics", "Fq")):
+        k = key(result, question, name)
+        assert (k.verdict, k.diagnosis) == ("invalid", "wrong_shape"), (question, k)
+    scores = {q.id: q.score for q in result.questions}
+    assert scores == {"position": Fraction(1, 4), "statics": Fraction(3, 4)}
