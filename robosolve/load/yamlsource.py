@@ -44,9 +44,10 @@ class Source:
 
 
 class YamlProblem(Exception):
-    def __init__(self, line: int, message: str):
+    def __init__(self, line: int, message: str, path: tuple = ()):
         self.line = line
         self.message = message
+        self.path = path          # where in the data, when the value is known (a scalar's tag)
         super().__init__(message)
 
 
@@ -75,7 +76,7 @@ class _Converter:
                 if key_node.tag == "tag:yaml.org,2002:merge":
                     raise YamlProblem(key_node.start_mark.line + 1,
                                       "merge keys ('<<') are not supported")
-                key = self._scalar(key_node)
+                key = self._scalar(key_node, path)
                 if isinstance(key, float) or key is None or isinstance(key, bool):
                     key = key_node.value
                 key = str(key) if not isinstance(key, str) else key
@@ -92,9 +93,9 @@ class _Converter:
                 self.lines[ipath] = item.start_mark.line + 1
                 out_list.append(self.convert(item, ipath, depth + 1))
             return out_list
-        return self._scalar(node)
+        return self._scalar(node, path)
 
-    def _scalar(self, node):
+    def _scalar(self, node, path: Path = ()):
         try:
             return self._scalar_loader.construct_object(node, deep=True)
         except Exception as exc:  # e.g. an integer with too many digits
@@ -102,7 +103,14 @@ class _Converter:
             digits = sum(c.isdigit() for c in node.value)
             if isinstance(exc, ValueError) and "digits" in str(exc):
                 raise YamlProblem(line, f"number too long ({digits} digits; at most 4300)") from None
-            raise YamlProblem(line, f"invalid value {node.value[:40]!r}: {exc}") from None
+            if isinstance(exc, yaml.constructor.ConstructorError) and "constructor for the tag" in str(exc):
+                tag = node.tag.replace("tag:yaml.org,2002:", "!!")
+                raise YamlProblem(line, f"invalid value {node.value[:40]!r}: the YAML tag '{tag}' is not one "
+                                        "robosolve reads (write the value without it)", path) from None
+            # PyYAML's own text quotes the file again over three lines ("in <unicode string>, line
+            # 4…"): its first sentence only, the line is given already
+            said = getattr(exc, "problem", None) or str(exc)
+            raise YamlProblem(line, f"invalid value {node.value[:40]!r}: {' '.join(said.split())}", path) from None
 
 
 def path_problem(text: str, written: str | None = None) -> str | None:

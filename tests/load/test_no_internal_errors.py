@@ -154,3 +154,9 @@ def test_a_student_id_of_the_wrong_kind_says_what_an_id_is():
     assert [str(i) for i in sub.issues] == [
         'a.yaml:2: student: expected the student\'s id (a name or a number, such as s123456 or "Jo Smith"), '
         "got a list"]
+
+
+def test_a_yaml_tag_in_a_problem_file_is_one_line_at_its_path():
+    found = issues(ONE.replace("{L: 1}", "{L: !custom 1}"))
+    assert found == ["p.yaml:3: parameters.L: invalid value '1': the YAML tag '!custom' is not one robosolve "
+                     "reads (write the value without it)"]

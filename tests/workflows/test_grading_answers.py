@@ -269,3 +269,20 @@ def test_a_problem_that_does_not_exist_is_said_at_its_line_with_a_did_you_mean(f
     assert [str(i).replace(str(path), "A") for i in exc.value.issues] == [
         f"A:2: problem: './two_r.yaml' does not exist ({folder / 'two_r.yaml'}) (did you mean 'two-r.yaml'?)"]
     assert str(problem_path(read_answers(path), folder / "two-r.yaml")) == str(folder / "two-r.yaml")
+
+
+@pytest.mark.parametrize("value, message", [
+    ('!foo 1', "invalid value '1': the YAML tag '!foo' is not one robosolve reads (write the value without it)"),
+    ('!!python/object:os.system "echo"', "invalid value 'echo': the YAML tag '!!python/object:os.system' is not "
+                                          "one robosolve reads (write the value without it)"),
+    ('!!int "x"', "invalid value 'x': invalid literal for int() with base 10: 'x'"),
+])
+def test_a_yaml_tag_is_one_line_at_its_line_and_path(folder, value, message):
+    """A tagged value PyYAML cannot build: one line `FILE:LINE: path: message`, exit 2 — the
+    message had no path and quoted the file again over three lines ('in "<unicode string>", …')."""
+    bad = write(folder, f"robosolve-answers: 1\nproblem: two-r.yaml\nanswers:\n  jacobian:\n"
+                        f"    J: [[1, {value}], [0, 1]]\n")
+    with pytest.raises(InputError) as exc:
+        read_answers(bad)
+    assert [str(i) for i in exc.value.issues] == [f"{bad}:5: answers.jacobian.J[0][1]: {message}"]
+    assert _run(["check", str(bad)])[0] == 2
