@@ -171,10 +171,20 @@ def _fallback_student(f) -> str:
     return Path(f).stem
 
 
+def file_name(student: str) -> str:
+    """The name of a submission's files (<name>.json, feedback/<name>.md): the student id made
+    safe (variants.md); an id with no letter or digit of [a-z0-9] (王小明, Иван, ???) would give
+    an empty name, so it is named by 8 hexadecimal digits of its SHA-256 — two such students
+    are two files, not one student graded twice (a duplicate)."""
+    import hashlib
+
+    return safe_name(student) or "student-" + hashlib.sha256(student.encode("utf-8")).hexdigest()[:8]
+
+
 def _mark_duplicates(jobs) -> None:
     seen = set()
     for job in jobs:
-        name = safe_name(job.student) or "student"
+        name = file_name(job.student)
         if name in seen:
             job.answers = None
             job.error = job.error or f"{job.file}: duplicate student id '{job.student}' (another submission has it)"
@@ -267,7 +277,7 @@ def render(jobs, results, references, options: Outputs | None = None) -> dict:
             continue              # the first submission with this id owns its files
         if jobs[i].row is not None:
             by_row.setdefault(jobs[i].row, r)
-        name = safe_name(r.student) or "student"
+        name = file_name(r.student)
         files[f"{name}.json"] = record_json(r)
         files[f"feedback/{name}.md"] = _feedback(jobs[i], r, references, options)
     files["grades.csv"] = _csv(grades, GRADES_COLUMNS)

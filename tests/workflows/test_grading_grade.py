@@ -259,3 +259,29 @@ def test_variants_table_with_roster_names(tmp_path):
     assert table.match("Jo Smith", None).problem == table.match("jo-smith", None).problem \
         == tmp_path / "exam-jo-smith" / "problem.yaml"
     assert table.match("Smith", None).problem == tmp_path / "exam-smith" / "problem.yaml"
+
+
+def test_ids_without_a_latin_letter_are_different_students(tmp_path):
+    """王小明, 李雷 and Иван have no character of [a-z0-9]: their safe names are empty. They were
+    all filed as 'student', so every one after the first was graded `invalid` as a "duplicate
+    student id" of an id nobody else had; each is now named by 8 hex digits of its id's
+    SHA-256, and the same id twice is still a duplicate."""
+    import csv
+    import hashlib
+
+    (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    ids = {"a": "王小明", "b": "李雷", "c": "Иван Петров", "d": "李雷"}
+    for stem, student in ids.items():
+        (subs / f"{stem}.yaml").write_text(f"robosolve-answers: 1\nproblem: ../p.yaml\nstudent: {student}\n"
+                                           "answers:\n  statics: {Fq: " + FQ + "}\n", encoding="utf-8")
+    out = tmp_path / "g"
+    r = runner.invoke(app, ["grade", str(subs), "--out", str(out), "--jobs", "1"])
+    assert r.exit_code == 1, r.output                      # d.yaml repeats b.yaml's id
+    summary = list(csv.reader((out / "summary.csv").open(encoding="utf-8")))[1:]
+    assert sorted((row[0], row[1]) for row in summary) == sorted(
+        [("王小明", "3"), ("李雷", "3"), ("Иван Петров", "3"), ("李雷", "0")])
+    names = {f"student-{hashlib.sha256(s.encode('utf-8')).hexdigest()[:8]}" for s in set(ids.values())}
+    assert {p.stem for p in out.glob("*.json")} == names
+    assert {p.stem for p in (out / "feedback").glob("*.md")} == names
