@@ -107,8 +107,9 @@ class Say:
     def frame(self, question) -> str:
         return f"frame {name_md(question.frame)}"
 
-    def joints(self) -> str:
-        return ", ".join(f"${self.tex(j.symbol)}$" for j in self.problem.joints)
+    def joints(self, joints=None) -> str:
+        """The joints' symbols (`joints`: some of them, default every one)."""
+        return ", ".join(f"${self.tex(j.symbol)}$" for j in (self.problem.joints if joints is None else joints))
 
     def asked(self, question) -> list[str]:
         """The graded keys of `question` (dotted paths, in grading order): what its statement
