@@ -135,23 +135,25 @@ def check_count(file, spec, asked: int) -> None:
 
 def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
     """ids: [(variant id, student)] in order. Raises InputError (exit 2) on any problem."""
-    from robosolve.variants.draw import Drawer
+    from robosolve.variants.draw import Drawer, TooFew
     from robosolve.variants.require import RequirementChecker
 
     problem, data = load_source(path)
     spec = problem.variants
     checker = RequirementChecker(template_problem(data, problem), spec, problem.file)
-    drawer = Drawer(spec, checker, seed, problem.file)
+    counting = ((lambda: progress.task("checking the conditions over the grid", checker.table_work()))
+                if progress else None)
+    drawer = Drawer(spec, checker, seed, problem.file, counting)
     asked = getattr(ids, "asked", None) or len(ids)      # --count 10**19 has no len()
     check_count(problem.file, spec, asked)
-    step = progress.task("checking the conditions over the grid", checker.table_work()) if progress else None
-    n_valid = drawer.count(step)
-    if n_valid is not None and n_valid < asked:
-        too_few(problem.file, spec, n_valid, asked, "meet `require`" if spec.require else "exist")
     plan = Plan(problem, spec, seed)
     step = progress.task("drawing", len(ids)) if progress else None
     for vid, student in ids:
-        values = drawer.values(drawer.next())
+        try:
+            index = drawer.next()
+        except TooFew as exc:       # the grid, counted once the draws ran short, holds no more
+            too_few(problem.file, spec, exc.count, asked, "meet `require`" if spec.require else "exist")
+        values = drawer.values(index)
         v = Variant(vid, student, values, folder=f"{problem.name}-{vid}")
         v.text = dump_problem(variant_data(data, v.folder, values))
         plan.variants.append(v)

@@ -219,6 +219,24 @@ def test_the_count_agrees_with_an_independent_enumeration(tmp_path):
     assert drawer.count() == expected
 
 
+def test_a_few_variants_do_not_count_the_whole_grid_first(tmp_path, monkeypatch):
+    """Two variants of a 21 × 21 × 41 grid of lengths and targets: robosolve ran the IK search of
+    every combination (18,081 of them, minutes) before drawing the first; the draws check a few.
+    Each drawn target is reachable by the closed-form 2R inverse written here."""
+    import robosolve.ik.numeric as numeric
+
+    searches = []
+    real = numeric.solve_all
+    monkeypatch.setattr(numeric, "solve_all", lambda *a, **k: searches.append(1) or real(*a, **k))
+    section = ("variants:\n  parameters:\n    L1: {range: [0.4, 0.6], step: 0.01}\n"
+               "    L2: {range: [0.2, 0.4], step: 0.01}\n    x: {range: [0.3, 0.7], step: 0.01}\n"
+               "  require:\n    - {reachable: ik}\n")
+    plan = plan_variants(problem_file(tmp_path, section), [(i, "") for i in count_ids(2)], seed=0)
+    assert len(plan.variants) == 2 and len(searches) < 50
+    for v in plan.variants:
+        assert reachable(*(float(v.values[n]) for n in ("L1", "L2", "x")), 0.3)
+
+
 def test_variant_k_does_not_change_when_the_count_grows(tmp_path):
     p = problem_file(tmp_path)
     small = plan_variants(p, [(i, "") for i in count_ids(5)], seed=3)
