@@ -289,3 +289,23 @@ def test_a_pose_target_asks_only_for_the_joints_that_move_its_frame():
     ik_comment = next(line for line in template.splitlines() if line.strip().startswith("# solutions"))
     assert f"a set, a list of {element} in any order" in ik_comment
     assert placeholder(QUESTION_TYPES["inverse_kinematics"].key("selected"), q, problem) == dict.fromkeys(moving)
+
+
+def test_a_configuration_written_with_parameters_is_stated_with_their_values(tmp_path):
+    """`at: {theta1: q1a}` (a variant's drawn configuration), a target `E.x: xt` and a gain `kp`: the
+    paper wrote θ₁ = q1a, leaving the student to look the value up, where the report writes
+    θ₁ = q1a = π/6 ≈ 0.523599 (papers.md: values exact and with decimals, as in the report)."""
+    import math
+
+    text = EXAM.replace("parameters: {L1: 0.5,", "parameters: {q1a: pi/6, xt: 3/5, kp: 2*q1a, L1: 0.5,")
+    text = text.replace("{type: position, frame: tool, at: {theta1: 0.1, theta2: 0.2}}",
+                        "{type: position, frame: tool, at: {theta1: q1a, theta2: 0.2}}")
+    text = text.replace("target: {E.x: 0.6, E.y: 0.3}", "target: {E.x: xt, E.y: 0.3}")
+    problem = load_problem_text(text, str(tmp_path / "v.yaml"))
+    say = Say(problem, Tex(symbol_latex(problem)))
+    position = statement(next(q for q in problem.questions if q.type == "position"), say)
+    assert f"$\\theta_{{1}} = \\mathrm{{q1a}} = \\frac{{\\pi}}{{6}} \\approx {math.pi / 6:.6g}$" in position
+    ik = statement(next(q for q in problem.questions if q.type == "inverse_kinematics"), say)
+    assert "$E_{x} = \\mathrm{xt} = \\frac{3}{5} \\approx 0.6$" in ik
+    assert say.per_joint({"theta1": problem.names["kp"]}) == (
+        f"$\\theta_{{1}}$: $\\mathrm{{kp}} = \\frac{{\\pi}}{{3}} \\approx {math.pi / 3:.6g}$")
