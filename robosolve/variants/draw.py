@@ -38,10 +38,12 @@ def attempt_indices(spec, seed: int, k: int, attempt: int) -> tuple:
 
 
 class TooFew(Exception):
-    """Fewer distinct combinations meet `require` than are asked: `count` of them."""
+    """Fewer distinct combinations meet `require` than are asked: `count` of them; `never`: the
+    conditions that hold for no combination at all (when none meets `require`)."""
 
-    def __init__(self, count: int):
+    def __init__(self, count: int, never=()):
         self.count = count
+        self.never = list(never)
         super().__init__(count)
 
 
@@ -90,7 +92,7 @@ class Drawer:
             left = [t for t in left if t not in self.used]
             if left:
                 return self._accept(left[stable_int(self.seed, k, "remaining") % len(left)])
-            raise TooFew(len(self.used))
+            raise TooFew(len(self.used), self.checker.never_met() if not self.used else ())
         where = f"variant {k}"
         if failures:
             n, worst = max(failures.values(), key=lambda t: t[0])

@@ -122,6 +122,14 @@ def too_few(file, spec, n: int, asked: int, what: str):
                                  f"({asked} asked)")])
 
 
+def never_met(file, requirement, asked: int):
+    """No variant at all: told at the condition that holds for none of the drawn values."""
+    raise InputError([InputIssue(file, requirement.line, requirement.path,
+                                 f"only 0 distinct variants meet `require` ({asked} asked): "
+                                 f"{requirement.text!r} holds for none of the values the section "
+                                 "draws; widen the ranges or relax the condition")])
+
+
 def check_count(file, spec, asked: int) -> None:
     """Refuse a count that cannot be met before anything is drawn or allocated: more than the
     grid of drawn values holds, or more than MAX_VARIANTS."""
@@ -152,6 +160,8 @@ def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
         try:
             index = drawer.next()
         except TooFew as exc:       # the grid, counted once the draws ran short, holds no more
+            if exc.never:
+                never_met(problem.file, exc.never[0], asked)
             too_few(problem.file, spec, exc.count, asked, "meet `require`" if spec.require else "exist")
         values = drawer.values(index)
         v = Variant(vid, student, values, folder=f"{problem.name}-{vid}")

@@ -262,6 +262,23 @@ def test_too_few_distinct_variants_is_an_error_with_the_count(tmp_path):
     assert sorted((r["L1"], r["L2"]) for r in rows) == [("1/2", "2/5"), ("1/2", "3/10"), ("2/5", "3/10")]
 
 
+def test_a_condition_no_drawn_value_meets_is_named_at_its_line(tmp_path):
+    """L1 is drawn from 0.3 … 0.6 and `require` asks L1 > 1: the message said only that 0 variants
+    meet `require`, at the section's line, leaving the teacher to find which condition; conditions
+    each met by some values but never together keep that message."""
+    section = ("variants:\n  parameters:\n    L1: {range: [0.3, 0.6], step: 0.1}\n"
+               "    L2: {range: [0.2, 0.5], step: 0.1}\n  require:\n    - \"L1 > L2\"\n    - \"L1 > 1\"\n")
+    p = problem_file(tmp_path, section)
+    result = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve"])
+    assert result.exit_code == 2 and not (tmp_path / "o").exists()
+    assert (f"{p}:19: variants.require[1]: only 0 distinct variants meet `require` (2 asked): 'L1 > 1' holds "
+            "for none of the values the section draws; widen the ranges or relax the condition") in result.output
+    p = problem_file(tmp_path, section.replace('"L1 > 1"', '"L2 > L1"'))
+    result = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve"])
+    assert result.exit_code == 2
+    assert f"{p}:13: variants: only 0 distinct variants meet `require` (2 asked)" in result.output
+
+
 def test_a_condition_that_never_holds_stops_after_1000_draws(tmp_path):
     section = ("variants:\n  parameters:\n    L1: {range: [0, 1], step: 0.000001}\n"
                "  require:\n    - \"L1 > 2\"\n")
