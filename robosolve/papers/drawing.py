@@ -31,8 +31,8 @@ def reference_configuration(problem) -> dict:
     values = _parameter_values(problem)
     out = {}
     for j in problem.joints:
-        if j.symbol in chosen:
-            out[j.symbol] = chosen[j.symbol]
+        if j.symbol in chosen:        # a value may name parameters (`at: {theta1: q1a}`, as variants do)
+            out[j.symbol] = sp.sympify(chosen[j.symbol]).xreplace(values)
             continue
         v = sp.Integer(0)
         if j.limits is not None:

@@ -32,7 +32,7 @@ figure.rs-drawing { float: right; width: 50%; margin: 0 0 .6em 1.2em; }
 .rs-data { clear: both; columns: 2 22em; column-gap: 2.2em; }
 .rs-data h3 { margin-top: .2em; }
 .rs-data .rs-table, .rs-data p { break-inside: avoid; }
-.rs-data > h2:first-child { column-span: all; }
+.rs-data > h2:first-child, .rs-data > .rs-wide { column-span: all; }
 @media print {
   @page { size: auto; margin: 15mm 14mm 16mm; }   /* A4 or Letter: the printer's paper */
   html { font-size: 9pt; }
@@ -105,13 +105,29 @@ def _boxes(body: str, problem, model) -> str:
     return BOX.sub(sub, body)
 
 
+WIDE_COLUMNS = 6      # a table of this many columns or more (the forces': name, frame, point, force,
+                      # torque, components) is wider than half an A4 page: it spans both columns
+
+
+def _wide(data: str) -> str:
+    """The data section with each wide table and its heading spanning both columns: in one
+    column such a table ran past the page's margin, and the printer cut it."""
+    def sub(m):
+        head = re.search(r"<thead>\s*<tr>(.*?)</tr>", m.group(2), re.S)
+        if head is None or head.group(1).count("<th") < WIDE_COLUMNS:
+            return m.group(0)
+        return f'<div class="rs-wide">{m.group(1)}{m.group(2)}</div>'
+
+    return re.sub(r'(<h3>[^<]*</h3>\n)?(<div class="rs-table"><table>.*?</table></div>)', sub, data, flags=re.S)
+
+
 def paper_body(markdown: str, problem, model, files) -> str:
     from robosolve.render.html import markdown_to_html_body
 
     body = markdown_to_html_body(markdown, files)
     # the data tables side by side (two columns when the page is wide enough)
-    body = re.sub(r"(<h2>Data</h2>.*?)(?=<h2>Questions</h2>)", r'<div class="rs-data">\1</div>\n', body,
-                  count=1, flags=re.S)
+    body = re.sub(r"(<h2>Data</h2>.*?)(?=<h2>Questions</h2>)", lambda m: f'<div class="rs-data">{_wide(m.group(1))}</div>\n',
+                  body, count=1, flags=re.S)
     # the drawing beside the header and the conventions
     fig = re.search(r"<figure>.*?</figure>\n?", body, re.S)
     if fig:

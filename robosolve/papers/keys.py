@@ -66,7 +66,7 @@ def placeholder(ak, question, problem):
     entries = decided(ak, question, problem)[0]
     if kind == R.MATRIX_LIST and entries is not None:       # one 4×4 pose per frame of a chain
         return [[[None] * 4 for _ in range(4)] for _ in entries]
-    if entries is not None:
+    if entries is not None and kind != R.JOINT_MAP_SET:     # a set is one `~` (its element in the comment)
         return {e: None for e in entries}
     joints = [j.name for j in problem.joints]
     bodies = [b.name for b in problem.bodies]

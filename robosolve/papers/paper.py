@@ -18,7 +18,7 @@ from robosolve.papers.keys import graded_keys
 from robosolve.papers.template import form_text, key_unit, layout_text, marks_text
 from robosolve.questions.registry import question_type, title as question_title
 from robosolve.render.chain_names import symbol_latex
-from robosolve.render.configuration import _value, split_at
+from robosolve.render.configuration import _known_values, _value, split_at
 from robosolve.render.markdown import Tex, render_data
 
 FIGURE = "figures/robot.png"
@@ -32,6 +32,9 @@ class Say:
         self.problem = problem
         self.tex = tex
         self.numbers = {q.id: i for i, q in enumerate(problem.questions, 1)}
+        # a value written with parameters (`at: {theta1: q1a}`, as variants vary a configuration)
+        # is told with the exact value they give, as in the report: q1a = π/6 ≈ 0.523599
+        self.known = {s: e for s, e in problem.parameters.items() if e is not None}
 
     def math(self, v) -> str:
         """`$…$` of an expression, a list (a vector) or a matrix."""
@@ -41,13 +44,13 @@ class Say:
 
     def value(self, v) -> str:
         """An exact value with its decimals when it is not already a decimal: $π/6 ≈ 0.5236$."""
-        return f"${_value(v, self.tex)}$"
+        return f"${_value(v, self.tex, self.known)}$"
 
     def equals(self, lhs, rhs, rate: bool = False) -> str:
         """'$E_{x} = \\frac{\\pi}{6} \\approx 0.5236$': a left side (its rate, with a dot) and its exact
         value with decimals."""
         left = f"\\dot{{{self.tex(lhs)}}}" if rate else self.tex(lhs)
-        return f"${left} = {_value(rhs, self.tex)}$"
+        return f"${left} = {_value(rhs, self.tex, self.known)}$"
 
     def joint_values(self, mapping: dict) -> str:
         """{joint name: value} -> '$θ₁ = π/6 ≈ 0.523599$, $θ₂ = 0$'."""
@@ -58,7 +61,7 @@ class Say:
         out = []
         for name, v in mapping.items():
             sym = names.get(name) or (by_name[name].symbol if name in by_name else sp.Symbol(name))
-            out.append(f"${self.tex(sym)} = {_value(v, self.tex)}$")
+            out.append(f"${self.tex(sym)} = {_value(v, self.tex, self.known)}$")
         return ", ".join(out)
 
     def per_joint(self, mapping: dict, unit: str = "") -> str:
@@ -72,16 +75,17 @@ class Say:
             u = unit
             if unit.startswith("joint"):
                 u = ("rad" if j is None or j.is_revolute else "m") + unit[len("joint"):]
-            out.append(f"${self.tex(sym)}$: ${_value(v, self.tex)}$" + (f" {u}" if u else ""))
+            out.append(f"${self.tex(sym)}$: ${_value(v, self.tex, self.known)}$" + (f" {u}" if u else ""))
         return ", ".join(out)
 
     def at(self, question) -> str:
         """'at θ₁ = …, θ₂ = … (rates …; accelerations …), with L₁ = … instead of the data's …'
         ('' without `at`)."""
         q, qd, qdd, params = split_at(question, self.problem)
+        known = _known_values(question, self.problem)
 
         def listing(pairs):
-            return ", ".join(f"${self.tex(s)} = {_value(v, self.tex)}$" for s, v in pairs)
+            return ", ".join(f"${self.tex(s)} = {_value(v, self.tex, known)}$" for s, v in pairs)
 
         parts = []
         if q:
@@ -107,8 +111,9 @@ class Say:
     def frame(self, question) -> str:
         return f"frame {name_md(question.frame)}"
 
-    def joints(self) -> str:
-        return ", ".join(f"${self.tex(j.symbol)}$" for j in self.problem.joints)
+    def joints(self, joints=None) -> str:
+        """The joints' symbols (`joints`: some of them, default every one)."""
+        return ", ".join(f"${self.tex(j.symbol)}$" for j in (self.problem.joints if joints is None else joints))
 
     def asked(self, question) -> list[str]:
         """The graded keys of `question` (dotted paths, in grading order): what its statement

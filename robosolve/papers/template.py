@@ -94,9 +94,12 @@ def layout_text(ak, question, problem) -> str:
     if kind == R.EQUATIONS:
         return (f"a list of {len(problem.joints)} equations, one per joint in joint order ({joints}), "
                 "each a string \"left side = right side\"")
+    if kind == R.JOINT_MAP_SET:      # a pose target's solutions: the joints that move its frame
+        element = "{" + ", ".join(f"{name}: …" for name in (entries or [j.name for j in problem.joints])) + "}"
+        return f"a set, a list of {element} in any order ([] when there is none)"
     if entries is not None:
         names = [j.name for j in problem.joints]
-        return (f"one value per joint ({joints})" if list(entries) == names else
+        return (f"one value per joint ({', '.join(entries)})" if set(entries) <= set(names) else
                 f"one value per coordinate ({', '.join(entries)})")
     if kind == R.MATRIX and len(dims) == 2:
         return f"{dims[0]}×{dims[1]} matrix, a list of rows"
@@ -110,9 +113,6 @@ def layout_text(ak, question, problem) -> str:
         return ("per actuator (" + ", ".join(str(j.actuator) for j in problem.joints) + "): "
                 + ", ".join(f"{f.name} ({f.doc}" + (f"; {u}" if (u := key_unit(f, question, problem)) else "") + ")"
                             for f in ak.fields))
-    if kind == R.JOINT_MAP_SET:
-        element = "{" + ", ".join(f"{j.name}: …" for j in problem.joints) + "}"
-        return f"a set, a list of {element} in any order ([] when there is none)"
     if kind == R.VECTOR_SET:
         n = dims[0] if dims else 3
         return f"a set, a list of [{', '.join(['…'] * n)}] in any order ([] when there is none)"

@@ -53,6 +53,43 @@ def notebook_cell(q, answer, problem):
         ]
     return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
 
+def solved_joints(q, problem) -> list:
+    """The joints a solution gives: for a pose target, those that move the target's frame (a joint
+    past it, the seventh of an arm asked the pose of frame 6, is in no solution: solvers/ik_pose.py);
+    for a target of coordinates, every joint."""
+    if isinstance(q.options.get("target"), list):
+        return list(problem.joints)
+    frame = problem.points[q.point].frame if q.point_given else q.frame
+    moving: set = set()
+    while frame in problem.frames:
+        f = problem.frames[frame]
+        leaves = list(f.matrix) if f.matrix is not None else [
+            x for factor in f.factors for x in (factor if isinstance(factor, (tuple, list)) else (factor,))]
+        for x in leaves:
+            moving |= getattr(x, "free_symbols", set())
+        frame = f.parent
+    return [j for j in problem.joints if j.symbol in moving]
+
+
+def paper_layout(q, problem) -> dict:
+    """A pose target's solutions give only the joints that move its frame (papers: the template)."""
+    names = [j.name for j in solved_joints(q, problem)]
+    if len(names) == len(problem.joints):
+        return {}
+    return {"solutions": (names, None), "selected": (names, None)}
+
+
+def _fixed_joints(q, say) -> str:
+    """' $q_7$ does not move frame 6: it is in no solution.' for a pose target ('' else)."""
+    solved = solved_joints(q, say.problem)
+    free = [j for j in say.problem.joints if j not in solved]
+    if not free:
+        return ""
+    where = f"point {q.point}" if q.point_given else f"frame {name_md(q.frame)}"
+    return (f" {say.joints(free)} {'does' if len(free) == 1 else 'do'} not move {where}: "
+            f"{'it is' if len(free) == 1 else 'they are'} in no solution.")
+
+
 def _target(q, say) -> tuple[str, str]:
     """(what the configurations put where, what there is none of)."""
     o = q.options
@@ -98,11 +135,12 @@ def _statement(q, say) -> str:
     solution, the selected one (by its rule), the joint rates of a velocity, the closed form."""
     target, kind = _target(q, say)
     rest = listing(asked(q, say, _words(q, say)))
+    joints, fixed = say.joints(solved_joints(q, say.problem)), _fixed_joints(q, say)
     if "solutions" in say.asked(q):
-        return (f"Find every configuration ({say.joints()}) within the joint limits that puts {target} "
-                f"(none, if the {kind} cannot be reached)" + (f"; give also {rest}" if rest else "") + ".")
-    return (f"Of the configurations ({say.joints()}) within the joint limits that put {target}, "
-            f"give {rest}.")
+        return (f"Find every configuration ({joints}) within the joint limits that puts {target} "
+                f"(none, if the {kind} cannot be reached)" + (f"; give also {rest}" if rest else "") + "." + fixed)
+    return (f"Of the configurations ({joints}) within the joint limits that put {target}, "
+            f"give {rest}." + fixed)
 
 
 def _check(ql, path, item, q):
@@ -168,6 +206,6 @@ TYPE = QuestionType(
     # pose of a UR5 or a KUKA arm)
     cost=0.8, cost_growth=2.5,
     reaches=True,
-    notebook_cells=notebook_cell,
+    notebook_cells=notebook_cell, paper_layout=paper_layout,
     check=_check,
 )

@@ -7,10 +7,13 @@ process, nor a numpy stream, which numpy does not promise to keep across version
 first attempt that meets `require` and differs from every earlier variant is variant k, so
 variant k never depends on how many variants are asked for.
 
-When the grid has at most COUNT_LIMIT combinations, the valid ones are counted first (too
-few: an error with the count) and, should 1000 attempts in a row all be rejected (the grid
-nearly used up), variant k is picked among the remaining valid combinations with
-``H(seed, k, "remaining")``, so it is found whenever it exists.
+When the grid has at most COUNT_LIMIT combinations and 1000 attempts in a row are all rejected
+(the grid nearly used up, or a condition that rarely holds), the valid combinations are counted
+and variant k is picked among the remaining ones with ``H(seed, k, "remaining")``, so it is found
+whenever it exists; when none remains, the count is the error's (fewer distinct variants than
+asked). The grid is counted only then: counting checks every combination (an IK search each, a
+second apiece for a 6-joint pose), while the draws of a class usually check a few per variant —
+and the first attempt that meets `require` is variant k either way, so the draws are the same.
 """
 
 from __future__ import annotations
@@ -34,13 +37,24 @@ def attempt_indices(spec, seed: int, k: int, attempt: int) -> tuple:
     return tuple(stable_int(seed, k, attempt, p.name) % p.size for p in spec.parameters)
 
 
+class TooFew(Exception):
+    """Fewer distinct combinations meet `require` than are asked: `count` of them; `never`: the
+    conditions that hold for no combination at all (when none meets `require`)."""
+
+    def __init__(self, count: int, never=()):
+        self.count = count
+        self.never = list(never)
+        super().__init__(count)
+
+
 class Drawer:
-    def __init__(self, spec, checker, seed: int, file: str):
+    def __init__(self, spec, checker, seed: int, file: str, count_progress=None):
         self.spec = spec
         self.checker = checker
         self.seed = seed
         self.file = file
-        self.valid = None          # boolean grid (small grids), after count()
+        self.count_progress = count_progress   # () -> a progress step, for counting the grid
+        self.valid = None          # boolean grid (small grids), once counted
         self.used: set = set()
         self.drawn: list = []
 
@@ -48,7 +62,8 @@ class Drawer:
         """Distinct combinations meeting `require`, or None when the grid is too large to count."""
         if self.spec.grid_size > COUNT_LIMIT:
             return None
-        self.valid = self.checker.valid_grid(progress)
+        if self.valid is None:
+            self.valid = self.checker.valid_grid(progress)
         return int(self.valid.sum())
 
     def _ok(self, idx):
@@ -70,12 +85,14 @@ class Drawer:
                 duplicates += 1
             else:
                 failures[id(bad)] = (failures.get(id(bad), (0, bad))[0] + 1, bad)
-        if self.valid is not None:
+        if self.spec.grid_size <= COUNT_LIMIT:
+            self.count(self.count_progress() if self.count_progress else None)
             remaining = np.flatnonzero(self.valid)
             left = [tuple(int(i) for i in np.unravel_index(f, self.valid.shape)) for f in remaining]
             left = [t for t in left if t not in self.used]
             if left:
                 return self._accept(left[stable_int(self.seed, k, "remaining") % len(left)])
+            raise TooFew(len(self.used), self.checker.never_met() if not self.used else ())
         where = f"variant {k}"
         if failures:
             n, worst = max(failures.values(), key=lambda t: t[0])

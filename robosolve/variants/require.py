@@ -54,6 +54,10 @@ class Condition:
             self._memo[key] = hit
         return hit
 
+    def ever_holds(self) -> bool:
+        """Whether any combination evaluated so far meets the condition."""
+        return any(self._memo.values())
+
     def table(self, spec, progress=None) -> np.ndarray:
         """Truth over the product of the relevant parameters' value sets."""
         sizes = [spec.parameters[i].size for i in self.relevant]
@@ -140,6 +144,11 @@ class RequirementChecker:
                 bshape[i] = shape[i]
             valid &= t.reshape(bshape)
         return valid
+
+    def never_met(self) -> list:
+        """The requirements that hold for no combination of their parameters (after valid_grid,
+        which evaluates every one): what makes the section impossible."""
+        return [c.requirement for c in self.conditions if not c.ever_holds()]
 
     def table_work(self) -> int:
         return sum(math.prod(self.spec.parameters[i].size for i in c.relevant) for c in self.conditions)

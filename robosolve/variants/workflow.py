@@ -122,6 +122,14 @@ def too_few(file, spec, n: int, asked: int, what: str):
                                  f"({asked} asked)")])
 
 
+def never_met(file, requirement, asked: int):
+    """No variant at all: told at the condition that holds for none of the drawn values."""
+    raise InputError([InputIssue(file, requirement.line, requirement.path,
+                                 f"only 0 distinct variants meet `require` ({asked} asked): "
+                                 f"{requirement.text!r} holds for none of the values the section "
+                                 "draws; widen the ranges or relax the condition")])
+
+
 def check_count(file, spec, asked: int) -> None:
     """Refuse a count that cannot be met before anything is drawn or allocated: more than the
     grid of drawn values holds, or more than MAX_VARIANTS."""
@@ -135,23 +143,27 @@ def check_count(file, spec, asked: int) -> None:
 
 def plan_variants(path: Path, ids: list, seed: int, progress=None) -> Plan:
     """ids: [(variant id, student)] in order. Raises InputError (exit 2) on any problem."""
-    from robosolve.variants.draw import Drawer
+    from robosolve.variants.draw import Drawer, TooFew
     from robosolve.variants.require import RequirementChecker
 
     problem, data = load_source(path)
     spec = problem.variants
     checker = RequirementChecker(template_problem(data, problem), spec, problem.file)
-    drawer = Drawer(spec, checker, seed, problem.file)
+    counting = ((lambda: progress.task("checking the conditions over the grid", checker.table_work()))
+                if progress else None)
+    drawer = Drawer(spec, checker, seed, problem.file, counting)
     asked = getattr(ids, "asked", None) or len(ids)      # --count 10**19 has no len()
     check_count(problem.file, spec, asked)
-    step = progress.task("checking the conditions over the grid", checker.table_work()) if progress else None
-    n_valid = drawer.count(step)
-    if n_valid is not None and n_valid < asked:
-        too_few(problem.file, spec, n_valid, asked, "meet `require`" if spec.require else "exist")
     plan = Plan(problem, spec, seed)
     step = progress.task("drawing", len(ids)) if progress else None
     for vid, student in ids:
-        values = drawer.values(drawer.next())
+        try:
+            index = drawer.next()
+        except TooFew as exc:       # the grid, counted once the draws ran short, holds no more
+            if exc.never:
+                never_met(problem.file, exc.never[0], asked)
+            too_few(problem.file, spec, exc.count, asked, "meet `require`" if spec.require else "exist")
+        values = drawer.values(index)
         v = Variant(vid, student, values, folder=f"{problem.name}-{vid}")
         v.text = dump_problem(variant_data(data, v.folder, values))
         plan.variants.append(v)

@@ -337,3 +337,18 @@ def test_at_placeholder_after_a_written_at_and_without_a_configuration(write_pro
     paper = (out / "paper.md").read_text()
     assert "Find M at $\\theta_{1} = \\frac{\\pi}{6}" in paper and "at at" not in paper
     assert "Find J at any configuration (the joint variables as symbols)." in paper
+
+
+def test_a_wide_data_table_spans_both_columns():
+    """The exam's forces table (name, frame, point, force, torque, components: six columns) sat in
+    one of the two data columns and ran past the page's margin: printed by Chromium on Letter,
+    its last heading 'components' lost its final letter. Wide tables span both columns; the
+    joints' (five columns) stay in theirs."""
+    from robosolve.papers.workflow import paper_files
+
+    problem = load_problem(PROBLEMS / "exam-2r-full.yaml")
+    page = paper_files(problem, "exam-2r-full.yaml", formats=("md", "html"))["paper.html"].decode()
+    data = page[page.index('<div class="rs-data">'):page.index("<h2>Questions</h2>")]
+    wide = re.findall(r'<div class="rs-wide">(<h3>[^<]*</h3>)', data)
+    assert wide == ["<h3>External forces</h3>"]
+    assert ".rs-data > .rs-wide { column-span: all; }" in page.replace("h2:first-child, ", "")

@@ -110,6 +110,24 @@ def test_the_drawn_planar_arm_is_its_forward_kinematics(tmp_path):
     assert d["plane"] == (0, 1)
 
 
+def test_a_configuration_named_by_parameters_is_drawn(tmp_path):
+    """`at: {theta1: q1a, theta2: q2a}` — how variants vary a configuration (docs/variants.md): the
+    paper had no drawing at all (the joint values stayed symbols); the robot is drawn at the
+    parameters' values, as numpy's product of the elementary matrices puts it."""
+    from robosolve.papers.workflow import paper_files
+
+    text = (PLANAR.replace("c: 0.1}", "c: 0.1, q1a: pi/6, q2a: q1a + pi/4}").replace("paper: {at: {theta1: pi/3, theta2: pi/2}}\n", "")
+            .replace("at: {theta1: 0, theta2: 0}", "at: {theta1: q1a, theta2: q2a}"))
+    problem = load_problem_text(text, str(tmp_path / "p.yaml"))
+    spec = paper_figure(problem, RobotModel(problem))
+    assert spec is not None
+    m2 = rz(np.pi / 6) @ tx(0.5) @ rz(np.pi / 6 + np.pi / 4) @ tx(0.3)
+    origins = {f["name"]: np.array(f["origin"]) for f in spec.data["frames"]}
+    assert np.allclose(origins["2"], m2[:3, 3])
+    files = paper_files(problem, "p.yaml")
+    assert "figures/robot.png" in files and "](figures/robot.png)" in files["paper.md"].decode()
+
+
 def _segments_overlap(box, a, b) -> bool:
     """Whether the segment ab (pixels) crosses the box (x0, y0, x1, y1), sampled finely."""
     for s in np.linspace(0, 1, 200):

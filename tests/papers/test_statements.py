@@ -250,3 +250,62 @@ def test_targets_and_loads_are_stated_exact_and_with_decimals(tmp_path):
     assert "$\\dot{E_{x}} = \\frac{\\pi}{10} \\approx 0.314159$" in ik
     statics = statement(next(q for q in problem.questions if q.type == "statics"), say)
     assert "applied at point E (one component per coordinate ($E_{x}$, $E_{y}$))" in statics
+
+
+def test_a_pose_target_asks_only_for_the_joints_that_move_its_frame():
+    """The Panda asked the pose of frame 6: q7 does not move it, so the solutions give q1…q6
+    (solvers/ik_pose.py). The paper and the template asked for {q1: …, …, q7: …}, and a student
+    who wrote q7 as told had every solution marked wrong. Which joints move frame 6 is found here
+    with numpy: the modified DH table multiplied out, each joint perturbed in turn."""
+    import numpy as np
+
+    from conftest import PROBLEMS
+    from robosolve.load.loader import load_problem
+    from robosolve.papers.template import render_template
+
+    problem = load_problem(PROBLEMS / "panda.yaml")
+    q = next(q for q in problem.questions if q.type == "inverse_kinematics")
+    assert q.frame == "6"
+    d1, d3, a4, d5, a6 = 0.333, 0.316, 0.0825, 0.384, 0.088
+    rows = [(0, 0, d1), (-np.pi / 2, 0, 0), (np.pi / 2, 0, d3), (np.pi / 2, a4, 0), (-np.pi / 2, -a4, d5),
+            (np.pi / 2, 0, 0), (np.pi / 2, a6, 0)]
+
+    def pose6(qs):
+        T = np.eye(4)
+        for (alpha, a, d), th in list(zip(rows, qs))[:6]:
+            ca, sa, ct, st = np.cos(alpha), np.sin(alpha), np.cos(th), np.sin(th)
+            T = T @ np.array([[ct, -st, 0, a], [st * ca, ct * ca, -sa, -sa * d], [st * sa, ct * sa, ca, ca * d],
+                              [0, 0, 0, 1]])
+        return T
+
+    q0 = np.array([0.1, -0.4, 0.2, -1.9, 0.3, 1.5, 0.6])
+    moving = [f"q{i + 1}" for i in range(7) if not np.allclose(pose6(q0 + 0.3 * np.eye(7)[i]), pose6(q0))]
+    assert moving == ["q1", "q2", "q3", "q4", "q5", "q6"]
+    element = "{" + ", ".join(f"{n}: …" for n in moving) + "}"
+    ik = statement(q, Say(problem, Tex(symbol_latex(problem))))
+    assert "Find every configuration ($q_{1}$, $q_{2}$, $q_{3}$, $q_{4}$, $q_{5}$, $q_{6}$) within" in ik
+    assert "$q_{7}$ does not move frame 6" in ik
+    template = render_template(problem, "panda.yaml")
+    ik_comment = next(line for line in template.splitlines() if line.strip().startswith("# solutions"))
+    assert f"a set, a list of {element} in any order" in ik_comment
+    assert placeholder(QUESTION_TYPES["inverse_kinematics"].key("selected"), q, problem) == dict.fromkeys(moving)
+
+
+def test_a_configuration_written_with_parameters_is_stated_with_their_values(tmp_path):
+    """`at: {theta1: q1a}` (a variant's drawn configuration), a target `E.x: xt` and a gain `kp`: the
+    paper wrote θ₁ = q1a, leaving the student to look the value up, where the report writes
+    θ₁ = q1a = π/6 ≈ 0.523599 (papers.md: values exact and with decimals, as in the report)."""
+    import math
+
+    text = EXAM.replace("parameters: {L1: 0.5,", "parameters: {q1a: pi/6, xt: 3/5, kp: 2*q1a, L1: 0.5,")
+    text = text.replace("{type: position, frame: tool, at: {theta1: 0.1, theta2: 0.2}}",
+                        "{type: position, frame: tool, at: {theta1: q1a, theta2: 0.2}}")
+    text = text.replace("target: {E.x: 0.6, E.y: 0.3}", "target: {E.x: xt, E.y: 0.3}")
+    problem = load_problem_text(text, str(tmp_path / "v.yaml"))
+    say = Say(problem, Tex(symbol_latex(problem)))
+    position = statement(next(q for q in problem.questions if q.type == "position"), say)
+    assert f"$\\theta_{{1}} = \\mathrm{{q1a}} = \\frac{{\\pi}}{{6}} \\approx {math.pi / 6:.6g}$" in position
+    ik = statement(next(q for q in problem.questions if q.type == "inverse_kinematics"), say)
+    assert "$E_{x} = \\mathrm{xt} = \\frac{3}{5} \\approx 0.6$" in ik
+    assert say.per_joint({"theta1": problem.names["kp"]}) == (
+        f"$\\theta_{{1}}$: $\\mathrm{{kp}} = \\frac{{\\pi}}{{3}} \\approx {math.pi / 3:.6g}$")

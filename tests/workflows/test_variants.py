@@ -219,6 +219,24 @@ def test_the_count_agrees_with_an_independent_enumeration(tmp_path):
     assert drawer.count() == expected
 
 
+def test_a_few_variants_do_not_count_the_whole_grid_first(tmp_path, monkeypatch):
+    """Two variants of a 21 × 21 × 41 grid of lengths and targets: robosolve ran the IK search of
+    every combination (18,081 of them, minutes) before drawing the first; the draws check a few.
+    Each drawn target is reachable by the closed-form 2R inverse written here."""
+    import robosolve.ik.numeric as numeric
+
+    searches = []
+    real = numeric.solve_all
+    monkeypatch.setattr(numeric, "solve_all", lambda *a, **k: searches.append(1) or real(*a, **k))
+    section = ("variants:\n  parameters:\n    L1: {range: [0.4, 0.6], step: 0.01}\n"
+               "    L2: {range: [0.2, 0.4], step: 0.01}\n    x: {range: [0.3, 0.7], step: 0.01}\n"
+               "  require:\n    - {reachable: ik}\n")
+    plan = plan_variants(problem_file(tmp_path, section), [(i, "") for i in count_ids(2)], seed=0)
+    assert len(plan.variants) == 2 and len(searches) < 50
+    for v in plan.variants:
+        assert reachable(*(float(v.values[n]) for n in ("L1", "L2", "x")), 0.3)
+
+
 def test_variant_k_does_not_change_when_the_count_grows(tmp_path):
     p = problem_file(tmp_path)
     small = plan_variants(p, [(i, "") for i in count_ids(5)], seed=3)
@@ -242,6 +260,23 @@ def test_too_few_distinct_variants_is_an_error_with_the_count(tmp_path):
     assert result.exit_code == 0, result.output
     rows = list(csv.DictReader(io.StringIO((out / "variants.csv").read_text())))
     assert sorted((r["L1"], r["L2"]) for r in rows) == [("1/2", "2/5"), ("1/2", "3/10"), ("2/5", "3/10")]
+
+
+def test_a_condition_no_drawn_value_meets_is_named_at_its_line(tmp_path):
+    """L1 is drawn from 0.3 … 0.6 and `require` asks L1 > 1: the message said only that 0 variants
+    meet `require`, at the section's line, leaving the teacher to find which condition; conditions
+    each met by some values but never together keep that message."""
+    section = ("variants:\n  parameters:\n    L1: {range: [0.3, 0.6], step: 0.1}\n"
+               "    L2: {range: [0.2, 0.5], step: 0.1}\n  require:\n    - \"L1 > L2\"\n    - \"L1 > 1\"\n")
+    p = problem_file(tmp_path, section)
+    result = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve"])
+    assert result.exit_code == 2 and not (tmp_path / "o").exists()
+    assert (f"{p}:19: variants.require[1]: only 0 distinct variants meet `require` (2 asked): 'L1 > 1' holds "
+            "for none of the values the section draws; widen the ranges or relax the condition") in result.output
+    p = problem_file(tmp_path, section.replace('"L1 > 1"', '"L2 > L1"'))
+    result = runner.invoke(app, ["variants", str(p), "--count", "2", "--out", str(tmp_path / "o"), "--no-solve"])
+    assert result.exit_code == 2
+    assert f"{p}:13: variants: only 0 distinct variants meet `require` (2 asked)" in result.output
 
 
 def test_a_condition_that_never_holds_stops_after_1000_draws(tmp_path):
