@@ -172,7 +172,7 @@ def notebook_cell(q, answer, problem):
                                    "min_singular_value"]),
         compare_line("T", "timing.T"),
         compare_line("length", "path.length"),
-        compare_line("start", per_joint.format("trajectory.q[:, 0]")),
+        compare_line("start", per_joint.format("start")),
         "if trajectory.failure is not None:",
         "    print('the path cannot be followed:', trajectory.failure)",
         *(["velocities, accelerations, (sigma_min, t_sigma_min) = trajectory.extremes()",

@@ -60,6 +60,7 @@ class TaskTrajectory:
     arm: tp.Arm
     conv: tp.Conversion
     joints: list                   # joint names
+    start_configuration: np.ndarray | None = None     # at `from` (the branch followed), when reached
 
     def desired(self, t: float, segment: int | None = None):
         """(x_d, x_dot_d, x_ddot_d) at t; after T the end, at rest."""
@@ -288,12 +289,14 @@ def solve(question, ctx: SolveContext) -> Answer:
         ctx.record_trajectory(question.id, None)
         return _outside_at_start(ans, coords, labels, tex, path, timing, outside)
     conv = tp.follow(arm, path, timing, q_from, samples=SAMPLES)
-    traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names)
+    traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names, np.asarray(q_from, dtype=float))
     ans.numeric["start"] = {n: float(q_from[i]) for i, n in enumerate(names)}
     _path_steps(ans, traj, res, question, model, ctx.symbol_latex)
     if conv.failure is not None:
         ctx.record_trajectory(question.id, None)
         _failure(ans, traj, model)
+        if conv.t.size == 0:             # singular at `from` itself: no motion to draw
+            return ans
     else:
         ctx.record_trajectory(question.id, traj)
         vel, acc, (smin, tmin) = tp.extremes(arm, path, timing, conv)
@@ -364,7 +367,7 @@ def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
     if traj.conv is None:           # the path starts out of reach: no branch to follow
         return
     names = [latex(j.symbol, symbol_names=symbols) for j in model.joints]
-    q0 = traj.conv.q[:, 0]
+    q0 = traj.start_configuration
     wide = path.a.size < len(model.q)
     how = ("the configuration of `from` nearest the one given as `start` (fewer coordinates than joints: "
            "a family of solutions; the least |q − start|)" if wide and "start" in question.options else
