@@ -155,6 +155,28 @@ def test_a_path_from_a_singular_start_is_a_singular_answer_at_t_0():
     assert "cannot be followed" in got["p_control"]["error"]
 
 
+def test_the_task_figure_gives_an_angle_coordinate_in_rad():
+    """Coordinates [E.x, q1 + q2]: the second is the angle of link 2 (a sum of revolute angles, rad);
+    the work-space tracking figure labelled every coordinate and its error in m."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import solve_problem
+
+    text = ARM_2R + """  - type: task_trajectory
+    id: line
+    coordinates: [E.x, q1 + q2]
+    from: {E.x: 0.7, q1 + q2: 0.2}
+    to: {E.x: 0.5, q1 + q2: 0.6}
+    duration: 0.3
+  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {E.x: 400, q1 + q2: 40},
+     gains_d: {E.x: 40, q1 + q2: 4}}
+"""
+    report = solve_problem(load_problem_text(text))
+    control = next(a for a in report.answers if a.type == "p_control")
+    assert control.error is None, control.error
+    (figure,) = [f for f in control.figures if f.name == "task"]
+    assert [j["unit"] for j in figure.data["joints"]] == ["m", "rad"]
+
+
 def test_solver_answers_and_pd_matches_an_independent_integration(write_problem, tmp_path):
     from scipy.integrate import solve_ivp
 
