@@ -380,6 +380,8 @@ def follow(arm: Arm, path: Path, timing: Timing, q_start, samples: int = 401,
         jump = float(np.max(np.abs(q - guess)))
         if sig < floor or (t > 0 and jump > 0.2):
             failure = {"kind": "singular", "t": float(t), "x": x.tolist(), "q": q.tolist()}
+            if sig >= floor:     # J keeps its rank: the joints outrun the samples near a singularity
+                failure.update(jump=jump, sigma=min(sig, out["sigma"][-1] if out["sigma"] else sig))
             break
         for k, v in zip(out, (s, x, xd, xdd, q, qd, qdd, sig)):
             out[k].append(v)

@@ -432,6 +432,12 @@ def _failure(ans, traj, model) -> None:
     if f["kind"] == "unreachable":
         ans.extra["unreachable"] = True
         reason = Text("at t = ", Num(f["t"], "s"), " the path reaches (", where, "), out of the arm's reach")
+    elif "jump" in f:        # J keeps its rank, but the branch is lost between two samples
+        ans.extra["singular"] = True
+        reason = Text("at t = ", Num(f["t"], "s"), " the path passes close to a singular configuration, near (",
+                      where, "): the smallest singular value of J falls to ", Num(f["sigma"]),
+                      " and the joints would turn by ", Num(f["jump"], "rad"), " more than their rates predict "
+                      "between two samples, too fast to follow")
     else:
         ans.extra["singular"] = True
         reason = Text("at t = ", Num(f["t"], "s"), " the path crosses a singular configuration, at (", where,

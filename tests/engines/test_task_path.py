@@ -177,6 +177,29 @@ def test_the_task_figure_gives_an_angle_coordinate_in_rad():
     assert [j["unit"] for j in figure.data["joints"]] == ["m", "rad"]
 
 
+def test_a_line_passing_near_the_base_says_it_passes_near_a_singularity_not_through_one():
+    """L1 = L2: the base is singular. The line y = x + 0.001 misses it by 0.001/sqrt(2) m, where the
+    folded arm has sigma_min(J) ~ |E| = 7.1e-4 (J's first column is (-E.y, E.x), nearly normal to the
+    second, of length L2 = 1/2; checked below):
+    J keeps its rank, but q1 turns by ~pi within a millimetre, faster than the samples follow. The
+    reason said "crosses a singular configuration ... J loses rank"."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.render.results_json import answer_record
+    from robosolve.run.pipeline import solve_problem
+
+    d = 0.001 / math.sqrt(2)
+    q2 = 2 * math.acos(d)                            # |E| = 2 L cos(q2 / 2), L = 1/2
+    sv = np.linalg.svd(_arm_2r(0.5, 0.5).J([0.3, q2]), compute_uv=False)
+    assert sv[-1] == pytest.approx(d, rel=1e-3)      # not singular where it passes nearest
+    text = ARM_2R.replace("L2: 2/5", "L2: 1/2") + LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 0.3, E.y: 0.301").replace(
+        "E.x: 0.2, E.y: 0.6", "E.x: -0.3, E.y: -0.299")
+    (a,) = solve_problem(load_problem_text(text)).answers
+    record = answer_record(a, [])
+    reason = record["reason"]
+    assert record["singular"] is True and "loses rank" not in reason
+    assert "close to a singular configuration" in reason
+
+
 def test_solver_answers_and_pd_matches_an_independent_integration(write_problem, tmp_path):
     from scipy.integrate import solve_ivp
 
