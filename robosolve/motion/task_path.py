@@ -36,7 +36,7 @@ import numpy as np
 from robosolve.core.extremes import first_of_ties, tie_tolerance
 
 __all__ = ["PathError", "Path", "line", "circle", "Timing", "trapezoidal", "quintic", "Arm",
-           "Conversion", "newton", "nearest_solution", "joint_state", "follow", "extremes"]
+           "Conversion", "NEWTON_TOL", "newton", "singular_floor", "nearest_solution", "joint_state", "follow", "extremes"]
 
 
 class PathError(ValueError):
@@ -190,7 +190,11 @@ class Arm:
         return (self.J(q + h * qd) - self.J(q - h * qd)) / (2 * h)
 
 
-def newton(arm: Arm, target, q0, tol: float = 1e-12, max_iter: int = 30):
+# Newton's tolerance on the residual x_d - x(q), relative to max(1, |x_d|)
+NEWTON_TOL = 1e-12
+
+
+def newton(arm: Arm, target, q0, tol: float = NEWTON_TOL, max_iter: int = 30):
     """q with x(q) = target near q0 (minimum-norm steps); None when it does not converge."""
     q = np.array(q0, dtype=float)
     scale = max(1.0, float(np.max(np.abs(target))))
@@ -337,15 +341,30 @@ def _grid(timing: Timing, samples: int):
     return np.array(ts), np.array(segs)
 
 
+def singular_floor(scale: float, x_scale: float, sigma_tol: float = 1e-6) -> float:
+    """The smallest singular value below which a configuration counts as singular: sigma_tol of
+    |J|, and at least ten times what an exactly singular one shows once Newton has solved it.
+    At a fold (an arm stretched or folded) x(q) is quadratic along the singular direction, so a
+    residual r leaves q off by sqrt(2 r / k) there and sigma at about sqrt(2 r k), k ~ |J| the
+    curvature: sqrt(2e-12 * 0.65) = 1.1e-6 on a 2R arm of reach 1, above 1e-6 |J| = 6.5e-7."""
+    residual = NEWTON_TOL * max(1.0, x_scale)
+    return max(sigma_tol * scale, 10.0 * math.sqrt(residual * scale))
+
+
 def follow(arm: Arm, path: Path, timing: Timing, q_start, samples: int = 401,
            sigma_tol: float = 1e-6) -> Conversion:
     """The joint motion along the timed path, from the branch of ``q_start`` (which reaches
-    the path's start). Stops at the first sample out of reach or at a singularity."""
+    the path's start). Stops at the first sample out of reach or at a singularity (the ends
+    included: a singular start stops it at t = 0, with no sample kept)."""
     ts, segs = _grid(timing, samples)
     m, n = path.a.size, len(q_start)
     out = {k: [] for k in ("s", "x", "xd", "xdd", "q", "qd", "qdd", "sigma")}
     q_prev, qd_prev, t_prev, failure = np.asarray(q_start, dtype=float), np.zeros(n), 0.0, None
     scale = max(float(np.linalg.norm(arm.J(q_prev), 2)), 1e-300)
+    x_scale = float(np.max(np.abs(np.concatenate([path.a, path.b]))))
+    if path.center is not None:          # an arc reaches |c| + r
+        x_scale = max(x_scale, float(np.max(np.abs(path.center))) + path.radius)
+    floor = singular_floor(scale, x_scale, sigma_tol)
     wide = path.a.size < n
     for t, seg in zip(ts, segs):
         s, x, xd, xdd = task_state(path, timing, t, seg)
@@ -359,20 +378,21 @@ def follow(arm: Arm, path: Path, timing: Timing, q_start, samples: int = 401,
             break
         qd, qdd, sig = joint_state(arm, q, xd, xdd)
         jump = float(np.max(np.abs(q - guess)))
-        if sig < sigma_tol * scale or (t > 0 and jump > 0.2):
+        if sig < floor or (t > 0 and jump > 0.2):
             failure = {"kind": "singular", "t": float(t), "x": x.tolist(), "q": q.tolist()}
+            if sig >= floor:     # J keeps its rank: the joints outrun the samples near a singularity
+                failure.update(jump=jump, sigma=min(sig, out["sigma"][-1] if out["sigma"] else sig))
             break
         for k, v in zip(out, (s, x, xd, xdd, q, qd, qdd, sig)):
             out[k].append(v)
         q_prev, qd_prev, t_prev = q, qd, t
     N = len(out["s"])
     conv = Conversion(ts[:N], segs[:N], np.array(out["s"]),
-                      *(np.array(out[k]).reshape(N, -1).T for k in ("x", "xd", "xdd")),
+                      *(np.array(out[k]).reshape(N, m).T for k in ("x", "xd", "xdd")),
                       *(np.array(out[k]).reshape(N, n).T for k in ("q", "qd", "qdd")),
                       np.array(out["sigma"]), failure)
     if failure is None:
-        _singular_between(arm, path, timing, conv, sigma_tol * scale)
-    del m
+        _singular_between(arm, path, timing, conv, floor)
     return conv
 
 

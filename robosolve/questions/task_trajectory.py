@@ -95,13 +95,14 @@ def _check(ql, path, item, q):
 def _branch(q, say) -> str:
     """Which inverse-kinematics solution the motion starts from, in words."""
     start = q.options.get("start")
+    if len(coordinate_list(q)) < len(say.problem.joints):      # a family at `from`: the answer's rule
+        nearest = say.joint_values(start) if isinstance(start, dict) else "$q = 0$"
+        return ("With fewer coordinates than joints, a family of configurations puts the point at the start "
+                f"of the path: the arm starts from the one nearest {nearest} (the least distance in the "
+                "joint values), and the joint rates are the minimum-norm ones, $\\dot q = J^+ \\dot x$")
     if isinstance(start, dict):
         return (f"The arm starts on the inverse-kinematics branch of {say.joint_values(start)} (Newton's "
                 "method from this configuration onto the start of the path)")
-    if len(coordinate_list(q)) < len(say.problem.joints):
-        return ("With fewer coordinates than joints, the arm starts from the configuration Newton's "
-                "minimum-norm steps reach from every joint at 0, and the joint rates are the minimum-norm "
-                "ones, $\\dot q = J^+ \\dot x$")
     return ("The arm starts from the inverse-kinematics solution of the start of the path that lies within "
             "the joint limits and comes first in the order of the joints' values (" + say.joints()
             + "; smallest first)")
@@ -172,7 +173,7 @@ def notebook_cell(q, answer, problem):
                                    "min_singular_value"]),
         compare_line("T", "timing.T"),
         compare_line("length", "path.length"),
-        compare_line("start", per_joint.format("trajectory.q[:, 0]")),
+        compare_line("start", per_joint.format("start")),
         "if trajectory.failure is not None:",
         "    print('the path cannot be followed:', trajectory.failure)",
         *(["velocities, accelerations, (sigma_min, t_sigma_min) = trajectory.extremes()",

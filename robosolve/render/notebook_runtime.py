@@ -1073,6 +1073,12 @@ class TaskTrajectory:
         arm, n = self.arm, len(q_prev)
         rows, qd_prev, t_prev, self.failure = [], np.zeros(n), 0.0, None
         scale = max(float(np.linalg.norm(arm.J(q_prev), 2)), 1e-300)
+        # an exactly singular configuration (a stretched arm) shows sigma ~ sqrt(2 r |J|) once
+        # Newton has solved it to the residual r = 1e-12 max(1, |x|): ten times that is singular
+        reach = [self.path.a, self.path.b] + ([] if getattr(self.path, "center", None) is None else
+                                              [np.abs(self.path.center) + self.path.radius])
+        residual = 1e-12 * max(1.0, float(np.max(np.abs(np.concatenate(reach)))))
+        floor = max(sigma_tol * scale, 10.0 * np.sqrt(residual * scale))
         for t, seg in zip(ts, segs):
             s, x, xd, xdd = self.state(t, seg)
             if arm.m < n:      # J wide: the minimum-norm motion, integrated, then Newton polishes it
@@ -1084,7 +1090,7 @@ class TaskTrajectory:
                 self.failure = self._leaving(t_prev, float(t), seg, q_prev)
                 break
             qd, qdd, sigma = arm.rates(q, xd, xdd)
-            if sigma < sigma_tol * scale or (t > 0 and float(np.max(np.abs(q - guess))) > 0.2):
+            if sigma < floor or (t > 0 and float(np.max(np.abs(q - guess))) > 0.2):
                 self.failure = {"kind": "singular", "t": float(t), "x": x.tolist(), "q": q.tolist()}
                 break
             rows.append((t, seg, s, x, xd, xdd, q, qd, qdd, sigma))
@@ -1095,7 +1101,7 @@ class TaskTrajectory:
                                                                 for c, w in zip(cols[3:9], [arm.m] * 3 + [n] * 3))
         self.sigma = np.array(cols[9])
         if self.failure is None:
-            self._singular_between(sigma_tol * scale)
+            self._singular_between(floor)
 
     def _leaving(self, t_in, t_out, seg, q_in):
         """Where the path leaves the reach: bisection between a reached and an unreached instant."""

@@ -237,7 +237,7 @@ def _solve_trajectory(question, ctx, ans, subs, law):
     if not task:
         ans.steps.append(Step("Joint errors", "", table=(["joint", "max |e|", "at t (s)", "final e"], [
             [n, Num(res.max_error[i]), Num(res.t_max_error[i]), Num(res.final_error[i])] for i, n in enumerate(names)])))
-    _task_figure(ans, traj, t_grid, e_task, law, duration)
+    _task_figure(ans, traj, t_grid, e_task, law, duration, ctx.problem)
     if not task:
         syms = [latex(j.symbol, symbol_names=ctx.symbol_latex) for j in model.joints]
         plan = traj.plan()
@@ -292,13 +292,17 @@ def _trajectory_law_step(ans, ref, law, task, traj, kp, kd, duration, start=None
         equations=eq + [("", "M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = \\tau + f_{ext}(q)")]))
 
 
-def _task_figure(ans, traj, t, e_task, law, duration):
+def _task_figure(ans, traj, t, e_task, law, duration, problem):
+    from robosolve.questions.work_space import coordinate_unit
+
     xd = np.array([traj.desired(float(s))[0] for s in t]).T
+    # m for a point's coordinate, rad for an angle (θ1 + θ2), none for a mixed one
+    units = [coordinate_unit(c, problem) or "" for c in traj.coords]
     ans.figures.append(FigureSpec(
         "task", "control_tracking", f"{law} control: each task coordinate against its reference, and the error",
         {"t": [float(v) for v in t], "T": traj.timing.T, "duration": float(duration),
          "switches": [float(v) for v in traj.timing.breaks[1:-1] if v < duration],
          "error_title": "error $e = x_d - x$",
-         "joints": [{"name": lab, "label": traj.tex[i], "unit": "m", "q": (xd[i] - e_task[i]).tolist(),
+         "joints": [{"name": lab, "label": traj.tex[i], "unit": units[i], "q": (xd[i] - e_task[i]).tolist(),
                      "q_desired": xd[i].tolist(), "error": e_task[i].tolist()}
                     for i, lab in enumerate(traj.labels)]}))

@@ -60,6 +60,7 @@ class TaskTrajectory:
     arm: tp.Arm
     conv: tp.Conversion
     joints: list                   # joint names
+    start_configuration: np.ndarray | None = None     # at `from` (the branch followed), when reached
 
     def desired(self, t: float, segment: int | None = None):
         """(x_d, x_dot_d, x_ddot_d) at t; after T the end, at rest."""
@@ -288,12 +289,14 @@ def solve(question, ctx: SolveContext) -> Answer:
         ctx.record_trajectory(question.id, None)
         return _outside_at_start(ans, coords, labels, tex, path, timing, outside)
     conv = tp.follow(arm, path, timing, q_from, samples=SAMPLES)
-    traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names)
+    traj = TaskTrajectory(coords, labels, tex, path, timing, arm, conv, names, np.asarray(q_from, dtype=float))
     ans.numeric["start"] = {n: float(q_from[i]) for i, n in enumerate(names)}
     _path_steps(ans, traj, res, question, model, ctx.symbol_latex)
     if conv.failure is not None:
         ctx.record_trajectory(question.id, None)
         _failure(ans, traj, model)
+        if conv.t.size == 0:             # singular at `from` itself: no motion to draw
+            return ans
     else:
         ctx.record_trajectory(question.id, traj)
         vel, acc, (smin, tmin) = tp.extremes(arm, path, timing, conv)
@@ -364,7 +367,7 @@ def _path_steps(ans, traj, res, question, model, symbols: dict) -> None:
     if traj.conv is None:           # the path starts out of reach: no branch to follow
         return
     names = [latex(j.symbol, symbol_names=symbols) for j in model.joints]
-    q0 = traj.conv.q[:, 0]
+    q0 = traj.start_configuration
     wide = path.a.size < len(model.q)
     how = ("the configuration of `from` nearest the one given as `start` (fewer coordinates than joints: "
            "a family of solutions; the least |q − start|)" if wide and "start" in question.options else
@@ -429,6 +432,12 @@ def _failure(ans, traj, model) -> None:
     if f["kind"] == "unreachable":
         ans.extra["unreachable"] = True
         reason = Text("at t = ", Num(f["t"], "s"), " the path reaches (", where, "), out of the arm's reach")
+    elif "jump" in f:        # J keeps its rank, but the branch is lost between two samples
+        ans.extra["singular"] = True
+        reason = Text("at t = ", Num(f["t"], "s"), " the path passes close to a singular configuration, near (",
+                      where, "): the smallest singular value of J falls to ", Num(f["sigma"]),
+                      " and the joints would turn by ", Num(f["jump"], "rad"), " more than their rates predict "
+                      "between two samples, too fast to follow")
     else:
         ans.extra["singular"] = True
         reason = Text("at t = ", Num(f["t"], "s"), " the path crosses a singular configuration, at (", where,

@@ -114,6 +114,92 @@ def test_a_line_through_a_singularity_is_an_answer_not_a_crash():
     assert conv.failure is not None and conv.failure["kind"] in ("singular", "unreachable")
 
 
+@pytest.mark.parametrize("end", [(0.8, 0.6), (0.6, 0.8), (0.9, math.sqrt(1 - 0.81)), (1.0, 0.0)])
+def test_a_line_that_ends_on_the_reach_of_the_stretched_arm_is_singular_at_t_T(end):
+    """|to| = L1 + L2: the stretched arm, det J = L1 L2 sin(q2) = 0 (closed form). Newton lands on such
+    an end only to ~sqrt(its tolerance) along the singular direction (q2 ~ 3e-6, sigma ~ 7e-7): the
+    test against sigma must allow for it (the ends off the x axis were followed to the end with
+    q2 < 0, joint accelerations in the hundreds and no `singular`)."""
+    arm = _arm_2r(0.5, 0.5)
+    path, timing = tp.line([0.5, 0.2], end), tp.quintic(math.dist([0.5, 0.2], end), 1.0)
+    conv = tp.follow(arm, path, timing, tp.newton(arm, path.a, [-0.6, 2.0]))
+    assert conv.failure is not None and conv.failure["kind"] == "singular" and conv.failure["t"] == 1.0
+
+
+def test_a_line_that_starts_on_the_reach_of_the_stretched_arm_is_singular_at_t_0():
+    """`from` at |x| = L1 + L2 (a singular start): the conversion stops at its first sample, with no
+    sample kept (it crashed building its empty arrays)."""
+    arm = _arm_2r(0.5, 0.5)
+    path, timing = tp.line([1.0, 0.0], [0.5, 0.2]), tp.quintic(math.hypot(0.5, 0.2), 1.0)
+    conv = tp.follow(arm, path, timing, np.array([0.0, 0.0]))
+    assert conv.failure is not None and conv.failure["kind"] == "singular" and conv.failure["t"] == 0.0
+    assert conv.q.shape == (2, 0) and conv.x.shape == (2, 0) and conv.t.size == 0
+
+
+def test_a_path_from_a_singular_start_is_a_singular_answer_at_t_0():
+    """The spec: a `from` at a singular configuration is `singular` at t = 0, with `start` given (it was
+    an internal error). Reference: |from| = L1 + L2, the stretched arm q = (atan2(y, x), 0)."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.render.results_json import answer_record
+    from robosolve.run.pipeline import solve_problem
+
+    text = ARM_2R.replace("L2: 2/5", "L2: 1/2") + LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 0.8, E.y: 0.6") + (
+        "  - {type: p_control, trajectory: line, law: pd_gravity, gains: {q1: 100, q2: 100}, "
+        "gains_d: {q1: 10, q2: 10}}\n")
+    report = solve_problem(load_problem_text(text))
+    got = {a.id: json.loads(json.dumps(answer_record(a, []))) for a in report.answers}
+    a = got["line"]
+    assert "error" not in a and a["singular"] is True and a["reason"].startswith("at t = 0 s ")
+    assert a["numeric"]["start"] == pytest.approx({"q1": math.atan2(0.6, 0.8), "q2": 0.0}, abs=1e-9)
+    assert "end" not in a["numeric"] and "max_joint_velocity" not in a["numeric"]
+    assert "cannot be followed" in got["p_control"]["error"]
+
+
+def test_the_task_figure_gives_an_angle_coordinate_in_rad():
+    """Coordinates [E.x, q1 + q2]: the second is the angle of link 2 (a sum of revolute angles, rad);
+    the work-space tracking figure labelled every coordinate and its error in m."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import solve_problem
+
+    text = ARM_2R + """  - type: task_trajectory
+    id: line
+    coordinates: [E.x, q1 + q2]
+    from: {E.x: 0.7, q1 + q2: 0.2}
+    to: {E.x: 0.5, q1 + q2: 0.6}
+    duration: 0.3
+  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {E.x: 400, q1 + q2: 40},
+     gains_d: {E.x: 40, q1 + q2: 4}}
+"""
+    report = solve_problem(load_problem_text(text))
+    control = next(a for a in report.answers if a.type == "p_control")
+    assert control.error is None, control.error
+    (figure,) = [f for f in control.figures if f.name == "task"]
+    assert [j["unit"] for j in figure.data["joints"]] == ["m", "rad"]
+
+
+def test_a_line_passing_near_the_base_says_it_passes_near_a_singularity_not_through_one():
+    """L1 = L2: the base is singular. The line y = x + 0.001 misses it by 0.001/sqrt(2) m, where the
+    folded arm has sigma_min(J) ~ |E| = 7.1e-4 (J's first column is (-E.y, E.x), nearly normal to the
+    second, of length L2 = 1/2; checked below):
+    J keeps its rank, but q1 turns by ~pi within a millimetre, faster than the samples follow. The
+    reason said "crosses a singular configuration ... J loses rank"."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.render.results_json import answer_record
+    from robosolve.run.pipeline import solve_problem
+
+    d = 0.001 / math.sqrt(2)
+    q2 = 2 * math.acos(d)                            # |E| = 2 L cos(q2 / 2), L = 1/2
+    sv = np.linalg.svd(_arm_2r(0.5, 0.5).J([0.3, q2]), compute_uv=False)
+    assert sv[-1] == pytest.approx(d, rel=1e-3)      # not singular where it passes nearest
+    text = ARM_2R.replace("L2: 2/5", "L2: 1/2") + LINE.replace("E.x: 0.7, E.y: 0.1", "E.x: 0.3, E.y: 0.301").replace(
+        "E.x: 0.2, E.y: 0.6", "E.x: -0.3, E.y: -0.299")
+    (a,) = solve_problem(load_problem_text(text)).answers
+    record = answer_record(a, [])
+    reason = record["reason"]
+    assert record["singular"] is True and "loses rank" not in reason
+    assert "close to a singular configuration" in reason
+
+
 def test_solver_answers_and_pd_matches_an_independent_integration(write_problem, tmp_path):
     from scipy.integrate import solve_ivp
 

@@ -235,6 +235,24 @@ def test_the_work_space_statements_state_the_path_scheme_gains_units_and_what_to
     assert "largest work-space error" in ct                # graded: asked
 
 
+@pytest.mark.parametrize("start", [None, "{q1: 0.1, q2: 0.6, q3: 0.9}"])
+def test_a_redundant_path_s_statement_names_the_start_the_answer_uses(tmp_path, start):
+    """Two coordinates, three joints: `from` has a family of configurations, and the answer's start is
+    the one nearest q = 0 (or nearest `start`) — docs/questions/task_trajectory.md, checked there
+    against scipy's SLSQP. The paper said "the configuration Newton's minimum-norm steps reach from
+    every joint at 0" (or "Newton's method from this configuration"): on this arm 0.11 rad (1e-2 rad)
+    from the answer's, so a student who followed it got every joint value wrong."""
+    from robosolve.load.loader import load_problem_text
+
+    text = WORK_SPACE.split("questions:")[0] + (
+        "questions:\n  - {type: task_trajectory, id: red, coordinates: [E.x, E.y], from: {E.x: 0.8, E.y: 0.2},\n"
+        "     to: {E.x: 0.2, E.y: 0.7}, duration: 2" + ("" if start is None else f", start: {start}") + "}\n")
+    problem = load_problem_text(text, str(tmp_path / "ws.yaml"))
+    (traj,) = _statements(render_paper(problem, RobotModel(problem)))
+    assert "Newton" not in traj
+    assert ("nearest $q = 0$" in traj) if start is None else ("nearest $q_{1} = 0.1$" in traj)
+
+
 def test_the_template_lays_out_a_control_law_s_errors_per_joint_or_per_coordinate(tmp_path):
     from robosolve.load.loader import load_problem_text
     from robosolve.papers.template import render_template

@@ -448,6 +448,22 @@ def test_a_path_leaving_the_reach_fails_where_the_engine_says():
         assert got["x"] == pytest.approx(want["x"], abs=1e-7)
 
 
+def test_a_path_ending_or_starting_on_the_rim_is_singular_there_as_the_engine_says():
+    """|x| = L1 + L2 = 0.9 (the stretched arm, off the x axis): Newton solves such an end only to
+    sigma ~ 1e-6, which the 1e-6 |J| test let through (both followed the path to its end)."""
+    from robosolve.motion import task_path as tp
+
+    _, _, (coords, arm, _p, _t, _q, _r, _s, _o), ns = _trajectory_setup("2r-line")
+    rim = [0.54, 0.72]
+    for a, b, t_singular in (([0.45, 0.3], rim, None), (rim, [0.45, 0.3], 0.0)):
+        q0 = ns["arm"].start(a, [[-math.pi, math.pi]] * 2)
+        path, timing = tp.line(a, b), tp.trapezoidal(float(np.hypot(*np.subtract(b, a))), 0.5, 2.0)
+        want = tp.follow(arm, path, timing, q0).failure
+        got = rt.TaskTrajectory(ns["arm"], rt.TaskPath(a, b), rt.Timing(path.length, 0.5, 2.0), q0).failure
+        at = timing.T if t_singular is None else t_singular
+        assert want["kind"] == got["kind"] == "singular" and want["t"] == got["t"] == at, (got, want)
+
+
 @pytest.mark.parametrize("law, kp, kd", [("task_pd_gravity", [2000.0, 1500.0], [100.0, 80.0]),
                                           ("task_computed_torque", [400.0, 400.0], [30.0, 30.0]),
                                           ("pd_gravity", [2000.0, 2000.0], [100.0, 100.0])])

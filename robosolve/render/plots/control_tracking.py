@@ -35,16 +35,17 @@ def draw(spec, path):
     fig, axes = time_panels(len(js), 2, width=10, row_height=2.6, top=0.75, wgap=1.1)
     for k, j in enumerate(js):
         c = COLOURS[k % len(COLOURS)]
+        unit = f" ({j['unit']})" if j["unit"] else ""      # none for a coordinate of mixed units
         ax = axes[k, 0]
         ax.plot(d["t"], j["q_desired"], color="0.2", ls="--", lw=1.4, label="desired")
         ax.plot(d["t"], j["q"], color=c, lw=1.4, label="actual")
         _marks(ax, d)
-        ax.set_ylabel(f"${j['label']}$ ({j['unit']})")
+        ax.set_ylabel(f"${j['label']}${unit}")
         ax.legend(loc="best", fontsize=8)
         ax = axes[k, 1]
         _error_panel(ax, d["t"], j, c)
         _marks(ax, d)
-        ax.set_ylabel(f"$e_{{{j['label']}}}$ ({j['unit']})")
+        ax.set_ylabel(f"$e_{{{j['label']}}}${unit}")
     axes[0, 0].set_title("trajectory")
     axes[0, 1].set_title(d.get("error_title", "error $e = q_d - q$"))
     for ax in axes[-1]:
