@@ -182,15 +182,22 @@ def file_name(student: str) -> str:
 
 
 def _mark_duplicates(jobs) -> None:
-    seen = set()
+    """A submission whose student was already seen, in job order (the files sorted by path), is
+    graded invalid: the same id (compared as file names), or, with --variants and a roster, the
+    same roster row (`problem:` of Ann's variant and `student: Ann Lee` are one student)."""
+    by_name, by_row = {}, {}
     for job in jobs:
         name = file_name(job.student)
-        if name in seen:
+        first = by_name.get(name) or (by_row.get(job.row) if job.row is not None else None)
+        if first is not None:
+            same = "" if file_name(first.student) == name else f" (the same roster student as '{first.student}')"
+            job.reason = f"duplicate student id '{job.student}'{same}: {first.file} came first"
             job.answers = None
-            job.error = job.error or f"{job.file}: duplicate student id '{job.student}' (another submission has it)"
+            job.error = job.error or f"{job.file}: {job.reason}"
             job.duplicate = True
-            job.reason = f"duplicate student id '{job.student}' (another submission has it)"
-        seen.add(name)
+        by_name.setdefault(name, job)
+        if job.row is not None:
+            by_row.setdefault(job.row, job)
 
 
 # -- workers --------------------------------------------------------------------
@@ -269,15 +276,16 @@ def render(jobs, results, references, options: Outputs | None = None) -> dict:
     order = sorted(range(len(jobs)), key=lambda i: (results[i].student, i))
     files: dict[str, str] = {}
     grades, summary, by_row = [], [], {}
+    owned = {file_name(results[i].student) for i in order if not jobs[i].duplicate}
     for i in order:
         r = results[i]
         grades += grade_rows(r)
         summary.append(summary_row(r))
-        if jobs[i].duplicate:
-            continue              # the first submission with this id owns its files
-        if jobs[i].row is not None:
-            by_row.setdefault(jobs[i].row, r)
         name = file_name(r.student)
+        if jobs[i].duplicate and (name in owned or f"{name}.json" in files):
+            continue              # the first submission with this id owns its files
+        if jobs[i].row is not None and not jobs[i].duplicate:
+            by_row[jobs[i].row] = r
         files[f"{name}.json"] = record_json(r)
         files[f"feedback/{name}.md"] = _feedback(jobs[i], r, references, options)
     files["grades.csv"] = _csv(grades, GRADES_COLUMNS)

@@ -312,7 +312,8 @@ class Grader:
                 e = substitute(self._expected(qref, ak, key, "symbolic", sym), subs)
                 left = free_symbols(e)
                 if left:
-                    raise ValueProblem(f"the answer depends on {self._names(left)}, which has no value: "
+                    which = "which has no value" if len(left) == 1 else "which have no values"
+                    raise ValueProblem(f"the answer depends on {self._names(left)}, {which}: "
                                        "give it as an expression")
         return self._judge(qref, ak, key, g, e, symbolic, conditions)
 

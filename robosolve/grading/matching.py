@@ -5,7 +5,8 @@ and DIR/roster.csv when `variants --roster` wrote it (the roster as read, a firs
 `variant` added; headers matched without regard to case, so an LMS export serves). A
 submission is matched, in this order: by its `problem:` when it names a problem.yaml inside
 DIR; by its `student` (trimmed, ignoring case) against every column of the roster; by the
-variant ids. No match, or two variants, is a `MatchError` saying so, with a did-you-mean.
+variant ids (the roster's `variant` column). Matched through the roster (either way), it is
+filed under its row's `student`; by `problem:`, under its own id. No match, or two variants, is a `MatchError` saying so, with a did-you-mean.
 Without roster.csv (a folder of `variants --count`, or an older one), variants.csv's own
 `student` column is the roster.
 """
@@ -77,12 +78,17 @@ class VariantsTable:
                              f"{self.folder} ({', '.join(hits)}): give `problem:` or a unique id")
         if hits:
             (variant, row), = hits.items()
-            filed = self.cell(row, "student") if self.column("student") is not None else ""
-            return Match(variant, self.problems[variant], filed or student, row)
-        for variant in self.problems:
+            return Match(variant, self.problems[variant], self._filed(row, student), row)
+        for variant in self.problems:     # the variant ids: the roster's `variant` column
             if variant.casefold() == key or variant == safe_name(student):
-                return Match(variant, self.problems[variant], student, self.row_of(variant))
+                row = self.row_of(variant)
+                return Match(variant, self.problems[variant], self._filed(row, student), row)
         raise MatchError(f"student '{student}' is not in the roster of {self.folder}" + self._close(student))
+
+    def _filed(self, row: int | None, student: str) -> str:
+        """The id a submission matched through the roster is filed under: its row's `student`
+        (the submission's own id when it has no row or the row no student)."""
+        return (self.cell(row, "student") if row is not None else "") or student
 
     def _roster_hits(self, key: str) -> dict:
         """variant -> first roster row with a cell equal to `key` (trimmed, case ignored)."""

@@ -286,3 +286,34 @@ def test_a_yaml_tag_is_one_line_at_its_line_and_path(folder, value, message):
         read_answers(bad)
     assert [str(i) for i in exc.value.issues] == [f"{bad}:5: answers.jacobian.J[0][1]: {message}"]
     assert _run(["check", str(bad)])[0] == 2
+
+
+def test_a_number_for_a_symbolic_answer_names_the_symbols_it_lacks_in_the_plural(tmp_path):
+    """A number given where the answer is an expression of joints and rates that have no value
+    (no `at:`): the message lists them and agrees in number ("which have no values")."""
+    (tmp_path / "rp.yaml").write_text(dedent("""\
+        robosolve: 1
+        name: rp
+        parameters: {L1: 1/2}
+        joints:
+          - {name: q1, type: revolute}
+          - {name: d2, type: prismatic}
+        frames:
+          "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+          "2": {pose: "Tx(d2)"}
+        questions:
+          - {type: velocity_acceleration, grade: [velocity, angular_velocity]}
+        """), encoding="utf-8")
+    write(tmp_path, """\
+        robosolve-answers: 1
+        problem: rp.yaml
+        answers:
+          velocity_acceleration: {velocity: [1, 2, 0], angular_velocity: [0, 0, 1]}
+        """)
+    code, out, _ = _run(["check", str(tmp_path / "a.yaml"), "--json", "-"])
+    keys = json.loads(out[out.index("{"):])["questions"]["velocity_acceleration"]["keys"]
+    # v = d/dt of (L1 + d2)·(cos q1, sin q1), ω = (0, 0, q1_dot): by hand
+    assert keys["velocity"]["feedback"] == ("the answer depends on d2, d2_dot, q1, q1_dot, which have no "
+                                            "values: give it as an expression")
+    assert keys["angular_velocity"]["feedback"] == ("the answer depends on q1_dot, which has no value: "
+                                                    "give it as an expression")

@@ -263,6 +263,49 @@ def test_moodle_needs_email_or_idnumber(tmp_path):
     assert not (tmp_path / "g").exists()
 
 
+def _grade_again(course, tmp_path, submissions: dict):
+    """`grade --variants` of the course's exams on these submissions (file name -> text)."""
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    for name, text in submissions.items():
+        (subs / name).write_text(text)
+    out = tmp_path / "g"
+    r = runner.invoke(app, ["grade", str(subs), "--variants", str(course / "exams"), "--out", str(out),
+                            "--gradebook", "canvas", "--jobs", "1"])
+    return r, out
+
+
+@pytest.mark.parametrize("by_problem_first", [True, False])
+def test_two_submissions_of_one_roster_student_are_a_duplicate(course, tmp_path, by_problem_first):
+    """Ann Lee twice: once by `problem:` (her variant) with her roster ID `102`, once by her
+    roster name. The file sorted later is the duplicate (graded invalid, naming the first), and
+    `grade` exits 1 — both were graded and the gradebook silently kept one score."""
+    by_problem = answers(FQ, student="102", problem=str(course / "exams" / "arm-ann-lee" / "problem.yaml"))
+    by_name = answers(FQ_NEG, student="Ann Lee")         # Fq negated: half of its 3 marks, 2.5 / 4
+    first, second = ("a.yaml", "b.yaml") if by_problem_first else ("b.yaml", "a.yaml")
+    r, out = _grade_again(course, tmp_path, {first: by_problem, second: by_name})
+    assert r.exit_code == 1, r.output
+    summary = {row[0]: row[1] for row in rows(out / "summary.csv")[1:]}
+    kept, dup = ("102", "Ann Lee") if by_problem_first else ("Ann Lee", "102")
+    assert summary == {kept: "4" if by_problem_first else "2.5", dup: "0"}
+    record = yaml.safe_load((out / f"{re.sub('[^a-z0-9_-]+', '-', dup.lower())}.json").read_text())
+    reason = record["questions"]["statics"]["keys"]["Fq"]["feedback"]
+    assert reason.startswith(f"duplicate student id '{dup}'") and str(tmp_path / "subs" / "a.yaml") in reason
+    canvas = {row[1]: row[-1] for row in rows(out / "gradebook" / "canvas.csv")[1:]}
+    assert canvas == {"101": "", "102": summary[kept], "103": "", "104": ""}
+
+
+def test_a_variant_id_is_filed_under_the_roster_student(course, tmp_path):
+    """`student: ann-lee` (the variant's id, a column of roster.csv) is matched through the
+    roster, so filed under the roster's student, `Ann Lee`, like any other roster value."""
+    r, out = _grade_again(course, tmp_path, {"x.yaml": answers(FQ_NEG, student="ANN-LEE"),
+                                             "y.yaml": answers(FQ, student="ann lee")})
+    assert r.exit_code == 1, r.output            # the same student twice
+    assert rows(out / "summary.csv")[1:] == [["Ann Lee", "2.5", "4", "62.5"], ["Ann Lee", "0", "4", "0.0"]]
+    canvas = {row[1]: row[-1] for row in rows(out / "gradebook" / "canvas.csv")[1:]}
+    assert canvas == {"101": "", "102": "2.5", "103": "", "104": ""}
+
+
 def test_matching_rules_in_order(tmp_path):
     from robosolve.grading.matching import MatchError, read_table
 
