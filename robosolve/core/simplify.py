@@ -11,7 +11,7 @@ solve context carries one: `ctx.budgets.simplify`); engines use the defaults.
 | --- | --- | --- |
 | `chain_product` (alias `tidy`) | entries of chain products M, W, H, L (c1 c2 - s1 s2 -> cos(q1 + q2)) | `chain_ops` (+ `chain_seconds` safety net) |
 | `tidy_products` | chain products of long arms (5+ joints): addition formulas, trigsimp only when a power of sin/cos is left | as `chain_product` |
-| `congruence_entry` | entries of M J Mᵀ (a pseudo-inertia in frame 0): the shorter of the canonical form and the expanded product of tidied factors (d² m s1², not d² m - d² m c1²) | none (one expand) |
+| `congruence_entry`, `congruence_entries` | entries of M J Mᵀ (a pseudo-inertia in frame 0): the shorter of the canonical form and the expanded product of tidied factors (d² m s1², not d² m - d² m c1²) | one expand an entry; `congruence_entries` stops expanding once the entries done exceed the count the matrix is shown within (the rest keep their canonical forms) |
 | `jacobian_entry` | Jacobian entries: trigsimp, then factor if shorter | none (entries are small) |
 | `small_trig` | small pieces: the dynamics engine's sympy fallback, twists L = dM/dq M^-1 | none |
 | `exact_geometry` | rotation / displacement quantities (angles, axes, quaternions) | `geometry_ops` |
@@ -47,7 +47,7 @@ from robosolve.core.linear_factors import factor_list_zz
 
 __all__ = [
     "SimplifyBudgets", "DEFAULT_BUDGETS", "chain_product", "tidy", "tidy_matrix", "jacobian_entry",
-    "congruence_entry",
+    "congruence_entry", "congruence_entries",
     "small_trig", "exact_geometry", "full", "bounded_full", "ik_fraction", "determinant_factors",
     "factored_determinant", "coefficient", "factored", "radicals", "eigenvalue", "rational",
     "is_zero",
@@ -321,6 +321,22 @@ def congruence_entry(canonical, product):
     d² m s1², m (L1 s1 + L2 s12)²). The shorter by count_ops; `canonical` on a tie."""
     expanded = sp.expand(product)
     return expanded if count_ops(expanded) < count_ops(canonical) else canonical
+
+
+def congruence_entries(canonicals, products, limit: int | None = None) -> list:
+    """`congruence_entry` of each pair, in order. With a `limit` (the count of operations a
+    matrix is shown within): once the entries done count more than `limit` together, the matrix
+    is too long to show whatever the rest become, and the rest keep their canonical forms
+    without being expanded (expanding a long product with radicals and decimals, a twist of
+    pi/4 beside one of pi/6, takes seconds an entry)."""
+    out, done = [], 0
+    for canonical, product in zip(canonicals, products):
+        if limit is not None and done > limit:
+            out.append(canonical)
+            continue
+        out.append(congruence_entry(canonical, product))
+        done += count_ops(out[-1])
+    return out
 
 
 def _has_trig_squares(expr) -> bool:

@@ -36,7 +36,7 @@ import sympy as sp
 from robosolve.core.chain.algebras import ListChainAlgebra
 from robosolve.core.chain.forward import forward
 from robosolve.core.matrices import action_matrix
-from robosolve.core.simplify import coefficient, congruence_entry
+from robosolve.core.simplify import coefficient, congruence_entries
 from robosolve.core.transforms import skew, vex
 from robosolve.core.trigring import TrigAlgebra, fourier_terms, product_terms
 from robosolve.dynamics.sympy_algebra import SympyAlgebra
@@ -471,8 +471,10 @@ class DynamicsEngine:
         out[:3, 3] = self.gravity
         return out
 
-    def J0(self, b: BodySpec) -> sp.Matrix:
-        """⁰J = M₀ⱼ ʲJ M₀ⱼᵀ (for the report; energies use the body frame)."""
+    def J0(self, b: BodySpec, limit: int | None = None) -> sp.Matrix:
+        """⁰J = M₀ⱼ ʲJ M₀ⱼᵀ (for the report; energies use the body frame). `limit`: the count of
+        operations the report shows the matrix within; past it the entries not yet compacted keep
+        their canonical forms (simplify.congruence_entries)."""
         def build():
             alg = self.alg
             m = self.chain_data.relative(BASE, b.frame)
@@ -485,8 +487,8 @@ class DynamicsEngine:
         def compact():
             m = self.M0(b.frame)
             product = m * sp.Matrix(b.J) * m.T
-            return sp.Matrix(4, 4, [congruence_entry(c, p) for c, p in zip(ring, product)])
-        return self._cached(("J0 compact", b.name), compact)
+            return sp.Matrix(4, 4, congruence_entries(ring, product, limit))
+        return self._cached(("J0 compact", b.name, limit), compact)
 
     def W0(self, name: str) -> sp.Matrix:
         """⁰W₀ⱼ = Σᵢ ⁰Lᵢⱼ q̇ᵢ (for the report)."""

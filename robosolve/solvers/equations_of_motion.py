@@ -98,7 +98,7 @@ def _steps_inertia(ans, model, eng):
         if big:
             continue
         step.equations.append((f"{{}}^{{0}}J_{{{name_tex(b.name, False)}}} = {m_name('0', b.frame)}\\,"
-                               f"{{}}^{{{fb}}}J\\,{m_name('0', b.frame)}^T", _show(eng.J0(b))))
+                               f"{{}}^{{{fb}}}J\\,{m_name('0', b.frame)}^T", _show(eng.J0(b, SHOW_OPS), SHOW_OPS)))
     if big:
         step.text += (" With more than four joints ${}^{0}J$ is long and is not written out: "
                       "the energies below are computed in each body's own frame.")
