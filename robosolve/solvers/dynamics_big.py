@@ -26,21 +26,24 @@ from robosolve.core.printing import latex
 __all__ = ["solve_big"]
 
 
-def _long(count: int) -> str:
-    return f"\\text{{(long: {count} terms; see results.json)}}"
+def _long(count: int, in_results: bool) -> str:
+    """The note for an expression too long to show; it points to results.json only for what
+    results.json holds (the energies, the equations, M, c, g — not 𝓛 or ∂𝓛/∂q̇)."""
+    where = "; see results.json" if in_results else ""
+    return f"\\text{{(long: {count} terms{where})}}"
 
 
-def _entry(eng, p):
+def _entry(eng, p, in_results: bool = True):
     expr, count = eng.shown(p)
-    return _long(count) if expr is None else expr
+    return _long(count, in_results) if expr is None else expr
 
 
-def _sum(eng, pairs):
+def _sum(eng, pairs, in_results: bool = True):
     """Σ factor·p over (sympy factor, element): written out when short, else its length."""
     pairs = [(f, p) for f, p in pairs if p != 0]
     count = sum(eng.term_count(p) for _, p in pairs)
     if count > SHOW_TERMS:
-        return _long(count)
+        return _long(count, in_results)
     return sp.Add(*[f * eng.shown(p)[0] for f, p in pairs])
 
 
@@ -100,7 +103,7 @@ def _steps_energy(ans, eng, poly) -> None:
     n = eng.n
     u = sum(poly["potential_energy"].values(), eng.alg.zero)
     lagrangian = _sum(eng, [(_rates(eng, i, k, half=True), m[i][k]) for i in range(n) for k in range(i, n)]
-                      + [(sp.S.NegativeOne, u)])
+                      + [(sp.S.NegativeOne, u)], in_results=False)
     ans.steps.append(Step(
         "Lagrangian",
         "$\\mathcal{L} = \\sum_j (T_j - U_j)$. Its kinetic part is $\\frac{1}{2}\\dot q^T M(q)\\,\\dot q$, "
@@ -131,7 +134,7 @@ def _steps_lagrange(ans, eng, dyn, poly) -> None:
     for i, j in enumerate(dyn.joints):
         name = latex(j.q)
         step.equations.append((f"\\frac{{\\partial \\mathcal{{L}}}}{{\\partial \\dot{{{name}}}}}",
-                               _sum(eng, [(eng.qd[k], m[i][k]) for k in range(n)])))
+                               _sum(eng, [(eng.qd[k], m[i][k]) for k in range(n)], in_results=False)))
         lhs = [(eng.qdd[k], m[i][k]) for k in range(n)]
         lhs += [(_rates(eng, a, b), v) for (a, b), v in c[i].items()] + [(sp.S.One, g[i])]
         step.equations.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{latex(f[i])} ", _sum(eng, lhs)))

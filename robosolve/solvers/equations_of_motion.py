@@ -27,12 +27,16 @@ SHOW_OPS = 400
 BIG_JOINTS = 4
 
 
-def _show(expr, limit: int = SHOW_OPS):
-    """The expression, or a LaTeX note when it is too long to be useful in a report."""
+def _show(expr, limit: int = SHOW_OPS, in_results: bool = False):
+    """The expression, or a LaTeX note when it is too long to be useful in a report.
+
+    The note points to results.json only for what results.json holds (the energies, the
+    equations, M, c, g): ⁰J, ⁰L, ⁰W, Φ, 𝓛 and ∂𝓛/∂q̇ are the report's steps alone."""
     ops = count_ops(expr)       # a matrix: the sum of its entries' (each node counted once)
     if ops <= limit:
         return expr
-    return f"\\text{{(long: {ops} operations; see results.json)}}"
+    where = "; see results.json" if in_results else ""
+    return f"\\text{{(long: {ops} operations{where})}}"
 
 
 def _latex_name(sym) -> str:
@@ -138,9 +142,9 @@ def _steps_energy(ans, model, eng, dyn):
         "keeps every product short.",
     )
     for b in eng.bodies:
-        kin.equations.append((f"T_{{{name_tex(b.name, False)}}}", _show(dyn.kinetic_energy[b.name])))
+        kin.equations.append((f"T_{{{name_tex(b.name, False)}}}", _show(dyn.kinetic_energy[b.name], in_results=True)))
     ans.steps.append(kin)
-    ans.steps.append(potential_step(eng, lambda b: _show(dyn.potential_energy[b.name])))
+    ans.steps.append(potential_step(eng, lambda b: _show(dyn.potential_energy[b.name], in_results=True)))
     t_total = sp.Add(*dyn.kinetic_energy.values())
     u_total = sp.Add(*dyn.potential_energy.values())
     ans.steps.append(Step(
@@ -149,7 +153,7 @@ def _steps_energy(ans, model, eng, dyn):
         "$\\frac{1}{2}\\dot q^T M(q)\\,\\dot q$, which defines the mass matrix "
         "$M_{ik} = \\sum_j \\mathrm{tr}(L_i J_j L_k^T)$.",
         equations=[("\\mathcal{L}", _show(t_total - u_total, 2 * SHOW_OPS)),
-                   ("M(q)", _show(dyn.mass_matrix, 3 * SHOW_OPS))],
+                   ("M(q)", _show(dyn.mass_matrix, 3 * SHOW_OPS, in_results=True))],
     ))
     del qd
 
@@ -208,14 +212,14 @@ def _steps_lagrange(ans, model, dyn):
         step.equations.append((f"\\frac{{\\partial \\mathcal{{L}}}}{{\\partial \\dot{{{name}}}}}",
                                _show(p)))
         step.equations.append((f"\\text{{joint {i + 1} ({j.name})}}:\\;{latex(f[i])} ",
-                               _show(lhs[i])))
+                               _show(lhs[i], in_results=True)))
     ans.steps.append(step)
     ans.steps.append(Step(
         "Matrix form",
         "$M(q)\\,\\ddot q + c(q, \\dot q) + g(q) = f$, with $f$ = actuators + external forces.",
-        equations=[("M(q)", _show(m, 3 * SHOW_OPS)),
-                   ("c(q, \\dot q)", _show(dyn.velocity_terms, 3 * SHOW_OPS)),
-                   ("g(q)", _show(dyn.gravity_terms, 3 * SHOW_OPS)),
+        equations=[("M(q)", _show(m, 3 * SHOW_OPS, in_results=True)),
+                   ("c(q, \\dot q)", _show(dyn.velocity_terms, 3 * SHOW_OPS, in_results=True)),
+                   ("g(q)", _show(dyn.gravity_terms, 3 * SHOW_OPS, in_results=True)),
                    ("f", f)],
     ))
 
