@@ -54,7 +54,33 @@ def test_the_velocity_of_a_point_fixed_in_another_frame_than_the_question_s(tmp_
     assert np.allclose(_recomputed(printed, "velocity"), [-r * w * s, r * w * c, 0], atol=1e-9)
     assert np.allclose(_recomputed(printed, "acceleration"),
                        [-r * wd * s - r * w * w * c, r * wd * c - r * w * w * s, 0], atol=1e-9)
-    assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 4
+    assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 8
+
+
+def test_the_angular_velocity_and_the_auxiliary_frame_are_recomputed(tmp_path, capsys):
+    """Every number of the answer is recomputed (angular_velocity, a principal key, and W_aux, H_aux
+    were only printed). By hand on the 2R, frame 2: omega = (0, 0, q1' + q2'), omega' = (0, 0, q1'' +
+    q2''); W_aux and H_aux are frame 2's W and H with the origin moved to G (fixed in frame 1): their
+    last columns are the velocity and acceleration of frame 2's point at G."""
+    printed = _run_cells(tmp_path, ARM_2R, capsys)
+    (l1, l2), (q1, q2), (d1, d2), (a1, a2) = (0.6, 0.4), (0.5, -1.1), (1.5, -0.7), (0.3, 0.9)
+    w, wd = d1 + d2, a1 + a2
+    u = lambda a: np.array([np.cos(a), np.sin(a), 0.0])
+    n = lambda a: np.array([-np.sin(a), np.cos(a), 0.0])
+    g, p2 = 0.3 * u(q1), l1 * u(q1) + l2 * u(q1 + q2)
+    v2 = l1 * d1 * n(q1) + l2 * w * n(q1 + q2)
+    a2v = l1 * (a1 * n(q1) - d1 ** 2 * u(q1)) + l2 * (wd * n(q1 + q2) - w ** 2 * u(q1 + q2))
+    r = g - p2
+    omega = np.array([[0, -w, 0], [w, 0, 0], [0, 0, 0]])
+    w_aux, h_aux = np.zeros((4, 4)), np.zeros((4, 4))
+    w_aux[:3, :3], w_aux[:3, 3] = omega, v2 + np.cross([0, 0, w], r)
+    h_aux[:3, :3] = np.array([[0, -wd, 0], [wd, 0, 0], [0, 0, 0]]) + omega @ omega
+    h_aux[:3, 3] = a2v + np.cross([0, 0, wd], r) - w ** 2 * r
+    assert np.allclose(_recomputed(printed, "angular_velocity"), [0, 0, w], atol=1e-9)
+    assert np.allclose(_recomputed(printed, "angular_acceleration"), [0, 0, wd], atol=1e-9)
+    assert np.allclose(_recomputed(printed, "W_aux"), w_aux, atol=1e-9)
+    assert np.allclose(_recomputed(printed, "H_aux"), h_aux, atol=1e-9)
+    assert "DIFFERS" not in printed
 
 
 ARM_LOADS = """\
