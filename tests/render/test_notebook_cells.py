@@ -163,3 +163,37 @@ def test_cells_of_answers_without_numbers_show_the_formulas_and_evaluate_nothing
     for source in code_cells(problem, report.answers)[1:]:
         exec(source, namespace)
     assert "DIFFERS" not in capsys.readouterr().out
+
+
+ELLIPSES_3R = """\
+robosolve: 1
+name: ellipses-of-a-planar-3r
+parameters: {L1: 0.5, L2: 0.4, L3: 0.3}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+  - {name: q3, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+  "3": {pose: "Rz(q3) Tx(L3)"}
+questions:
+  - {type: ellipsoids, coordinates: [E.x, E.y], at: {q1: 0.3, q2: 0.8, q3: -0.5},
+     velocity: {E.y: -0.2, E.x: 0.1}, budgets: {compliance: 2}}
+"""
+
+
+def test_the_ellipses_cell_recomputes_a_the_joint_rates_and_the_default_compliance(tmp_path, capsys):
+    """A = J J^T, the joint rates for the desired velocity (a wide J: the minimum-norm
+    J^T (J J^T)^-1 v) and the compliance ellipse with the default Kq = I (Ka times the eigenvalues
+    of J J^T) are recomputed, not only printed; J of the planar 3R by hand."""
+    printed = _run_cells(tmp_path, ELLIPSES_3R, capsys)
+    lengths, angles = np.array([0.5, 0.4, 0.3]), np.cumsum([0.3, 0.8, -0.5])
+    jac = np.array([[-(lengths[k:] * np.sin(angles[k:])).sum() for k in range(3)],
+                    [(lengths[k:] * np.cos(angles[k:])).sum() for k in range(3)]])
+    a = jac @ jac.T
+    assert np.allclose(_recomputed(printed, "A"), a, atol=1e-9)
+    rates = eval(re.search(r"recomputed q_dot = (\{.*?\})\n", printed).group(1))
+    assert np.allclose(list(rates.values()), jac.T @ np.linalg.solve(a, [0.1, -0.2]), atol=1e-9)
+    assert np.allclose(_recomputed(printed, "compliance"), 2 * np.sort(np.linalg.eigvalsh(a))[::-1], atol=1e-9)
+    assert "DIFFERS" not in printed
