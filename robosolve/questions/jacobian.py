@@ -7,7 +7,8 @@ from __future__ import annotations
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP_SET, MATRIX, MATRIX_MAP, N, R, SCALAR, QuestionType, _k
 from robosolve.questions.wording import asked, listing
-from robosolve.questions.notebook_code import at_literal, compare_line, guarded, jacobian_lines, lines, robosolve_numbers
+from robosolve.questions.notebook_code import (at_literal, compare_line, guarded, jacobian_lines, lines, literal,
+                                               robosolve_numbers)
 
 
 def _check(ql, path, item, q):
@@ -94,7 +95,18 @@ def notebook_cell(q, answer, problem):
         *guarded(answer, ("J", compare_line("J", "Jn")),
                   ("det", compare_line("det", "np.linalg.det(Jn)")),
                   ("manipulability", compare_line("manipulability", "np.prod(np.linalg.svd(Jn, compute_uv=False))"))),
+        *_com_lines(answer),
     )
+
+
+def _com_lines(answer) -> list[str]:
+    """The centre-of-mass Jacobians d G / dq, G = (0M J e4) / m (bodies: true)."""
+    bodies = answer.numeric.get("com_jacobians")
+    if not bodies:
+        return []
+    return ["robosolve['com_jacobians'] = " + literal(bodies),
+            "compare('com_jacobians', {body: robot.number(robot.com_jacobian(body), at) for body in "
+            + literal(list(bodies)) + "}, robosolve['com_jacobians'])"]
 
 
 TYPE = QuestionType(

@@ -197,3 +197,51 @@ def test_the_ellipses_cell_recomputes_a_the_joint_rates_and_the_default_complian
     assert np.allclose(list(rates.values()), jac.T @ np.linalg.solve(a, [0.1, -0.2]), atol=1e-9)
     assert np.allclose(_recomputed(printed, "compliance"), 2 * np.sort(np.linalg.eigvalsh(a))[::-1], atol=1e-9)
     assert "DIFFERS" not in printed
+
+
+ENERGIES_2R = """\
+robosolve: 1
+name: energies-of-a-2r
+parameters: {L1: 0.6, L2: 0.4, m1: 2, m2: 1.5, g: 9.81}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: rod, frame: "1", mass: m1, rod: {from: [-L1, 0, 0], to: [0, 0, 0]}}
+  - {name: tip, frame: "2", mass: m2, point: [0, 0, 0]}
+questions:
+  - {type: jacobian, coordinates: [E.x, E.y], bodies: true, at: {q1: 0.5, q2: -1.1}}
+  - type: equations_of_motion
+    at: {q1: 0.5, q2: -1.1, q1_dot: 1.5, q2_dot: -0.7, q1_ddot: 0, q2_ddot: 0}
+  - {type: forward_dynamics, start: {q1: 0.5, q2: -1.1, q1_dot: 1.5}, duration: 0.5}
+"""
+
+
+def test_the_energies_and_the_centre_of_mass_jacobians_are_recomputed(tmp_path, capsys):
+    """kinetic_energy, potential_energy (equations_of_motion), energy (forward_dynamics) and
+    com_jacobians (jacobian, bodies: true) were only printed; by hand on the 2R: the rod's
+    T = m1 L1^2 q1'^2 / 6, U = m1 g L1 s1 / 2; the tip's T = m2 |v|^2 / 2, U = m2 g y; with no
+    actuator and no force, T + U at the end of the run equals T + U at its start."""
+    printed = _run_cells(tmp_path, ENERGIES_2R, capsys)
+    (l1, l2), (m1, m2), g = (0.6, 0.4), (2, 1.5), 9.81
+    (q1, q2), (d1, d2) = (0.5, -1.1), (1.5, -0.7)
+    s1, c1, s12, c12 = np.sin(q1), np.cos(q1), np.sin(q1 + q2), np.cos(q1 + q2)
+    v_tip = np.array([-l1 * s1 * d1 - l2 * s12 * (d1 + d2), l1 * c1 * d1 + l2 * c12 * (d1 + d2)])
+    kinetic = [m1 * l1 ** 2 * d1 ** 2 / 6, m2 * v_tip @ v_tip / 2]
+    potential = [m1 * g * l1 * s1 / 2, m2 * g * (l1 * s1 + l2 * s12)]
+    found = {k: eval(re.search(rf"recomputed {k} = (\{{.*?\}})\n", printed).group(1))
+             for k in ("kinetic_energy", "potential_energy", "com_jacobians", "energy")}
+    assert np.allclose(list(found["kinetic_energy"].values()), kinetic + [sum(kinetic)], atol=1e-9)
+    assert np.allclose(list(found["potential_energy"].values()), potential + [sum(potential)], atol=1e-9)
+    j_tip = np.array([[-l1 * s1 - l2 * s12, -l2 * s12], [l1 * c1 + l2 * c12, l2 * c12], [0, 0]])
+    j_rod = np.array([[-l1 * s1 / 2, 0], [l1 * c1 / 2, 0], [0, 0]])
+    assert np.allclose(found["com_jacobians"]["rod"], j_rod, atol=1e-9)
+    assert np.allclose(found["com_jacobians"]["tip"], j_tip, atol=1e-9)
+    start = m1 * l1 ** 2 * d1 ** 2 / 6 + m2 * ((l1 * d1) ** 2 + (l2 * d1) ** 2 + 2 * l1 * l2 * d1 * d1 * np.cos(q2)) / 2 \
+        + sum(potential)
+    assert np.allclose([found["energy"]["start"], found["energy"]["end"]], [start, start], rtol=1e-8)
+    assert "DIFFERS" not in printed
