@@ -22,9 +22,11 @@ from pathlib import Path
 
 NOTE_ANCHOR = re.compile(r'<a id="(note-[a-z0-9-]+)"></a>')
 DISPLAY = re.compile(r"^\$\$\n(.*?)\n\$\$$", re.S | re.M)
-INLINE = re.compile(r"(?<![\\$])\$(?!\$)([^$\n]+?)(?<!\\)\$")
+# a formula's escaped characters (\$ of a name such as "a$b", \\ of a matrix's rows) are part of it:
+# `\$` is a dollar inside the formula, not its end (as GitHub and Jupyter read it)
+INLINE = re.compile(r"(?<![\\$])\$(?!\$)((?:\\.|[^$\\\n])+?)\$")
 # `$$...$$` within one line (a description may write display math so, as Jupyter reads it)
-DISPLAY_IN_LINE = re.compile(r"(?<![\\$])\$\$(?!\$)([^$\n]+?)(?<!\\)\$\$(?!\$)")
+DISPLAY_IN_LINE = re.compile(r"(?<![\\$])\$\$(?!\$)((?:\\.|[^$\\\n])+?)\$\$(?!\$)")
 FENCED_MATRIX = re.compile(
     r'<mo stretchy="true" fence="true" form="prefix">([\[(|])</mo>(<mtable>)(.*?)</mtable>'
     r'<mo stretchy="true" fence="true" form="postfix">([\])|])</mo>', re.S)

@@ -58,3 +58,18 @@ def test_a_text_that_writes_a_stand_in_is_shown_as_written():
     assert "RSMATH99X and RSMATH0X, RSQMATH0X, RSANCHORnote-fooX and <math" in body
     assert "<td>RSMATH1X</td>" in body
     assert body.count("<math") == 2 and '<a id="note-foo">' not in body
+
+
+def test_a_name_with_a_dollar_stays_inside_its_formula():
+    """A frame named "a$b `x` }{" is written \\$ inside its formula (name_tex, as GitHub and
+    Jupyter read it): the page converts the whole formula, leaving no TeX, in prose and in a table."""
+    from robosolve.core.prose import name_md, name_tex
+
+    name = "a$b `x` $$y$$ }{\\"
+    tex = f"{{}}^{{0}}M_{{{name_tex(name)}}}"
+    md = (f"# T\n\nThe block of ${tex}$ and $x^2$ of {name_md(name)}.\n\n"
+          f"| frame | pose |\n| --- | --- |\n| {name_md(name)} | ${tex} \\\\ 1$ |\n")
+    body = markdown_to_html_body(md, {})
+    reader = _read(body)
+    assert body.count("<math") == 3 and "mathrm" not in body and "<code>" not in body, body
+    assert [t for t in reader.tags if t in ("p", "td")] == ["p", "td", "td"]     # one row, two cells
