@@ -272,3 +272,33 @@ def test_the_energy_of_a_run_is_recomputed(tmp_path, capsys):
     energy = eval(re.search(r"recomputed energy = (\{.*?\})\n", printed).group(1))
     assert np.allclose([energy["start"], energy["end"]], [start, start], rtol=1e-8)
     assert "DIFFERS" not in printed and printed.count("(agrees with robosolve)") == 10
+
+
+SINGULAR_2R = """\
+robosolve: 1
+name: singular-2r
+parameters: {L1: 0.6, L2: 0.4}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: jacobian, coordinates: [E.x, E.y], at: {q1: 0.5, q2: -1.1}}
+  - {type: jacobian, id: no-at, coordinates: [E.y, E.x]}
+  - {type: jacobian, id: never, coordinates: [E.x, E.y, "q1 + q2"]}
+"""
+
+
+def test_the_singular_conditions_are_checked(tmp_path, capsys):
+    """The singularities (a principal key) were only printed: the cell now evaluates J at each
+    condition and finds it singular, with or without numbers in `at`. By hand: det J = L1 L2 sin(q2),
+    so J loses rank exactly at q2 = 0 and q2 = pi, whatever q1; with q1 + q2 as a third row the
+    minors L1 L2 s2, -L1 s1, L1 c1 never vanish together: no condition, nothing to check."""
+    printed = _run_cells(tmp_path, SINGULAR_2R, capsys)
+    ratios = re.findall(r"recomputed singularities = (\[.*?\])\n", printed)
+    assert len(ratios) == 2 and all(len(eval(r)) == 2 and np.allclose(eval(r), 0, atol=1e-12) for r in ratios)
+    assert "conditions = [{'q2': '0'}, {'q2': 'pi'}]" in "".join(
+        code_cells(load_problem(tmp_path / "problem.yaml"), solve_problem(load_problem(tmp_path / "problem.yaml")).answers))
+    assert "DIFFERS" not in printed
