@@ -302,3 +302,38 @@ def test_the_singular_conditions_are_checked(tmp_path, capsys):
     assert "conditions = [{'q2': '0'}, {'q2': 'pi'}]" in "".join(
         code_cells(load_problem(tmp_path / "problem.yaml"), solve_problem(load_problem(tmp_path / "problem.yaml")).answers))
     assert "DIFFERS" not in printed
+
+
+IK_2R = """\
+robosolve: 1
+name: selection-of-a-2r
+parameters: {L1: 0.5, L2: 0.5}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: inverse_kinematics, target: {E.x: 0.6, E.y: 0.3}}
+  - {type: inverse_kinematics, id: near, target: {E.x: 0.6, E.y: 0.3}, select: {q1: 1, q2: 5},
+     velocity: {E.x: 0.1, E.y: -0.1}}
+"""
+
+
+def test_the_selected_solution_is_recomputed(tmp_path, capsys):
+    """`selected` was robosolve's alone (and the joint rates were taken at it): the cell now
+    selects by the spec's rule. By hand: q2 = ±acos((x² + y² − L1² − L2²) / (2 L1 L2)),
+    q1 = atan2(y, x) − atan2(L2 s2, L1 + L2 c2); select: limits takes the first in joint order
+    (the negative q1), and (1, 5) is nearest the elbow-down one, 5 − 2π being close to −1.67."""
+    printed = _run_cells(tmp_path, IK_2R, capsys)
+    c2 = (0.6 ** 2 + 0.3 ** 2 - 0.5) / 0.5
+    sols = sorted((np.arctan2(0.3, 0.6) - np.arctan2(0.5 * np.sin(q2), 0.5 + 0.5 * c2 * 1), q2)
+                  for q2 in (np.arccos(c2), -np.arccos(c2)))
+    selected = [eval(m) for m in re.findall(r"recomputed selected = (\{.*?\})\n", printed)]
+    assert np.allclose([list(s.values()) for s in selected], [sols[0], sols[1]], atol=1e-9)
+    jac = np.array([[-0.5 * np.sin(sols[1][0]) - 0.5 * np.sin(sum(sols[1])), -0.5 * np.sin(sum(sols[1]))],
+                    [0.5 * np.cos(sols[1][0]) + 0.5 * np.cos(sum(sols[1])), 0.5 * np.cos(sum(sols[1]))]])
+    rates = eval(re.search(r"recomputed q_dot = (\{.*?\})\n", printed).group(1))
+    assert np.allclose(list(rates.values()), np.linalg.solve(jac, [0.1, -0.1]), atol=1e-9)
+    assert "DIFFERS" not in printed
