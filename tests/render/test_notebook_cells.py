@@ -337,3 +337,15 @@ def test_the_selected_solution_is_recomputed(tmp_path, capsys):
     rates = eval(re.search(r"recomputed q_dot = (\{.*?\})\n", printed).group(1))
     assert np.allclose(list(rates.values()), np.linalg.solve(jac, [0.1, -0.1]), atol=1e-9)
     assert "DIFFERS" not in printed
+
+
+def test_the_cell_of_an_unanswered_question_says_why(tmp_path, capsys):
+    """A question robosolve answers with an error (a gain that is a null parameter) used to get a
+    cell printing `{}`; it now prints robosolve's reason, from a literal (a quote in it is text)."""
+    text = ARM_LOADS.replace("questions:", "questions:\n  - {type: motion_profile, id: pr, from: {q1: 0, q2: 0}, "
+                             "to: {q1: 1, q2: 1}, max_acceleration: {q1: 1, q2: 1}}\n"
+                             "  - {type: p_control, profile: pr, law: pd, gains: {q1: 10, q2: 10}, "
+                             "gains_d: {q1: P, q2: 1}}", 1)
+    printed = _run_cells(tmp_path, text, capsys)
+    assert "robosolve: gains_d.q1 must be a number (got P)" in printed
+    assert "\n{}\n" not in printed
