@@ -84,22 +84,37 @@ def notebook_cell(q, answer, problem):
     if "condition_number" in answer.numeric:            # None: infinite (singular)
         cond = answer.numeric["condition_number"]
         want["condition_number"] = math.inf if cond is None else cond
-    kq_arg = ("" if not kq or "compliance" not in answer.numeric      # (k null: no compliance numbers)
-              else f", Kq=robot.number(robot.vector({literal([text(x) for x in kq])}), at).ravel()")
-    compared = [compare_line(k, f"axes[{k if k != 'eigenvalues' else 'nu'!r}]") for k in want
-                if k != "condition_number" and (k != "compliance" or kq)]
-    if "condition_number" in want:
-        compared.append(compare_line("condition_number", "axes['condition_number']"))
+    # the joint compliances Kq (default ones: Ks = J J^T); k null: no compliance numbers
+    kq_arg = ("" if "compliance" not in answer.numeric else
+              f", Kq=robot.number(robot.vector({literal([text(x) for x in kq])}), at).ravel()" if kq else
+              ", Kq=np.ones(Jn.shape[1])")
+    compared = [compare_line(k, f"axes[{k if k != 'eigenvalues' else 'nu'!r}]") for k in want]
     if "A" not in answer.numeric:                 # a value is not given (a null parameter): the formula
         return lines(*jacobian_lines(q)[:-1], "show(J * J.T)")
+    want["A"] = answer.numeric["A"]
+    compared.insert(0, compare_line("A", "Jn @ Jn.T"))
     return lines(
         *jacobian_lines(q),
         "# A = J J^T: force semi-axes K_f / sqrt(nu), velocity K_v sqrt(nu), compliance K_a kappa",
         f"Kf, Kv, Ka = (robot.number(robot.parse(k), at) for k in {literal([kf, kv, ka])})",
         f"axes = ellipsoid_axes(Jn, Kf, Kv, Ka{kq_arg})",
+        *_rates_lines(q, answer, problem, want),
         "robosolve = " + literal(want) + "   # lengths largest first",
         *compared,
+        *(["compare('q_dot', dict(zip(" + literal([j.name for j in problem.joints]) + ", q_dot)), "
+           "robosolve['q_dot'])"] if "q_dot" in want else []),
     )
+
+
+def _rates_lines(q, answer, problem, want) -> list[str]:
+    """The joint rates giving the desired velocity: J^-1 v, or the minimum-norm J^+ v."""
+    velocity = q.options.get("velocity")
+    if velocity is None or "q_dot" not in answer.numeric:
+        return []
+    want["q_dot"] = answer.numeric["q_dot"]
+    return [f"v = robot.number(robot.vector({literal([text(x) for x in velocity])}), at).ravel()",
+            "# the joint rates giving the desired velocity: J^-1 v, or the minimum-norm J^+ v",
+            "q_dot = np.linalg.pinv(Jn) @ v"]
 
 
 TYPE = QuestionType(

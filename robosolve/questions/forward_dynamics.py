@@ -78,7 +78,7 @@ def notebook_cell(q, answer, problem):
     names = [j.name for j in problem.joints]
     q0 = [text(start.get(n, 0)) for n in names]
     v0 = [text(start.get(f"{n}_dot", 0)) for n in names]
-    keys = ["final", "final_velocity", "max", "min"]
+    keys = ["final", "final_velocity", "max", "min", "energy"]
     return lines(
         f"at = {at_literal(q)}",
         "# M(q) q'' + c + g = tau + Q with the actuator laws, integrated by Dormand-Prince 5(4)",
@@ -92,6 +92,16 @@ def notebook_cell(q, answer, problem):
                   ("final_velocity", compare_line("final_velocity", f"dict(zip({names!r}, rates[-1]))", rtol=1e-6)),
                   ("max", compare_line("max", f"dict(zip({names!r}, high))", rtol=1e-6)),
                   ("min", compare_line("min", f"dict(zip({names!r}, low))", rtol=1e-6))),
+        *([] if "energy" not in answer.numeric else [
+            "# T + U at the start and at the end: T = 1/2 tr(M' J M'^T), U = -g.(M J e4) per body",
+            "state = lambda k: {**at, **{n: repr(float(x)) for n, x in zip(" + literal(names) + ", qs[k])},",
+            "                   **{n + '_dot': repr(float(x)) for n, x in zip(" + literal(names) + ", rates[k])}}",
+            "totals = [[e['total'] for e in robot.energies_at(state(k))]       # [T, U] at 5 instants",
+            "          for k in np.linspace(0, len(times) - 1, 5).astype(int)]",
+            "energy = {'start': sum(totals[0]), 'end': sum(totals[-1])}",
+            "# round-off beside the run's energy scale (T + |U| along it) is 0",
+            "scale = max(T + abs(U) for T, U in totals)",
+            "compare('energy', energy, robosolve['energy'], rtol=1e-6, atol=1e-8 * scale)"]),
         "plot_joints(times, qs, " + literal(names) + ")",
     )
 

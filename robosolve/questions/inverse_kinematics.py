@@ -36,15 +36,15 @@ def notebook_cell(q, answer, problem):
         "# (at a workspace boundary a solution is a double root: Newton then finds it to ~1e-7 only)",
         f"compare('solutions', [dict(zip({names!r}, s)) for s in solutions], robosolve['solutions'], atol=1e-6)",
     ]
+    if answer.numeric.get("selected"):
+        want["selected"] = answer.numeric["selected"]
+        code += _selection_lines(q, problem)
     velocity = q.options.get("velocity")
     if velocity and "q_dot" in answer.numeric and answer.numeric.get("selected"):
-        want["selected"] = answer.numeric["selected"]
         want["q_dot"] = answer.numeric["q_dot"]
         code += [
-            "# velocity IK at the solution robosolve selected: J(q) q' = v",
-            "selected = robosolve['selected']",
-            "if solutions:",
-            "    selected = dict(zip(" + repr(names) + ", min(solutions, key=lambda s: np.linalg.norm(s - list(selected.values())))))",
+            "# velocity IK at the solution selected: J(q) q' = v",
+            "selected = robosolve['selected'] if not solutions else dict(zip(" + repr(names) + ", mine))",
             f"v = robot.number(robot.vector({literal([text(v) for _, _, v in velocity])}), at).ravel()",
             f"rates_of = robot.vector({literal([text(lhs) for _, lhs, _ in velocity])})",
             "Jq = robot.number(rates_of.jacobian(robot.joints), {**at, **{k: repr(float(x)) for k, x in selected.items()}})",
@@ -88,6 +88,24 @@ def _fixed_joints(q, say) -> str:
     where = f"point {q.point}" if q.point_given else f"frame {name_md(q.frame)}"
     return (f" {say.joints(free)} {'does' if len(free) == 1 else 'do'} not move {where}: "
             f"{'it is' if len(free) == 1 else 'they are'} in no solution.")
+
+
+def _selection_lines(q, problem) -> list[str]:
+    """The solution selected: the first (select: limits), or the nearest to the given configuration
+    (Euclidean, revolute differences wrapped; a joint not given counts as 0)."""
+    select = q.options.get("select")
+    names = [j.name for j in problem.joints]
+    if not isinstance(select, dict):
+        return ["# the solution selected: the first (select: limits)",
+                "mine = solutions[0] if solutions else None",
+                f"compare('selected', dict(zip({names!r}, mine)) if solutions else {{}}, robosolve['selected'], atol=1e-6)"]
+    near = [text(select.get(n, 0)) for n in names]
+    revolute = [j.kind == "revolute" for j in problem.joints]
+    return ["# the solution selected: the nearest to the given configuration (angles wrapped)",
+            f"near = robot.number(robot.vector({literal(near)}), at).ravel()",
+            f"gap = lambda s: np.linalg.norm([wrap(a - b) if r else a - b for a, b, r in zip(s, near, {literal(revolute)})])",
+            "mine = min(solutions, key=gap) if solutions else None",
+            f"compare('selected', dict(zip({names!r}, mine)) if solutions else {{}}, robosolve['selected'], atol=1e-6)"]
 
 
 def _target(q, say) -> tuple[str, str]:

@@ -7,7 +7,8 @@ from __future__ import annotations
 from robosolve.load import validators as V
 from robosolve.questions.schema import JOINT_MAP_SET, MATRIX, MATRIX_MAP, N, R, SCALAR, QuestionType, _k
 from robosolve.questions.wording import asked, listing
-from robosolve.questions.notebook_code import at_literal, compare_line, guarded, jacobian_lines, lines, robosolve_numbers
+from robosolve.questions.notebook_code import (at_literal, compare_line, guarded, jacobian_lines, lines, literal,
+                                               robosolve_numbers)
 
 
 def _check(ql, path, item, q):
@@ -85,8 +86,9 @@ def notebook_cell(q, answer, problem):
                 "Jn = robot.number(J, at)"]
     else:
         head = jacobian_lines(q)
-    if "J" not in answer.numeric:                 # a value is not given (a null parameter): the formula
-        return lines(*head[:-1], "show(J)")
+    if "J" not in answer.numeric:     # a value is not given (a null parameter, a joint): the formula
+        given = all(v is not None or s in q.at for s, v in problem.parameters.items())
+        return lines(*head[:-1], "show(J)", *(_singular_lines(answer) if given else []))
     return lines(
         *head,
         "show(J)",
@@ -94,7 +96,36 @@ def notebook_cell(q, answer, problem):
         *guarded(answer, ("J", compare_line("J", "Jn")),
                   ("det", compare_line("det", "np.linalg.det(Jn)")),
                   ("manipulability", compare_line("manipulability", "np.prod(np.linalg.svd(Jn, compute_uv=False))"))),
+        *_com_lines(answer),
+        *_singular_lines(answer),
     )
+
+
+def _singular_lines(answer) -> list[str]:
+    """Each singular condition {joint: value} makes J lose rank: its smallest singular value over
+    its largest is 0 there (the other joints as in `at`, else generic values; an equation between
+    joints is not evaluated)."""
+    conditions = [c for c in answer.symbolic.get("singularities") or [] if isinstance(c, dict)]
+    if not conditions:
+        return []
+    return [
+        "# each singular condition {joint: value} of robosolve, the other joints as in `at` (else",
+        "# 0.3, 0.5, 0.7, ...): J loses rank there, its smallest singular value over its largest is 0",
+        f"conditions = {literal(conditions)}",
+        "generic = {str(q): repr(0.3 + 0.2 * i) for i, q in enumerate(robot.joints)}",
+        "sigma = [np.linalg.svd(robot.number(J, {**generic, **at, **c}), compute_uv=False) for c in conditions]",
+        "compare('singularities', [s[-1] / s[0] for s in sigma], [0.0] * len(conditions))",
+    ]
+
+
+def _com_lines(answer) -> list[str]:
+    """The centre-of-mass Jacobians d G / dq, G = (0M J e4) / m (bodies: true)."""
+    bodies = answer.numeric.get("com_jacobians")
+    if not bodies:
+        return []
+    return ["robosolve['com_jacobians'] = " + literal(bodies),
+            "compare('com_jacobians', {body: robot.number(robot.com_jacobian(body), at) for body in "
+            + literal(list(bodies)) + "}, robosolve['com_jacobians'])"]
 
 
 TYPE = QuestionType(

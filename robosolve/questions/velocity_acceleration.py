@@ -30,11 +30,23 @@ def notebook_cell(q, answer, problem):
         f"W, H = chain.W({q.frame!r}), chain.H({q.frame!r})",
         moved_by,
         f"P = np.append(chain.point({q.point!r}), 1.0)       # the point, homogeneous",
-        robosolve_numbers(answer, ["W", "H", "velocity", "acceleration"]),
+        "# the auxiliary frame a: origin at the point, axes of frame 0 (aW = 0Ma^-1 W 0Ma)",
+        "to_a = np.eye(4)",
+        "to_a[:3, 3] = -P[:3]",
+        "# omega = vex of W's rotation block; H's is [omega'] + [omega]^2, whose skew part is [omega']",
+        robosolve_numbers(answer, KEYS),
         *guarded(answer, ("W", compare_line("W", "W")), ("H", compare_line("H", "H")),
+                 ("W_aux", compare_line("W_aux", "to_a @ W @ np.linalg.inv(to_a)")),
+                 ("H_aux", compare_line("H_aux", "to_a @ H @ np.linalg.inv(to_a)")),
                  ("velocity", compare_line("velocity", f"({w_p} @ P)[:3]")),
-                 ("acceleration", compare_line("acceleration", f"({h_p} @ P)[:3]"))),
+                 ("acceleration", compare_line("acceleration", f"({h_p} @ P)[:3]")),
+                 ("angular_velocity", compare_line("angular_velocity", "np.array(vex(W), dtype=float).ravel()")),
+                 ("angular_acceleration",
+                  compare_line("angular_acceleration", "np.array(vex((H - H.T) / 2), dtype=float).ravel()"))),
     )
+
+
+KEYS = ["W", "H", "W_aux", "H_aux", "velocity", "acceleration", "angular_velocity", "angular_acceleration"]
 
 def _words(q, say) -> dict:
     k = name_tex(q.frame)

@@ -22,10 +22,11 @@ from pathlib import Path
 
 NOTE_ANCHOR = re.compile(r'<a id="(note-[a-z0-9-]+)"></a>')
 DISPLAY = re.compile(r"^\$\$\n(.*?)\n\$\$$", re.S | re.M)
-INLINE = re.compile(r"(?<![\\$])\$(?!\$)([^$\n]+?)(?<!\\)\$")
+# a formula's escaped characters (\$ of a name such as "a$b", \\ of a matrix's rows) are part of it:
+# `\$` is a dollar inside the formula, not its end (as GitHub and Jupyter read it)
+INLINE = re.compile(r"(?<![\\$])\$(?!\$)((?:\\.|[^$\\\n])+?)\$")
 # `$$...$$` within one line (a description may write display math so, as Jupyter reads it)
-DISPLAY_IN_LINE = re.compile(r"(?<![\\$])\$\$(?!\$)([^$\n]+?)(?<!\\)\$\$(?!\$)")
-TOKEN = re.compile(r"RSMATH(\d+)X")
+DISPLAY_IN_LINE = re.compile(r"(?<![\\$])\$\$(?!\$)((?:\\.|[^$\\\n])+?)\$\$(?!\$)")
 FENCED_MATRIX = re.compile(
     r'<mo stretchy="true" fence="true" form="prefix">([\[(|])</mo>(<mtable>)(.*?)</mtable>'
     r'<mo stretchy="true" fence="true" form="postfix">([\])|])</mo>', re.S)
@@ -38,19 +39,44 @@ class HtmlUnavailable(RuntimeError):
 
 def _converter():
     try:
-        from latex2mathml.converter import convert
+        from latex2mathml.converter import convert_to_element
     except ImportError:                     # pragma: no cover - depends on the environment
         raise HtmlUnavailable("report.html needs latex2mathml: pip install 'robosolve[html]' "
                               "(from a clone of robosolve: pip install '.[html]')") from None
-    return convert
+    return convert_to_element
+
+
+# latex2mathml writes its characters as numeric references (&#x0003C;) and unescapes its whole
+# serialised tree, so a `<` typed in \text{...} would come out as markup (`<script>`): every
+# other `<`, `>`, `"` and `&` of a text or attribute becomes a reference first
+RAW_MARKUP = re.compile(r"[<>\"]|&(?!#x[0-9A-Fa-f]+;|#[0-9]+;)")
+# attributes a formula can set from its source (\href, \style, \class) that could run or
+# restyle anything on the page; latex2mathml writes none of them on its own
+UNSAFE_ATTRIBUTE = re.compile(r"href|style|class|id|on.*|.*:.*", re.I)
+
+
+def _inert(text: str | None) -> str | None:
+    return None if text is None else RAW_MARKUP.sub(lambda m: f"&#x{ord(m.group()[0]):05X};", text)
+
+
+def _mathml(tree) -> str:
+    """latex2mathml's own serialisation of its tree, with no markup but its elements."""
+    from xml.etree.ElementTree import tostring
+    from xml.sax.saxutils import unescape
+
+    for element in tree.iter():
+        element.text, element.tail = _inert(element.text), _inert(element.tail)
+        element.attrib = {name: _inert(value) for name, value in element.attrib.items()
+                          if not UNSAFE_ATTRIBUTE.fullmatch(name)}
+    return unescape(tostring(tree, encoding="unicode"))
 
 
 def latex_to_mathml(tex: str, display: bool) -> str:
     """MathML of a formula; one latex2mathml cannot read (a teacher's description with a broken
     formula) is shown as its source, escaped, instead of stopping the page."""
-    convert = _converter()
+    convert_to_element = _converter()
     try:
-        out = convert(tex.strip(), display="block" if display else "inline")
+        out = _mathml(convert_to_element(tex.strip(), display="block" if display else "inline"))
     except Exception:                       # latex2mathml raises its own errors and others
         return f'<code class="rs-tex">{html.escape(tex.strip())}</code>'
 
@@ -61,13 +87,23 @@ def latex_to_mathml(tex: str, display: bool) -> str:
     return out
 
 
-def _protect_math(md: str) -> tuple[str, list[tuple[str, bool]]]:
-    """Replace math by tokens markdown cannot touch; returns (text, [(tex, display)])."""
+def unused_mark(md: str) -> str:
+    """Letters that occur nowhere in `md`: the stand-ins for its formulas and anchors, which
+    markdown cannot touch, begin with them, so no text of the report (a description that writes
+    such a stand-in) is taken for one."""
+    mark = "RS"
+    while mark in md:
+        mark += "Q"
+    return mark
+
+
+def _protect_math(md: str, mark: str) -> tuple[str, list[tuple[str, bool]]]:
+    """Replace math by tokens `<mark>MATH<n>X` markdown cannot touch; returns (text, [(tex, display)])."""
     found: list[tuple[str, bool]] = []
 
     def keep(tex: str, display: bool) -> str:
         found.append((tex, display))
-        return f"RSMATH{len(found) - 1}X"
+        return f"{mark}MATH{len(found) - 1}X"
 
     md = DISPLAY.sub(lambda m: keep(m.group(1), True), md)
     lines = []
@@ -99,13 +135,15 @@ def _embed_images(body: str, figures) -> str:
 def markdown_to_html_body(md: str, folder=None) -> str:
     from markdown_it import MarkdownIt
 
-    md = NOTE_ANCHOR.sub(lambda m: f"RSANCHOR{m.group(1)}X", md)
-    text, math = _protect_math(md)
+    mark = unused_mark(md)
+    md = NOTE_ANCHOR.sub(lambda m: f"{mark}ANCHOR{m.group(1)}X", md)
+    text, math = _protect_math(md, mark)
     body = MarkdownIt("commonmark", {"html": False, "typographer": False}).enable("table").render(text)
-    body = re.sub(r"RSANCHOR(note-[a-z0-9-]+)X", r'<a id="\1"></a>', body)
+    body = re.sub(mark + r"ANCHOR(note-[a-z0-9-]+)X", r'<a id="\1"></a>', body)
     # a display formula alone in its paragraph becomes a block of its own
-    body = re.sub(r"<p>RSMATH(\d+)X</p>", lambda m: f'<div class="rs-display">RSMATH{m.group(1)}X</div>', body)
-    body = TOKEN.sub(lambda m: latex_to_mathml(*math[int(m.group(1))]), body)
+    body = re.sub(f"<p>{mark}MATH" + r"(\d+)X</p>",
+                  lambda m: f'<div class="rs-display">{mark}MATH{m.group(1)}X</div>', body)
+    body = re.sub(mark + r"MATH(\d+)X", lambda m: latex_to_mathml(*math[int(m.group(1))]), body)
     body = body.replace("<table>", '<div class="rs-table"><table>').replace("</table>", "</table></div>")
     body = re.sub(r'<p>(<img [^>]*>)</p>', r'<figure>\1</figure>', body)
     return _embed_images(body, folder)

@@ -105,9 +105,10 @@ def _wrapped(value) -> str:
 
 def fallback_cell(answer) -> str:
     """robosolve's numbers of an answer the notebook does not recompute."""
-    why = "not answered" if answer.error is not None else "not recomputed by this notebook"
+    if answer.error is not None:                 # nothing to recompute: why, in robosolve's words
+        return "\n".join([f"# `{answer.id}` is not answered", f"print({literal('robosolve: ' + answer.error)})"])
     return "\n".join([
-        f"# `{answer.id}` is {why}: robosolve's numbers (they hold for the data as given)",
+        f"# `{answer.id}` is not recomputed by this notebook: robosolve's numbers (they hold for the data as given)",
         "robosolve = " + literal(answer.numeric),
         "print(robosolve)",
     ])

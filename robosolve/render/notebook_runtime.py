@@ -331,6 +331,27 @@ class Robot:
                     Q[i] += np.array([S[2, 1], S[0, 2], S[1, 0]]) @ (R @ tau)
         return mass, c, grav, Q
 
+    def energies_at(self, at):
+        """T = 1/2 tr(M' J M'^T) and U = -g.(M J e4) of each body, as numbers at the configuration
+        `at` (joints, rates): {body: T} and {body: U}, with their "total" last."""
+        of, subs = self._chain_at(at)
+        rates = np.array([float(sp.N(sp.sympify(r).subs(subs))) for r in self.rates])
+        gravity = np.array(sp.N(self.gravity.subs(subs)).tolist(), dtype=float).ravel()
+        kinetic, potential = {}, {}
+        for name, (frame, J) in self.bodies.items():
+            J = np.array(sp.N(J.subs(subs)).tolist(), dtype=float)
+            M, D, _ = of(frame)
+            dM = sum((D[i] * rates[i] for i in range(len(rates))), np.zeros((4, 4)))
+            kinetic[name] = np.trace(dM @ J @ dM.T) / 2
+            potential[name] = -gravity @ (M @ J[:, 3])[:3]
+        kinetic["total"], potential["total"] = sum(kinetic.values()), sum(potential.values())
+        return kinetic, potential
+
+    def com_jacobian(self, body):
+        """d G / dq of a body's centre of mass G = (0M J e4) / m, in frame 0 (3 x n)."""
+        frame, J = self.bodies[body]
+        return ((self.pose(frame) * J[:, 3])[:3, :] / J[3, 3]).jacobian(self.joints)
+
     def joint_actions(self, at=None):
         """tau = M q'' + c + g - Q: what the actuators exert at the configuration `at`."""
         mass, c, grav, Q = self.lagrange(at)

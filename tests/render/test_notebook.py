@@ -27,9 +27,10 @@ NOT_REBUILT: set = set()
 
 
 def _golden_answers(name):
-    """The answers as results.json holds them (type, id, numeric, error): enough for the cells."""
+    """The answers as results.json holds them (type, id, symbolic, numeric, error): enough for the cells."""
     data = json.loads((GOLDEN / name / "results.json").read_text(encoding="utf-8"))
-    return [SimpleNamespace(id=k, type=a["type"], numeric=a.get("numeric") or {}, error=a.get("error"))
+    return [SimpleNamespace(id=k, type=a["type"], symbolic=a.get("symbolic") or {}, numeric=a.get("numeric") or {},
+                            error=a.get("error"))
             for k, a in data["answers"].items()]
 
 

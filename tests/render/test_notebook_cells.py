@@ -54,7 +54,33 @@ def test_the_velocity_of_a_point_fixed_in_another_frame_than_the_question_s(tmp_
     assert np.allclose(_recomputed(printed, "velocity"), [-r * w * s, r * w * c, 0], atol=1e-9)
     assert np.allclose(_recomputed(printed, "acceleration"),
                        [-r * wd * s - r * w * w * c, r * wd * c - r * w * w * s, 0], atol=1e-9)
-    assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 4
+    assert "DIFFERS" not in printed and printed.count("agrees with robosolve") == 8
+
+
+def test_the_angular_velocity_and_the_auxiliary_frame_are_recomputed(tmp_path, capsys):
+    """Every number of the answer is recomputed (angular_velocity, a principal key, and W_aux, H_aux
+    were only printed). By hand on the 2R, frame 2: omega = (0, 0, q1' + q2'), omega' = (0, 0, q1'' +
+    q2''); W_aux and H_aux are frame 2's W and H with the origin moved to G (fixed in frame 1): their
+    last columns are the velocity and acceleration of frame 2's point at G."""
+    printed = _run_cells(tmp_path, ARM_2R, capsys)
+    (l1, l2), (q1, q2), (d1, d2), (a1, a2) = (0.6, 0.4), (0.5, -1.1), (1.5, -0.7), (0.3, 0.9)
+    w, wd = d1 + d2, a1 + a2
+    u = lambda a: np.array([np.cos(a), np.sin(a), 0.0])
+    n = lambda a: np.array([-np.sin(a), np.cos(a), 0.0])
+    g, p2 = 0.3 * u(q1), l1 * u(q1) + l2 * u(q1 + q2)
+    v2 = l1 * d1 * n(q1) + l2 * w * n(q1 + q2)
+    a2v = l1 * (a1 * n(q1) - d1 ** 2 * u(q1)) + l2 * (wd * n(q1 + q2) - w ** 2 * u(q1 + q2))
+    r = g - p2
+    omega = np.array([[0, -w, 0], [w, 0, 0], [0, 0, 0]])
+    w_aux, h_aux = np.zeros((4, 4)), np.zeros((4, 4))
+    w_aux[:3, :3], w_aux[:3, 3] = omega, v2 + np.cross([0, 0, w], r)
+    h_aux[:3, :3] = np.array([[0, -wd, 0], [wd, 0, 0], [0, 0, 0]]) + omega @ omega
+    h_aux[:3, 3] = a2v + np.cross([0, 0, wd], r) - w ** 2 * r
+    assert np.allclose(_recomputed(printed, "angular_velocity"), [0, 0, w], atol=1e-9)
+    assert np.allclose(_recomputed(printed, "angular_acceleration"), [0, 0, wd], atol=1e-9)
+    assert np.allclose(_recomputed(printed, "W_aux"), w_aux, atol=1e-9)
+    assert np.allclose(_recomputed(printed, "H_aux"), h_aux, atol=1e-9)
+    assert "DIFFERS" not in printed
 
 
 ARM_LOADS = """\
@@ -137,3 +163,189 @@ def test_cells_of_answers_without_numbers_show_the_formulas_and_evaluate_nothing
     for source in code_cells(problem, report.answers)[1:]:
         exec(source, namespace)
     assert "DIFFERS" not in capsys.readouterr().out
+
+
+ELLIPSES_3R = """\
+robosolve: 1
+name: ellipses-of-a-planar-3r
+parameters: {L1: 0.5, L2: 0.4, L3: 0.3}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+  - {name: q3, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+  "3": {pose: "Rz(q3) Tx(L3)"}
+questions:
+  - {type: ellipsoids, coordinates: [E.x, E.y], at: {q1: 0.3, q2: 0.8, q3: -0.5},
+     velocity: {E.y: -0.2, E.x: 0.1}, budgets: {compliance: 2}}
+"""
+
+
+def test_the_ellipses_cell_recomputes_a_the_joint_rates_and_the_default_compliance(tmp_path, capsys):
+    """A = J J^T, the joint rates for the desired velocity (a wide J: the minimum-norm
+    J^T (J J^T)^-1 v) and the compliance ellipse with the default Kq = I (Ka times the eigenvalues
+    of J J^T) are recomputed, not only printed; J of the planar 3R by hand."""
+    printed = _run_cells(tmp_path, ELLIPSES_3R, capsys)
+    lengths, angles = np.array([0.5, 0.4, 0.3]), np.cumsum([0.3, 0.8, -0.5])
+    jac = np.array([[-(lengths[k:] * np.sin(angles[k:])).sum() for k in range(3)],
+                    [(lengths[k:] * np.cos(angles[k:])).sum() for k in range(3)]])
+    a = jac @ jac.T
+    assert np.allclose(_recomputed(printed, "A"), a, atol=1e-9)
+    rates = eval(re.search(r"recomputed q_dot = (\{.*?\})\n", printed).group(1))
+    assert np.allclose(list(rates.values()), jac.T @ np.linalg.solve(a, [0.1, -0.2]), atol=1e-9)
+    assert np.allclose(_recomputed(printed, "compliance"), 2 * np.sort(np.linalg.eigvalsh(a))[::-1], atol=1e-9)
+    assert "DIFFERS" not in printed
+
+
+
+ENERGIES_2R = """\
+robosolve: 1
+name: energies-of-a-2r
+parameters: {L1: 0.6, L2: 0.4, m1: 2, m2: 1.5, g: 9.81}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: rod, frame: "1", mass: m1, rod: {from: [-L1, 0, 0], to: [0, 0, 0]}}
+  - {name: tip, frame: "2", mass: m2, point: [0, 0, 0]}
+questions:
+  - {type: jacobian, coordinates: [E.x, E.y], bodies: true, at: {q1: 0.5, q2: -1.1}}
+  - type: equations_of_motion
+    at: {q1: 0.5, q2: -1.1, q1_dot: 1.5, q2_dot: -0.7, q1_ddot: 0, q2_ddot: 0}
+"""
+
+
+def _found(printed, *keys):
+    return {k: eval(re.search(rf"recomputed {k} = (\{{.*?\}})\n", printed).group(1)) for k in keys}
+
+
+def test_the_energies_and_the_centre_of_mass_jacobians_are_recomputed(tmp_path, capsys):
+    """kinetic_energy, potential_energy (equations_of_motion) and com_jacobians (jacobian,
+    bodies: true) were only printed; by hand on the 2R: the rod's T = m1 L1^2 q1'^2 / 6,
+    U = m1 g L1 s1 / 2, J_G = d(L1/2 (c1, s1))/dq; the tip's T = m2 |v|^2 / 2, U = m2 g y."""
+    printed = _run_cells(tmp_path, ENERGIES_2R, capsys)
+    (l1, l2), (m1, m2), g = (0.6, 0.4), (2, 1.5), 9.81
+    (q1, q2), (d1, d2) = (0.5, -1.1), (1.5, -0.7)
+    s1, c1, s12, c12 = np.sin(q1), np.cos(q1), np.sin(q1 + q2), np.cos(q1 + q2)
+    v_tip = np.array([-l1 * s1 * d1 - l2 * s12 * (d1 + d2), l1 * c1 * d1 + l2 * c12 * (d1 + d2)])
+    kinetic = [m1 * l1 ** 2 * d1 ** 2 / 6, m2 * v_tip @ v_tip / 2]
+    potential = [m1 * g * l1 * s1 / 2, m2 * g * (l1 * s1 + l2 * s12)]
+    found = _found(printed, "kinetic_energy", "potential_energy", "com_jacobians")
+    assert np.allclose(list(found["kinetic_energy"].values()), kinetic + [sum(kinetic)], atol=1e-9)
+    assert np.allclose(list(found["potential_energy"].values()), potential + [sum(potential)], atol=1e-9)
+    j_tip = np.array([[-l1 * s1 - l2 * s12, -l2 * s12], [l1 * c1 + l2 * c12, l2 * c12], [0, 0]])
+    j_rod = np.array([[-l1 * s1 / 2, 0], [l1 * c1 / 2, 0], [0, 0]])
+    assert np.allclose(found["com_jacobians"]["rod"], j_rod, atol=1e-9)
+    assert np.allclose(found["com_jacobians"]["tip"], j_tip, atol=1e-9)
+    assert "DIFFERS" not in printed
+
+
+PENDULUM = """\
+robosolve: 1
+name: a-free-pendulum
+parameters: {L: 2, m: 50, g: 9.81}
+joints:
+  - {name: th, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(th) Tx(L)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: rod, frame: "1", mass: m, rod: {from: [-L, 0, 0], to: [0, 0, 0]}}
+questions:
+  - {type: forward_dynamics, start: {th: 0.5, th_dot: 1.5}, duration: 0.5}
+  - {type: forward_dynamics, id: from-rest, duration: 5}
+"""
+
+
+def test_the_energy_of_a_run_is_recomputed(tmp_path, capsys):
+    """forward_dynamics' energy was only printed; by hand: T + U = m L^2 th'^2 / 6 + m g L sin(th) / 2,
+    kept by a free run. From rest at th = 0 (T + U = 0) the end's energy is round-off, which
+    robosolve writes 0: it agrees within the run's energy scale."""
+    printed = _run_cells(tmp_path, PENDULUM, capsys)
+    start = 50 * 2 ** 2 * 1.5 ** 2 / 6 + 50 * 9.81 * 2 * np.sin(0.5) / 2
+    energy = eval(re.search(r"recomputed energy = (\{.*?\})\n", printed).group(1))
+    assert np.allclose([energy["start"], energy["end"]], [start, start], rtol=1e-8)
+    assert "DIFFERS" not in printed and printed.count("(agrees with robosolve)") == 10
+
+
+SINGULAR_2R = """\
+robosolve: 1
+name: singular-2r
+parameters: {L1: 0.6, L2: 0.4}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: jacobian, coordinates: [E.x, E.y], at: {q1: 0.5, q2: -1.1}}
+  - {type: jacobian, id: no-at, coordinates: [E.y, E.x]}
+  - {type: jacobian, id: never, coordinates: [E.x, E.y, "q1 + q2"]}
+"""
+
+
+def test_the_singular_conditions_are_checked(tmp_path, capsys):
+    """The singularities (a principal key) were only printed: the cell now evaluates J at each
+    condition and finds it singular, with or without numbers in `at`. By hand: det J = L1 L2 sin(q2),
+    so J loses rank exactly at q2 = 0 and q2 = pi, whatever q1; with q1 + q2 as a third row the
+    minors L1 L2 s2, -L1 s1, L1 c1 never vanish together: no condition, nothing to check."""
+    printed = _run_cells(tmp_path, SINGULAR_2R, capsys)
+    ratios = re.findall(r"recomputed singularities = (\[.*?\])\n", printed)
+    assert len(ratios) == 2 and all(len(eval(r)) == 2 and np.allclose(eval(r), 0, atol=1e-12) for r in ratios)
+    assert "conditions = [{'q2': '0'}, {'q2': 'pi'}]" in "".join(
+        code_cells(load_problem(tmp_path / "problem.yaml"), solve_problem(load_problem(tmp_path / "problem.yaml")).answers))
+    assert "DIFFERS" not in printed
+
+
+IK_2R = """\
+robosolve: 1
+name: selection-of-a-2r
+parameters: {L1: 0.5, L2: 0.5}
+joints:
+  - {name: q1, type: revolute}
+  - {name: q2, type: revolute}
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+questions:
+  - {type: inverse_kinematics, target: {E.x: 0.6, E.y: 0.3}}
+  - {type: inverse_kinematics, id: near, target: {E.x: 0.6, E.y: 0.3}, select: {q1: 1, q2: 5},
+     velocity: {E.x: 0.1, E.y: -0.1}}
+"""
+
+
+def test_the_selected_solution_is_recomputed(tmp_path, capsys):
+    """`selected` was robosolve's alone (and the joint rates were taken at it): the cell now
+    selects by the spec's rule. By hand: q2 = ±acos((x² + y² − L1² − L2²) / (2 L1 L2)),
+    q1 = atan2(y, x) − atan2(L2 s2, L1 + L2 c2); select: limits takes the first in joint order
+    (the negative q1), and (1, 5) is nearest the elbow-down one, 5 − 2π being close to −1.67."""
+    printed = _run_cells(tmp_path, IK_2R, capsys)
+    c2 = (0.6 ** 2 + 0.3 ** 2 - 0.5) / 0.5
+    sols = sorted((np.arctan2(0.3, 0.6) - np.arctan2(0.5 * np.sin(q2), 0.5 + 0.5 * c2 * 1), q2)
+                  for q2 in (np.arccos(c2), -np.arccos(c2)))
+    selected = [eval(m) for m in re.findall(r"recomputed selected = (\{.*?\})\n", printed)]
+    assert np.allclose([list(s.values()) for s in selected], [sols[0], sols[1]], atol=1e-9)
+    jac = np.array([[-0.5 * np.sin(sols[1][0]) - 0.5 * np.sin(sum(sols[1])), -0.5 * np.sin(sum(sols[1]))],
+                    [0.5 * np.cos(sols[1][0]) + 0.5 * np.cos(sum(sols[1])), 0.5 * np.cos(sum(sols[1]))]])
+    rates = eval(re.search(r"recomputed q_dot = (\{.*?\})\n", printed).group(1))
+    assert np.allclose(list(rates.values()), np.linalg.solve(jac, [0.1, -0.1]), atol=1e-9)
+    assert "DIFFERS" not in printed
+
+
+def test_the_cell_of_an_unanswered_question_says_why(tmp_path, capsys):
+    """A question robosolve answers with an error (a gain that is a null parameter) used to get a
+    cell printing `{}`; it now prints robosolve's reason, from a literal (a quote in it is text)."""
+    text = ARM_LOADS.replace("questions:", "questions:\n  - {type: motion_profile, id: pr, from: {q1: 0, q2: 0}, "
+                             "to: {q1: 1, q2: 1}, max_acceleration: {q1: 1, q2: 1}}\n"
+                             "  - {type: p_control, profile: pr, law: pd, gains: {q1: 10, q2: 10}, "
+                             "gains_d: {q1: P, q2: 1}}", 1)
+    printed = _run_cells(tmp_path, text, capsys)
+    assert "robosolve: gains_d.q1 must be a number (got P)" in printed
+    assert "\n{}\n" not in printed
