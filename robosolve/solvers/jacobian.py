@@ -227,10 +227,11 @@ STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its s
 
 
 def _rank_conditions_exact(ans, question, ctx, ts, kinds, params):
-    """`_rank_conditions`, with the decimals of a chain that also has parameters (a tool Tz(0.12)
-    after d6, one DH entry written as a number) searched as symbols of their own, then written
-    back: over RR[d6, …] nothing cancels exactly, and the search of a 6-joint arm's minors ran
-    past its budget (or sympy's factoring failed); as symbols they factor like parameters."""
+    """`_rank_conditions`, with the decimals of the chain (a tool Tz(0.12) after d6, one DH entry
+    written as a number, or a whole DH table of numbers) searched as symbols of their own, then
+    written back: over RR[d6, …] nothing cancels exactly, and the search of a 6-joint arm's minors
+    ran past its budget (or sympy's factoring failed); over RR alone round-off residues (1e-17·cos q1)
+    stayed in det J and kept its factors together; as symbols they factor like parameters."""
     shadow = _decimal_shadow(ctx)
     if shadow is None:
         return _rank_conditions(ans, question, ctx, ts, kinds, params)
@@ -249,7 +250,9 @@ def _rank_conditions_exact(ans, question, ctx, ts, kinds, params):
 
 def _decimal_shadow(ctx):
     """(a context whose model has each decimal of the chain's poses and points as a positive
-    symbol, {symbol: decimal}), or None when the chain has no decimal beside a parameter."""
+    symbol, {symbol: decimal}), or None when the chain has no decimal. A float of integer value
+    (`alpha: 0.0`, `d: 1.0`) is that integer: as a symbol, cos(alpha) of a zero twist hid the
+    chain's structure and the search ran past its budget (sympy's Float(0.0) != 0)."""
     import dataclasses
 
     from robosolve.model import RobotModel
@@ -258,10 +261,7 @@ def _decimal_shadow(ctx):
     exprs = [e for f in problem.frames.values() for e in _frame_exprs(f)]
     exprs += [e for pt in problem.points.values() for e in pt.at]
     exprs = [sp.sympify(e) for e in exprs]
-    joints = set(problem.joint_symbols)
-    if not any(e.free_symbols - joints for e in exprs):
-        return None
-    mags = sorted({abs(v) for e in exprs for v in e.atoms(sp.Float) if v != int(v)})
+    mags = sorted({abs(v) for e in exprs for v in e.atoms(sp.Float) if not _integral(v)})
     if not mags:
         return None
     named = {v: sp.Dummy(f"decimal{k}", positive=True) for k, v in enumerate(mags)}
@@ -271,7 +271,7 @@ def _decimal_shadow(ctx):
             return type(x)(sym(y) for y in x)
         if not isinstance(x, sp.Basic):
             return x
-        return x.xreplace({v: (sp.Integer(int(v)) if v == int(v) else named[abs(v)] if v > 0 else -named[abs(v)])
+        return x.xreplace({v: (sp.Integer(int(v)) if _integral(v) else named[abs(v)] if v > 0 else -named[abs(v)])
                            for v in x.atoms(sp.Float)})
 
     frames = {n: dataclasses.replace(f, factors=sym(list(f.factors)), matrix=None if f.matrix is None else sym(f.matrix))
@@ -281,6 +281,10 @@ def _decimal_shadow(ctx):
     sctx = copy.copy(ctx)
     sctx.problem, sctx.model = shadow, RobotModel(shadow)
     return sctx, {d: v for v, d in named.items()}
+
+
+def _integral(v: sp.Float) -> bool:
+    return float(v) == int(float(v))
 
 
 def _frame_exprs(f):
