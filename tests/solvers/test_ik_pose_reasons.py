@@ -136,3 +136,17 @@ def test_a_reach_of_decimals_is_said_once_as_a_number():
     assert "> #:" in step, step           # the report's words: each number a `#`
     for text in (a["reason"], step):
         assert not re.search(r"\d\.\d{9,}", text), text
+
+
+def test_a_pose_far_beyond_the_reach_is_unreachable_without_numpy_warnings():
+    """A position of 1e150 m: JᵀJ of the numeric search overflowed and numpy's RuntimeWarnings
+    reached stderr under the answer. Reference: |p| is beyond any sum of the UR3's lengths."""
+    import warnings
+
+    text = UR3_INLINE.replace("[1.0, 0.5, 0.8]", "[1e150, 0.5, 0.8]")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        report = solve_problem(load_problem_text(text))
+    a = json.loads(json.dumps(answer_record(report.answers[0], [])))
+    assert a["unreachable"] is True and a["numeric"]["solutions"] == []
+    assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], [str(w.message) for w in caught]
