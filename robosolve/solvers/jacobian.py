@@ -422,7 +422,8 @@ def _structured_det_steps(ans, question, ctx, ts):
                 "the velocity of W) times the wrist's (the angular velocities of joints 4–6).",
                 equations=eqs))
             return wrist.det.det, ((d11, "arm singularity (det J₁₁ = 0)"), (d22, "wrist singularity (det J₂₂ = 0)"))
-    split, _err = limited(ctx, ctx.step_seconds, sd.structured_det, ts.J, model.q)
+    J = _at_frame_origin(ans, question, ctx, ts) if ts.geometric else None
+    split, _err = limited(ctx, ctx.step_seconds, sd.structured_det, ts.J if J is None else J, model.q)
     if split is None or len(split.blocks) < 2:
         return (split.det if split is not None else None), None
     ans.steps.append(Step(
@@ -431,6 +432,38 @@ def _structured_det_steps(ans, question, ctx, ts):
         "reordered), so det J is the product of the diagonal blocks' determinants:",
         equations=[(f"\\det J_{{{k + 1}}}", d) for k, (_, _, _, d) in enumerate(split.blocks)]))
     return split.det, None
+
+
+def _at_frame_origin(ans, question, ctx, ts):
+    """The geometric J of the origin O of the point's frame, when the point is elsewhere on the
+    body every joint moves (a tool tip off the last axis, Tx(0.02)): v_O = v_P + ω × (O − P) is a
+    shear of determinant 1, so det J is the same, and shorter (the tool's J ran the search past its
+    budget). None when it does not apply or cannot be formed."""
+    from robosolve.kinematics.structured_det import geometric_jacobian_ring
+
+    model = ctx.model
+    pframe, plocal = model.point_local(question.point)
+    frame = question.frame or model.problem.last_frame
+    q = set(model.q)
+    chain = model.chain(pframe)
+    moving = [f for f in chain if model.M_local(f).free_symbols & q]
+    if not moving or not q <= set().union(*(model.M_local(f).free_symbols for f in chain)):
+        return None
+    body = moving[-1]          # the frame of the last joint: P and O are fixed in it
+    if (body == pframe and all(sp.sympify(c) == 0 for c in plocal)) or body not in model.chain(frame):
+        return None
+    if any(model.M_local(f).free_symbols & q for f in model.chain(frame)[model.chain(frame).index(body) + 1:]):
+        return None            # ω is not the angular velocity of P's body
+    J, err = limited(ctx, ctx.step_seconds, geometric_jacobian_ring, model, body, [0, 0, 0], frame)
+    if J is None or err is not None:
+        return None
+    ans.steps.append(Step(
+        "Determinant at the last joint's frame",
+        f"Every joint moves {question.point}, fixed in the body of frame {name_md(body)}: taking the velocity "
+        f"at that frame's origin O instead, $v_O = v_{{{question.point}}} + \\omega \\times (O - {question.point})$, "
+        "multiplies J by a shear of determinant 1, so $\\det J = \\det J_O$:",
+        equations=[("J_O", J)]))
+    return J
 
 
 def _tag_decoupled(conds, det_parts):

@@ -146,3 +146,47 @@ def test_a_zero_twist_written_as_a_float_keeps_the_singularities_of_a_modified_d
         assert det(*q) == pytest.approx(np.linalg.det(KUKA_RTB.jacob0(q)), abs=1e-12)
     _check_conditions(conds, KUKA_RTB, subs, rng)
     assert sum(isinstance(c, dict) for c in conds) == 4 and len(conds) == 5, conds
+
+
+UR3_TOOL = """
+robosolve: 1
+name: ur3-offset-tool
+""" + JOINTS + """
+dh:
+  convention: standard
+  rows:
+    - {theta: q1, d: 0.1519, a: 0, alpha: pi/2}
+    - {theta: q2, d: 0, a: -0.24365, alpha: 0}
+    - {theta: q3, d: 0, a: -0.21325, alpha: 0}
+    - {theta: q4, d: 0.11235, a: 0, alpha: pi/2}
+    - {theta: q5, d: 0.08535, a: 0, alpha: -pi/2}
+    - {theta: q6, d: 0.0819, a: 0, alpha: 0}
+frames:
+  "7": {parent: "6", pose: "Tx(0.02) Ty(-0.03) Tz(0.15) Rx(0.3)"}
+questions:
+  - {type: jacobian, geometric: true, at: {q1: 0.3, q2: 0.4, q3: 0.5, q4: 0.6, q5: 0.7, q6: 0.8}}
+"""
+
+
+def test_a_tool_off_the_last_axis_keeps_the_singularities_of_the_arm():
+    """A UR3 with a tool tip off the last joint's axis: its geometric J's search ran past the budget
+    (no singularities, no det J); the det is that of the last joint's frame (a shear of det 1)."""
+    from spatialmath import SE3
+    from spatialmath.base import transl, trotx
+
+    robot = rtb.DHRobot([rtb.RevoluteDH(d=0.1519, alpha=PI / 2), rtb.RevoluteDH(a=-0.24365),
+                         rtb.RevoluteDH(a=-0.21325), rtb.RevoluteDH(d=0.11235, alpha=PI / 2),
+                         rtb.RevoluteDH(d=0.08535, alpha=-PI / 2), rtb.RevoluteDH(d=0.0819)],
+                        tool=SE3(transl(0.02, -0.03, 0.15) @ trotx(0.3), check=False))
+    a = _answer(UR3_TOOL)
+    conds = a["symbolic"].get("singularities")
+    assert conds is not None, a["notes"]
+    J = np.array(a["numeric"]["J"], dtype=float)
+    np.testing.assert_allclose(J, robot.jacob0([0.3, 0.4, 0.5, 0.6, 0.7, 0.8]), atol=1e-10)
+    det = sp.lambdify(sp.symbols("q1:7"), sp.sympify(a["symbolic"]["det"]))
+    rng = np.random.default_rng(3)
+    for _ in range(5):
+        q = rng.uniform(-PI, PI, 6)
+        assert det(*q) == pytest.approx(np.linalg.det(robot.jacob0(q)), abs=1e-12)
+    _check_conditions(conds, robot, {}, rng)
+    assert sum(isinstance(c, dict) for c in conds) == 4 and len(conds) == 5, conds
