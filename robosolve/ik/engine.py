@@ -257,12 +257,20 @@ def _distance_reason(st: cfm.Stage, target_syms: set, values: dict, F: _Fmt, aux
         return None
     d_sym = sp.sqrt(d2.subs(aux or {}))
     if dv > hv:
-        return Text(f"distance {F(d_sym)} = ", _fmt(dv), f" > {F(_positive(sp.sqrt(hi2)))} = ", _fmt(hv),
+        return Text(f"distance {F(d_sym)} = ", _fmt(dv), " > ", *_bound(sp.sqrt(hi2), hv, F),
                     ": the target is beyond the reach of the arm")
     if dv < lv:
-        return Text(f"distance {F(d_sym)} = ", _fmt(dv), f" < {F(_positive(sp.sqrt(lo2)))} = ", _fmt(lv),
+        return Text(f"distance {F(d_sym)} = ", _fmt(dv), " < ", *_bound(sp.sqrt(lo2), lv, F),
                     ": the target is too close, inside the unreachable inner region")
     return None
+
+
+def _bound(expr, value: float, F: _Fmt) -> tuple:
+    """'L2 + L3 = 0.7', or the value alone when the bound is a number (an arm of decimals: its
+    sympy string, 1.18430000000000, was written before the value)."""
+    if not expr.free_symbols:
+        return (_fmt(value),)
+    return (f"{F(_positive(expr))} = ", _fmt(value))
 
 
 def _stage_reason(fail, cf: cfm.ClosedForm, target_syms, values, names, F: _Fmt, aux=None) -> str:

@@ -133,6 +133,13 @@ def _lm_batch(system: NumericSystem, Q, iters=80, deflate=None):
     A start whose cost is below 1e-28 has converged and leaves the batch: the rest iterate on
     their own (each row's arithmetic is independent of the others, so the rows still moving get
     the same steps as in the full batch; the converged ones would only move by rounding)."""
+    # a target far beyond the reach (1e150) overflows JᵀJ: such steps are made finite and refused
+    # below, so numpy's warnings (on stderr, under the CLI's output) would say nothing of use
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _lm_iterations(system, Q, iters, deflate)
+
+
+def _lm_iterations(system: NumericSystem, Q, iters, deflate):
     N, n = Q.shape
     Q = np.array(Q, dtype=float)
     lam = np.full(N, 1e-3)

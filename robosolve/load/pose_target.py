@@ -14,6 +14,7 @@ import numpy as np
 import sympy as sp
 
 from robosolve.core.transforms import rot_x, rot_y, rot_z
+from robosolve.load.expressions import degrees_hint
 
 POSE_KEYS = ("pose", "position", "R", "zyz", "rpy")
 ORIENTATION_KEYS = ("R", "zyz", "rpy")
@@ -72,11 +73,24 @@ def v_pose_target(ql, path, value, q):
     a = chk.vector(path + (key,), value[key], ql.params_ns, length=3)
     if a is None or p is None:
         return None
+    _degrees_warning(chk, path + (key,), list(a), value[key])
     if key == "zyz":
         R = (rot_z(a[0]) * rot_y(a[1]) * rot_z(a[2]))[:3, :3]
     else:
         R = (rot_z(a[2]) * rot_y(a[1]) * rot_x(a[0]))[:3, :3]
     return PoseTarget(R, p, key, tuple(a))
+
+
+def _degrees_warning(chk, path, angles, raw) -> None:
+    """One warning for angles that read like degrees (rpy: [30, 45, 60] is read in radians, as a
+    DH twist or an Rz() of a pose is), with the list as it would be written in degrees."""
+    hinted = [degrees_hint(a) is not None for a in angles]
+    if not any(hinted):
+        return
+    shown = [f"{float(a):g}" if h else str(r) for a, r, h in zip(angles, raw, hinted)]   # as written
+    meant = [f"deg({t})" if h else t for t, h in zip(shown, hinted)]
+    chk.warn(path, f"[{', '.join(shown)}] are angles in radians (beyond a full turn); if degrees were "
+             f"meant, write [{', '.join(meant)}]")
 
 
 def _pose(ql, path, value):

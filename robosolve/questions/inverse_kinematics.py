@@ -173,6 +173,12 @@ def _check(ql, path, item, q):
         if q.point_given and ql.b.points[q.point].frame == "0":
             ql.chk.error(path + ("point",), f"point {q.point} is fixed in frame 0, which no joint moves: a "
                          "pose target's point is fixed in a moving frame (its orientation is that frame's)")
+        elif q.point_given and q.frame_given and ql.b.points[q.point].frame != q.frame:
+            # the spec's point is fixed in `frame`: another frame's orientation was silently dropped
+            pf = ql.b.points[q.point].frame
+            ql.chk.error(path + ("frame",), f"point {q.point} is fixed in frame {pf}, not in frame {q.frame}: "
+                         f"a pose target's point is fixed in the question's frame, whose orientation the target "
+                         f"gives (remove `frame`, or give a point fixed in frame {q.frame})")
         elif q.frame_given and not q.point_given and q.frame == "0":
             ql.chk.error(path + ("frame",), "frame 0 is the fixed base, which no joint moves: a pose target "
                          f"is the pose of a moving frame (e.g. frame: '{ql.b.last_frame()}', the default)")

@@ -227,10 +227,11 @@ STRUCTURE_MIN_JOINTS = 5     # below, det J is small: the direct route and its s
 
 
 def _rank_conditions_exact(ans, question, ctx, ts, kinds, params):
-    """`_rank_conditions`, with the decimals of a chain that also has parameters (a tool Tz(0.12)
-    after d6, one DH entry written as a number) searched as symbols of their own, then written
-    back: over RR[d6, …] nothing cancels exactly, and the search of a 6-joint arm's minors ran
-    past its budget (or sympy's factoring failed); as symbols they factor like parameters."""
+    """`_rank_conditions`, with the decimals of the chain (a tool Tz(0.12) after d6, one DH entry
+    written as a number, or a whole DH table of numbers) searched as symbols of their own, then
+    written back: over RR[d6, …] nothing cancels exactly, and the search of a 6-joint arm's minors
+    ran past its budget (or sympy's factoring failed); over RR alone round-off residues (1e-17·cos q1)
+    stayed in det J and kept its factors together; as symbols they factor like parameters."""
     shadow = _decimal_shadow(ctx)
     if shadow is None:
         return _rank_conditions(ans, question, ctx, ts, kinds, params)
@@ -249,7 +250,9 @@ def _rank_conditions_exact(ans, question, ctx, ts, kinds, params):
 
 def _decimal_shadow(ctx):
     """(a context whose model has each decimal of the chain's poses and points as a positive
-    symbol, {symbol: decimal}), or None when the chain has no decimal beside a parameter."""
+    symbol, {symbol: decimal}), or None when the chain has no decimal. A float of integer value
+    (`alpha: 0.0`, `d: 1.0`) is that integer: as a symbol, cos(alpha) of a zero twist hid the
+    chain's structure and the search ran past its budget (sympy's Float(0.0) != 0)."""
     import dataclasses
 
     from robosolve.model import RobotModel
@@ -258,10 +261,7 @@ def _decimal_shadow(ctx):
     exprs = [e for f in problem.frames.values() for e in _frame_exprs(f)]
     exprs += [e for pt in problem.points.values() for e in pt.at]
     exprs = [sp.sympify(e) for e in exprs]
-    joints = set(problem.joint_symbols)
-    if not any(e.free_symbols - joints for e in exprs):
-        return None
-    mags = sorted({abs(v) for e in exprs for v in e.atoms(sp.Float) if v != int(v)})
+    mags = sorted({abs(v) for e in exprs for v in e.atoms(sp.Float) if not _integral(v)})
     if not mags:
         return None
     named = {v: sp.Dummy(f"decimal{k}", positive=True) for k, v in enumerate(mags)}
@@ -271,7 +271,7 @@ def _decimal_shadow(ctx):
             return type(x)(sym(y) for y in x)
         if not isinstance(x, sp.Basic):
             return x
-        return x.xreplace({v: (sp.Integer(int(v)) if v == int(v) else named[abs(v)] if v > 0 else -named[abs(v)])
+        return x.xreplace({v: (sp.Integer(int(v)) if _integral(v) else named[abs(v)] if v > 0 else -named[abs(v)])
                            for v in x.atoms(sp.Float)})
 
     frames = {n: dataclasses.replace(f, factors=sym(list(f.factors)), matrix=None if f.matrix is None else sym(f.matrix))
@@ -281,6 +281,10 @@ def _decimal_shadow(ctx):
     sctx = copy.copy(ctx)
     sctx.problem, sctx.model = shadow, RobotModel(shadow)
     return sctx, {d: v for v, d in named.items()}
+
+
+def _integral(v: sp.Float) -> bool:
+    return float(v) == int(float(v))
 
 
 def _frame_exprs(f):
@@ -418,7 +422,8 @@ def _structured_det_steps(ans, question, ctx, ts):
                 "the velocity of W) times the wrist's (the angular velocities of joints 4–6).",
                 equations=eqs))
             return wrist.det.det, ((d11, "arm singularity (det J₁₁ = 0)"), (d22, "wrist singularity (det J₂₂ = 0)"))
-    split, _err = limited(ctx, ctx.step_seconds, sd.structured_det, ts.J, model.q)
+    J = _at_frame_origin(ans, question, ctx, ts) if ts.geometric else None
+    split, _err = limited(ctx, ctx.step_seconds, sd.structured_det, ts.J if J is None else J, model.q)
     if split is None or len(split.blocks) < 2:
         return (split.det if split is not None else None), None
     ans.steps.append(Step(
@@ -427,6 +432,38 @@ def _structured_det_steps(ans, question, ctx, ts):
         "reordered), so det J is the product of the diagonal blocks' determinants:",
         equations=[(f"\\det J_{{{k + 1}}}", d) for k, (_, _, _, d) in enumerate(split.blocks)]))
     return split.det, None
+
+
+def _at_frame_origin(ans, question, ctx, ts):
+    """The geometric J of the origin O of the point's frame, when the point is elsewhere on the
+    body every joint moves (a tool tip off the last axis, Tx(0.02)): v_O = v_P + ω × (O − P) is a
+    shear of determinant 1, so det J is the same, and shorter (the tool's J ran the search past its
+    budget). None when it does not apply or cannot be formed."""
+    from robosolve.kinematics.structured_det import geometric_jacobian_ring
+
+    model = ctx.model
+    pframe, plocal = model.point_local(question.point)
+    frame = question.frame or model.problem.last_frame
+    q = set(model.q)
+    chain = model.chain(pframe)
+    moving = [f for f in chain if model.M_local(f).free_symbols & q]
+    if not moving or not q <= set().union(*(model.M_local(f).free_symbols for f in chain)):
+        return None
+    body = moving[-1]          # the frame of the last joint: P and O are fixed in it
+    if (body == pframe and all(sp.sympify(c) == 0 for c in plocal)) or body not in model.chain(frame):
+        return None
+    if any(model.M_local(f).free_symbols & q for f in model.chain(frame)[model.chain(frame).index(body) + 1:]):
+        return None            # ω is not the angular velocity of P's body
+    J, err = limited(ctx, ctx.step_seconds, geometric_jacobian_ring, model, body, [0, 0, 0], frame)
+    if J is None or err is not None:
+        return None
+    ans.steps.append(Step(
+        "Determinant at the last joint's frame",
+        f"Every joint moves {question.point}, fixed in the body of frame {name_md(body)}: taking the velocity "
+        f"at that frame's origin O instead, $v_O = v_{{{question.point}}} + \\omega \\times (O - {question.point})$, "
+        "multiplies J by a shear of determinant 1, so $\\det J = \\det J_O$:",
+        equations=[("J_O", J)]))
+    return J
 
 
 def _tag_decoupled(conds, det_parts):

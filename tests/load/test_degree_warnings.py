@@ -53,3 +53,32 @@ def test_typography_in_a_problem_file_is_named(tmp_path):
     with pytest.raises(InputError) as info:
         load_problem(p)
     assert "p.yaml:3: parameters.L: cannot parse expression '−2' (write '-' for '−')" in str(info.value)
+
+
+IK = """robosolve: 1
+name: ik
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}, {name: q3, type: revolute}]
+frames:
+  "1": {pose: "Rz(q1) Tx(1)"}
+  "2": {pose: "Ry(q2) Tx(1)"}
+  "3": {pose: "Rx(q3)"}
+questions:
+  - {type: inverse_kinematics, target: {position: [1, 0, 0], {key}: {angles}}}
+"""
+
+
+@pytest.mark.parametrize("key, angles, meant", [
+    ("rpy", "[30, 45, 60]", "[deg(30), deg(45), deg(60)]"),
+    ("zyz", "[pi/2, -90, 0.3]", "[pi/2, deg(-90), 0.3]"),
+])
+def test_degree_like_angles_of_a_pose_target_are_one_warning_with_how_to_write_degrees(key, angles, meant):
+    """rpy: [30, 45, 60] was silently read as radians (an orientation of 4.8, 7.2 and 9.5 turns)."""
+    text = IK.replace("{key}", key).replace("{angles}", angles)
+    warnings = [str(w) for w in load_problem_text(text, "p.yaml").warnings]
+    assert len(warnings) == 1 and f"questions[0].target.{key}: warning:" in warnings[0], warnings
+    assert f"write {meant}" in warnings[0], warnings
+
+
+def test_radian_angles_of_a_pose_target_are_not_warned():
+    text = IK.replace("{key}", "rpy").replace("{angles}", "[0.2, -1.3, pi]")
+    assert load_problem_text(text, "p.yaml").warnings == []

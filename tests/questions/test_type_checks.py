@@ -218,6 +218,20 @@ def test_inverse_kinematics_pose_target_of_the_fixed_frame():
     assert messages("  - {type: inverse_kinematics, target: {E.x: 1, E.y: 1}, frame: '0'}\n") == []
 
 
+def test_inverse_kinematics_pose_target_point_fixed_in_another_frame_than_the_question_frame():
+    """The spec's point of a pose target is fixed in `frame`, whose orientation the target gives: a
+    point of frame 2 with `frame: '1'` was solved as frame 2's pose, `frame` silently dropped."""
+    target = "target: {position: [1, 1, 0], R: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}"
+    head = HEAD.replace('points: {E: {frame: "2"}}', 'points: {E: {frame: "2"}, P: {frame: "2", at: [0.1, 0, 0]}}')
+    assert messages(f"  - {{type: inverse_kinematics, {target}, point: P, frame: '1'}}\n", head) == [
+        f"f.yaml:{Q}: questions[0].frame: point P is fixed in frame 2, not in frame 1: a pose target's point "
+        "is fixed in the question's frame, whose orientation the target gives (remove `frame`, or give a "
+        "point fixed in frame 1)"]
+    assert messages(f"  - {{type: inverse_kinematics, {target}, point: P, frame: '2'}}\n", head) == []
+    assert messages(f"  - {{type: inverse_kinematics, {target}, point: P, frame: 2}}\n", head) == []
+    assert messages("  - {type: inverse_kinematics, target: {P.x: 1, P.y: 1}, point: P, frame: '1'}\n", head) == []
+
+
 def test_a_misspelt_joint_of_a_configuration_is_one_message_naming_the_joint_not_given():
     """`{q9: 0, q2: 1}` for joints q1, q2: q9 stands for q1, the joint not given (its did-you-mean
     named q2, already given, and a second message said q1 was missing)."""

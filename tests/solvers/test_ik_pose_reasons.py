@@ -105,3 +105,48 @@ def test_wrist_centre_reached_only_outside_the_limits_says_so():
     w = np.array([2.0, 0.5, 1.5]) - 0.263 * _rpy(0.2, 0.3, 0.4)[:, 2]
     d3 = math.sqrt(w[0] ** 2 + w[1] ** 2 - 0.154 ** 2 + (w[2] - 0.412) ** 2)
     assert any(abs(x - round(d3, 3)) < 2e-3 for x in _numbers(reason)), (d3, reason)
+
+
+UR3_INLINE = """
+robosolve: 1
+name: ur3-far
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}, {name: q3, type: revolute},
+         {name: q4, type: revolute}, {name: q5, type: revolute}, {name: q6, type: revolute}]
+dh:
+  convention: standard
+  rows:
+    - {theta: q1, d: 0.1519, a: 0, alpha: pi/2}
+    - {theta: q2, d: 0, a: -0.24365, alpha: 0}
+    - {theta: q3, d: 0, a: -0.21325, alpha: 0}
+    - {theta: q4, d: 0.11235, a: 0, alpha: pi/2}
+    - {theta: q5, d: 0.08535, a: 0, alpha: -pi/2}
+    - {theta: q6, d: 0.0819, a: 0, alpha: 0}
+questions:
+  - {type: inverse_kinematics, target: {position: [1.0, 0.5, 0.8], rpy: [0.2, 0.3, 0.4]}}
+"""
+
+
+def test_a_reach_of_decimals_is_said_once_as_a_number():
+    """An arm written in decimals: the reach bound has no symbol, and its sympy string was written
+    before its value ("> 0.456900000000000 = 0.4569"). Reference: |a2| + |a3| of the UR3."""
+    a, step = _answer(UR3_INLINE)
+    assert a["unreachable"] is True
+    reach = 0.24365 + 0.21325
+    assert f"> {reach:.4g}:" in a["reason"], a["reason"]
+    assert "> #:" in step, step           # the report's words: each number a `#`
+    for text in (a["reason"], step):
+        assert not re.search(r"\d\.\d{9,}", text), text
+
+
+def test_a_pose_far_beyond_the_reach_is_unreachable_without_numpy_warnings():
+    """A position of 1e150 m: JᵀJ of the numeric search overflowed and numpy's RuntimeWarnings
+    reached stderr under the answer. Reference: |p| is beyond any sum of the UR3's lengths."""
+    import warnings
+
+    text = UR3_INLINE.replace("[1.0, 0.5, 0.8]", "[1e150, 0.5, 0.8]")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        report = solve_problem(load_problem_text(text))
+    a = json.loads(json.dumps(answer_record(report.answers[0], [])))
+    assert a["unreachable"] is True and a["numeric"]["solutions"] == []
+    assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], [str(w.message) for w in caught]
