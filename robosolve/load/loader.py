@@ -279,6 +279,12 @@ def _degrees_hint(raw) -> str:
             f"are radians; if they are degrees, write [{shown}]")
 
 
+def _angle_units_written(raw) -> bool:
+    """Limits written with deg() or pi say their unit: beyond one turn they are meant (an ABB
+    IRB 140's axis 6 turns ±400°), not degrees read as radians."""
+    return any(isinstance(v, str) and ("deg(" in v or "pi" in v) for v in raw)
+
+
 def _flow(raw) -> str:
     return "[" + ", ".join(str(v) for v in raw) + "]"
 
@@ -610,7 +616,8 @@ class _ProblemBuilder:
                 if not flo < fhi:
                     chk.error(path, f"lower limit {raw[0]} is not below upper limit {raw[1]}")    # as written
                     continue
-                if j.kind == REVOLUTE and max(abs(flo), abs(fhi)) > 2 * math.pi + 0.01:  # rounded ±6.2832 is a turn
+                if (j.kind == REVOLUTE and max(abs(flo), abs(fhi)) > 2 * math.pi + 0.01  # rounded ±6.2832 is a turn
+                        and not _angle_units_written(raw)):
                     chk.error(path, _degrees_hint(raw))
                     continue
             except (TypeError, ValueError):

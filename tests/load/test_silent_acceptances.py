@@ -33,7 +33,9 @@ def test_revolute_limits_in_degrees():
     assert messages("[0, 270]")[0].endswith("write [deg(0), deg(270)]")
 
 
-@pytest.mark.parametrize("limits", ["[-2*pi, 2*pi]", "[-6.2832, 6.2831]", "[deg(-180), deg(180)]", "[-3, 3]"])
+@pytest.mark.parametrize("limits", ["[-2*pi, 2*pi]", "[-6.2832, 6.2831]", "[deg(-180), deg(180)]", "[-3, 3]",
+                                    # more than a turn, its unit written: an ABB IRB 140's axis 6
+                                    "[deg(-400), deg(400)]", "[-3*pi, 3*pi]"])
 def test_a_full_turn_and_prismatic_lengths_are_fine(limits):
     load_problem_text(TEXT % (limits, ""), "p.yaml")       # d's [0, 100] is a length
 
