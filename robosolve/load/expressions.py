@@ -123,7 +123,7 @@ def size_issue(expr, values: dict | None = None, memo: dict | None = None) -> st
     calls: a parser checks every product it builds, and each holds the ones below it."""
     memo = {} if memo is None else memo
     try:
-        _log10(expr, values or {}, memo)
+        _log10(sp.sympify(expr), values or {}, memo)
     except _TooLarge as exc:
         return str(exc)
     except (RecursionError, MemoryError):
@@ -167,7 +167,7 @@ def _log10_node(e, values, memo) -> float | None:
         sign, man, exp, bc = e._mpf_ if len(e._mpf_) == 4 else (0, 0, 0, 0)
         return (exp + bc) * 0.30103 if man else 0.0
     if e.is_Symbol:
-        return _log10(values[e], values, memo) if e in values else None
+        return _log10(sp.sympify(values[e]), values, memo) if e in values else None
     if e.is_NumberSymbol or e is sp.I:
         return 0.5
     args = [_log10(a, values, memo) for a in e.args]
@@ -210,10 +210,11 @@ def value_issue(e, values: dict, shown: str | None = None) -> str | None:
     """Why the expression `e` with `values` substituted is not a finite real number, or None.
 
     `shown` is the text the user wrote (sympy may have evaluated log(0) to zoo already)."""
+    e = sp.sympify(e)   # a symbol replaced by a plain 0 (`t` at the start) is an int
     issue = size_issue(e, values)
     if issue is not None:
         return issue
-    v = e.xreplace(values) if values else e
+    v = sp.sympify(e.xreplace(values)) if values else e
     if v.free_symbols:
         return None
     what = shown if shown is not None else str(e)

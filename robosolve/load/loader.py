@@ -236,7 +236,7 @@ class Checker:
         """The real value of `e` with the known values, or None when it has none (yet)."""
         if self.values is None:
             return None
-        v = e.xreplace({**self.values, **self.overrides})
+        v = sp.sympify(e.xreplace({**self.values, **self.overrides}))
         if v.free_symbols:
             return None
         try:
