@@ -565,6 +565,7 @@ class _ProblemBuilder:
                 chk.error(path + ("name",), DEFAULT_POINT_TAKEN)
             elif name in taken or name in seen or name in PYTHON_KEYWORDS:
                 chk.error(path + ("name",), f"name '{name}' is already used")
+                self.joint_name_refused = True    # the name its uses give is not judged either
                 continue
             seen.add(name)
             n = len(joints) + 1
@@ -581,6 +582,8 @@ class _ProblemBuilder:
                 limits=None, line=chk.src.line(path),
             ))
             joints[-1]._raw_limits = item.get("limits")
+        if isinstance(value, list) and not all(isinstance(item, dict) for item in value):
+            self.joint_name_refused = True    # a joint refused whole (said): its name's uses are not judged
         # derived names must not collide with anything
         all_names = {s.name for s in self.parameters} | RESERVED | {DEFAULT_POINT}
         for j in joints:

@@ -277,3 +277,20 @@ def test_a_dh_table_without_rows_is_one_message(name):
     del data["dh"]["rows"]           # (before: 'expected rows' twice, every body's frame unknown)
     issues = _issues(data)
     assert len(issues) == 1 and "missing required key 'rows'" in issues[0], issues
+
+
+@pytest.mark.parametrize("name, path, value, said", [
+    # a joint refused whole: its name was unknown in every frame, `at` and target that use it
+    ("exam-2r-full", ("joints", 0), "theta1", "joints[0]: expected a mapping, got a string"),
+    ("exam-2r-full", ("joints", 1), ["theta2", "revolute"], "joints[1]: expected a mapping, got a list"),
+    # a joint name taken already (time, a parameter): the same
+    ("kuka-kr", ("joints", 4, "name"), "t", "joints[4].name: name 't' is already used"),
+    ("exam-2r-full", ("joints", 1, "name"), "L1", "joints[1].name: name 'L1' is already used"),
+    # a refused `weight` of statics: not "expected force, torque or weight: true" besides
+    ("exam-2r-full", ("questions", 4, "weight"), "yes", "questions[4].weight: expected true or false"),
+    ("planar-2r-rods", ("questions", 2, "weight"), 1, "questions[2].weight: expected true or false"),
+])
+def test_a_value_of_the_wrong_kind_gives_one_message(name, path, value, said):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    issues = _issues(_value_set(data, path, value))
+    assert len(issues) == 1 and said in issues[0], issues
