@@ -317,7 +317,10 @@ def load_problem_text(text: str, file: str = "<input>") -> Problem:
     return problem
 
 
-_UNKNOWN_NAME = re.compile(r"^unknown (?:name|parameter)\b[^']*'(?P<name>[^']+)' in ")
+_UNKNOWN_NAME = re.compile(r"^(?:unknown (?:name|parameter)\b[^']*'(?P<name>[^']+)' in "
+                           r"|unknown (?:joint or parameter|joint or joint rate|joint|actuator) '(?P<key>[^']+)'"
+                           r"|undeclared parameter '(?P<varied>[^']+)'"
+                           r"|unknown frame '(?P<frame>[^']+)')")
 
 
 def grouped(issues: list) -> list:
@@ -326,8 +329,15 @@ def grouped(issues: list) -> list:
     the same words said of several places (three questions that "use gravity: declare g"), with
     the lines of the others. The issues stay in their order."""
     def name(issue):
+        """The name a message says is unknown, wherever it is used (an expression, a key of `at`,
+        a varied parameter; a joint's rates with the joint): a definition misspelt, or left out, is
+        one mistake however many sections use it. Frames are names of their own."""
         m = _UNKNOWN_NAME.match(issue.message)
-        return m and m.group("name")
+        if m is None:
+            return None
+        if m.group("frame") is not None:
+            return ("frame", m.group("frame"))
+        return ("symbol", re.sub(r"_d?dot$", "", m.group("name") or m.group("key") or m.group("varied")))
 
     def more_uses(first, others):
         lines = sorted({o.line for o in others})

@@ -294,3 +294,34 @@ def test_a_value_of_the_wrong_kind_gives_one_message(name, path, value, said):
     data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
     issues = _issues(_value_set(data, path, value))
     assert len(issues) == 1 and said in issues[0], issues
+
+
+def _renamed_definition(name, path, key, wrong):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    node = _at(data, path)
+    if isinstance(node, dict) and key in node and path[-1:] != ("name",):
+        _renamed(node, key, wrong)            # a key that defines a name (a parameter, a frame)
+    else:
+        _at(data, path[:-1])[path[-1]] = wrong  # a joint's name
+    text = yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+    with pytest.raises(InputError) as exc:
+        load_problem_text(text, "p.yaml")
+    return text, [str(i) for i in exc.value.issues]
+
+
+@pytest.mark.parametrize("name, path, key, wrong", [
+    # a joint's name misspelt where it is defined: its uses in the DH table, in `at` (the joint,
+    # its rates) were one message each
+    ("panda", ("joints", 1, "name"), "q2", "qq2"),
+    ("exam-2r-full", ("joints", 0, "name"), "theta1", "theta_1"),
+    # a parameter misspelt where it is declared: the frames, the bodies and the variants section
+    ("exam-2r-full", ("parameters",), "L1", "L1x"),
+    ("exam-2r-full", ("parameters",), "F", "FF"),
+    # a frame's name: the bodies and the forces on it
+    ("exam-2r-full", ("frames",), "2", "2x"),
+])
+def test_a_name_misspelt_where_it_is_defined_is_one_message_with_its_uses(name, path, key, wrong):
+    text, issues = _renamed_definition(name, path, key, wrong)
+    assert len(issues) == 1, issues
+    assert f"'{key}'" in issues[0] and f"did you mean '{wrong}'?" in issues[0], issues
+    assert "more use" in issues[0], issues       # each of these names has several uses
