@@ -67,9 +67,11 @@ def closest(name: str, candidates, cutoff: float = 0.5) -> str | None:
     """The candidate a misspelt `name` most likely stands for, or None (every did-you-mean).
 
     Ranked by: differing from `name` by case alone; then difflib's similarity with case ignored
-    (at least `cutoff`); then with case; a tie goes to the last candidate in sorted order, as in
-    difflib's `get_close_matches` (theta3 among theta1, theta2: theta2). `get_close_matches`
-    alone compares with case, so 'l1' among L1 and m1 (0.5 both) was said to mean 'm1'."""
+    (at least `cutoff`); then the fewest typing slips (`_slips`: a swap of two neighbours is one,
+    so 'ojints' means joints, not points, which difflib rates alike); then similarity with case;
+    a tie goes to the last candidate in sorted order, as in difflib's `get_close_matches` (theta3
+    among theta1, theta2: theta2). `get_close_matches` alone compares with case, so 'l1' among L1
+    and m1 (0.5 both) was said to mean 'm1'."""
     if not isinstance(name, str):
         return None
     folded = name.casefold()
@@ -82,10 +84,25 @@ def closest(name: str, candidates, cutoff: float = 0.5) -> str | None:
         ratio = matcher.ratio()
         if ratio < cutoff:
             continue
-        rank = (c_folded == folded, ratio, difflib.SequenceMatcher(None, name, str(c)).ratio())
+        rank = (c_folded == folded, ratio, -_slips(folded, c_folded),
+                difflib.SequenceMatcher(None, name, str(c)).ratio())
         if best_rank is None or rank >= best_rank:
             best, best_rank = c, rank
     return best
+
+
+def _slips(a: str, b: str) -> int:
+    """The typing slips from `a` to `b`: letters left out, added, replaced, or two neighbours
+    swapped, one each (the optimal string alignment distance)."""
+    rows = [list(range(len(b) + 1))]
+    for i in range(1, len(a) + 1):
+        row = [i] + [0] * len(b)
+        for j in range(1, len(b) + 1):
+            row[j] = min(rows[-1][j] + 1, row[j - 1] + 1, rows[-1][j - 1] + (a[i - 1] != b[j - 1]))
+            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                row[j] = min(row[j], rows[-2][j - 2] + 1)
+        rows.append(row)
+    return rows[-1][-1]
 
 
 def did_you_mean(name: str, candidates) -> str:
