@@ -325,3 +325,15 @@ def test_a_name_misspelt_where_it_is_defined_is_one_message_with_its_uses(name, 
     assert len(issues) == 1, issues
     assert f"'{key}'" in issues[0] and f"did you mean '{wrong}'?" in issues[0], issues
     assert "more use" in issues[0], issues       # each of these names has several uses
+
+
+@pytest.mark.parametrize("name, index, renamed", [
+    ("ik-anthropomorphic-3r", 1, "elbow"),      # its `select` mapping gave "missing joint(s) elbow" too
+    ("rigid-displacements", 0, "base"),         # its displacement's `from` and `to`, the same
+])
+def test_a_joint_renamed_where_it_is_defined_is_one_message(name, index, renamed):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    old = data["joints"][index]["name"]
+    data["joints"][index]["name"] = renamed
+    issues = _issues(data)
+    assert len(issues) == 1 and f"'{old}'" in issues[0] and "more use" in issues[0], issues
