@@ -209,8 +209,10 @@ class _QuestionLoader:
     def require_gravity(self, path):
         """A question using gravity needs it declared."""
         if self.b.problem.gravity is None and not self.b.gravity_refused:
-            self.chk.error(path + ("type",), "this question uses gravity: declare g in parameters "
-                           "(the default gravity is [0, 0, -g]) or give gravity")
+            # a parameter declared under a name close to g is most likely it, misspelt
+            self.chk.error(path + ("type",), "this question uses gravity: declare g in parameters"
+                           + did_you_mean("g", [s.name for s in self.b.parameters])
+                           + " (the default gravity is [0, 0, -g]) or give gravity")
 
     # -- ids and references --------------------------------------------
     def assign_ids(self, questions, raw):

@@ -337,3 +337,12 @@ def test_a_joint_renamed_where_it_is_defined_is_one_message(name, index, renamed
     data["joints"][index]["name"] = renamed
     issues = _issues(data)
     assert len(issues) == 1 and f"'{old}'" in issues[0] and "more use" in issues[0], issues
+
+
+def test_g_misspelt_where_it_is_declared_is_named_by_the_gravity_message():
+    """A question that uses gravity said 'declare g in parameters' of a file that declares 'gg':
+    the one message now names the parameter it most likely is."""
+    data = yaml.safe_load((ROOT / "problems" / "exam-2r-full.yaml").read_text())
+    _renamed(data["parameters"], "g", "gg")
+    issues = _issues(data)
+    assert len(issues) == 1 and "declare g in parameters (did you mean 'gg'?)" in issues[0], issues
