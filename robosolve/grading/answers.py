@@ -93,7 +93,7 @@ def read_answers_text(text: str, file: str = "<answers>") -> Submission:
     except YamlProblem as exc:
         message = exc.message.replace("expected a mapping with `robosolve: 1`",
                                       f"expected a mapping with `{FORMAT_KEY}: 1`")
-        raise InputError([InputIssue(file, exc.line, "", message)])
+        raise InputError([InputIssue(file, exc.line, path_str(exc.path), message)])
     issues = _Issues(source)
     for line, path, key in duplicates:
         issues.items.append(InputIssue(file, line, path_str(path), f"duplicate key '{key}'"))

@@ -301,7 +301,7 @@ def load_problem_text(text: str, file: str = "<input>") -> Problem:
     try:
         source, duplicates = parse_yaml(text, file)
     except YamlProblem as exc:
-        raise InputError([InputIssue(file, exc.line, "", exc.message)])
+        raise InputError([InputIssue(file, exc.line, path_str(exc.path), exc.message)])
     chk = Checker(source)
     for line, path, key in duplicates:
         chk.issues.append(InputIssue(file, line, path_str(path), f"duplicate key '{key}'"))
