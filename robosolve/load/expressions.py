@@ -110,6 +110,14 @@ def did_you_mean(name: str, candidates) -> str:
     return f" (did you mean '{close}'?)" if close is not None else ""
 
 
+def missing_keys(keys) -> str:
+    """The one message for the required keys a mapping lacks: 'from', 'to' and 'max_acceleration'."""
+    if len(keys) == 1:
+        return f"missing required key '{keys[0]}'"
+    quoted = [f"'{k}'" for k in keys]
+    return f"missing required keys {', '.join(quoted[:-1])} and {quoted[-1]}"
+
+
 def meant_value(value, choices):
     """The choice a misspelt word stands for (its did-you-mean), or None: after the message about
     it, the rest of the file is checked with that choice (one mistake, one message)."""

@@ -16,8 +16,8 @@ from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue, InputWarning
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, digits_issue, meant_value, size_issue,
-    value_issue,
+    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, digits_issue, meant_value, missing_keys,
+    size_issue, value_issue,
 )
 from robosolve.load.physical import LUMPED_ROTOR, inertia_issue, pseudo_inertia_issue, triangle_issue
 from robosolve.load.problem import (
@@ -170,9 +170,9 @@ class Checker:
                 self.error(path + (key,), f"unknown key '{key}'"
                            + did_you_mean(key, allowed)
                            + f" (expected one of: {', '.join(allowed)})")
-        for key in required:
-            if key not in value and not self.misspelt(value, key, allowed):
-                self.error(path, f"missing required key '{key}'")
+        missing = [key for key in required if key not in value and not self.misspelt(value, key, allowed)]
+        if missing:     # (a question written bare lacks them all: one message)
+            self.error(path, missing_keys(missing))
         self.renamed += as_meant(path, value, allowed)
         return True
 

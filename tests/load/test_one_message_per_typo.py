@@ -346,3 +346,18 @@ def test_g_misspelt_where_it_is_declared_is_named_by_the_gravity_message():
     _renamed(data["parameters"], "g", "gg")
     issues = _issues(data)
     assert len(issues) == 1 and "declare g in parameters (did you mean 'gg'?)" in issues[0], issues
+
+
+@pytest.mark.parametrize("question, said", [
+    ("{type: motion_profile}", "questions[0]: missing required keys 'from', 'to' and 'max_acceleration'"),
+    ("{type: displacement}", "questions[0]: missing required keys 'from' and 'to' (or give a screw: axis and angle)"),
+    ("{type: motion_profile, from: {theta1: 0, theta2: 0}}", "questions[0]: missing required keys 'to' and "
+                                                             "'max_acceleration'"),
+])
+def test_a_question_written_bare_is_one_message_naming_every_key_it_lacks(question, said):
+    """One message per key missing made a bare question (the options forgotten: one mistake) three."""
+    data = yaml.safe_load((ROOT / "problems" / "exam-2r-full.yaml").read_text())
+    data["questions"] = [yaml.safe_load(question)]
+    del data["variants"]
+    issues = _issues(data)
+    assert len(issues) == 1 and said in issues[0], issues
