@@ -380,6 +380,7 @@ class _ProblemBuilder:
         self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
         self.rejected_points: set[str] = set()
         self.joint_name_refused = False          # a joint's name refused: its uses are not judged
+        self.parameters_refused = False          # the parameters section refused whole: the same
         self.actuator_refused = False            # an actuator's name refused: the same
         self.frames_refused = False              # a DH table without rows: its frames' uses, the same
         self.refused_question_ids: set = set()
@@ -417,7 +418,7 @@ class _ProblemBuilder:
         # time: meaningful only in forces (along a run, a simulation or a profile) and in
         # the laws of a type with `time_laws`; anywhere else a `t` is refused with what to do instead
         static = {k: v for k, v in self.names.items() if k != "t"}
-        lenient = self.joint_name_refused
+        lenient = self.joint_name_refused or self.parameters_refused
         self.ns = Namespace(static, what="name", refused={"t": TIME_REFUSED}, unknown_ok=lenient)
         self.ns_time = Namespace(self.names, what="name", unknown_ok=lenient)
         self.frames = self._frames(data.get("frames"), data.get("dh"))
@@ -428,7 +429,7 @@ class _ProblemBuilder:
         gravity, gravity_given = self._gravity(data.get("gravity"))
         # given but refused (its own message says why): no "declare g" for each question too
         params = data.get("parameters")
-        self.gravity_refused = gravity is None and (data.get("gravity") is not None or (
+        self.gravity_refused = gravity is None and (data.get("gravity") is not None or self.parameters_refused or (
             isinstance(params, dict) and "g" in params))
         bodies = self._bodies(data.get("bodies"))
         forces = self._forces(data.get("forces"))
@@ -462,6 +463,7 @@ class _ProblemBuilder:
             return {}
         if not isinstance(value, dict):
             chk.error(("parameters",), f"expected a mapping name: value, got {type_name(value)}")
+            self.parameters_refused = True     # the names it declares: their uses say nothing more
             return {}
         names = []
         for key in value:
@@ -605,7 +607,7 @@ class _ProblemBuilder:
                     chk.error(("joints", j.index, where),
                               f"'{derived}' (of joint {j.name}) is already used")
                 all_names.add(derived)
-        pns = Namespace({s.name: s for s in self.parameters}, what="parameter")
+        pns = Namespace({s.name: s for s in self.parameters}, what="parameter", unknown_ok=self.parameters_refused)
         for j in joints:
             raw = j._raw_limits
             if raw is None:
@@ -656,6 +658,7 @@ class _ProblemBuilder:
         if frames_value is not None:
             if not isinstance(frames_value, dict):
                 chk.error(("frames",), f"expected a mapping frame name: definition, got {type_name(frames_value)}")
+                self.frames_refused = True    # the frames it defines: their uses say nothing more
             else:
                 for key, item in frames_value.items():
                     self._frame(str(key), item, frames, from_dh=dh_value is not None)
@@ -676,6 +679,7 @@ class _ProblemBuilder:
     def _dh_table(self, value, frames):
         chk = self.chk
         if not chk.mapping(("dh",), value, ("convention", "rows"), required=("rows",)):
+            self.frames_refused = True    # the frames the table defines: their uses say nothing more
             return
         conv = value.get("convention", "standard")
         if conv not in ("standard", "modified"):
@@ -695,6 +699,7 @@ class _ProblemBuilder:
         for i, row in enumerate(rows):
             path = ("dh", "rows", i)
             if not chk.mapping(path, row, keys, required=keys):
+                self.rejected_frames.add(str(i + 1))
                 continue
             vals = [chk.expr(path + (k,), row[k], self.ns) for k in keys if k in row]
             if len(vals) != 4 or any(v is None for v in vals):
@@ -890,7 +895,7 @@ class _ProblemBuilder:
                 return sp.Matrix([0, 0, -g]), False
             return None, False
         vec = self.chk.vector(("gravity",), value, Namespace({s.name: s for s in self.parameters},
-                                                             what="parameter"))
+                                                             what="parameter", unknown_ok=self.parameters_refused))
         return vec, True
 
     def _bodies(self, value) -> list:

@@ -279,7 +279,7 @@ def v_actuator_laws(ql, path, value, q):
         names[j.name], names[j.dot.name] = j.symbol, j.dot
     names["t"] = b.names["t"]
     ns = Namespace(names, what="name in the law (it may use t, the joints, their _dot rates, the parameters)",
-                   unknown_ok=b.joint_name_refused)
+                   unknown_ok=b.joint_name_refused or b.parameters_refused)
     out = {}
     for key, v in value.items():
         if key not in acts:

@@ -361,3 +361,18 @@ def test_a_question_written_bare_is_one_message_naming_every_key_it_lacks(questi
     del data["variants"]
     issues = _issues(data)
     assert len(issues) == 1 and said in issues[0], issues
+
+
+@pytest.mark.parametrize("name, path, value, said", [
+    # a section refused whole: every name or frame it defines was unknown wherever used
+    ("exam-2r-full", ("parameters",), "L1 = 1/2", "parameters: expected a mapping name: value, got a string"),
+    ("exam-2r-full", ("parameters",), [1, 2], "parameters: expected a mapping name: value, got a list"),
+    ("planar-2r-rods", ("parameters",), [1, 2], "parameters: expected a mapping name: value, got a list"),
+    ("scara-rrp", ("frames",), "Tz(h) Rz(theta1)", "frames: expected a mapping frame name: definition"),
+    ("kuka-kr", ("dh",), ["standard"], "dh: expected a mapping, got a list"),
+    ("kuka-kr", ("dh", "rows", 2), "q3 0 a3 0", "dh.rows[2]: expected a mapping, got a string"),
+])
+def test_a_section_refused_whole_is_one_message(name, path, value, said):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    issues = _issues(_value_set(data, path, value))
+    assert len(issues) == 1 and said in issues[0], issues
