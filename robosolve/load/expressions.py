@@ -67,9 +67,11 @@ def closest(name: str, candidates, cutoff: float = 0.5) -> str | None:
     """The candidate a misspelt `name` most likely stands for, or None (every did-you-mean).
 
     Ranked by: differing from `name` by case alone; then difflib's similarity with case ignored
-    (at least `cutoff`); then with case; a tie goes to the last candidate in sorted order, as in
-    difflib's `get_close_matches` (theta3 among theta1, theta2: theta2). `get_close_matches`
-    alone compares with case, so 'l1' among L1 and m1 (0.5 both) was said to mean 'm1'."""
+    (at least `cutoff`); then the fewest typing slips (`_slips`: a swap of two neighbours is one,
+    so 'ojints' means joints, not points, which difflib rates alike); then similarity with case;
+    a tie goes to the last candidate in sorted order, as in difflib's `get_close_matches` (theta3
+    among theta1, theta2: theta2). `get_close_matches` alone compares with case, so 'l1' among L1
+    and m1 (0.5 both) was said to mean 'm1'."""
     if not isinstance(name, str):
         return None
     folded = name.casefold()
@@ -82,15 +84,38 @@ def closest(name: str, candidates, cutoff: float = 0.5) -> str | None:
         ratio = matcher.ratio()
         if ratio < cutoff:
             continue
-        rank = (c_folded == folded, ratio, difflib.SequenceMatcher(None, name, str(c)).ratio())
+        rank = (c_folded == folded, ratio, -_slips(folded, c_folded),
+                difflib.SequenceMatcher(None, name, str(c)).ratio())
         if best_rank is None or rank >= best_rank:
             best, best_rank = c, rank
     return best
 
 
+def _slips(a: str, b: str) -> int:
+    """The typing slips from `a` to `b`: letters left out, added, replaced, or two neighbours
+    swapped, one each (the optimal string alignment distance)."""
+    rows = [list(range(len(b) + 1))]
+    for i in range(1, len(a) + 1):
+        row = [i] + [0] * len(b)
+        for j in range(1, len(b) + 1):
+            row[j] = min(rows[-1][j] + 1, row[j - 1] + 1, rows[-1][j - 1] + (a[i - 1] != b[j - 1]))
+            if i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1]:
+                row[j] = min(row[j], rows[-2][j - 2] + 1)
+        rows.append(row)
+    return rows[-1][-1]
+
+
 def did_you_mean(name: str, candidates) -> str:
     close = closest(name, candidates)
     return f" (did you mean '{close}'?)" if close is not None else ""
+
+
+def missing_keys(keys) -> str:
+    """The one message for the required keys a mapping lacks: 'from', 'to' and 'max_acceleration'."""
+    if len(keys) == 1:
+        return f"missing required key '{keys[0]}'"
+    quoted = [f"'{k}'" for k in keys]
+    return f"missing required keys {', '.join(quoted[:-1])} and {quoted[-1]}"
 
 
 def meant_value(value, choices):
@@ -123,7 +148,7 @@ def size_issue(expr, values: dict | None = None, memo: dict | None = None) -> st
     calls: a parser checks every product it builds, and each holds the ones below it."""
     memo = {} if memo is None else memo
     try:
-        _log10(expr, values or {}, memo)
+        _log10(sp.sympify(expr), values or {}, memo)
     except _TooLarge as exc:
         return str(exc)
     except (RecursionError, MemoryError):
@@ -167,7 +192,7 @@ def _log10_node(e, values, memo) -> float | None:
         sign, man, exp, bc = e._mpf_ if len(e._mpf_) == 4 else (0, 0, 0, 0)
         return (exp + bc) * 0.30103 if man else 0.0
     if e.is_Symbol:
-        return _log10(values[e], values, memo) if e in values else None
+        return _log10(sp.sympify(values[e]), values, memo) if e in values else None
     if e.is_NumberSymbol or e is sp.I:
         return 0.5
     args = [_log10(a, values, memo) for a in e.args]
@@ -210,10 +235,11 @@ def value_issue(e, values: dict, shown: str | None = None) -> str | None:
     """Why the expression `e` with `values` substituted is not a finite real number, or None.
 
     `shown` is the text the user wrote (sympy may have evaluated log(0) to zoo already)."""
+    e = sp.sympify(e)   # a symbol replaced by a plain 0 (`t` at the start) is an int
     issue = size_issue(e, values)
     if issue is not None:
         return issue
-    v = e.xreplace(values) if values else e
+    v = sp.sympify(e.xreplace(values)) if values else e
     if v.free_symbols:
         return None
     what = shown if shown is not None else str(e)

@@ -16,8 +16,8 @@ from robosolve.core.symbols import TIME
 from robosolve.errors import InputError, InputIssue, InputWarning
 from robosolve.load import questions as qschema
 from robosolve.load.expressions import (
-    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, digits_issue, meant_value, size_issue,
-    value_issue,
+    RESERVED, ExpressionError, Namespace, degrees_hint, did_you_mean, digits_issue, meant_value, missing_keys,
+    size_issue, value_issue,
 )
 from robosolve.load.physical import LUMPED_ROTOR, inertia_issue, pseudo_inertia_issue, triangle_issue
 from robosolve.load.problem import (
@@ -170,9 +170,9 @@ class Checker:
                 self.error(path + (key,), f"unknown key '{key}'"
                            + did_you_mean(key, allowed)
                            + f" (expected one of: {', '.join(allowed)})")
-        for key in required:
-            if key not in value and not self.misspelt(value, key, allowed):
-                self.error(path, f"missing required key '{key}'")
+        missing = [key for key in required if key not in value and not self.misspelt(value, key, allowed)]
+        if missing:     # (a question written bare lacks them all: one message)
+            self.error(path, missing_keys(missing))
         self.renamed += as_meant(path, value, allowed)
         return True
 
@@ -236,7 +236,7 @@ class Checker:
         """The real value of `e` with the known values, or None when it has none (yet)."""
         if self.values is None:
             return None
-        v = e.xreplace({**self.values, **self.overrides})
+        v = sp.sympify(e.xreplace({**self.values, **self.overrides}))
         if v.free_symbols:
             return None
         try:
@@ -323,7 +323,10 @@ def load_problem_text(text: str, file: str = "<input>") -> Problem:
     return problem
 
 
-_UNKNOWN_NAME = re.compile(r"^unknown (?:name|parameter)\b[^']*'(?P<name>[^']+)' in ")
+_UNKNOWN_NAME = re.compile(r"^(?:unknown (?:name|parameter)\b[^']*'(?P<name>[^']+)' in "
+                           r"|unknown (?:joint or parameter|joint or joint rate|joint|actuator) '(?P<key>[^']+)'"
+                           r"|undeclared parameter '(?P<varied>[^']+)'"
+                           r"|unknown frame '(?P<frame>[^']+)')")
 
 
 def grouped(issues: list) -> list:
@@ -332,8 +335,15 @@ def grouped(issues: list) -> list:
     the same words said of several places (three questions that "use gravity: declare g"), with
     the lines of the others. The issues stay in their order."""
     def name(issue):
+        """The name a message says is unknown, wherever it is used (an expression, a key of `at`,
+        a varied parameter; a joint's rates with the joint): a definition misspelt, or left out, is
+        one mistake however many sections use it. Frames are names of their own."""
         m = _UNKNOWN_NAME.match(issue.message)
-        return m and m.group("name")
+        if m is None:
+            return None
+        if m.group("frame") is not None:
+            return ("frame", m.group("frame"))
+        return ("symbol", re.sub(r"_d?dot$", "", m.group("name") or m.group("key") or m.group("varied")))
 
     def more_uses(first, others):
         lines = sorted({o.line for o in others})
@@ -376,6 +386,7 @@ class _ProblemBuilder:
         self.rejected_frames: set[str] = set()   # defined but invalid: references stay silent
         self.rejected_points: set[str] = set()
         self.joint_name_refused = False          # a joint's name refused: its uses are not judged
+        self.parameters_refused = False          # the parameters section refused whole: the same
         self.actuator_refused = False            # an actuator's name refused: the same
         self.frames_refused = False              # a DH table without rows: its frames' uses, the same
         self.refused_question_ids: set = set()
@@ -413,7 +424,7 @@ class _ProblemBuilder:
         # time: meaningful only in forces (along a run, a simulation or a profile) and in
         # the laws of a type with `time_laws`; anywhere else a `t` is refused with what to do instead
         static = {k: v for k, v in self.names.items() if k != "t"}
-        lenient = self.joint_name_refused
+        lenient = self.joint_name_refused or self.parameters_refused
         self.ns = Namespace(static, what="name", refused={"t": TIME_REFUSED}, unknown_ok=lenient)
         self.ns_time = Namespace(self.names, what="name", unknown_ok=lenient)
         self.frames = self._frames(data.get("frames"), data.get("dh"))
@@ -424,7 +435,7 @@ class _ProblemBuilder:
         gravity, gravity_given = self._gravity(data.get("gravity"))
         # given but refused (its own message says why): no "declare g" for each question too
         params = data.get("parameters")
-        self.gravity_refused = gravity is None and (data.get("gravity") is not None or (
+        self.gravity_refused = gravity is None and (data.get("gravity") is not None or self.parameters_refused or (
             isinstance(params, dict) and "g" in params))
         bodies = self._bodies(data.get("bodies"))
         forces = self._forces(data.get("forces"))
@@ -458,6 +469,7 @@ class _ProblemBuilder:
             return {}
         if not isinstance(value, dict):
             chk.error(("parameters",), f"expected a mapping name: value, got {type_name(value)}")
+            self.parameters_refused = True     # the names it declares: their uses say nothing more
             return {}
         names = []
         for key in value:
@@ -571,6 +583,7 @@ class _ProblemBuilder:
                 chk.error(path + ("name",), DEFAULT_POINT_TAKEN)
             elif name in taken or name in seen or name in PYTHON_KEYWORDS:
                 chk.error(path + ("name",), f"name '{name}' is already used")
+                self.joint_name_refused = True    # the name its uses give is not judged either
                 continue
             seen.add(name)
             n = len(joints) + 1
@@ -587,6 +600,8 @@ class _ProblemBuilder:
                 limits=None, line=chk.src.line(path),
             ))
             joints[-1]._raw_limits = item.get("limits")
+        if isinstance(value, list) and not all(isinstance(item, dict) for item in value):
+            self.joint_name_refused = True    # a joint refused whole (said): its name's uses are not judged
         # derived names must not collide with anything
         all_names = {s.name for s in self.parameters} | RESERVED | {DEFAULT_POINT}
         for j in joints:
@@ -598,7 +613,7 @@ class _ProblemBuilder:
                     chk.error(("joints", j.index, where),
                               f"'{derived}' (of joint {j.name}) is already used")
                 all_names.add(derived)
-        pns = Namespace({s.name: s for s in self.parameters}, what="parameter")
+        pns = Namespace({s.name: s for s in self.parameters}, what="parameter", unknown_ok=self.parameters_refused)
         for j in joints:
             raw = j._raw_limits
             if raw is None:
@@ -650,6 +665,7 @@ class _ProblemBuilder:
         if frames_value is not None:
             if not isinstance(frames_value, dict):
                 chk.error(("frames",), f"expected a mapping frame name: definition, got {type_name(frames_value)}")
+                self.frames_refused = True    # the frames it defines: their uses say nothing more
             else:
                 for key, item in frames_value.items():
                     self._frame(str(key), item, frames, from_dh=dh_value is not None)
@@ -670,6 +686,7 @@ class _ProblemBuilder:
     def _dh_table(self, value, frames):
         chk = self.chk
         if not chk.mapping(("dh",), value, ("convention", "rows"), required=("rows",)):
+            self.frames_refused = True    # the frames the table defines: their uses say nothing more
             return
         conv = value.get("convention", "standard")
         if conv not in ("standard", "modified"):
@@ -689,6 +706,7 @@ class _ProblemBuilder:
         for i, row in enumerate(rows):
             path = ("dh", "rows", i)
             if not chk.mapping(path, row, keys, required=keys):
+                self.rejected_frames.add(str(i + 1))
                 continue
             vals = [chk.expr(path + (k,), row[k], self.ns) for k in keys if k in row]
             if len(vals) != 4 or any(v is None for v in vals):
@@ -884,7 +902,7 @@ class _ProblemBuilder:
                 return sp.Matrix([0, 0, -g]), False
             return None, False
         vec = self.chk.vector(("gravity",), value, Namespace({s.name: s for s in self.parameters},
-                                                             what="parameter"))
+                                                             what="parameter", unknown_ok=self.parameters_refused))
         return vec, True
 
     def _bodies(self, value) -> list:

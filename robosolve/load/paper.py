@@ -54,7 +54,7 @@ def load_paper(builder, value) -> dict:
         chk.error(path, f"expected a mapping joint -> value, got {type(at).__name__}")
         return {}
     joints = {j.name: j for j in builder.joints}
-    ns = Namespace({s.name: s for s in builder.parameters}, what="parameter")
+    ns = Namespace({s.name: s for s in builder.parameters}, what="parameter", unknown_ok=builder.parameters_refused)
     out = {}
     for name, v in at.items():
         if name not in joints:

@@ -53,7 +53,8 @@ class _QuestionLoader:
     def __init__(self, b):
         self.b = b
         self.chk = b.chk
-        self.params_ns = Namespace({s.name: s for s in b.parameters}, what="parameter")
+        self.params_ns = Namespace({s.name: s for s in b.parameters}, what="parameter",
+                                   unknown_ok=b.parameters_refused)   # (refused whole: said already)
         self.joint_names = [j.name for j in b.joints]
         self.profile_type = self.type_name("makes_profile")
         self.refused_ids: set = set()      # ids of questions refused whole (None: one had no id)
@@ -209,8 +210,10 @@ class _QuestionLoader:
     def require_gravity(self, path):
         """A question using gravity needs it declared."""
         if self.b.problem.gravity is None and not self.b.gravity_refused:
-            self.chk.error(path + ("type",), "this question uses gravity: declare g in parameters "
-                           "(the default gravity is [0, 0, -g]) or give gravity")
+            # a parameter declared under a name close to g is most likely it, misspelt
+            self.chk.error(path + ("type",), "this question uses gravity: declare g in parameters"
+                           + did_you_mean("g", [s.name for s in self.b.parameters])
+                           + " (the default gravity is [0, 0, -g]) or give gravity")
 
     # -- ids and references --------------------------------------------
     def assign_ids(self, questions, raw):
@@ -294,7 +297,7 @@ class _QuestionLoader:
         try:
             for key, v in value.items():
                 if key not in allowed:
-                    if not self.b.joint_name_refused:     # (maybe the refused joint's: said already)
+                    if not (self.b.joint_name_refused or self.b.parameters_refused):   # (said already)
                         chk.error(path + (key,), f"unknown joint or parameter '{key}'" + did_you_mean(key, allowed))
                     continue
                 e = chk.expr(path + (key,), v, self.params_ns)

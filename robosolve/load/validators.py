@@ -170,7 +170,10 @@ def v_joint_values(ql, path, value, q, require_all=True):
                                                                   did_you_mean(str(key), ql.joint_names))
                       + f" (joints: {', '.join(ql.joint_names)})")
     missing = [n for n in absent if n not in meant]
-    if require_all and missing:
+    # as many unknown keys left without a guess as joints missing: each stands for one of them (a
+    # joint renamed where it is defined), said already where the old name is used
+    unmatched = sum(1 for key in value if key not in ql.joint_names) - len(meant - {None})
+    if require_all and missing and unmatched < len(missing):
         chk.error(path, f"missing joint(s) {', '.join(missing)} (give a value for every joint)")
     out = {}
     for n in ql.joint_names:
@@ -276,7 +279,7 @@ def v_actuator_laws(ql, path, value, q):
         names[j.name], names[j.dot.name] = j.symbol, j.dot
     names["t"] = b.names["t"]
     ns = Namespace(names, what="name in the law (it may use t, the joints, their _dot rates, the parameters)",
-                   unknown_ok=b.joint_name_refused)
+                   unknown_ok=b.joint_name_refused or b.parameters_refused)
     out = {}
     for key, v in value.items():
         if key not in acts:

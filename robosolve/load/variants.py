@@ -160,7 +160,7 @@ def _parameters(builder, value) -> list:
             if name in joints:
                 chk.error(ppath, f"'{name}' is a joint, not a parameter: vary a joint value through a "
                           "parameter used in `at`, a target or a profile")
-            else:
+            elif not builder.parameters_refused:     # (the section refused whole: said already)
                 chk.error(ppath, f"undeclared parameter '{name}'" + did_you_mean(name, declared)
                           + " (a varied parameter must be declared in `parameters`, with its base value)")
             continue
@@ -250,7 +250,8 @@ def _require(builder, value, varied: set | None) -> list:
                   "{nonsingular: <question id>})")
         return []
     questions = {q.id: q for q in builder.problem.questions}
-    params = Namespace({s.name: s for s in builder.parameters}, what="parameter")
+    params = Namespace({s.name: s for s in builder.parameters}, what="parameter",
+                       unknown_ok=builder.parameters_refused)
     out = []
     for i, item in enumerate(value):
         ipath = path + (i,)

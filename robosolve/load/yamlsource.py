@@ -44,11 +44,20 @@ class Source:
 
 
 class YamlProblem(Exception):
-    def __init__(self, line: int, message: str, path: tuple = ()):
+    """A file that is not YAML robosolve reads, at `line`; `path`: the value it is about, when the
+    file could be read that far (the key of a nesting too deep, a number too long, a scalar's tag)."""
+
+    def __init__(self, line: int, message: str, path: Path = ()):
         self.line = line
         self.message = message
-        self.path = path          # where in the data, when the value is known (a scalar's tag)
+        self.path = path
         super().__init__(message)
+
+
+def _holder(path: Path) -> Path:
+    """The section of the file that holds a value nested too deep (`parameters` for
+    parameters.L1[0][0]…): the same whether the converter or the scan of `_deep_line` finds it."""
+    return tuple(path)[:1]
 
 
 class _Converter:
@@ -66,16 +75,16 @@ class _Converter:
                               "(aliases repeated too often?)")
         if depth > MAX_DEPTH:
             raise YamlProblem(node.start_mark.line + 1,
-                              f"nesting deeper than {MAX_DEPTH} levels")
+                              f"nesting deeper than {MAX_DEPTH} levels", _holder(path))
         if isinstance(node, yaml.MappingNode):
             out: dict = {}
             for key_node, value_node in node.value:
                 if not isinstance(key_node, yaml.ScalarNode):
                     raise YamlProblem(key_node.start_mark.line + 1,
-                                      "a key must be a plain name, not a list or mapping")
+                                      "a key must be a plain name, not a list or mapping", path)
                 if key_node.tag == "tag:yaml.org,2002:merge":
                     raise YamlProblem(key_node.start_mark.line + 1,
-                                      "merge keys ('<<') are not supported")
+                                      "merge keys ('<<') are not supported", path)
                 key = self._scalar(key_node, path)
                 if isinstance(key, float) or key is None or isinstance(key, bool):
                     key = key_node.value
@@ -102,7 +111,7 @@ class _Converter:
             line = node.start_mark.line + 1
             digits = sum(c.isdigit() for c in node.value)
             if isinstance(exc, ValueError) and "digits" in str(exc):
-                raise YamlProblem(line, f"number too long ({digits} digits; at most 4300)") from None
+                raise YamlProblem(line, f"number too long ({digits} digits; at most 4300)", path) from None
             if isinstance(exc, yaml.constructor.ConstructorError) and "constructor for the tag" in str(exc):
                 tag = node.tag.replace("tag:yaml.org,2002:", "!!")
                 raise YamlProblem(line, f"invalid value {node.value[:40]!r}: the YAML tag '{tag}' is not one "
@@ -226,23 +235,31 @@ _OPENING = (yaml.FlowSequenceStartToken, yaml.FlowMappingStartToken, yaml.BlockM
 _CLOSING = (yaml.FlowSequenceEndToken, yaml.FlowMappingEndToken, yaml.BlockEndToken)
 
 
-def _deep_line(text: str) -> int:
+def _too_deep(text: str) -> YamlProblem:
+    line, section = _deep_line(text)
+    return YamlProblem(line, f"nesting deeper than {MAX_DEPTH} levels", section)
+
+
+def _deep_line(text: str) -> tuple[int, Path]:
     """The line where the nesting first goes deeper than MAX_DEPTH levels (PyYAML's scanner is
     not recursive: it reads any depth). The top-level mapping opens a level of the scan but is
     depth 0 of the converter: the line must be the converter's, which says it when composing
     does not run out of stack first (a larger recursion limit, a deeper caller)."""
-    depth = -1
+    depth, key, section = -1, False, ()
     try:
         for token in yaml.scan(text, Loader=yaml.SafeLoader):
             if isinstance(token, _OPENING):
                 depth += 1
                 if depth > MAX_DEPTH:
-                    return token.start_mark.line + 1
+                    return token.start_mark.line + 1, section
             elif isinstance(token, _CLOSING):
                 depth -= 1
+            elif isinstance(token, yaml.ScalarToken) and key and depth == 0:
+                section = (token.value,)        # a key of the top mapping: the section below it
+            key = isinstance(token, yaml.KeyToken)
     except (yaml.YAMLError, RecursionError):
         pass
-    return 1
+    return 1, section
 
 
 def _character_problem(text: str, exc) -> YamlProblem:
@@ -280,7 +297,7 @@ def parse_yaml(text: str, file: str = "<input>", limit: int = MAX_FILE_BYTES) ->
     except yaml.YAMLError as exc:
         raise YamlProblem(1, f"YAML error: {exc}") from None
     except RecursionError:
-        raise YamlProblem(_deep_line(text), f"nesting deeper than {MAX_DEPTH} levels") from None
+        raise _too_deep(text) from None
     if len(documents) > 1:
         raise YamlProblem(documents[1].start_mark.line + 1,
                           "more than one YAML document in the file ('---')")
@@ -290,6 +307,6 @@ def parse_yaml(text: str, file: str = "<input>", limit: int = MAX_FILE_BYTES) ->
     try:
         data = conv.convert(documents[0], (), 0)
     except RecursionError:
-        raise YamlProblem(_deep_line(text), f"nesting deeper than {MAX_DEPTH} levels") from None
+        raise _too_deep(text) from None
     conv.lines[()] = documents[0].start_mark.line + 1
     return Source(data, conv.lines, file), conv.duplicates

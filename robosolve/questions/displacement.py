@@ -7,6 +7,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.load import validators as V
+from robosolve.load.expressions import missing_keys
 from robosolve.questions.schema import MATRIX, SCALAR, VECTOR, QuestionType, _k
 from robosolve.questions.wording import asked, listing
 from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, robosolve_numbers, text
@@ -31,9 +32,9 @@ def _check(ql, path, item, q):
                   f"(found {', '.join(pose_keys + screw_keys)})")
         return
     if not screw_keys:
-        for k in ("from", "to"):
-            if k not in item:
-                chk.error(path, f"missing required key '{k}' (or give a screw: axis and angle)")
+        missing = [k for k in ("from", "to") if k not in item]
+        if missing:
+            chk.error(path, missing_keys(missing) + " (or give a screw: axis and angle)")
         return
     if "axis" not in item:
         chk.error(path, f"{', '.join(screw_keys)} describe a screw: give its axis too")

@@ -10,7 +10,7 @@ from robosolve.questions.notebook_code import at_literal, compare_line, coordina
 def _check(ql, path, item, q):
     chk, opts = ql.chk, q.options
     ncoord = len(opts["coordinates"]) if "coordinates" in opts else 3
-    if not any(k in item for k in ("force", "torque")) and not opts.get("weight"):
+    if not any(k in item for k in ("force", "torque")) and not opts.get("weight") and "weight" not in q.rejected:
         chk.error(path, "expected force, torque or weight: true")
     if "force" in opts and len(opts["force"]) != ncoord:
         chk.error(path + ("force",), f"expected {ncoord} components (one per coordinate), "

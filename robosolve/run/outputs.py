@@ -100,6 +100,17 @@ def check_output_file(path, inputs: Iterable = ()) -> None:
                                     "overwrite it, and robosolve has touched nothing. Give another file name")
 
 
+def _dangling_link(path: Path) -> OutputFolderError | None:
+    """The refusal of a path through a symbolic link whose target does not exist (the folder
+    cannot be swapped in over the link, nor made inside it), or None."""
+    for p in [*reversed(path.parents), path]:
+        if p.is_symlink() and not p.exists():
+            return OutputFolderError(f"{path}: {p} is a symbolic link to {os.readlink(p)}, which does not "
+                                     "exist; robosolve has touched nothing. Create that folder, or give "
+                                     "another name")
+    return None
+
+
 def _first_non_folder(path: Path) -> Path | None:
     """The first existing ancestor-or-self of `path` that is not a folder, if any."""
     for p in [*reversed(path.parents), path]:
@@ -113,6 +124,8 @@ def check_collection(path) -> None:
     if str(path) == "":
         raise OutputFolderError("--out is empty: give a folder name (use '.' for the current folder)")
     path = Path(path)
+    if (dangling := _dangling_link(path)) is not None:
+        raise dangling
     blocker = _first_non_folder(path)
     if blocker is not None:
         raise OutputFolderError(f"{path}: {blocker} is a file, not a folder; "
@@ -127,6 +140,8 @@ def check_output_folder(path, inputs: Iterable = (), legacy: Iterable[str] = ())
     if str(path) == "":
         raise OutputFolderError("--out is empty: give a folder name (use '.' for the current folder)")
     path = Path(path)
+    if (dangling := _dangling_link(path)) is not None:
+        raise dangling
     blocker = _first_non_folder(path)
     if blocker is not None:
         what = "this is a file" if blocker == path else f"is inside {blocker}, which is a file"

@@ -272,3 +272,20 @@ def test_signal_to_batch_with_workers_ends_and_leaves_no_debris(tmp_path, sig, s
     assert _debris(tmp_path) == []
     for folder in (tmp_path / "o").glob("*") if (tmp_path / "o").exists() else []:
         assert (folder / MARK).exists() and (folder / "results.json").exists()  # complete or absent
+
+
+@pytest.mark.parametrize("command", ["solve", "batch"])
+@pytest.mark.parametrize("out", ["link", "link/sub"])
+def test_a_symbolic_link_to_nowhere_is_refused_before_working(tmp_path, command, out):
+    """--out through a symbolic link whose target does not exist: the folder cannot be swapped in
+    there (a rename over the link: 'Not a directory', a folder made on its way: 'File exists'),
+    and this was found only after solving, in the system's words. Now refused first, in words,
+    the link and its target left as they were."""
+    (tmp_path / "p.yaml").write_text(MINI)
+    (tmp_path / "link").symlink_to(tmp_path / "gone")
+    result = run_cli([command, "p.yaml", "--out", out], cwd=tmp_path)
+    assert result.returncode == 2, result.stderr
+    assert "symbolic link" in result.stderr and "gone" in result.stderr, result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1 and "answered" not in result.stdout
+    assert sorted(os.listdir(tmp_path)) == ["link", "p.yaml"] and not (tmp_path / "gone").exists()
+    assert os.readlink(tmp_path / "link") == str(tmp_path / "gone")

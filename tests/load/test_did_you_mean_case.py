@@ -85,3 +85,24 @@ def test_an_answers_key():
         resolve_answers(sub, problem)
     out = [str(i) for i in exc.value.issues]
     assert len(out) == 1 and "unknown answer key 'm' (did you mean 'M'?)" in out[0], out
+
+
+@pytest.mark.parametrize("a, b, slips", [
+    ("ojints", "joints", 1), ("ojints", "points", 2), ("kitten", "sitting", 3), ("abc", "abc", 0),
+    ("ab", "ba", 1), ("ca", "abc", 3),     # (counted by hand: the alignment edits no letter twice)
+])
+def test_slips_count_a_swap_of_neighbours_as_one(a, b, slips):
+    from robosolve.load.expressions import _slips
+    assert _slips(a, b) == slips
+
+
+def test_two_letters_swapped_mean_the_key_they_spell():
+    """difflib rates 'ojints' alike against joints and points (5 of 6 letters matched, 0.833 each)
+    and a tie went to points: the file was then read as having no joints, and every frame, `at`
+    and question said so. Two neighbours swapped are one slip from joints, two from points."""
+    text = (ROOT / "problems" / "pendulum-runs.yaml").read_text().replace("\njoints:", "\nojints:")
+    with pytest.raises(InputError) as exc:
+        load_problem_text(text, "p.yaml")
+    issues = [str(i) for i in exc.value.issues]
+    assert len(issues) == 1 and "unknown key 'ojints' (did you mean 'joints'?)" in issues[0], issues
+    assert closest("fraems", ["frames", "forces", "bodies"]) == "frames"

@@ -88,3 +88,34 @@ def test_joint_torques_along_a_profile_past_a_force_domain_is_an_answer_error():
     report = solve_problem(load_problem_text(text, "f.yaml"))
     error = report.answers[1].error
     assert error is not None and "no value along the profile" in error and "internal" not in error
+
+
+SLIDER = """\
+robosolve: 1
+name: slider
+parameters: {m: 2}
+gravity: [0, 0, 0]
+joints: [{name: x, type: prismatic, actuator: F1}]
+frames:
+  "1": {pose: "Tx(x)"}
+bodies: [{name: b, frame: "1", mass: m, point: [0, 0, 0]}]
+%s
+questions:
+  - {type: forward_dynamics, duration: 3%s}
+"""
+
+
+@pytest.mark.parametrize("force, law", [
+    ('forces: [{name: P, frame: "1", force: [t, 0, 0], in: "0"}]', ""),
+    ("", ", actuators: {F1: t}"),
+])
+def test_a_force_or_law_that_is_t_itself_is_read_and_followed(force, law):
+    """A force component or an actuator law written as `t` alone (0 at the start) was an internal
+    error ('int' object has no attribute 'is_Integer'): its value at t = 0 is a plain 0. The slider
+    pushed by t from rest: m x'' = t, x(T) = T³/(6m), x'(T) = T²/(2m) (closed form)."""
+    problem = load_problem_text(SLIDER % (force, law), "s.yaml")
+    answer = solve_problem(problem).answers[0]
+    assert answer.error is None
+    T, m = 3.0, 2.0
+    assert answer.numeric["final"]["x"] == pytest.approx(T**3 / (6 * m), rel=1e-7)
+    assert answer.numeric["final_velocity"]["x"] == pytest.approx(T**2 / (2 * m), rel=1e-7)

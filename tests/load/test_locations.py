@@ -46,7 +46,7 @@ def test_deep_nesting_is_said_at_one_line_whatever_the_stack(limit):
         [m] = messages(HEAD + deep)
     finally:
         sys.setrecursionlimit(old)
-    assert m == "p.yaml:45: nesting deeper than 40 levels"
+    assert m == "p.yaml:45: x: nesting deeper than 40 levels"      # FILE:LINE: the section: what
 
 
 def test_another_control_character():
@@ -62,7 +62,7 @@ def test_another_control_character():
 def test_deep_nesting_is_reported_where_it_gets_too_deep(deep):
     [m] = messages(HEAD + deep)
     line = int(m.split(":")[1])
-    assert line >= 4 and m.endswith("nesting deeper than 40 levels"), m
+    assert line >= 4 and m.endswith(": x: nesting deeper than 40 levels"), m
     if deep.startswith("x:\n"):
         assert line == 4 + 41, m                     # the first line past 40 levels below the top
 

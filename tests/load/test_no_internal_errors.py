@@ -48,7 +48,7 @@ def test_the_default_points_name_is_refused_once_where_it_is_declared(text, wher
 
 def test_a_5000_digit_integer_is_too_long_at_its_line():
     found = issues(ONE.replace("{L: 1}", "{L: " + "1" * 5000 + "}"))
-    assert found == ["p.yaml:3: number too long (5000 digits; at most 4300)"]
+    assert found == ["p.yaml:3: parameters.L: number too long (5000 digits; at most 4300)"]
 
 
 def test_ik_of_a_point_that_does_not_move(write_problem, tmp_path):

@@ -277,3 +277,102 @@ def test_a_dh_table_without_rows_is_one_message(name):
     del data["dh"]["rows"]           # (before: 'expected rows' twice, every body's frame unknown)
     issues = _issues(data)
     assert len(issues) == 1 and "missing required key 'rows'" in issues[0], issues
+
+
+@pytest.mark.parametrize("name, path, value, said", [
+    # a joint refused whole: its name was unknown in every frame, `at` and target that use it
+    ("exam-2r-full", ("joints", 0), "theta1", "joints[0]: expected a mapping, got a string"),
+    ("exam-2r-full", ("joints", 1), ["theta2", "revolute"], "joints[1]: expected a mapping, got a list"),
+    # a joint name taken already (time, a parameter): the same
+    ("kuka-kr", ("joints", 4, "name"), "t", "joints[4].name: name 't' is already used"),
+    ("exam-2r-full", ("joints", 1, "name"), "L1", "joints[1].name: name 'L1' is already used"),
+    # a refused `weight` of statics: not "expected force, torque or weight: true" besides
+    ("exam-2r-full", ("questions", 4, "weight"), "yes", "questions[4].weight: expected true or false"),
+    ("planar-2r-rods", ("questions", 2, "weight"), 1, "questions[2].weight: expected true or false"),
+])
+def test_a_value_of_the_wrong_kind_gives_one_message(name, path, value, said):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    issues = _issues(_value_set(data, path, value))
+    assert len(issues) == 1 and said in issues[0], issues
+
+
+def _renamed_definition(name, path, key, wrong):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    node = _at(data, path)
+    if isinstance(node, dict) and key in node and path[-1:] != ("name",):
+        _renamed(node, key, wrong)            # a key that defines a name (a parameter, a frame)
+    else:
+        _at(data, path[:-1])[path[-1]] = wrong  # a joint's name
+    text = yaml.safe_dump(data, sort_keys=False, allow_unicode=True)
+    with pytest.raises(InputError) as exc:
+        load_problem_text(text, "p.yaml")
+    return text, [str(i) for i in exc.value.issues]
+
+
+@pytest.mark.parametrize("name, path, key, wrong", [
+    # a joint's name misspelt where it is defined: its uses in the DH table, in `at` (the joint,
+    # its rates) were one message each
+    ("panda", ("joints", 1, "name"), "q2", "qq2"),
+    ("exam-2r-full", ("joints", 0, "name"), "theta1", "theta_1"),
+    # a parameter misspelt where it is declared: the frames, the bodies and the variants section
+    ("exam-2r-full", ("parameters",), "L1", "L1x"),
+    ("exam-2r-full", ("parameters",), "F", "FF"),
+    # a frame's name: the bodies and the forces on it
+    ("exam-2r-full", ("frames",), "2", "2x"),
+])
+def test_a_name_misspelt_where_it_is_defined_is_one_message_with_its_uses(name, path, key, wrong):
+    text, issues = _renamed_definition(name, path, key, wrong)
+    assert len(issues) == 1, issues
+    assert f"'{key}'" in issues[0] and f"did you mean '{wrong}'?" in issues[0], issues
+    assert "more use" in issues[0], issues       # each of these names has several uses
+
+
+@pytest.mark.parametrize("name, index, renamed", [
+    ("ik-anthropomorphic-3r", 1, "elbow"),      # its `select` mapping gave "missing joint(s) elbow" too
+    ("rigid-displacements", 0, "base"),         # its displacement's `from` and `to`, the same
+])
+def test_a_joint_renamed_where_it_is_defined_is_one_message(name, index, renamed):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    old = data["joints"][index]["name"]
+    data["joints"][index]["name"] = renamed
+    issues = _issues(data)
+    assert len(issues) == 1 and f"'{old}'" in issues[0] and "more use" in issues[0], issues
+
+
+def test_g_misspelt_where_it_is_declared_is_named_by_the_gravity_message():
+    """A question that uses gravity said 'declare g in parameters' of a file that declares 'gg':
+    the one message now names the parameter it most likely is."""
+    data = yaml.safe_load((ROOT / "problems" / "exam-2r-full.yaml").read_text())
+    _renamed(data["parameters"], "g", "gg")
+    issues = _issues(data)
+    assert len(issues) == 1 and "declare g in parameters (did you mean 'gg'?)" in issues[0], issues
+
+
+@pytest.mark.parametrize("question, said", [
+    ("{type: motion_profile}", "questions[0]: missing required keys 'from', 'to' and 'max_acceleration'"),
+    ("{type: displacement}", "questions[0]: missing required keys 'from' and 'to' (or give a screw: axis and angle)"),
+    ("{type: motion_profile, from: {theta1: 0, theta2: 0}}", "questions[0]: missing required keys 'to' and "
+                                                             "'max_acceleration'"),
+])
+def test_a_question_written_bare_is_one_message_naming_every_key_it_lacks(question, said):
+    """One message per key missing made a bare question (the options forgotten: one mistake) three."""
+    data = yaml.safe_load((ROOT / "problems" / "exam-2r-full.yaml").read_text())
+    data["questions"] = [yaml.safe_load(question)]
+    del data["variants"]
+    issues = _issues(data)
+    assert len(issues) == 1 and said in issues[0], issues
+
+
+@pytest.mark.parametrize("name, path, value, said", [
+    # a section refused whole: every name or frame it defines was unknown wherever used
+    ("exam-2r-full", ("parameters",), "L1 = 1/2", "parameters: expected a mapping name: value, got a string"),
+    ("exam-2r-full", ("parameters",), [1, 2], "parameters: expected a mapping name: value, got a list"),
+    ("planar-2r-rods", ("parameters",), [1, 2], "parameters: expected a mapping name: value, got a list"),
+    ("scara-rrp", ("frames",), "Tz(h) Rz(theta1)", "frames: expected a mapping frame name: definition"),
+    ("kuka-kr", ("dh",), ["standard"], "dh: expected a mapping, got a list"),
+    ("kuka-kr", ("dh", "rows", 2), "q3 0 a3 0", "dh.rows[2]: expected a mapping, got a string"),
+])
+def test_a_section_refused_whole_is_one_message(name, path, value, said):
+    data = yaml.safe_load((ROOT / "problems" / f"{name}.yaml").read_text())
+    issues = _issues(_value_set(data, path, value))
+    assert len(issues) == 1 and said in issues[0], issues

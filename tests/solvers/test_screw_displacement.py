@@ -118,7 +118,7 @@ def test_input_errors():
     assert any("missing required key 'angle'" in m for m in issues("{type: displacement, axis: [0, 0, 1]}"))
     assert any("give its axis" in m for m in issues("{type: displacement, angle: 1}"))
     msgs = issues("{type: displacement}")
-    assert any("missing required key 'from'" in m for m in msgs) and all(m.startswith("f.yaml:") for m in msgs)
+    assert any("missing required keys 'from' and 'to'" in m for m in msgs) and all(m.startswith("f.yaml:") for m in msgs)
 
 
 def test_principal_keys_depend_on_the_form():
