@@ -20,12 +20,15 @@ def notebook_cell(q, answer, problem):
         return _pose_cell(q, answer, problem, target)
     if not target:
         return None
+    solved = solved_joints(q, problem)      # a joint that moves nothing in the target is no unknown
     limits = []
-    for j in problem.joints:
+    for j in solved:
         lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-10, 10))
         limits.append([text(lo), text(hi)])
     residual = [f"({text(lhs)}) - ({text(rhs)})" for _, lhs, rhs in target]
-    names = [j.name for j in problem.joints]
+    names = [j.name for j in solved]
+    unknowns = ("robot.joints" if len(solved) == len(problem.joints) else
+                "[robot.joints[i] for i in " + repr([j.index for j in solved]) + "]")
     want = {"solutions": sorted(answer.numeric.get("solutions") or [], key=lambda s: tuple(s.values()))}
     code = [
         f"at = {at_literal(q)}",
@@ -33,7 +36,7 @@ def notebook_cell(q, answer, problem):
         f"task = robot.vector({literal([text(lhs) for _, lhs, _ in target])})",
         f"residual = (task - robot.vector({literal([text(rhs) for _, _, rhs in target])})).subs(robot.fixed(at))",
         f"limits = [[robot.number(robot.parse(x), at) for x in pair] for pair in {literal(limits)}]",
-        f"solutions = newton_solutions(residual, robot.joints, limits, {literal([j.kind == 'revolute' for j in problem.joints])})",
+        f"solutions = newton_solutions(residual, {unknowns}, limits, {literal([j.kind == 'revolute' for j in solved])})",
         "# (at a workspace boundary a solution is a double root: Newton then finds it to ~1e-7 only)",
         f"compare('solutions', [dict(zip({names!r}, s)) for s in solutions], robosolve['solutions'], atol=1e-6)",
     ]
@@ -48,7 +51,8 @@ def notebook_cell(q, answer, problem):
             "    selected = dict(zip(" + repr(names) + ", min(solutions, key=lambda s: np.linalg.norm(s - list(selected.values())))))",
             f"v = robot.number(robot.vector({literal([text(v) for _, _, v in velocity])}), at).ravel()",
             f"rates_of = robot.vector({literal([text(lhs) for _, lhs, _ in velocity])})",
-            "Jq = robot.number(rates_of.jacobian(robot.joints), {**at, **{k: repr(float(x)) for k, x in selected.items()}})",
+            f"Jq = robot.number(rates_of.jacobian({unknowns}), "
+            "{**at, **{k: repr(float(x)) for k, x in selected.items()}})",
             "q_dot = np.linalg.lstsq(Jq, v, rcond=None)[0]",
             compare_line("q_dot", f"dict(zip({names!r}, q_dot))"),
         ]
@@ -154,8 +158,8 @@ def _selection(q, say) -> str:
     if isinstance(select, dict):
         return (f"the solution nearest to {say.joint_values(select)} (Euclidean distance of the joint "
                 "values, angles wrapped into $(-\\pi, \\pi]$)")
-    return ("the first solution, in the order of the joints' values (" + say.joints()
-            + "; smallest first)")
+    return ("the first solution, in the order of the joints' values ("
+            + say.joints(solved_joints(q, say.problem)) + "; smallest first)")
 
 
 def _words(q, say) -> dict:

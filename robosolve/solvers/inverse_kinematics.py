@@ -91,7 +91,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if res.status == "redundant":
         return _redundant_answer(ans, res, ik_joints, tex)
     if res.status == "overdetermined":
-        raise SolverError(_overdetermined_reason(res, shown))
+        raise SolverError(_overdetermined_reason(res, shown) + (
+            f" ({', '.join(left_out)} {'does' if len(left_out) == 1 else 'do'} not move the target.)"
+            if left_out else ""))
 
     _closed_form_steps(ans, res, shown, len(equations), len(joints), names, values, tex, ik_joints)
     ans.steps.append(_solutions_step(res, names, ik_joints))

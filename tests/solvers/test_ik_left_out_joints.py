@@ -14,6 +14,9 @@ import numpy as np
 
 from robosolve.load.loader import load_problem_text
 from robosolve.papers.keys import placeholder
+from robosolve.papers.paper import Say, statement
+from robosolve.render.chain_names import symbol_latex
+from robosolve.render.markdown import Tex
 from robosolve.questions.registry import QUESTION_TYPES
 from robosolve.render.results_json import results_document
 from robosolve.run.pipeline import solve_problem
@@ -50,6 +53,12 @@ def two_r(x=X, y=Y):
     return sorted(out)
 
 
+def jacobian_2r(q1, q2):
+    """∂(x, y)/∂(q1, q2) of the planar 2R arm."""
+    return np.array([[-L1 * math.sin(q1) - L2 * math.sin(q1 + q2), -L2 * math.sin(q1 + q2)],
+                     [L1 * math.cos(q1) + L2 * math.cos(q1 + q2), L2 * math.cos(q1 + q2)]])
+
+
 def _answers(text):
     report = solve_problem(load_problem_text(dedent(text), "p.yaml"))
     return results_document(report, {})["answers"]
@@ -67,9 +76,7 @@ def test_a_joint_that_does_not_move_the_point_is_left_out():
     assert any("theta3 does not move the target" in n for n in ik["notes"])
     assert all(set(b) == {"theta1", "theta2"} for b in ik["symbolic"]["closed_form"])
     # q_dot = J⁻¹ v with the 2R Jacobian at the selected solution
-    q1, q2 = want[0]
-    J = np.array([[-L1 * math.sin(q1) - L2 * math.sin(q1 + q2), -L2 * math.sin(q1 + q2)],
-                  [L1 * math.cos(q1) + L2 * math.cos(q1 + q2), L2 * math.cos(q1 + q2)]])
+    J = jacobian_2r(*want[0])
     assert list(ik["numeric"]["q_dot"]) == ["theta1", "theta2"]
     assert np.allclose(list(ik["numeric"]["q_dot"].values()), np.linalg.solve(J, [0.05, 0.01]), atol=1e-9)
     # `select` with a configuration: nearest in theta1, theta2 (theta3 = 2 is ignored)
@@ -83,16 +90,37 @@ def test_the_paper_asks_for_the_moving_joints_and_grades_them():
     ik_type = QUESTION_TYPES["inverse_kinematics"]
     assert placeholder(ik_type.key("selected"), q, problem) == {"theta1": None, "theta2": None}
     assert placeholder(ik_type.key("q_dot"), q, problem) == {"theta1": None, "theta2": None}
+    say = Say(problem, Tex(symbol_latex(problem)))
+    stated = statement(q, say)
+    assert "Find every configuration ($\\theta_{1}$, $\\theta_{2}$) within" in stated
+    assert "values ($\\theta_{1}$, $\\theta_{2}$; smallest first)" in stated
+    assert "$\\theta_{3}$ does not move the target: it is in no solution." in stated
     ref = reference_of(THREE_R_W)
     (a1, b1), (a2, b2) = two_r()
+    q_dot = np.linalg.solve(jacobian_2r(a1, b1), [0.05, 0.01])
     res = grade_text(ref, f"""
         robosolve-answers: 1
         student: s1
         answers:
           ik:
             solutions: [{{theta1: {a2}, theta2: {b2}}}, {{theta1: {a1}, theta2: {b1}}}]
+            q_dot: {{theta1: {q_dot[0]}, theta2: {q_dot[1]}}}
         """)
     assert key(res, "ik", "solutions").verdict == "correct"
+    assert key(res, "ik", "q_dot").verdict == "correct"
+
+
+def test_the_notebook_recomputes_in_the_moving_joints_only():
+    """robosolve's own notebook cell (a structure check, not a reference): its Newton search
+    and its Jacobian are in theta1, theta2, as the answer's solutions are."""
+    from robosolve.questions.inverse_kinematics import notebook_cell
+
+    problem = load_problem_text(dedent(THREE_R_W), "p.yaml")
+    q = next(q for q in problem.questions if q.id == "ik")
+    report = solve_problem(problem)
+    cell = notebook_cell(q, report.answers[0], problem)
+    assert "newton_solutions(residual, [robot.joints[i] for i in [0, 1]], limits, [True, True])" in cell
+    assert "rates_of.jacobian([robot.joints[i] for i in [0, 1]])" in cell
 
 
 def test_a_prismatic_joint_that_does_not_move_the_target_coordinates():
@@ -167,3 +195,21 @@ def test_the_wrist_joints_do_not_move_the_wrist_centre():
         qs = [s["q1"], s["q2"], s["q3"], 0.7, -0.2, 1.1]    # any wrist: W does not move
         assert np.allclose(wrist(qs), [0.3, 0.2, 0.25], atol=1e-9)
     assert any("q4, q5, q6 do not move the target" in n for n in ans["notes"])
+
+
+def test_more_or_fewer_equations_than_the_moving_joints():
+    """Counted against theta1, theta2 (theta3 moves nothing in W): three consistent equations
+    give the one 2R solution whose theta1 + theta2 is the one asked; inconsistent ones stay a
+    question error; one equation for two moving joints stays a continuum."""
+    (a1, b1), (a2, b2) = two_r()
+    ans = _answers(THREE_R_W.split("questions:")[0] + f"""questions:
+  - {{type: inverse_kinematics, id: cons, target: {{W.x: 0.6, W.y: 0.3, "theta1 + theta2": {a2 + b2!r}}}}}
+  - {{type: inverse_kinematics, id: bad, target: {{W.x: 0.6, W.y: 0.3, "theta1 + theta2": 0.5}}}}
+  - {{type: inverse_kinematics, id: one, target: {{W.x: 0.6}}}}
+""")
+    sols = ans["cons"]["numeric"]["solutions"]
+    assert len(sols) == 1 and np.allclose(list(sols[0].values()), (a2, b2), atol=1e-9)
+    assert ans["bad"]["error"].startswith("3 equations for 2 unknown joints: no configuration satisfies")
+    assert ans["bad"]["error"].endswith("(theta3 does not move the target.)")
+    assert ans["one"]["numeric"]["solutions"] == []
+    assert any(n.startswith("1 equation for 2 unknown joints: infinitely many solutions") for n in ans["one"]["notes"])
