@@ -18,7 +18,7 @@ import sympy as sp
 from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.ik import closed_form as cfm
-from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
+from robosolve.ik.engine import IKJoint, chop_noise, solve_ik, velocity_ik
 from robosolve.ik.numeric import wrap_angle
 from robosolve.load.pose_target import PoseTarget
 from robosolve.load.problem import Question
@@ -185,7 +185,8 @@ def _overdetermined_reason(res, shown) -> str:
 def _velocity(ans, ctx, model, velocity, params, ik_joints, res, values, tex) -> None:
     """q_dot at the selected solution for the target rates, with its step."""
     joints = [j for j in model.joints if any(j.symbol == k.symbol for k in ik_joints)]
-    coords = [model.coordinate(l) for _, l, _ in velocity]
+    # float noise (cos(1.5707963267949) ≈ 1e-16 beside a wrist joint) is no dependence
+    coords = [chop_noise(model.coordinate(l)) for _, l, _ in velocity]
     rates = [r for _, _, r in velocity]
     undetermined = [j.name for j in model.joints if j not in joints
                     and any(j.symbol in sp.sympify(c).free_symbols for c in coords)]

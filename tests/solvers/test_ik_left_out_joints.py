@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 
 from robosolve.load.loader import load_problem_text
 from robosolve.papers.keys import placeholder
@@ -148,12 +149,15 @@ def test_a_prismatic_joint_that_does_not_move_the_target_coordinates():
     assert any("d3 does not move the target" in n for n in ans["notes"])
 
 
-def test_the_wrist_joints_do_not_move_the_wrist_centre():
+@pytest.mark.parametrize("right", ["pi/2", "1.5707963267949"])
+def test_the_wrist_joints_do_not_move_the_wrist_centre(right):
     """An anthropomorphic arm with a spherical wrist (standard DH), W the wrist centre written in
     frame 6: q4, q5, q6 do not move it, and every solution in q1, q2, q3 puts it at the target
-    (checked with the DH table multiplied out in numpy)."""
+    (checked with the DH table multiplied out in numpy); q_dot against its Jacobian by central
+    differences. With the right angles written as decimals, cos(1.5707963267949) ≈ 1e-16 is no
+    dependence on q4, q5 (it gave no q_dot)."""
     a2, a3, d6 = 0.4, 0.35, 0.1
-    ans = _answers(f"""
+    ans = _answers((f"""
         robosolve: 1
         name: wrist-centre
         parameters: {{a2: {a2}, a3: {a3}, d6: {d6}}}
@@ -174,8 +178,9 @@ def test_the_wrist_joints_do_not_move_the_wrist_centre():
         points:
           W: {{frame: "6", at: [0, 0, -d6]}}
         questions:
-          - {{type: inverse_kinematics, id: ik, target: {{W.x: 0.3, W.y: 0.2, W.z: 0.25}}}}
-        """)["ik"]
+          - {{type: inverse_kinematics, id: ik, target: {{W.x: 0.3, W.y: 0.2, W.z: 0.25}},
+             velocity: {{W.x: 0.1, W.y: -0.05, W.z: 0.02}}}}
+        """).replace("pi/2", right))["ik"]
     rows = [(0, 0, np.pi / 2), (0, a2, 0), (0, 0, np.pi / 2), (a3, 0, -np.pi / 2), (0, 0, np.pi / 2), (d6, 0, 0)]
 
     def wrist(qs):
@@ -195,6 +200,10 @@ def test_the_wrist_joints_do_not_move_the_wrist_centre():
         qs = [s["q1"], s["q2"], s["q3"], 0.7, -0.2, 1.1]    # any wrist: W does not move
         assert np.allclose(wrist(qs), [0.3, 0.2, 0.25], atol=1e-9)
     assert any("q4, q5, q6 do not move the target" in n for n in ans["notes"])
+    sel = [ans["numeric"]["selected"][n] for n in moving] + [0.7, -0.2, 1.1]
+    J = np.column_stack([(wrist(sel + 1e-6 * e) - wrist(sel - 1e-6 * e)) / 2e-6 for e in np.eye(6)[:3]])
+    assert list(ans["numeric"]["q_dot"]) == moving
+    assert np.allclose(list(ans["numeric"]["q_dot"].values()), np.linalg.solve(J, [0.1, -0.05, 0.02]), atol=1e-6)
 
 
 def test_more_or_fewer_equations_than_the_moving_joints():
