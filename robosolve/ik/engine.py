@@ -98,7 +98,7 @@ def is_angular(expr, joints: list[IKJoint]) -> bool:
     return True
 
 
-def _chop(e):
+def chop_noise(e):
     """Float noise such as cos(pi/2) = 6e-17 from a float twist would hide the structure."""
     tiny = {f: 0 for f in e.atoms(sp.Float) if abs(f) < 1e-12}
     return sp.expand(e.xreplace(tiny)) if tiny else e
@@ -320,7 +320,7 @@ def solve_ik(
     """
     res = IKResult()
     names = latex_names or {j.symbol: latex(j.symbol) for j in joints}
-    exprs = [_chop(sp.sympify(l) - sp.sympify(r)) for l, r in equations]
+    exprs = [chop_noise(sp.sympify(l) - sp.sympify(r)) for l, r in equations]
     kept = _leave_out_constant_equations(res, equations, exprs, joints, values, labels)
     if kept is None:
         return res

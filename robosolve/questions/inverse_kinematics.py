@@ -5,6 +5,7 @@ from __future__ import annotations
 import sympy as sp
 
 from robosolve.core.prose import name_md
+from robosolve.core.transforms import ELEMENTARY, dh_modified, dh_standard
 from robosolve.load import validators as V
 from robosolve.load.pose_target import is_pose_target
 from robosolve.questions.schema import BOOL, JOINT_MAP, JOINT_MAP_LIST, JOINT_MAP_SET, TEXT, QuestionType, _k
@@ -19,12 +20,15 @@ def notebook_cell(q, answer, problem):
         return _pose_cell(q, answer, problem, target)
     if not target:
         return None
+    solved = solved_joints(q, problem)      # a joint that moves nothing in the target is no unknown
     limits = []
-    for j in problem.joints:
+    for j in solved:
         lo, hi = j.limits if j.limits else ((-sp.pi, sp.pi) if j.kind == "revolute" else (-10, 10))
         limits.append([text(lo), text(hi)])
     residual = [f"({text(lhs)}) - ({text(rhs)})" for _, lhs, rhs in target]
-    names = [j.name for j in problem.joints]
+    names = [j.name for j in solved]
+    unknowns = ("robot.joints" if len(solved) == len(problem.joints) else
+                "[robot.joints[i] for i in " + repr([j.index for j in solved]) + "]")
     want = {"solutions": sorted(answer.numeric.get("solutions") or [], key=lambda s: tuple(s.values()))}
     code = [
         f"at = {at_literal(q)}",
@@ -32,7 +36,7 @@ def notebook_cell(q, answer, problem):
         f"task = robot.vector({literal([text(lhs) for _, lhs, _ in target])})",
         f"residual = (task - robot.vector({literal([text(rhs) for _, _, rhs in target])})).subs(robot.fixed(at))",
         f"limits = [[robot.number(robot.parse(x), at) for x in pair] for pair in {literal(limits)}]",
-        f"solutions = newton_solutions(residual, robot.joints, limits, {literal([j.kind == 'revolute' for j in problem.joints])})",
+        f"solutions = newton_solutions(residual, {unknowns}, limits, {literal([j.kind == 'revolute' for j in solved])})",
         "# (at a workspace boundary a solution is a double root: Newton then finds it to ~1e-7 only)",
         f"compare('solutions', [dict(zip({names!r}, s)) for s in solutions], robosolve['solutions'], atol=1e-6)",
     ]
@@ -47,18 +51,24 @@ def notebook_cell(q, answer, problem):
             "selected = robosolve['selected'] if not solutions else dict(zip(" + repr(names) + ", mine))",
             f"v = robot.number(robot.vector({literal([text(v) for _, _, v in velocity])}), at).ravel()",
             f"rates_of = robot.vector({literal([text(lhs) for _, lhs, _ in velocity])})",
-            "Jq = robot.number(rates_of.jacobian(robot.joints), {**at, **{k: repr(float(x)) for k, x in selected.items()}})",
+            f"Jq = robot.number(rates_of.jacobian({unknowns}), "
+            "{**at, **{k: repr(float(x)) for k, x in selected.items()}})",
             "q_dot = np.linalg.lstsq(Jq, v, rcond=None)[0]",
             compare_line("q_dot", f"dict(zip({names!r}, q_dot))"),
         ]
     return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
 
 def solved_joints(q, problem) -> list:
-    """The joints a solution gives: for a pose target, those that move the target's frame (a joint
-    past it, the seventh of an arm asked the pose of frame 6, is in no solution: solvers/ik_pose.py);
-    for a target of coordinates, every joint."""
-    if isinstance(q.options.get("target"), list):
-        return list(problem.joints)
+    """The joints a solution gives: those that move the target (a joint that moves nothing in it,
+    the seventh of an arm asked the pose of frame 6 or the wrist joints of an arm asked its wrist
+    centre, is in no solution: solvers/ik_pose.py, solvers/inverse_kinematics.py)."""
+    target = q.options.get("target")
+    if isinstance(target, list):
+        moving = set()
+        for _, lhs, _ in target:
+            moving |= _target_symbols(sp.sympify(lhs), problem)
+        solved = [j for j in problem.joints if j.symbol in moving]
+        return solved or list(problem.joints)      # no joint at all: every configuration (ik/engine.py)
     frame = problem.points[q.point].frame if q.point_given else q.frame
     moving: set = set()
     while frame in problem.frames:
@@ -71,21 +81,54 @@ def solved_joints(q, problem) -> list:
     return [j for j in problem.joints if j.symbol in moving]
 
 
+def _target_symbols(lhs, problem) -> set:
+    """The symbols a target coordinate depends on: its own, and for a point's coordinate (W.x)
+    those of that coordinate in frame 0. The point is carried through the frames' factors from
+    its own frame down to frame 0 (a vector, never a product of poses), so a joint that does not
+    move it drops out as written: Rz(theta6) of [0, 0, 0] is [0, 0, 0], no simplification needed."""
+    out = set()
+    for s in lhs.free_symbols:
+        name, _, axis = s.name.partition(".")
+        if not axis or name not in problem.points:
+            out.add(s)
+            continue
+        point = problem.points[name]
+        v, frame = sp.Matrix(list(point.at) + [1]), point.frame
+        while frame in problem.frames:
+            for m in reversed(_factor_matrices(problem.frames[frame])):
+                v = m * v
+            frame = problem.frames[frame].parent
+        out |= sp.sympify(v["xyz".index(axis)]).free_symbols
+    return out
+
+
+def _factor_matrices(f) -> list:
+    """The 4×4 matrices whose product is the frame's pose, as written."""
+    if f.kind == "matrix":
+        return [sp.Matrix(f.matrix)]
+    if f.kind == "dh":
+        return [dh_standard(*f.factors)]
+    if f.kind == "mdh":
+        return [dh_modified(*f.factors)]
+    return [ELEMENTARY[op](arg) for op, arg in f.factors]
+
+
 def paper_layout(q, problem) -> dict:
     """A pose target's solutions give only the joints that move its frame (papers: the template)."""
     names = [j.name for j in solved_joints(q, problem)]
     if len(names) == len(problem.joints):
         return {}
-    return {"solutions": (names, None), "selected": (names, None)}
+    return {"solutions": (names, None), "selected": (names, None), "q_dot": (names, None)}
 
 
 def _fixed_joints(q, say) -> str:
-    """' $q_7$ does not move frame 6: it is in no solution.' for a pose target ('' else)."""
+    """' $q_7$ does not move frame 6: it is in no solution.' ('' when every joint moves the target)."""
     solved = solved_joints(q, say.problem)
     free = [j for j in say.problem.joints if j not in solved]
     if not free:
         return ""
-    where = f"point {q.point}" if q.point_given else f"frame {name_md(q.frame)}"
+    where = ("the target" if isinstance(q.options.get("target"), list) else
+             f"point {q.point}" if q.point_given else f"frame {name_md(q.frame)}")
     return (f" {say.joints(free)} {'does' if len(free) == 1 else 'do'} not move {where}: "
             f"{'it is' if len(free) == 1 else 'they are'} in no solution.")
 
@@ -133,8 +176,8 @@ def _selection(q, say) -> str:
     if isinstance(select, dict):
         return (f"the solution nearest to {say.joint_values(select)} (Euclidean distance of the joint "
                 "values, angles wrapped into $(-\\pi, \\pi]$)")
-    return ("the first solution, in the order of the joints' values (" + say.joints()
-            + "; smallest first)")
+    return ("the first solution, in the order of the joints' values ("
+            + say.joints(solved_joints(q, say.problem)) + "; smallest first)")
 
 
 def _words(q, say) -> dict:

@@ -18,10 +18,11 @@ import sympy as sp
 from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.ik import closed_form as cfm
-from robosolve.ik.engine import IKJoint, solve_ik, velocity_ik
+from robosolve.ik.engine import IKJoint, chop_noise, solve_ik, velocity_ik
 from robosolve.ik.numeric import wrap_angle
 from robosolve.load.pose_target import PoseTarget
 from robosolve.load.problem import Question
+from robosolve.questions.inverse_kinematics import solved_joints
 from robosolve.solvers.ik_pose import solve_pose_question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
 from robosolve.solvers.common import robot_drawing
@@ -63,6 +64,12 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
             figure(ans, ctx, params, res, ik_joints, question)
         return ans
     equations, target_syms, shown, values, missing = _target_equations(opts["target"], model, ctx, params)
+    # the unknowns are the joints that move the target (the paper asks for those: questions/)
+    joints = solved_joints(question, ctx.problem)
+    left_out = [j.name for j in model.joints if j not in joints]
+    if left_out:
+        ans.note(", ".join(left_out) + (" does" if len(left_out) == 1 else " do") + " not move the target: "
+                 "any value reaches it, and the solutions give the other joints")
     ik_joints, limit_notes = _ik_joints(joints, ctx, params)
     for n_ in limit_notes:
         ans.note(n_)
@@ -84,7 +91,9 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if res.status == "redundant":
         return _redundant_answer(ans, res, ik_joints, tex)
     if res.status == "overdetermined":
-        raise SolverError(_overdetermined_reason(res, shown))
+        raise SolverError(_overdetermined_reason(res, shown) + (
+            f" ({', '.join(left_out)} {'does' if len(left_out) == 1 else 'do'} not move the target.)"
+            if left_out else ""))
 
     _closed_form_steps(ans, res, shown, len(equations), len(joints), names, values, tex, ik_joints)
     ans.steps.append(_solutions_step(res, names, ik_joints))
@@ -175,9 +184,16 @@ def _overdetermined_reason(res, shown) -> str:
 
 def _velocity(ans, ctx, model, velocity, params, ik_joints, res, values, tex) -> None:
     """q_dot at the selected solution for the target rates, with its step."""
-    joints = model.joints
-    coords = [model.coordinate(l) for _, l, _ in velocity]
+    joints = [j for j in model.joints if any(j.symbol == k.symbol for k in ik_joints)]
+    # float noise (cos(1.5707963267949) ≈ 1e-16 beside a wrist joint) is no dependence
+    coords = [chop_noise(model.coordinate(l)) for _, l, _ in velocity]
     rates = [r for _, _, r in velocity]
+    undetermined = [j.name for j in model.joints if j not in joints
+                    and any(j.symbol in sp.sympify(c).free_symbols for c in coords)]
+    if undetermined:       # the target leaves them free: no selected value to take J at
+        ans.note(f"the velocity's coordinates depend on {', '.join(undetermined)}, which the target does "
+                 "not determine: no q_dot (give the velocity of coordinates of the target)")
+        return
     try:
         rate_vals = [ctx.numeric(r, params) for r in rates]
         vik = velocity_ik(coords, rate_vals, ik_joints, res.selected, values)
