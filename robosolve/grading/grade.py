@@ -130,8 +130,9 @@ def read_jobs(files, problem=None, table=None, warnings=None):
             sub.student = match.student
             student_fields = {"variant": match.variant, "row": match.row, "note": _variant_note(table, match)}
             if student_fields["note"] and warnings is not None:
+                row = ", in that student's gradebook row" if table.has_roster else ""
                 warnings.append(f"{f}: this submission of '{sub.student}' {student_fields['note']} "
-                                f"(the gradebook has it in the row of '{sub.student}')")
+                                f"(filed under '{sub.student}'{row})")
         if not Path(path).is_file():
             missing = missing_problem(sub) if problem is None and match is None else None
             jobs.append(Job(i, str(f), sub.student, None, None, str(missing) if missing is not None
@@ -148,9 +149,10 @@ def _variant_note(table, match) -> str:
     said in its record and feedback, '' when it is its own."""
     if not match.own_variant:
         return ""
-    whose = table.cell(table.row_of(match.variant), "student") if table.row_of(match.variant) is not None else ""
-    answered = f"the variant of '{whose}' ({match.variant}" if whose else f"variant {match.variant} ("
-    return (f"answered {answered}, named by `problem:`), not its own ({match.own_variant}); "
+    row = table.row_of(match.variant)
+    whose = table.cell(row, "student") if row is not None else ""
+    answered = f"the variant of '{whose}' ({match.variant}, " if whose else f"variant {match.variant} ("
+    return (f"answered {answered}named by `problem:`), not its own ({match.own_variant}); "
             f"graded against {match.variant}")
 
 

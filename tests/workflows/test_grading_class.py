@@ -344,7 +344,7 @@ def test_answering_another_students_variant_keeps_the_students_row(course, tmp_p
     assert f"Note: this submission {note}; graded against jo-smith.\n" in page
     assert "/exams/arm-jo-smith/report.md)" in page          # her worked solution: the variant she answered
     said = " ".join(r.output.split())
-    assert f"this submission of 'Ann Lee' {note}; graded against jo-smith (the gradebook has it in the row of 'Ann Lee')" in said
+    assert f"this submission of 'Ann Lee' {note}; graded against jo-smith (filed under 'Ann Lee', in that student's gradebook row)" in said
     assert "jo-smith" not in (out / "feedback" / "jo-smith.md").read_text().replace("arm-jo-smith", "")
 
 
