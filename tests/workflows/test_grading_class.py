@@ -412,3 +412,21 @@ def test_feedback_statement_is_the_papers_with_rates_named(tmp_path):
     assert "\\dot{q}_{1} = 1" in statement and "\\ddot{q}_{2} = 1" in statement, statement
     assert "dot}" not in statement.replace("\\dot{q}", "").replace("\\ddot{q}", ""), statement
     assert statement in paper
+
+
+def test_another_variant_without_a_roster_is_noted_by_its_ids(course, tmp_path):
+    """A `variants --count` folder names no student: a file of variant 1 (by its id) that names
+    variant 2's problem.yaml is graded against 2, filed under '1', and its note names both ids."""
+    exams = tmp_path / "exams"                  # what `variants --count 2` writes (two of the course's variants)
+    for v, given in (("1", "ann-lee"), ("2", "jo-smith")):
+        (exams / f"arm-{v}").mkdir(parents=True)
+        (exams / f"arm-{v}" / "problem.yaml").write_text((course / "exams" / f"arm-{given}" / "problem.yaml").read_text())
+    (exams / "variants.csv").write_text("variant,student,seed\n1,,0\n2,,0\n")
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "a.yaml").write_text(answers(FQ, student="1", problem=str(exams / "arm-2" / "problem.yaml")))
+    r = runner.invoke(app, ["grade", str(subs), "--variants", str(exams), "--out", str(tmp_path / "g"), "--jobs", "1"])
+    assert r.exit_code == 0, r.output
+    record = yaml.safe_load((tmp_path / "g" / "1.json").read_text())
+    assert record["student"] == "1"
+    assert record["note"] == "answered variant 2 (named by `problem:`), not its own (1); graded against 2"
