@@ -70,6 +70,8 @@ def page(result, questions: dict, problem=None, link: str = "", reason: str = ""
         lines.append("")
     if link:
         lines += [f"Your worked solution: [report.md]({link})", ""]
+    if result.note:
+        lines += [f"Note: this submission {result.note}.", ""]
     if result.error:
         if reason and reason != NOT_READ:
             lines += [f"No answer was graded: {reason}" + ("" if reason.endswith((".", "?")) else "."), ""]

@@ -47,6 +47,7 @@ class Job:
     variant: str = ""              # --variants: the variant it answers
     row: int | None = None         # --variants with a roster: its roster row
     shape_key: str | None = None   # unmatched (--variants): a variant whose questions its rows list
+    note: str = ""                 # --variants: it answered another student's variant (named by problem:)
 
 
 def collect(sources, warnings=None) -> list[Path]:
@@ -124,9 +125,14 @@ def read_jobs(files, problem=None, table=None, warnings=None):
         except ValueError as exc:
             jobs.append(Job(i, str(f), sub.student, None, None, f"{f}: {exc}", reason=str(exc)))
             continue
+        student_fields = {}
         if match is not None:
             sub.student = match.student
-        student_fields = {"variant": match.variant, "row": match.row} if match is not None else {}
+            student_fields = {"variant": match.variant, "row": match.row, "note": _variant_note(table, match)}
+            if student_fields["note"] and warnings is not None:
+                row = ", in that student's gradebook row" if table.has_roster else ""
+                warnings.append(f"{f}: this submission of '{sub.student}' {student_fields['note']} "
+                                f"(filed under '{sub.student}'{row})")
         if not Path(path).is_file():
             missing = missing_problem(sub) if problem is None and match is None else None
             jobs.append(Job(i, str(f), sub.student, None, None, str(missing) if missing is not None
@@ -136,6 +142,18 @@ def read_jobs(files, problem=None, table=None, warnings=None):
         problems.setdefault(key, (path, []))[1].append((i, sub))
         jobs.append(Job(i, str(f), sub.student, key, None, **student_fields))
     return jobs, problems
+
+
+def _variant_note(table, match) -> str:
+    """Why a submission's variant is not its student's own (`problem:` names another student's):
+    said in its record and feedback, '' when it is its own."""
+    if not match.own_variant:
+        return ""
+    row = table.row_of(match.variant)
+    whose = table.cell(row, "student") if row is not None else ""
+    answered = f"the variant of '{whose}' ({match.variant}, " if whose else f"variant {match.variant} ("
+    return (f"answered {answered}named by `problem:`), not its own ({match.own_variant}); "
+            f"graded against {match.variant}")
 
 
 def input_paths(files, problems) -> list[Path]:
@@ -216,6 +234,12 @@ def _init_worker(references, worker: bool = False) -> None:
 
 
 def grade_job(job: Job):
+    index, result = _graded(job)
+    result.note = job.note
+    return index, result
+
+
+def _graded(job: Job):
     ref = _REFERENCES.get(job.problem_key or job.shape_key)
     if job.answers is None:
         return job.index, invalid_result(ref, job.student, job.error, job.reason, bool(job.problem_key))

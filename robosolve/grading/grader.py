@@ -92,6 +92,7 @@ class SubmissionResult:
     questions: list                               # QuestionResult, in the problem's order
     error: str = ""                               # the submission could not be read
     notes: list = field(default_factory=list)     # answers that could not be placed (unknown question ids)
+    note: str = ""                                # --variants: it answered another student's variant
 
     @property
     def score(self) -> Fraction:

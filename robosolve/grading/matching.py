@@ -6,7 +6,10 @@ and DIR/roster.csv when `variants --roster` wrote it (the roster as read, a firs
 submission is matched, in this order: by its `problem:` when it names a problem.yaml inside
 DIR; by its `student` (trimmed, ignoring case) against every column of the roster; by the
 variant ids (the roster's `variant` column). Matched through the roster (either way), it is
-filed under its row's `student`; by `problem:`, under its own id. No match, or two variants, is a `MatchError` saying so, with a did-you-mean.
+filed under its row's `student`. By `problem:`, the variant is the one named but the student
+is who the id says: the id's roster row when it matches one (filed as above, its own variant
+noted when it differs), else the variant's row stands for it, filed under the id. No match,
+or two variants, is a `MatchError` saying so, with a did-you-mean.
 Without roster.csv (a folder of `variants --count`, or an older one), variants.csv's own
 `student` column is the roster.
 """
@@ -36,6 +39,7 @@ class Match:
     problem: Path
     student: str                   # the id the submission is filed under
     row: int | None = None         # its roster row (0-based), when there is one
+    own_variant: str = ""          # the student's own variant, when `problem:` names another one
 
 
 @dataclass
@@ -70,20 +74,38 @@ class VariantsTable:
         if problem_file is not None:
             variant = self._by_problem.get(_resolved(problem_file))
             if variant is not None:
-                return Match(variant, self.problems[variant], student, self.row_of(variant))
-        key = student.strip().casefold()
-        hits = self._roster_hits(key)
+                return self._named(variant, student)
+        hits = self._student_hits(student)
         if len(hits) > 1:
             raise MatchError(f"student '{student}' matches {len(hits)} variants in the roster of "
                              f"{self.folder} ({', '.join(hits)}): give `problem:` or a unique id")
         if hits:
             (variant, row), = hits.items()
             return Match(variant, self.problems[variant], self._filed(row, student), row)
+        raise MatchError(f"student '{student}' is not in the roster of {self.folder}" + self._close(student))
+
+    def _named(self, variant: str, student: str) -> Match:
+        """The variant `problem:` names, answered by the student the id says: the id's roster
+        row (the variant's own among several), so another student's variant never takes that
+        student's row; only an id that matches no row, or several others, leaves the variant's
+        row standing for it (filed under the id)."""
+        hits = self._student_hits(student)
+        if variant in hits or len(hits) != 1:
+            row = hits.get(variant, self.row_of(variant))
+            return Match(variant, self.problems[variant], self._filed(row, student) if variant in hits else student, row)
+        (own, row), = hits.items()
+        return Match(variant, self.problems[variant], self._filed(row, student), row, own)
+
+    def _student_hits(self, student: str) -> dict:
+        """variant -> roster row of `student`: by the roster's columns, else by the variant ids."""
+        key = student.strip().casefold()
+        hits = self._roster_hits(key)
+        if hits:
+            return hits
         for variant in self.problems:     # the variant ids: the roster's `variant` column
             if variant.casefold() == key or variant == safe_name(student):
-                row = self.row_of(variant)
-                return Match(variant, self.problems[variant], self._filed(row, student), row)
-        raise MatchError(f"student '{student}' is not in the roster of {self.folder}" + self._close(student))
+                return {variant: self.row_of(variant)}
+        return {}
 
     def _filed(self, row: int | None, student: str) -> str:
         """The id a submission matched through the roster is filed under: its row's `student`

@@ -49,6 +49,8 @@ def record(result: SubmissionResult) -> dict:
         out["error"] = result.error
     if result.notes:
         out["notes"] = list(result.notes)
+    if result.note:
+        out["note"] = result.note
     out["questions"] = {
         q.id: {"marks": json_number(q.marks), "score": json_number(q.score),
                "keys": {k: r.as_dict() for k, r in q.keys.items()}}

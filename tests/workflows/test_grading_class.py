@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import re
+from fractions import Fraction
 from pathlib import Path
 
 import pytest
@@ -276,23 +278,74 @@ def _grade_again(course, tmp_path, submissions: dict):
 
 
 @pytest.mark.parametrize("by_problem_first", [True, False])
-def test_two_submissions_of_one_roster_student_are_a_duplicate(course, tmp_path, by_problem_first):
-    """Ann Lee twice: once by `problem:` (her variant) with her roster ID `102`, once by her
-    roster name. The file sorted later is the duplicate (graded invalid, naming the first), and
-    `grade` exits 1 — both were graded and the gradebook silently kept one score."""
-    by_problem = answers(FQ, student="102", problem=str(course / "exams" / "arm-ann-lee" / "problem.yaml"))
+@pytest.mark.parametrize("own_id", ["102", "s-999"])
+def test_two_submissions_of_one_roster_student_are_a_duplicate(course, tmp_path, by_problem_first, own_id):
+    """Ann Lee twice: once by `problem:` (her variant), as her roster ID `102` (so filed under
+    her roster name) or as an id the roster does not hold (filed under it, her variant's row
+    standing for it), once by her roster name. The file sorted later is the duplicate (graded
+    invalid, naming the first), and `grade` exits 1 — both were graded and the gradebook
+    silently kept one score."""
+    by_problem = answers(FQ, student=own_id, problem=str(course / "exams" / "arm-ann-lee" / "problem.yaml"))
     by_name = answers(FQ_NEG, student="Ann Lee")         # Fq negated: half of its 3 marks, 2.5 / 4
     first, second = ("a.yaml", "b.yaml") if by_problem_first else ("b.yaml", "a.yaml")
     r, out = _grade_again(course, tmp_path, {first: by_problem, second: by_name})
     assert r.exit_code == 1, r.output
-    summary = {row[0]: row[1] for row in rows(out / "summary.csv")[1:]}
-    kept, dup = ("102", "Ann Lee") if by_problem_first else ("Ann Lee", "102")
-    assert summary == {kept: "4" if by_problem_first else "2.5", dup: "0"}
-    record = yaml.safe_load((out / f"{re.sub('[^a-z0-9_-]+', '-', dup.lower())}.json").read_text())
-    reason = record["questions"]["statics"]["keys"]["Fq"]["feedback"]
-    assert reason.startswith(f"duplicate student id '{dup}'") and str(tmp_path / "subs" / "a.yaml") in reason
+    filed = "Ann Lee" if own_id == "102" else own_id
+    kept, dup = (filed, "Ann Lee") if by_problem_first else ("Ann Lee", filed)
+    score = "4" if by_problem_first else "2.5"
+    assert sorted(row[:2] for row in rows(out / "summary.csv")[1:]) == sorted([[kept, score], [dup, "0"]])
+    same = "" if kept == dup else f" (the same roster student as '{kept}')"
+    assert f"duplicate student id '{dup}'{same}: " in " ".join(r.output.split())
+    if kept != dup:                # the duplicate has its own record
+        record = yaml.safe_load((out / f"{re.sub('[^a-z0-9_-]+', '-', dup.lower())}.json").read_text())
+        reason = record["questions"]["statics"]["keys"]["Fq"]["feedback"]
+        assert reason.startswith(f"duplicate student id '{dup}'") and str(tmp_path / "subs" / "a.yaml") in reason
     canvas = {row[1]: row[-1] for row in rows(out / "gradebook" / "canvas.csv")[1:]}
-    assert canvas == {"101": "", "102": summary[kept], "103": "", "104": ""}
+    assert canvas == {"101": "", "102": score, "103": "", "104": ""}
+
+
+def _pose_numbers(L1, L2, q1=math.pi / 6, q2=math.pi / 3) -> list:
+    """The two-link arm's 0M2 at (q1, q2), closed form, 6 decimals (as a student writes it)."""
+    c, s = math.cos(q1 + q2), math.sin(q1 + q2)
+    return [[round(c, 6), round(-s, 6), 0, round(L1 * math.cos(q1) + L2 * c, 6)],
+            [round(s, 6), round(c, 6), 0, round(L1 * math.sin(q1) + L2 * s, 6)], [0, 0, 1, 0], [0, 0, 0, 1]]
+
+
+@pytest.mark.parametrize("hers_first", [True, False])
+def test_answering_another_students_variant_keeps_the_students_row(course, tmp_path, hers_first):
+    """Ann Lee's file names Jo Smith's variant by `problem:` and answers it right (M in numbers,
+    closed form with Jo's L2); Jo hands in his own with M of Ann's L2 (wrong for his variant).
+    Ann is graded against Jo's variant but stays Ann: her gradebook row, her files, a note
+    naming Jo's variant; Jo is not her duplicate (he was: his submission invalid, his row Ann's
+    score, hers empty)."""
+    exams = course / "exams"
+    params = {v: yaml.safe_load((exams / f"arm-{v}" / "problem.yaml").read_text())["parameters"]
+              for v in ("jo-smith", "ann-lee")}
+    length = {v: [float(Fraction(str(p[k]))) for k in ("L1", "L2")] for v, p in params.items()}
+    assert length["jo-smith"][1] != length["ann-lee"][1]      # the two variants differ in M
+    hers = yaml.safe_dump({"robosolve-answers": 1, "problem": str(exams / "arm-jo-smith" / "problem.yaml"),
+                           "student": "Ann Lee", "answers": {"position": {"M": _pose_numbers(*length["jo-smith"])},
+                                                             "statics": {"Fq": FQ}}}, sort_keys=False)
+    his = yaml.safe_dump({"robosolve-answers": 1, "student": "Jo Smith",
+                          "answers": {"position": {"M": _pose_numbers(*length["ann-lee"])},
+                                      "statics": {"Fq": FQ}}}, sort_keys=False)
+    names = ("a.yaml", "b.yaml") if hers_first else ("b.yaml", "a.yaml")
+    r, out = _grade_again(course, tmp_path, {names[0]: hers, names[1]: his})
+    assert r.exit_code == 0, r.output          # every submission read, no duplicate
+    assert rows(out / "summary.csv")[1:] == [["Ann Lee", "4", "4", "100.0"], ["Jo Smith", "3", "4", "75.0"]]
+    assert ["Jo Smith", "position", "M", "incorrect", "", "0", "1"] in rows(out / "grades.csv")
+    canvas = {row[1]: row[-1] for row in rows(out / "gradebook" / "canvas.csv")[1:]}
+    assert canvas == {"101": "3", "102": "4", "103": "", "104": ""}
+    ann = yaml.safe_load((out / "ann-lee.json").read_text())
+    note = "answered the variant of 'Jo Smith' (jo-smith, named by `problem:`), not its own (ann-lee)"
+    assert ann["problem"] == "arm-jo-smith" and note in ann["note"]
+    assert "note" not in yaml.safe_load((out / "jo-smith.json").read_text())
+    page = (out / "feedback" / "ann-lee.md").read_text()
+    assert f"Note: this submission {note}; graded against jo-smith.\n" in page
+    assert "/exams/arm-jo-smith/report.md)" in page          # her worked solution: the variant she answered
+    said = " ".join(r.output.split())
+    assert f"this submission of 'Ann Lee' {note}; graded against jo-smith (filed under 'Ann Lee', in that student's gradebook row)" in said
+    assert "jo-smith" not in (out / "feedback" / "jo-smith.md").read_text().replace("arm-jo-smith", "")
 
 
 def test_a_variant_id_is_filed_under_the_roster_student(course, tmp_path):
@@ -318,6 +371,16 @@ def test_matching_rules_in_order(tmp_path):
     # 1. problem: inside DIR wins over the student id
     m = table.match("Ann", tmp_path / "exam-jo" / "problem.yaml")
     assert (m.variant, m.student) == ("jo", "Ann")
+    #    ... but the student is who the id says: Ann's row, her own variant noted
+    assert (m.row, m.own_variant) == (1, "ann")
+    m = table.match("ann@x.org", tmp_path / "exam-jo" / "problem.yaml")
+    assert (m.variant, m.student, m.row, m.own_variant) == ("jo", "Ann", 1, "ann")
+    #    an id the roster does not hold: the variant's row stands for it, filed under the id
+    m = table.match("nobody", tmp_path / "exam-jo" / "problem.yaml")
+    assert (m.variant, m.student, m.row, m.own_variant) == ("jo", "nobody", 0, "")
+    #    a value two rows share, one of them the variant's: that row
+    m = table.match("G1", tmp_path / "exam-jo" / "problem.yaml")
+    assert (m.variant, m.student, m.row, m.own_variant) == ("jo", "Jo", 0, "")
     # 2. any roster column, trimmed, case ignored; filed under the roster's student
     m = table.match("  JO@X.ORG ", tmp_path / "elsewhere.yaml")
     assert (m.variant, m.student, m.row) == ("jo", "Jo", 0)
@@ -349,3 +412,21 @@ def test_feedback_statement_is_the_papers_with_rates_named(tmp_path):
     assert "\\dot{q}_{1} = 1" in statement and "\\ddot{q}_{2} = 1" in statement, statement
     assert "dot}" not in statement.replace("\\dot{q}", "").replace("\\ddot{q}", ""), statement
     assert statement in paper
+
+
+def test_another_variant_without_a_roster_is_noted_by_its_ids(course, tmp_path):
+    """A `variants --count` folder names no student: a file of variant 1 (by its id) that names
+    variant 2's problem.yaml is graded against 2, filed under '1', and its note names both ids."""
+    exams = tmp_path / "exams"                  # what `variants --count 2` writes (two of the course's variants)
+    for v, given in (("1", "ann-lee"), ("2", "jo-smith")):
+        (exams / f"arm-{v}").mkdir(parents=True)
+        (exams / f"arm-{v}" / "problem.yaml").write_text((course / "exams" / f"arm-{given}" / "problem.yaml").read_text())
+    (exams / "variants.csv").write_text("variant,student,seed\n1,,0\n2,,0\n")
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "a.yaml").write_text(answers(FQ, student="1", problem=str(exams / "arm-2" / "problem.yaml")))
+    r = runner.invoke(app, ["grade", str(subs), "--variants", str(exams), "--out", str(tmp_path / "g"), "--jobs", "1"])
+    assert r.exit_code == 0, r.output
+    record = yaml.safe_load((tmp_path / "g" / "1.json").read_text())
+    assert record["student"] == "1"
+    assert record["note"] == "answered variant 2 (named by `problem:`), not its own (1); graded against 2"
