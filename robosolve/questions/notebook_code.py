@@ -58,8 +58,8 @@ def lines(*parts) -> str:
     return "\n".join(p for p in parts if p is not None)
 
 
-def compare_line(key, expr, *, want=None, rtol=None) -> str:
-    tol = "" if rtol is None else f", rtol={rtol!r}"
+def compare_line(key, expr, *, want=None, rtol=None, atol=None) -> str:
+    tol = ("" if rtol is None else f", rtol={rtol!r}") + ("" if atol is None else f", atol={atol}")
     return f"compare({key!r}, {expr}, robosolve[{key!r}]{want or ''}{tol})"
 
 

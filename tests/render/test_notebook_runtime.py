@@ -529,3 +529,34 @@ def test_a_wide_j_starts_where_the_engine_starts_from_a_given_start_and_from_zer
         want = tp.nearest_solution(arm, target, np.zeros(3) if given is None else given)
         got = ns["arm"].start(target, [[-math.pi, math.pi]] * 3, given)
         assert got == pytest.approx(want, abs=1e-12)
+
+
+@pytest.mark.parametrize("start_at, exact", [
+    ("E.x: 0.8, E.y: 0.6", (math.atan2(0.6, 0.8), 0.0)),
+    ("E.x: 1, E.y: 0", (0.0, 0.0)),
+], ids=["stretched-0.8-0.6", "stretched-1-0"])
+def test_a_start_on_the_rim_agrees_within_the_square_root_of_the_round_off(start_at, exact, capsys):
+    """`from` where the arm is stretched (L1 = L2 = 0.5, |from| = 1): a double root of x(q) = from,
+    which the notebook's Newton approaches linearly and leaves some 1e-8 rad off (its residual is
+    round-off there, the distance its square root); the exact start is (atan2(y, x), 0). The cell's
+    comparison allows √(residual) there, and only there: 1e-5 rad off still differs."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.task_trajectory import notebook_cell
+    from robosolve.solvers import task_trajectory as tt
+    from robosolve.solvers.base import SolveContext
+
+    text = TRAJECTORIES["2r-planar-arc"].replace("Tx(0.4)", "Tx(0.5)").replace(
+        "path: {circle: {center: [0.1, 0.1]}}, ", "").replace("E.x: 0.7, E.y: 0.1", start_at)
+    problem = load_problem_text(text, "r.yaml")
+    q = problem.questions[0]
+    answer = tt.solve(q, SolveContext(problem, RobotModel(problem)))
+    assert list(answer.numeric["start"].values()) == pytest.approx(exact, abs=1e-9)
+    namespace = dict(vars(rt))
+    exec(data_cell(problem) + "\n" + notebook_cell(q, answer, problem), namespace)
+    out = capsys.readouterr().out
+    assert "recomputed start" in out and "DIFFERS" not in out, out
+    ns_start, tol = namespace["start"], namespace["arm"].root_tolerance(namespace["start"], namespace["path"].a)
+    assert np.abs(np.asarray(ns_start) - exact).max() <= tol <= 1e-6
+    off = {k: v + 1e-5 for k, v in answer.numeric["start"].items()}
+    rt.compare("start", dict(zip(["q1", "q2"], ns_start)), off, atol=tol)
+    assert "DIFFERS" in capsys.readouterr().out
