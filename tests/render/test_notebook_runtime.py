@@ -560,3 +560,37 @@ def test_a_start_on_the_rim_agrees_within_the_square_root_of_the_round_off(start
     off = {k: v + 1e-5 for k, v in answer.numeric["start"].items()}
     rt.compare("start", dict(zip(["q1", "q2"], ns_start)), off, atol=tol)
     assert "DIFFERS" in capsys.readouterr().out
+
+
+def test_the_cell_of_a_follower_with_a_parameter_override_rebuilds_its_reference_with_it(capsys):
+    """joint_torques with `at: {qf: 2}` on a profile to q1 = qf: the cell's profile goes to 2 as
+    robosolve's does (it kept the profile question's qf = 1). By hand at t = 0+, point masses at
+    the link ends, q = 0: T = 2, qdd = (2, 1/2); M11 = (m1 + m2) L1² + m2 L2² + 2 m2 L1 L2 = 1.31,
+    M12 = m2 L2² + m2 L1 L2 = 0.36, M22 = 0.16; g1 = g ((m1 + m2) L1 + m2 L2), g2 = g m2 L2."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.joint_torques import notebook_cell
+    from robosolve.run.pipeline import solve_problem
+
+    problem = load_problem_text("""robosolve: 1
+name: prof
+parameters: {L1: 0.5, L2: 0.4, m1: 2, m2: 1, g: 9.81, qf: 1}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: b1, frame: "1", mass: m1, point: [0, 0, 0]}
+  - {name: b2, frame: "2", mass: m2, point: [0, 0, 0]}
+questions:
+  - {type: motion_profile, id: mp, from: {q1: 0, q2: 0}, to: {q1: qf, q2: 0.5}, max_acceleration: {q1: 2, q2: 2}}
+  - {type: joint_torques, profile: mp, at: {qf: 2}}
+""", "r.yaml")
+    answer = next(a for a in solve_problem(problem).answers if a.id == "joint_torques")
+    want = [1.31 * 2 + 0.36 * 0.5 + 9.81 * (3 * 0.5 + 0.4), 0.36 * 2 + 0.16 * 0.5 + 9.81 * 0.4]
+    assert [v["peak"] for v in answer.numeric["actuators"].values()] == pytest.approx(want, rel=1e-9)
+    namespace = dict(vars(rt))
+    exec(data_cell(problem) + "\n" + notebook_cell(problem.questions[1], answer, problem), namespace)
+    out = capsys.readouterr().out
+    assert "DIFFERS" not in out and out.count("agrees with robosolve") == 2, out
+    assert list(namespace["peaks"]) == pytest.approx(want, rel=1e-9)
