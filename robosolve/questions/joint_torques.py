@@ -7,12 +7,12 @@ from __future__ import annotations
 from robosolve.load import validators as V
 from robosolve.questions.schema import ACTUATOR_MAP, ACTUATOR_RECORDS, SCALAR, QuestionType, _k
 from robosolve.questions.wording import asked, listing
-from robosolve.questions.notebook_code import at_literal, compare_line, lines, literal, profile_lines, question_by_id
+from robosolve.questions.notebook_code import at_literal, compare_line, followed_question, lines, literal, profile_lines
 
 
 def notebook_cell(q, answer, problem):
     """The notebook's cell that recomputes the answer (questions/notebook_code.py)."""
-    pq = question_by_id(problem, q.options["profile"])
+    pq = followed_question(problem, q.options["profile"], q)
     if "actuators" not in answer.numeric:
         return None
     want = answer.numeric["actuators"]

@@ -9,6 +9,7 @@ the problem reaches the source through `literal` (Python literals: repr), never 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import sympy as sp
@@ -17,7 +18,7 @@ from robosolve.core.printing import sstr
 
 __all__ = ["text", "literal", "at_literal", "robosolve_numbers", "lines", "compare_line", "guarded",
            "coordinates", "jacobian_lines", "profile_lines", "trajectory_lines", "coordinate_values",
-           "question_by_id"]
+           "question_by_id", "followed_question"]
 
 def text(expr) -> str:
     """A sympy value as the text the runtime parses (`Robot.parse`): str() (core/printing's, the
@@ -58,8 +59,8 @@ def lines(*parts) -> str:
     return "\n".join(p for p in parts if p is not None)
 
 
-def compare_line(key, expr, *, want=None, rtol=None) -> str:
-    tol = "" if rtol is None else f", rtol={rtol!r}"
+def compare_line(key, expr, *, want=None, rtol=None, atol=None) -> str:
+    tol = ("" if rtol is None else f", rtol={rtol!r}") + ("" if atol is None else f", atol={atol}")
     return f"compare({key!r}, {expr}, robosolve[{key!r}]{want or ''}{tol})"
 
 
@@ -101,6 +102,14 @@ def profile_lines(pq, problem) -> list[str] | None:
 def question_by_id(problem, qid):
     """The question of the problem with the id `qid` (a profile a question refers to)."""
     return next(x for x in problem.questions if x.id == qid)
+
+
+def followed_question(problem, qid, follower):
+    """The reference `qid` (a profile, a trajectory) as `follower` follows it: with the parameter
+    overrides of the follower's `at` on top of its own (the solvers' `reference_under`)."""
+    ref = question_by_id(problem, qid)
+    params = {s: v for s, v in follower.at.items() if s in problem.parameters}
+    return dataclasses.replace(ref, at={**ref.at, **params}) if params else ref
 
 
 

@@ -13,8 +13,9 @@ from robosolve.load import validators as V
 from robosolve.load.expressions import ExpressionError
 from robosolve.questions.schema import CONTROL_MAP, COORDINATE_MAP, QuestionType, _k
 from robosolve.questions.work_space import coordinate_list, coordinate_unit, gain_unit, joint_unit, path_phrase
-from robosolve.questions.notebook_code import (at_literal, compare_line, coordinate_values, lines, literal, profile_lines,
-                                               question_by_id, robosolve_numbers, text, trajectory_lines)
+from robosolve.questions.notebook_code import (at_literal, compare_line, coordinate_values, followed_question, lines,
+                                               literal, profile_lines, question_by_id, robosolve_numbers, text,
+                                               trajectory_lines)
 
 TASK_LAWS = ("task_pd_gravity", "task_computed_torque")
 
@@ -138,7 +139,7 @@ def notebook_cell(q, answer, problem):
     o = q.options
     if "profile" not in o and o.get("trajectory") is not None:
         return _trajectory_cell(q, answer, problem)
-    pq = question_by_id(problem, o["profile"])
+    pq = followed_question(problem, o["profile"], q)
     if "max_error" not in answer.numeric:
         return None
     names = [j.name for j in problem.joints]
@@ -167,7 +168,7 @@ def _trajectory_cell(q, answer, problem):
     o = q.options
     if "max_error" not in answer.numeric:
         return None
-    tq = question_by_id(problem, o["trajectory"])
+    tq = followed_question(problem, o["trajectory"], q)
     law = o.get("law", "p")
     names = [j.name for j in problem.joints]
     coords = coordinate_list(tq)

@@ -996,6 +996,18 @@ class TaskArm:
     def J_dot(self, q, qd):
         return np.asarray(self._Jd(list(q), list(qd)), dtype=float).reshape(self.m, self.n)
 
+    def root_tolerance(self, q, target):
+        """How far Newton's q may be from the exact solution of x(q) = target, in q: at a simple
+        root the residual's round-off r over J's smallest singular value; at a double root (J
+        singular there: the arm stretched) Newton converges linearly and stops where r, of order
+        distance², is round-off, some √r away (6e-9 rad on a 2R arm stretched)."""
+        if q is None:
+            return 1e-9
+        target = np.asarray(target, dtype=float)
+        r = max(float(np.linalg.norm(target - self.x(q))), 1e-15 * max(1.0, float(np.linalg.norm(target))))
+        smin = float(np.linalg.svd(self.J(q), compute_uv=False).min())
+        return max(1e-9, 10 * r / smin if smin > np.sqrt(r) else 10 * np.sqrt(r))
+
     def min_norm_rates(self, q, xd):
         """J+ x' = J^T (J J^T)^-1 x' (J wide)."""
         J = self.J(q)

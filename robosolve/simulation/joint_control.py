@@ -198,7 +198,9 @@ def polished_crests(f, ts: np.ndarray, values, xatol: float) -> list[tuple[float
         if hi > lo:
             res = minimize_bounded(lambda s: -abs(f(s)), (float(lo), float(hi)), xatol=xatol)
             if -res.fun > vc:
-                tc, vc = float(res.x), float(-res.fun)
+                if j in (0, ts.size - 1):     # an end stays a candidate: a flat start (a loop
+                    cands.append((vc, tc))    # starting on its reference at rest) ties with the hair
+                tc, vc = float(res.x), float(-res.fun)   # above it the polish finds just inside
         cands.append((vc, tc))
     return cands
 

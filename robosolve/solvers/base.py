@@ -8,6 +8,7 @@ It does no I/O: the derivation is returned as `Step`s, figures as `FigureSpec`s
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import math
 from dataclasses import dataclass, field
 import sympy as sp
@@ -188,6 +189,22 @@ class SolveContext:
             raise SolverError(f"the task trajectory '{qid}' has no answer")
         return tr
 
+    def reference_under(self, qid: str, at: dict | None):
+        """The question `qid` (a profile or a trajectory another question follows) with the
+        parameter overrides of the follower's `at` on top of its own, or None when they change no
+        parameter's value. A question computes everything with its parameters: a follower with
+        `at: {L2: 0.45}` tracks the reference as the arm with L2 = 0.45 draws it (its task map,
+        its start), not the recorded one of L2 = 0.4 under dynamics of 0.45."""
+        params = {s: v for s, v in (at or {}).items() if s in self.problem.parameters}
+        ref = next((q for q in self.problem.questions if q.id == qid), None)
+        if not params or ref is None:
+            return None
+        merged = {**(ref.at or {}), **params}
+        if self.parameter_values(_parameter_part(merged, self.problem)) == \
+                self.parameter_values(_parameter_part(ref.at or {}, self.problem)):
+            return None
+        return dataclasses.replace(ref, at=merged)
+
     # -- dynamics (one derivation per model, cached by the bridge) --------
     def dynamics(self) -> Dynamics | None:
         """The symbolic equations of motion, or None past the dynamics budget."""
@@ -256,6 +273,10 @@ class SolveContext:
     @contextlib.contextmanager
     def no_limit():
         yield
+
+
+def _parameter_part(at: dict, problem: Problem) -> dict:
+    return {s: v for s, v in at.items() if s in problem.parameters}
 
 
 def missing_note(what: str, names, problem: Problem) -> str:

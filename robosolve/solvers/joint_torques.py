@@ -17,6 +17,7 @@ from robosolve.core.symbols import TIME
 from robosolve.errors import SolverError, SymbolicTimeout
 from robosolve.load.problem import Question
 from robosolve.motion.torques import closed_form_pieces, torques_along
+from robosolve.solvers.motion_profile import followed_profile
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 from robosolve.core.printing import latex
 
@@ -35,7 +36,7 @@ def _unit(kind: str) -> str:
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
-    prof = ctx.profile(question.options.get("profile"))
+    prof = followed_profile(question.options.get("profile"), ctx, question.at)
     ans = Answer(question.type, question.id)
     subs = ctx.substitutions(question.at)
     joints = model.joints

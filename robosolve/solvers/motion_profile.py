@@ -38,6 +38,21 @@ def _num(e, unit: str = "") -> Text:
 def compute(question: Question, ctx: SolveContext) -> SyncProfile:
     """The synchronized profile of the question (recorded in the context for the
     questions that refer to it)."""
+    prof = _synchronized(question, ctx)
+    ctx.record_profile(question.id, prof)
+    return prof
+
+
+def followed_profile(qid: str, ctx: SolveContext, at: dict | None) -> SyncProfile:
+    """The profile `qid` as a question with `at` follows it: the recorded one, or, when `at`
+    overrides a parameter, the profile synchronized again with it (`to: {q2: d_max}` followed
+    with `at: {d_max: 0.3}` goes to 0.3)."""
+    recorded = ctx.profile(qid)
+    ref = ctx.reference_under(qid, at)
+    return recorded if ref is None else _synchronized(ref, ctx)
+
+
+def _synchronized(question: Question, ctx: SolveContext) -> SyncProfile:
     model = ctx.model
     opts = question.options
     shape = opts.get("shape", "bang-bang")
@@ -54,7 +69,6 @@ def compute(question: Question, ctx: SolveContext) -> SyncProfile:
         prof = synchronize(names, start, end, acc, shape=shape, max_velocity=vel, t=T_SYMBOL)
     except ProfileError as exc:
         raise SolverError(str(exc)) from None
-    ctx.record_profile(question.id, prof)
     return prof
 
 

@@ -16,6 +16,7 @@ from robosolve.core.prose import Num, Text
 from robosolve.errors import SolverError
 from robosolve.load.problem import Question
 from robosolve.simulation.joint_control import simulate
+from robosolve.solvers.motion_profile import followed_profile
 from robosolve.solvers.base import Answer, FigureSpec, SolveContext, Step, missing_note
 from robosolve.core.printing import latex
 
@@ -74,7 +75,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     opts = question.options
     ref = opts.get("profile")
-    prof = ctx.profile(ref) if "trajectory" not in opts else None
+    prof = followed_profile(ref, ctx, question.at) if "trajectory" not in opts else None
     ans = Answer(question.type, question.id)
     subs = ctx.substitutions(question.at)
     joints = model.joints
@@ -185,9 +186,10 @@ def _task_gains(ctx, opts, key, traj, subs):
 
 def _solve_trajectory(question, ctx, ans, subs, law):
     from robosolve.simulation.task_control import TASK_LAWS, simulate_task
+    from robosolve.solvers.task_trajectory import followed_trajectory
 
     opts, model = question.options, ctx.model
-    traj = ctx.trajectory(opts["trajectory"])
+    traj = followed_trajectory(opts["trajectory"], ctx, question.at)
     names = [j.name for j in model.joints]
     duration = _float(ctx, opts["duration"], subs, "duration") if "duration" in opts else traj.timing.T
     start = ([_float(ctx, opts["start"][n], subs, f"start.{n}") for n in names] if "start" in opts

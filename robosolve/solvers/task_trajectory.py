@@ -309,6 +309,32 @@ def solve(question, ctx: SolveContext) -> Answer:
     return ans
 
 
+def followed_trajectory(qid: str, ctx: SolveContext, at: dict | None) -> TaskTrajectory:
+    """The trajectory `qid` as a question with `at` follows it: the recorded one, or, when `at`
+    overrides a parameter (a length, a limit), the trajectory converted again with it, so the
+    reference, its start and the task map are those of the arm the question simulates."""
+    recorded = ctx.trajectory(qid)
+    ref = ctx.reference_under(qid, at)
+    if ref is None:
+        return recorded
+    changed = ", ".join(sorted(s.name for s in at if s in ctx.problem.parameters))
+    try:
+        coords, arm, path, timing, q_from, _res, _subs, outside = setup(ref, ctx)
+    except BadInput as exc:
+        raise SolverError(f"with this question's {changed}, the trajectory '{qid}': {exc.key}: {exc.message}") from None
+    except MissingValues as exc:
+        raise SolverError(missing_note("trajectory", exc.names, ctx.problem)) from None
+    if outside is not None:
+        raise SolverError(f"with this question's {changed}, the trajectory '{qid}' starts out of reach "
+                          "(its `from`): there is no reference to track")
+    conv = tp.follow(arm, path, timing, q_from, samples=SAMPLES)
+    if conv.failure is not None:
+        raise SolverError(f"with this question's {changed}, the trajectory '{qid}' cannot be followed "
+                          "(it leaves the workspace or meets a singular configuration): there is no reference to track")
+    return TaskTrajectory(coords, recorded.labels, recorded.tex, path, timing, arm, conv, recorded.joints,
+                          np.asarray(q_from, dtype=float))
+
+
 def _figures(ans, ctx, traj, subs, question) -> None:
     model, conv = ctx.model, traj.conv
     p0 = model.point0(question.point).xreplace(subs)

@@ -446,3 +446,82 @@ def test_a_run_ending_a_rounding_after_a_path_sample_leaves_no_empty_interval():
         answers = {a.id: a for a in solve_problem(load_problem_text(ARM_2R + LINE + law)).answers}
     values = answers["default"].numeric
     assert values["t_max_error"] == {"q1": 0.2, "q2": 0.2}, values
+
+
+def test_a_parameter_override_in_at_moves_the_reference_the_start_and_the_task_map(write_problem, tmp_path):
+    """`at: {L2: 0.45}` on the p_control: the whole question is the arm with L2 = 0.45 (its start
+    by IK, its task map x(q), its dynamics), not the trajectory's L2 = 0.4 mixed with dynamics of
+    0.45. Reference: closed-form 2R kinematics, IK and dynamics with L2 = 0.45, scipy's DOP853."""
+    from scipy.integrate import solve_ivp
+
+    law = """  - type: p_control
+    trajectory: line
+    law: task_pd_gravity
+    gains: {E.x: 800, E.y: 800}
+    gains_d: {E.x: 60, E.y: 60}
+    at: {L2: 0.45}
+"""
+    r, res = _solve(write_problem, tmp_path, ARM_2R + LINE + law)
+    assert r.returncode == 0, r.stderr
+    L1, L2, m1, m2, g = 0.5, 0.45, 2.0, 1.0, 9.81
+
+    def x(q):
+        return np.array([L1 * math.cos(q[0]) + L2 * math.cos(q[0] + q[1]),
+                         L1 * math.sin(q[0]) + L2 * math.sin(q[0] + q[1])])
+
+    def jac(q):
+        s1, c1, s12, c12 = math.sin(q[0]), math.cos(q[0]), math.sin(q[0] + q[1]), math.cos(q[0] + q[1])
+        return np.array([[-L1 * s1 - L2 * s12, -L2 * s12], [L1 * c1 + L2 * c12, L2 * c12]])
+
+    # the start: the closed-form IK of `from` on the branch the trajectory follows (sign of q2)
+    elbow = math.copysign(1.0, res["answers"]["line"]["numeric"]["start"]["q2"])
+    a = np.array([0.7, 0.1])
+    q2 = elbow * math.acos((a @ a - L1 ** 2 - L2 ** 2) / (2 * L1 * L2))
+    q0 = np.array([math.atan2(a[1], a[0]) - math.atan2(L2 * math.sin(q2), L1 + L2 * math.cos(q2)), q2])
+    path, timing = tp.line([0.7, 0.1], [0.2, 0.6]), tp.trapezoidal(math.hypot(0.5, 0.5), 0.6, 3.0)
+
+    def rhs(t, y):
+        q, qd = y[:2], y[2:]
+        c2, s2 = math.cos(q[1]), math.sin(q[1])
+        M = np.array([[(m1 + m2) * L1 ** 2 + m2 * L2 ** 2 + 2 * m2 * L1 * L2 * c2, m2 * L2 ** 2 + m2 * L1 * L2 * c2],
+                      [m2 * L2 ** 2 + m2 * L1 * L2 * c2, m2 * L2 ** 2]])
+        c = np.array([-m2 * L1 * L2 * s2 * (2 * qd[0] * qd[1] + qd[1] ** 2), m2 * L1 * L2 * s2 * qd[0] ** 2])
+        G = np.array([(m1 + m2) * g * L1 * math.cos(q[0]) + m2 * g * L2 * math.cos(q[0] + q[1]),
+                      m2 * g * L2 * math.cos(q[0] + q[1])])
+        _s, xd, vd, _ad = tp.task_state(path, timing, min(t, timing.T))
+        e, ed = xd - x(q), vd - jac(q) @ qd
+        return np.concatenate([qd, np.linalg.solve(M, jac(q).T @ (800 * e + 60 * ed) + G - c - G)])
+
+    ts = np.linspace(0, timing.T, 3001)
+    sol = solve_ivp(rhs, (0, timing.T), np.concatenate([q0, [0, 0]]), t_eval=ts, rtol=1e-11, atol=1e-12,
+                    method="DOP853", max_step=0.01)
+    err = np.array([tp.task_state(path, timing, t)[1] - x(sol.y[:2, k]) for k, t in enumerate(ts)]).T
+    got = res["answers"]["p_control"]["numeric"]
+    for i, c in enumerate(("E.x", "E.y")):
+        assert got["max_error"][c] == pytest.approx(np.max(np.abs(err[i])), rel=2e-3)
+        assert got["final_error"][c] == pytest.approx(err[i, -1], rel=1e-3, abs=1e-9)
+
+
+def test_computed_torque_from_off_the_path_peaks_at_t_0_exactly(write_problem, tmp_path):
+    """Task computed torque with an exact model: e'' + Kd e' + Kp e = 0, e(0) = x_d(0) - x(start),
+    e'(0) = 0 (the timing starts at rest). Kp = 100, Kd = 20 is critically damped:
+    e = e0 (1 + 10 t) exp(-10 t), whose magnitude only falls, so the largest error is the start's,
+    at t = 0 (core/extremes.py: the start ties with the polish a hair inside, not 2e-9 s)."""
+    law = """  - type: p_control
+    trajectory: line
+    law: task_computed_torque
+    gains: {E.x: 100, E.y: 100}
+    gains_d: {E.x: 20, E.y: 20}
+    start: {q1: -0.6, q2: 1.9}
+    duration: 1
+"""
+    r, res = _solve(write_problem, tmp_path, ARM_2R + LINE + law)
+    assert r.returncode == 0, r.stderr
+    q = (-0.6, 1.9)
+    x0 = (0.5 * math.cos(q[0]) + 0.4 * math.cos(q[0] + q[1]), 0.5 * math.sin(q[0]) + 0.4 * math.sin(q[0] + q[1]))
+    e0 = (0.7 - x0[0], 0.1 - x0[1])
+    got = res["answers"]["p_control"]["numeric"]
+    for i, c in enumerate(("E.x", "E.y")):
+        assert got["max_error"][c] == pytest.approx(abs(e0[i]), rel=1e-5)   # 6 digits kept
+        assert got["t_max_error"][c] == 0
+        assert got["final_error"][c] == pytest.approx(e0[i] * 11 * math.exp(-10), rel=1e-4, abs=1e-9)

@@ -529,3 +529,68 @@ def test_a_wide_j_starts_where_the_engine_starts_from_a_given_start_and_from_zer
         want = tp.nearest_solution(arm, target, np.zeros(3) if given is None else given)
         got = ns["arm"].start(target, [[-math.pi, math.pi]] * 3, given)
         assert got == pytest.approx(want, abs=1e-12)
+
+
+@pytest.mark.parametrize("start_at, exact", [
+    ("E.x: 0.8, E.y: 0.6", (math.atan2(0.6, 0.8), 0.0)),
+    ("E.x: 1, E.y: 0", (0.0, 0.0)),
+], ids=["stretched-0.8-0.6", "stretched-1-0"])
+def test_a_start_on_the_rim_agrees_within_the_square_root_of_the_round_off(start_at, exact, capsys):
+    """`from` where the arm is stretched (L1 = L2 = 0.5, |from| = 1): a double root of x(q) = from,
+    which the notebook's Newton approaches linearly and leaves some 1e-8 rad off (its residual is
+    round-off there, the distance its square root); the exact start is (atan2(y, x), 0). The cell's
+    comparison allows √(residual) there, and only there: 1e-5 rad off still differs."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.task_trajectory import notebook_cell
+    from robosolve.solvers import task_trajectory as tt
+    from robosolve.solvers.base import SolveContext
+
+    text = TRAJECTORIES["2r-planar-arc"].replace("Tx(0.4)", "Tx(0.5)").replace(
+        "path: {circle: {center: [0.1, 0.1]}}, ", "").replace("E.x: 0.7, E.y: 0.1", start_at)
+    problem = load_problem_text(text, "r.yaml")
+    q = problem.questions[0]
+    answer = tt.solve(q, SolveContext(problem, RobotModel(problem)))
+    assert list(answer.numeric["start"].values()) == pytest.approx(exact, abs=1e-9)
+    namespace = dict(vars(rt))
+    exec(data_cell(problem) + "\n" + notebook_cell(q, answer, problem), namespace)
+    out = capsys.readouterr().out
+    assert "recomputed start" in out and "DIFFERS" not in out, out
+    ns_start, tol = namespace["start"], namespace["arm"].root_tolerance(namespace["start"], namespace["path"].a)
+    assert np.abs(np.asarray(ns_start) - exact).max() <= tol <= 1e-6
+    off = {k: v + 1e-5 for k, v in answer.numeric["start"].items()}
+    rt.compare("start", dict(zip(["q1", "q2"], ns_start)), off, atol=tol)
+    assert "DIFFERS" in capsys.readouterr().out
+
+
+def test_the_cell_of_a_follower_with_a_parameter_override_rebuilds_its_reference_with_it(capsys):
+    """joint_torques with `at: {qf: 2}` on a profile to q1 = qf: the cell's profile goes to 2 as
+    robosolve's does (it kept the profile question's qf = 1). By hand at t = 0+, point masses at
+    the link ends, q = 0: T = 2, qdd = (2, 1/2); M11 = (m1 + m2) L1² + m2 L2² + 2 m2 L1 L2 = 1.31,
+    M12 = m2 L2² + m2 L1 L2 = 0.36, M22 = 0.16; g1 = g ((m1 + m2) L1 + m2 L2), g2 = g m2 L2."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.joint_torques import notebook_cell
+    from robosolve.run.pipeline import solve_problem
+
+    problem = load_problem_text("""robosolve: 1
+name: prof
+parameters: {L1: 0.5, L2: 0.4, m1: 2, m2: 1, g: 9.81, qf: 1}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: b1, frame: "1", mass: m1, point: [0, 0, 0]}
+  - {name: b2, frame: "2", mass: m2, point: [0, 0, 0]}
+questions:
+  - {type: motion_profile, id: mp, from: {q1: 0, q2: 0}, to: {q1: qf, q2: 0.5}, max_acceleration: {q1: 2, q2: 2}}
+  - {type: joint_torques, profile: mp, at: {qf: 2}}
+""", "r.yaml")
+    answer = next(a for a in solve_problem(problem).answers if a.id == "joint_torques")
+    want = [1.31 * 2 + 0.36 * 0.5 + 9.81 * (3 * 0.5 + 0.4), 0.36 * 2 + 0.16 * 0.5 + 9.81 * 0.4]
+    assert [v["peak"] for v in answer.numeric["actuators"].values()] == pytest.approx(want, rel=1e-9)
+    namespace = dict(vars(rt))
+    exec(data_cell(problem) + "\n" + notebook_cell(problem.questions[1], answer, problem), namespace)
+    out = capsys.readouterr().out
+    assert "DIFFERS" not in out and out.count("agrees with robosolve") == 2, out
+    assert list(namespace["peaks"]) == pytest.approx(want, rel=1e-9)

@@ -82,6 +82,27 @@ def test_joint_torques_peaks_by_hand():
     assert float(pw.xreplace(values).subs(t, 10)) == pytest.approx(hold, rel=1e-12)
 
 
+def test_joint_torques_with_a_parameter_override_follow_the_profile_it_draws():
+    """`at: {m3: 2}` on joint_torques whose profile's limit is m3: the question is the arm with
+    m3 = 2 throughout, its profile included (it was the recorded profile of m3 = 1 under the
+    dynamics of m3 = 2). By hand, as above, at t = 0+ with m3 = 2: T = sqrt(pi), qdd = (2, -4/3);
+    M11 = L1^2 (m1/3 + m2 + m3) + L2^2 (m2/3 + m3) + 2 L1 L2 (m2/2 + m3), M12 = L2^2 (m2/3 + m3)
+    + L1 L2 (m2/2 + m3), M22 = L2^2 (m2/3 + m3); g1 = g (L1 (m1/2 + m2 + m3) + L2 (m2/2 + m3)),
+    g2 = g L2 (m2/2 + m3); the force adds 3.5 and 1.0."""
+    profile = ("  - {type: motion_profile, id: limited, from: {theta1: 0, theta2: 0}, to: {theta1: pi/2, "
+               "theta2: -pi/3}, max_acceleration: {theta1: m3, theta2: 3}}\n"
+               "  - {type: joint_torques, profile: limited, at: {m3: 2}}\n")
+    a = run(profile)["joint_torques"]
+    assert a.error is None, a.error
+    L1, L2, m1, m2, m3, g = 0.5, 0.4, 4, 3, 2, 9.81
+    M11 = L1 ** 2 * (m1 / 3 + m2 + m3) + L2 ** 2 * (m2 / 3 + m3) + 2 * L1 * L2 * (m2 / 2 + m3)
+    M12, M22 = L2 ** 2 * (m2 / 3 + m3) + L1 * L2 * (m2 / 2 + m3), L2 ** 2 * (m2 / 3 + m3)
+    g1, g2 = g * (L1 * (m1 / 2 + m2 + m3) + L2 * (m2 / 2 + m3)), g * L2 * (m2 / 2 + m3)
+    act = a.numeric["actuators"]
+    assert act["C1"]["peak"] == pytest.approx(M11 * 2 - M12 * 4 / 3 + g1 + 3.5, rel=1e-12)
+    assert act["C2"]["peak"] == pytest.approx(M12 * 2 - M22 * 4 / 3 + g2 + 1.0, rel=1e-12)
+
+
 def test_p_control_answers_and_options():
     ans = run("""  - {type: p_control, gains: {theta1: 5000, theta2: 5000}}
   - {type: p_control, id: ct, law: computed_torque, gains: {theta1: 100, theta2: 100},
