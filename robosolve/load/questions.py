@@ -53,7 +53,12 @@ class _QuestionLoader:
     def __init__(self, b):
         self.b = b
         self.chk = b.chk
+        # a joint where only parameters may stand (a target's value, a gain) is a mistake of its
+        # own: say so, not "unknown parameter 'q1'"
+        joint_refused = {j.name: f"'{j.name}' is a joint: this value is a number or an expression "
+                                 "of the parameters" for j in b.joints if isinstance(j.name, str)}
         self.params_ns = Namespace({s.name: s for s in b.parameters}, what="parameter",
+                                   refused=joint_refused,
                                    unknown_ok=b.parameters_refused)   # (refused whole: said already)
         self.joint_names = [j.name for j in b.joints]
         self.profile_type = self.type_name("makes_profile")

@@ -116,7 +116,10 @@ def v_budgets(ql, path, value, q):
 
 def v_equations(ql, path, value, q):
     chk = ql.chk
-    if not isinstance(value, dict) or not value:
+    if value == {}:     # a mapping already: say what it lacks
+        chk.error(path, "an empty mapping: give at least one coordinate expression: value (e.g. {E.x: 1.2})")
+        return None
+    if not isinstance(value, dict):
         chk.error(path, "expected a mapping coordinate expression: value (e.g. {E.x: 1.2, E.y: 0.3})")
         return None
     out = []
@@ -150,6 +153,10 @@ def v_ik_target(ql, path, value, q):
 
     if is_pose_target(value):
         return v_pose_target(ql, path, value, q)
+    if value == {}:
+        ql.chk.error(path, "an empty target: give the coordinates to reach (e.g. {E.x: 1.2, E.y: 0.3}) "
+                     "or a pose ({pose: M}, or {position: [x, y, z], rpy: [roll, pitch, yaw]})")
+        return None
     return v_equations(ql, path, value, q)
 
 

@@ -168,7 +168,8 @@ def check_output_folder(path, inputs: Iterable = (), legacy: Iterable[str] = ())
         entries = os.listdir(path)
     except OSError as exc:
         raise OutputFolderError(f"{path}: cannot read the folder ({exc.strerror or exc})") from None
-    if not entries or MARK in entries:
+    # the mark is a file: a folder named .robosolve (a user's, or a made-up one) marks nothing
+    if not entries or (MARK in entries and os.path.isfile(os.path.join(path, MARK))):
         return
     legacy = set(legacy)
     if legacy and set(entries) <= legacy:

@@ -49,6 +49,20 @@ def test_out_on_folder_with_foreign_file_exits_2_and_leaves_it_untouched(write_p
     assert sorted(p.name for p in tmp_path.iterdir()) == ["mythesis", "p.yaml"]  # no debris
 
 
+def test_a_folder_named_like_the_mark_marks_nothing(write_problem, tmp_path):
+    """The mark is a file (spec §2): a user's folder holding a .robosolve folder beside their data
+    is refused and kept, not replaced."""
+    src = write_problem(MINI)
+    mine = tmp_path / "mine"
+    (mine / MARK).mkdir(parents=True)
+    (mine / MARK / "settings").write_text("x")
+    (mine / "data.txt").write_text("keep me")
+    before = snapshot(mine)
+    result = runner.invoke(app, ["solve", str(src), "--out", str(mine)])
+    assert result.exit_code == 2 and "touched nothing" in result.output
+    assert snapshot(mine) == before
+
+
 def test_new_and_empty_and_marked_folders_are_written_with_the_mark(write_problem, tmp_path):
     src = write_problem(MINI)
     for name in ("new", "empty"):
