@@ -63,6 +63,7 @@ class PoseResult:
     steps: list[PoseStep] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     reason: str | Text | None = None   # prose: numbers as Num, formatted by the renderer
+    reason_tex: str | Text | None = None   # the same with its formulas in $...$ (report); None: as reason
     wrist_centre: list[float] | None = None
     centre_in_frame: list[float] | None = None
     joints: list = field(default_factory=list)
@@ -247,8 +248,10 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s, derive=True):
     if arm.status == "unreachable":
         res.status = "unreachable"
         # (Text + Text: a reason's numbers stay numbers for the renderer, never a repr)
-        res.reason = ("the wrist centre is reached only with the arm's joints outside their limits: "
-                      if arm.rejected else "the wrist centre is beyond the reach of the arm: ") + Text(arm.reason or "")
+        lead = ("the wrist centre is reached only with the arm's joints outside their limits: "
+                if arm.rejected else "the wrist centre is beyond the reach of the arm: ")
+        res.reason = lead + Text(arm.reason or "")
+        res.reason_tex = lead + Text(arm.reason_tex or arm.reason or "")
         return []
     arm_sols, shoulder = arm.all_solutions, False
     if arm.status == "family":
@@ -460,7 +463,9 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s, derive=True
     res.steps.append(_parallel_step(zrow, lhs, split, [names[x] for x in q], angle, tool))
     if st1.status == "unreachable":
         res.status = "unreachable"
-        res.reason = "the pose is beyond the reach or its orientation is not attainable: " + Text(st1.reason or "")
+        lead = "the pose is beyond the reach or its orientation is not attainable: "
+        res.reason = lead + Text(st1.reason or "")
+        res.reason_tex = lead + Text(st1.reason_tex or st1.reason or "")
         return []
     firsts = [(sol, False) for sol in st1.all_solutions]
     if st1.status != "ok":
@@ -468,18 +473,19 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s, derive=True
         # each branch, q6 = 0 as the representative where the row leaves it free
         firsts = _first_joints_stepwise(eqs1, first, vals, q)
         if firsts is None:
-            res.notes.append("three parallel axes: q1, q5, q6 are not isolated at this pose (a singularity); "
+            res.notes.append(f"three parallel axes: {q[0]}, {q[4]}, {q[5]} are not isolated at this pose (a singularity); "
                              "searched numerically on the 12 pose equations")
             return None
         if not firsts:
             res.status = "unreachable"
-            res.reason = "the pose is beyond the reach or its orientation is not attainable: no q1, q5, q6 fit it"
+            res.reason = ("the pose is beyond the reach or its orientation is not attainable: "
+                          f"no {q[0]}, {q[4]}, {q[5]} fit it")
             return []
     for stp in (st1.closed_form.steps if st1.closed_form is not None else []):
-        res.steps.append(PoseStep("q1, q5, q6: " + stp.title, stp.text, list(stp.equations)))
+        res.steps.append(PoseStep(f"{q[0]}, {q[4]}, {q[5]}: " + stp.title, stp.text, list(stp.equations)))
     rest = [IKJoint(q[k], True, None) for k in (1, 2, 3)]
     bf = sp.lambdify([*vals, *(j.symbol for j in first)], planar, modules=numpy_modules()) if planar else None
-    raw, cf2, reasons = [], None, []
+    raw, cf2, reasons = [], None, []       # reasons: (plain, with formulas) of each branch
     for k, (sol, singular) in enumerate(firsts):
         v2 = dict(vals)
         v2.update({j.symbol: sol[j.name] for j in first})
@@ -495,17 +501,19 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s, derive=True
         if cf2 is None and st2.closed_form is not None:
             cf2 = st2
         if st2.status == "unreachable" and st2.reason:
-            reasons.append(st2.reason)
+            reasons.append((st2.reason, st2.reason_tex or st2.reason))
         for d in st2.all_solutions:
             raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
                         singular))
     if not raw:
         res.status = "unreachable"
-        res.reason = ("the pose is beyond the reach: for every value of q1, q5, q6 the planar arm of joints "
-                      "2, 3, 4 cannot reach the point it must" + (Text(" (", reasons[0], ")") if reasons else ""))
+        lead = (f"the pose is beyond the reach: for every value of {q[0]}, {q[4]}, {q[5]} the planar arm of "
+                f"{q[1]}, {q[2]}, {q[3]} cannot reach the point it must")
+        res.reason = lead + (Text(" (", reasons[0][0], ")") if reasons else "")
+        res.reason_tex = lead + (Text(" (", reasons[0][1], ")") if reasons else "")
     if cf2 is not None:
         for stp in cf2.closed_form.steps:
-            res.steps.append(PoseStep("q2, q3, q4: " + stp.title, stp.text, list(stp.equations)))
+            res.steps.append(PoseStep(f"{q[1]}, {q[2]}, {q[3]}: " + stp.title, stp.text, list(stp.equations)))
     if st1.closed_form is not None and cf2 is not None:
         bsub = dict(zip(known, planar))
         res.closed_form = [{**{str(k): v for k, v in a.items()}, **{str(k): v.xreplace(bsub) for k, v in b.items()}}

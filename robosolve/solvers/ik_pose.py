@@ -78,7 +78,7 @@ def solve_pose_question(question, ctx: SolveContext, ans: Answer, ik_joints, par
         ans.extra["unreachable"] = True
         ans.extra["reason"] = res.reason
         ans.numeric["solutions"] = []
-        ans.steps.append(Step("Unreachable target", Text("No solution: ", res.reason, ".")))
+        ans.steps.append(Step("Unreachable target", Text("No solution: ", res.reason_tex or res.reason, ".")))
         return res
     ans.numeric["selected"] = dict(res.selected)
     if opts.get("velocity"):

@@ -150,3 +150,17 @@ def test_a_pose_far_beyond_the_reach_is_unreachable_without_numpy_warnings():
     a = json.loads(json.dumps(answer_record(report.answers[0], [])))
     assert a["unreachable"] is True and a["numeric"]["solutions"] == []
     assert not [w for w in caught if issubclass(w.category, RuntimeWarning)], [str(w.message) for w in caught]
+
+
+def test_the_report_writes_the_reach_distance_as_a_formula_and_names_the_joints():
+    """The report's step writes the planar arm's distance as a formula ($\\sqrt{b_x^2 + b_y^2}$:
+    it was sympy's plain `sqrt(b_x**2 + b_y**2)`); results.json keeps the plain text; both name the
+    arm's own joints (th1…th6 here: the words said q1, q5, q6 of any arm)."""
+    text = UR3_INLINE.replace("name: q", "name: th").replace("theta: q", "theta: th")
+    a, step = _answer(text)
+    assert a["unreachable"] is True
+    assert "sqrt(b_x**2 + b_y**2)" in a["reason"] and "$" not in a["reason"]
+    assert "$\\sqrt{b_{x}^{2} + b_{y}^{2}}$" in step and "sqrt(" not in step, step
+    for words in (a["reason"], step):
+        assert "th1, th5, th6" in words and "th2, th3, th4" in words and "q1" not in words, words
+    assert f"> {0.24365 + 0.21325:.4g}:" in a["reason"]       # |a2| + |a3|
