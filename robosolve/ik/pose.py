@@ -435,6 +435,16 @@ def find_parallel(chain: _Chain):
     return split, Q.T       # Q.T·u = z: rows of Q.T are the new axes
 
 
+def _planar_arm_unreachable(res, q, reasons) -> None:
+    """No branch's planar arm (joints 2, 3, 4) reaches: the first branch's reason, plain and with
+    its formulas."""
+    res.status = "unreachable"
+    lead = (f"the pose is beyond the reach: for every value of {q[0]}, {q[4]}, {q[5]} the planar arm of "
+            f"{q[1]}, {q[2]}, {q[3]} cannot reach the point it must")
+    res.reason = lead + (Text(" (", reasons[0][0], ")") if reasons else "")
+    res.reason_tex = lead + (Text(" (", reasons[0][1], ")") if reasons else "")
+
+
 def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s, derive=True):
     """The UR way: in frame 1 (axes 2, 3, 4 along z) the z row of ¹M₆ depends on q5, q6 only;
     with q1 it gives q1, q5, q6, then the planar 3R gives q2, q3, q4."""
@@ -506,11 +516,7 @@ def _three_parallel(res, chain, par, R, p, names, tex, time_limit_s, derive=True
             raw.append(([sol[q[0].name], d[q[1].name], d[q[2].name], d[q[3].name], sol[q[4].name], sol[q[5].name]],
                         singular))
     if not raw:
-        res.status = "unreachable"
-        lead = (f"the pose is beyond the reach: for every value of {q[0]}, {q[4]}, {q[5]} the planar arm of "
-                f"{q[1]}, {q[2]}, {q[3]} cannot reach the point it must")
-        res.reason = lead + (Text(" (", reasons[0][0], ")") if reasons else "")
-        res.reason_tex = lead + (Text(" (", reasons[0][1], ")") if reasons else "")
+        _planar_arm_unreachable(res, q, reasons)
     if cf2 is not None:
         for stp in cf2.closed_form.steps:
             res.steps.append(PoseStep(f"{q[1]}, {q[2]}, {q[3]}: " + stp.title, stp.text, list(stp.equations)))
