@@ -108,7 +108,7 @@ class Reference:
         alts = alternatives(report)
         for q in problem.questions:
             a = answers[q.id]
-            subs = ctx.substitutions(q.at)
+            subs = ctx.substitutions(problem.working_at(q))     # a follower's: its reference's overrides beneath
             refs.append(QuestionRef(
                 id=q.id, type=q.type, marks=q.marks, grade=tuple(q.grade), error=a.error,
                 symbolic=dict(a.symbolic), numeric=dict(a.numeric), extra=dict(a.extra),

@@ -130,3 +130,19 @@ class Problem:
     @property
     def joint_symbols(self) -> list:
         return [j.symbol for j in self.joints]
+
+    def followed(self, question: Question) -> Question | None:
+        """The question `question` follows: the work-space trajectory it names (`trajectory`), else
+        the motion profile (`profile`); None for a question that follows none."""
+        o = question.options
+        qid = o.get("trajectory") if o.get("trajectory") is not None else o.get("profile")
+        return next((x for x in self.questions if x.id == qid), None) if isinstance(qid, str) else None
+
+    def working_at(self, question: Question) -> dict:
+        """The `at` the question computes everything with (dynamics, kinematics, start, the
+        reference it follows): its own, beneath it the parameter overrides of the question it
+        follows. A follower works on the arm of its reference: a controller following a
+        trajectory of `at: {L2: 0.45}` simulates the arm with L2 = 0.45, its own `at` on top (its own win)."""
+        ref = self.followed(question)
+        inherited = {s: v for s, v in (ref.at if ref is not None else {}).items() if s in self.parameters}
+        return {**inherited, **question.at} if inherited else question.at

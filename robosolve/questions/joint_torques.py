@@ -19,7 +19,7 @@ def notebook_cell(q, answer, problem):
     return lines(
         "# the profile followed (its profile question)",
         *profile_lines(pq, problem),
-        f"at = {at_literal(q)}",
+        f"at = {at_literal(q, problem)}",
         "# tau(t) = M(q) q'' + c(q, q') + g(q) - Q along the profile; the signed peak of each actuator",
         "peaks, t_peaks = torque_peaks(robot, profile, at)",
         "robosolve = " + literal({"peak": [v["peak"] for v in want.values()],

@@ -45,9 +45,11 @@ def literal(value) -> str:
     return repr(text(value))
 
 
-def at_literal(question) -> str:
-    """The question's configuration `at` as {name: text}."""
-    return literal({s.name: text(v) for s, v in question.at.items()})
+def at_literal(question, problem=None) -> str:
+    """The question's configuration `at` as {name: text}; with `problem`, the `at` it computes with
+    (`Problem.working_at`: a follower's own on its reference's parameter overrides)."""
+    at = question.at if problem is None else problem.working_at(question)
+    return literal({s.name: text(v) for s, v in at.items()})
 
 
 def robosolve_numbers(answer, keys) -> str:
@@ -106,9 +108,10 @@ def question_by_id(problem, qid):
 
 def followed_question(problem, qid, follower):
     """The reference `qid` (a profile, a trajectory) as `follower` follows it: with the parameter
-    overrides of the follower's `at` on top of its own (the solvers' `reference_under`)."""
+    overrides the follower computes with (`Problem.working_at`: the reference's own, the
+    follower's on top) (the solvers' `reference_under`)."""
     ref = question_by_id(problem, qid)
-    params = {s: v for s, v in follower.at.items() if s in problem.parameters}
+    params = {s: v for s, v in problem.working_at(follower).items() if s in problem.parameters}
     return dataclasses.replace(ref, at={**ref.at, **params}) if params else ref
 
 

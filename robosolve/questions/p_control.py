@@ -151,7 +151,7 @@ def notebook_cell(q, answer, problem):
     return lines(
         "# the reference followed (its profile question)",
         *profile_lines(pq, problem),
-        f"at = {at_literal(q)}",
+        f"at = {at_literal(q, problem)}",
         f"law = {o.get('law', 'p')!r}",
         f"kp, kd, start = {gains('gains')}, {gains('gains_d')}, {gains('start')}",
         f"max_error, t_max_error, final_error, times, errors = simulate_control(robot, profile, law, kp, kd, "
@@ -187,7 +187,7 @@ def _trajectory_cell(q, answer, problem):
     return lines(
         "# the reference followed (its work-space trajectory question)",
         *trajectory_lines(tq, problem),
-        f"at = {at_literal(q)}",
+        f"at = {at_literal(q, problem)}",
         f"law = {law!r}",
         f"kp, kd, start = {gains('gains')}, {gains('gains_d')}, {start}",
         "max_error, t_max_error, final_error, times, errors, task_errors = simulate_task_control(",

@@ -189,6 +189,19 @@ class SolveContext:
             raise SolverError(f"the task trajectory '{qid}' has no answer")
         return tr
 
+    def working_at(self, question, answer: Answer | None = None) -> dict:
+        """The `at` a question computes everything with: its own, on the parameter overrides of
+        the profile or trajectory it follows (`Problem.working_at`: a follower works on the arm of
+        its reference). `answer` gets a note naming the parameters it takes from the reference."""
+        at = self.problem.working_at(question)
+        taken = sorted(s.name for s in at if s not in question.at)
+        if answer is not None and taken:
+            ref = self.problem.followed(question)
+            kind = "trajectory" if "trajectory" in question.options else "profile"
+            answer.note(f"the arm of the {kind} '{ref.id}' it follows: its override{'s' if len(taken) > 1 else ''} "
+                        f"of {', '.join(taken)} (its `at`) hold{'' if len(taken) > 1 else 's'} here too")
+        return at
+
     def reference_under(self, qid: str, at: dict | None):
         """The question `qid` (a profile or a trajectory another question follows) with the
         parameter overrides of the follower's `at` on top of its own, or None when they change no

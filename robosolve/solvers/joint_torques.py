@@ -36,9 +36,10 @@ def _unit(kind: str) -> str:
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
-    prof = followed_profile(question.options.get("profile"), ctx, question.at)
     ans = Answer(question.type, question.id)
-    subs = ctx.substitutions(question.at)
+    at = ctx.working_at(question, ans)
+    prof = followed_profile(question.options.get("profile"), ctx, at)
+    subs = ctx.substitutions(at)
     joints = model.joints
     act_names = [str(j.actuator) for j in joints]
 

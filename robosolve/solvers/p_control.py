@@ -75,14 +75,15 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     model = ctx.model
     opts = question.options
     ref = opts.get("profile")
-    prof = followed_profile(ref, ctx, question.at) if "trajectory" not in opts else None
     ans = Answer(question.type, question.id)
-    subs = ctx.substitutions(question.at)
+    at = ctx.working_at(question, ans)
+    prof = followed_profile(ref, ctx, at) if "trajectory" not in opts else None
+    subs = ctx.substitutions(at)
     joints = model.joints
     names = [j.name for j in joints]
     law = opts.get("law", "p")
     if prof is None:
-        return _solve_trajectory(question, ctx, ans, subs, law)
+        return _solve_trajectory(question, ctx, ans, subs, law, at)
     if not prof.T.is_number:
         ans.note(missing_note("simulation", sorted(s.name for s in prof.T.free_symbols), ctx.problem))
         return ans
@@ -184,12 +185,12 @@ def _task_gains(ctx, opts, key, traj, subs):
             for c in traj.coords]
 
 
-def _solve_trajectory(question, ctx, ans, subs, law):
+def _solve_trajectory(question, ctx, ans, subs, law, at):
     from robosolve.simulation.task_control import TASK_LAWS, simulate_task
     from robosolve.solvers.task_trajectory import followed_trajectory
 
     opts, model = question.options, ctx.model
-    traj = followed_trajectory(opts["trajectory"], ctx, question.at)
+    traj = followed_trajectory(opts["trajectory"], ctx, at)
     names = [j.name for j in model.joints]
     duration = _float(ctx, opts["duration"], subs, "duration") if "duration" in opts else traj.timing.T
     start = ([_float(ctx, opts["start"][n], subs, f"start.{n}") for n in names] if "start" in opts

@@ -317,7 +317,9 @@ def followed_trajectory(qid: str, ctx: SolveContext, at: dict | None) -> TaskTra
     ref = ctx.reference_under(qid, at)
     if ref is None:
         return recorded
-    changed = ", ".join(sorted(s.name for s in at if s in ctx.problem.parameters))
+    own = next(q for q in ctx.problem.questions if q.id == qid).at     # the trajectory's own overrides
+    changed = ", ".join(sorted(s.name for s, v in at.items()
+                               if s in ctx.problem.parameters and (s not in own or own[s] != v)))
     try:
         coords, arm, path, timing, q_from, _res, _subs, outside = setup(ref, ctx)
     except BadInput as exc:

@@ -525,3 +525,77 @@ def test_computed_torque_from_off_the_path_peaks_at_t_0_exactly(write_problem, t
         assert got["max_error"][c] == pytest.approx(abs(e0[i]), rel=1e-5)   # 6 digits kept
         assert got["t_max_error"][c] == 0
         assert got["final_error"][c] == pytest.approx(e0[i] * 11 * math.exp(-10), rel=1e-4, abs=1e-9)
+
+
+def _independent_task_pd_2r(L2, m2, kp, kd, elbow, L1=0.5, m1=2.0, g=9.81):
+    """max |x_d - x| and the final error of each coordinate of task_pd_gravity along LINE, for the
+    2R of ARM_2R with the given L2 and m2: closed-form kinematics, IK, dynamics and trapezoidal
+    timing written here from the textbook, integrated by scipy's DOP853."""
+    from scipy.integrate import solve_ivp
+
+    a, b = np.array([0.7, 0.1]), np.array([0.2, 0.6])
+    length, vmax, amax = float(np.linalg.norm(b - a)), 0.6, 3.0
+    ta, T = vmax / amax, length / vmax + vmax / amax       # the cruise is reached: length > vmax^2 / amax
+    u = (b - a) / length
+
+    def desired(t):
+        t = min(t, T)
+        if t <= ta:
+            s, sd = 0.5 * amax * t ** 2, amax * t
+        elif t >= T - ta:
+            s, sd = length - 0.5 * amax * (T - t) ** 2, amax * (T - t)
+        else:
+            s, sd = 0.5 * amax * ta ** 2 + vmax * (t - ta), vmax
+        return a + s * u, sd * u
+
+    def x(q):
+        return np.array([L1 * math.cos(q[0]) + L2 * math.cos(q[0] + q[1]),
+                         L1 * math.sin(q[0]) + L2 * math.sin(q[0] + q[1])])
+
+    def jac(q):
+        s1, c1, s12, c12 = math.sin(q[0]), math.cos(q[0]), math.sin(q[0] + q[1]), math.cos(q[0] + q[1])
+        return np.array([[-L1 * s1 - L2 * s12, -L2 * s12], [L1 * c1 + L2 * c12, L2 * c12]])
+
+    q2 = elbow * math.acos((a @ a - L1 ** 2 - L2 ** 2) / (2 * L1 * L2))
+    q0 = np.array([math.atan2(a[1], a[0]) - math.atan2(L2 * math.sin(q2), L1 + L2 * math.cos(q2)), q2])
+
+    def rhs(t, y):
+        q, qd = y[:2], y[2:]
+        c2, s2 = math.cos(q[1]), math.sin(q[1])
+        M = np.array([[(m1 + m2) * L1 ** 2 + m2 * L2 ** 2 + 2 * m2 * L1 * L2 * c2, m2 * L2 ** 2 + m2 * L1 * L2 * c2],
+                      [m2 * L2 ** 2 + m2 * L1 * L2 * c2, m2 * L2 ** 2]])
+        c = np.array([-m2 * L1 * L2 * s2 * (2 * qd[0] * qd[1] + qd[1] ** 2), m2 * L1 * L2 * s2 * qd[0] ** 2])
+        xd, vd = desired(t)
+        e, ed = xd - x(q), vd - jac(q) @ qd
+        return np.concatenate([qd, np.linalg.solve(M, jac(q).T @ (kp * e + kd * ed) - c)])   # g(q) cancels
+
+    ts = np.linspace(0, T, 3001)
+    sol = solve_ivp(rhs, (0, T), np.concatenate([q0, [0, 0]]), t_eval=ts, rtol=1e-11, atol=1e-12,
+                    method="DOP853", max_step=0.01)
+    err = np.array([desired(t)[0] - x(sol.y[:2, k]) for k, t in enumerate(ts)]).T
+    return np.max(np.abs(err), axis=1), err[:, -1]
+
+
+@pytest.mark.parametrize("line_at, follower_at, L2, m2", [
+    ("{L2: 0.45}", None, 0.45, 1.0),                      # the trajectory's override holds for its follower
+    ("{L2: 0.45, m2: 3}", "{m2: 1.5}", 0.45, 1.5),        # the follower's own override wins
+])
+def test_a_follower_works_on_the_arm_of_the_trajectory_it_follows(line_at, follower_at, L2, m2):
+    """A trajectory with `at: {L2: 0.45}` followed by a p_control without one: the run is the arm
+    with L2 = 0.45 throughout (the reference, its start, the task map and the dynamics), not the
+    reference of 0.45 under kinematics and dynamics of the data's 0.4; the follower's own `at`
+    goes on top. Reference: `_independent_task_pd_2r` (closed-form 2R, scipy DOP853)."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.run.pipeline import solve_problem
+
+    law = ("  - {type: p_control, trajectory: line, law: task_pd_gravity, gains: {E.x: 800, E.y: 800}, "
+           "gains_d: {E.x: 60, E.y: 60}" + (f", at: {follower_at}" if follower_at else "") + "}\n")
+    text = ARM_2R + LINE + f"    at: {line_at}\n" + law
+    answers = {a.id: a for a in solve_problem(load_problem_text(text, "f.yaml")).answers}
+    got = answers["p_control"]
+    assert got.error is None, got.error
+    elbow = math.copysign(1.0, answers["line"].numeric["start"]["q2"])
+    max_err, final = _independent_task_pd_2r(L2, m2, 800, 60, elbow)
+    for i, c in enumerate(("E.x", "E.y")):
+        assert got.numeric["max_error"][c] == pytest.approx(max_err[i], rel=2e-3)
+        assert got.numeric["final_error"][c] == pytest.approx(final[i], rel=1e-3, abs=1e-9)

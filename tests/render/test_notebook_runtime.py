@@ -594,3 +594,39 @@ questions:
     out = capsys.readouterr().out
     assert "DIFFERS" not in out and out.count("agrees with robosolve") == 2, out
     assert list(namespace["peaks"]) == pytest.approx(want, rel=1e-9)
+
+
+def test_the_cell_of_a_follower_works_on_the_arm_of_the_profile_it_follows(capsys):
+    """The profile question carries `at: {qf: 2, m2: 2}`, joint_torques none: robosolve and the
+    cell both compute the torques of the arm with m2 = 2 (the cell kept the data's m2 = 1 for the
+    dynamics). By hand at t = 0+ as in the test above, with m2 = 2: M11 = (m1 + m2) L1² + m2 L2²
+    + 2 m2 L1 L2 = 2.12, M12 = m2 L2² + m2 L1 L2 = 0.72, M22 = 0.32, g1 = g ((m1 + m2) L1 + m2 L2),
+    g2 = g m2 L2."""
+    from robosolve.load.loader import load_problem_text
+    from robosolve.questions.joint_torques import notebook_cell
+    from robosolve.run.pipeline import solve_problem
+
+    problem = load_problem_text("""robosolve: 1
+name: prof
+parameters: {L1: 0.5, L2: 0.4, m1: 2, m2: 1, g: 9.81, qf: 1}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+frames:
+  "1": {parent: "0", pose: "Rz(q1) Tx(L1)"}
+  "2": {pose: "Rz(q2) Tx(L2)"}
+gravity: [0, -g, 0]
+bodies:
+  - {name: b1, frame: "1", mass: m1, point: [0, 0, 0]}
+  - {name: b2, frame: "2", mass: m2, point: [0, 0, 0]}
+questions:
+  - {type: motion_profile, id: mp, from: {q1: 0, q2: 0}, to: {q1: qf, q2: 0.5}, max_acceleration: {q1: 2, q2: 2},
+     at: {qf: 2, m2: 2}}
+  - {type: joint_torques, profile: mp}
+""", "r.yaml")
+    answer = next(a for a in solve_problem(problem).answers if a.id == "joint_torques")
+    want = [2.12 * 2 + 0.72 * 0.5 + 9.81 * (4 * 0.5 + 2 * 0.4), 0.72 * 2 + 0.32 * 0.5 + 9.81 * 0.8]
+    assert [v["peak"] for v in answer.numeric["actuators"].values()] == pytest.approx(want, rel=1e-9)
+    namespace = dict(vars(rt))
+    exec(data_cell(problem) + "\n" + notebook_cell(problem.questions[1], answer, problem), namespace)
+    out = capsys.readouterr().out
+    assert "DIFFERS" not in out and out.count("agrees with robosolve") == 2, out
+    assert list(namespace["peaks"]) == pytest.approx(want, rel=1e-9)

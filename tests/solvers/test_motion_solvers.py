@@ -103,6 +103,26 @@ def test_joint_torques_with_a_parameter_override_follow_the_profile_it_draws():
     assert act["C2"]["peak"] == pytest.approx(M12 * 2 - M22 * 4 / 3 + g2 + 1.0, rel=1e-12)
 
 
+@pytest.mark.parametrize("profile_at, follower_at", [("{m3: 2}", None), ("{m3: 5}", "{m3: 2}")])
+def test_joint_torques_work_on_the_arm_of_the_profile_they_follow(profile_at, follower_at):
+    """The profile question carries `at: {m3: 2}`, joint_torques none: the torques are those of the
+    arm with m3 = 2 (the profile's limit and the dynamics alike), not the profile of m3 = 2 under
+    the data's m3 = 1; a follower's own `at` goes on top (m3: 5 on the profile, 2 on the follower:
+    m3 = 2 throughout). By hand as in the test above (t = 0+, m3 = 2)."""
+    questions = ("  - {type: motion_profile, id: limited, from: {theta1: 0, theta2: 0}, to: {theta1: pi/2, "
+                 f"theta2: -pi/3}}, max_acceleration: {{theta1: m3, theta2: 3}}, at: {profile_at}}}\n"
+                 "  - {type: joint_torques, profile: limited" + (f", at: {follower_at}" if follower_at else "") + "}\n")
+    a = run(questions)["joint_torques"]
+    assert a.error is None, a.error
+    L1, L2, m1, m2, m3, g = 0.5, 0.4, 4, 3, 2, 9.81
+    M11 = L1 ** 2 * (m1 / 3 + m2 + m3) + L2 ** 2 * (m2 / 3 + m3) + 2 * L1 * L2 * (m2 / 2 + m3)
+    M12, M22 = L2 ** 2 * (m2 / 3 + m3) + L1 * L2 * (m2 / 2 + m3), L2 ** 2 * (m2 / 3 + m3)
+    g1, g2 = g * (L1 * (m1 / 2 + m2 + m3) + L2 * (m2 / 2 + m3)), g * L2 * (m2 / 2 + m3)
+    act = a.numeric["actuators"]
+    assert act["C1"]["peak"] == pytest.approx(M11 * 2 - M12 * 4 / 3 + g1 + 3.5, rel=1e-12)
+    assert act["C2"]["peak"] == pytest.approx(M12 * 2 - M22 * 4 / 3 + g2 + 1.0, rel=1e-12)
+
+
 def test_p_control_answers_and_options():
     ans = run("""  - {type: p_control, gains: {theta1: 5000, theta2: 5000}}
   - {type: p_control, id: ct, law: computed_torque, gains: {theta1: 100, theta2: 100},
