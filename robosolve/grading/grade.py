@@ -57,7 +57,7 @@ def collect(sources, warnings=None) -> list[Path]:
     for s in sources:
         p = Path(s)
         if p.is_dir():
-            found = sorted(f for f in p.iterdir() if f.suffix in (".yaml", ".yml"))
+            found = sorted(f for f in p.iterdir() if f.suffix.lower() in (".yaml", ".yml"))   # ANSWERS.YAML too
             files += [f for f in found if f.is_file()]
             if warnings is not None:
                 warnings += [f"{f}: skipped: a symbolic link to {os.readlink(f)}, which does not exist"
@@ -67,6 +67,18 @@ def collect(sources, warnings=None) -> list[Path]:
         else:
             raise UsageError(f"{s}: no such file or folder")
     return sorted(set(files))
+
+
+def _nested_hint(sources) -> str:
+    """A folder of folders (an LMS's download: one folder per student) is not searched below its
+    own files: say where the answers files are and how to give them."""
+    nested = sorted({str(d) for s in sources if Path(s).is_dir() for d in Path(s).iterdir()
+                     if d.is_dir() and any(f.suffix.lower() in (".yaml", ".yml") for f in d.iterdir())})
+    if not nested:
+        return ""
+    return (f"; the folders given are searched without their subfolders, and {len(nested)} of those hold "
+            f"answers files ({nested[0]}{', …' if len(nested) > 1 else ''}): give them, e.g. "
+            f"`robosolve grade {Path(next(s for s in sources if Path(s).is_dir())) / '*'} …`")
 
 
 def _problem_for(sub, problem, table):
@@ -379,7 +391,7 @@ def run_grade(sources, out, problem=None, variants_dir=None, n_jobs=0, rtol=None
     if lms and missing_columns(lms, table):
         raise UsageError(missing_columns(lms, table))
     if not files:
-        raise UsageError("\n".join([*warnings, "no answers files found (*.yaml, *.yml)"]))
+        raise UsageError("\n".join([*warnings, "no answers files found (*.yaml, *.yml)" + _nested_hint(sources)]))
     jobs, problems = read_jobs(files, problem, table, warnings)
     inputs += input_paths(files, problems)
     check_output_folder(Path(out), inputs)

@@ -55,6 +55,31 @@ def test_only_dangling_links_is_a_usage_error_that_names_them(tmp_path):
     assert "bob.yaml: skipped" in r.output and "no answers files found" in r.output
 
 
+def test_a_folder_of_student_folders_says_where_the_answers_are(tmp_path):
+    """An LMS's download (one folder per student) is not searched below the folder given: the
+    message names the folders that hold answers files and how to give them; nothing is written."""
+    subs = tmp_path / "subs"
+    for who in ("lee_102", "smith_101"):
+        (subs / who).mkdir(parents=True)
+        (subs / who / "answers.yaml").write_text(dedent(ALICE), encoding="utf-8")
+    r = runner.invoke(app, ["grade", str(subs), "--out", str(tmp_path / "o")])
+    assert r.exit_code == 2
+    words = " ".join(r.output.split())
+    assert "no answers files found" in words and "2 of those hold answers files" in words
+    assert str(subs / "lee_102") in words and f"robosolve grade {subs / '*'}" in words
+    assert not (tmp_path / "o").exists()
+
+
+def test_upper_case_suffixes_are_answers_files(tmp_path):
+    (tmp_path / "p.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "ALICE.YAML").write_text(dedent(ALICE), encoding="utf-8")
+    r = runner.invoke(app, ["grade", str(subs), "--out", str(tmp_path / "o"), "--jobs", "1"])
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "o" / "summary.csv").read_text().count("\n") == 2
+
+
 def test_missing_extras_are_said_at_once_with_both_install_forms(monkeypatch, tmp_path):
     import importlib.util
 
