@@ -152,6 +152,21 @@ def path_problem(text: str, written: str | None = None) -> str | None:
     return None
 
 
+def _sibling_hint(name: str) -> str:
+    """' (did you mean 'arm.yaml'?)' for a missing file beside YAML files of a close name (the
+    names compared without their suffix: every one ends in .yaml)."""
+    from robosolve.load.expressions import closest
+
+    folder, base = os.path.split(name)
+    try:
+        near = sorted(f for f in os.listdir(folder or ".") if f.lower().endswith((".yaml", ".yml")))
+    except OSError:
+        return ""
+    stems = {os.path.splitext(f)[0]: f for f in near}
+    meant = closest(os.path.splitext(base)[0], stems)
+    return f" (did you mean '{os.path.join(folder, stems[meant])}'?)" if meant is not None else ""
+
+
 def _shown(text: str, width: int = 60) -> str:
     text = text.replace("\0", "\\0")
     return text if len(text) <= width else text[:width // 2] + "…" + text[-width // 2:]
@@ -168,6 +183,8 @@ def read_input_bytes(file, limit: int = MAX_FILE_BYTES, line: int = 0, what: str
 
     try:
         fd = os.open(file, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except FileNotFoundError as exc:
+        raise refuse(f"cannot read {what}: {exc.strerror or exc}{_sibling_hint(name)}") from None
     except OSError as exc:
         raise refuse(f"cannot read {what}: {exc.strerror or exc}") from None
     try:

@@ -147,3 +147,16 @@ def test_a_defect_is_one_line_saying_where_never_a_traceback():
     assert re.match(r"internal error \(TypeError: Cannot convert complex to float, at robosolve/[\w/]+\.py:\d+\): "
                     r"this is a bug in robosolve", r.stderr), r.stderr
     assert r.stderr.count("\n") == 1
+
+
+@pytest.mark.parametrize("command", [["solve", "{d}/arn.yaml"], ["check", "{d}/a.yaml", "--problem", "{d}/arn.yaml"]])
+def test_a_missing_problem_file_gets_a_did_you_mean(tmp_path, command):
+    """A misspelt file name: the YAML files beside it are the candidates, compared without the
+    suffix (every one ends in .yaml: 'zzzzz.yaml' means none of them)."""
+    (tmp_path / "arm.yaml").write_text(dedent(PROBLEM), encoding="utf-8")
+    (tmp_path / "a.yaml").write_text("robosolve-answers: 1\nanswers: {}\n", encoding="utf-8")
+    r = runner.invoke(app, [c.format(d=tmp_path) for c in command])
+    assert r.exit_code == 2
+    assert f"(did you mean '{tmp_path / 'arm.yaml'}'?)" in " ".join(r.output.split()), r.output
+    far = runner.invoke(app, ["solve", str(tmp_path / "zzzzz.yaml")])
+    assert far.exit_code == 2 and "did you mean" not in far.output
