@@ -1,0 +1,103 @@
+"""The closed form of a pose's inverse kinematics has no spurious branch (Robotics Toolbox's
+`fkine` as the reference forward kinematics).
+
+Each branch, evaluated in order (each joint's formula with the joints found before it), either
+reaches the pose or leaves its domain (an acos of more than 1, a division by zero); every solution
+is some branch's value; and the wrist gives two branches per branch of the arm (the sign of the
+middle angle's sine), each a solution: a joint whose sine and cosine are both fixed by the
+equations is one atan2, not ±acos or asin, π − asin (two values of which one is right).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import sympy as sp
+
+rtb = pytest.importorskip("roboticstoolbox")
+
+from robosolve.core.angles import wrap_angle  # noqa: E402
+from robosolve.core.transforms import dh_standard  # noqa: E402
+from robosolve.ik.engine import IKJoint  # noqa: E402
+from robosolve.ik.pose import solve_pose  # noqa: E402
+
+NAMES = [f"q{i}" for i in range(1, 7)]
+
+
+def _kuka():
+    """problems/kuka-kr.yaml's DH table (standard)."""
+    rows = [(0.675, 0.26, -np.pi / 2), (0, 0.68, 0), (0, 0.035, -np.pi / 2), (0.67, 0, np.pi / 2),
+            (0, 0, -np.pi / 2), (0.158, 0, 0)]
+    return rtb.DHRobot([rtb.RevoluteDH(d=d, a=a, alpha=al) for d, a, al in rows])
+
+
+ROBOTS = {"kuka": _kuka, "puma": lambda: rtb.models.DH.Puma560(), "ur5": lambda: rtb.models.DH.UR5()}
+
+
+def _solve(robot, q0):
+    qs = sp.symbols("q1:7")
+    F = [dh_standard(q + float(L.offset), float(L.d), float(L.a), float(L.alpha)) for L, q in zip(robot.links, qs)]
+    T = robot.fkine(q0).A
+    return solve_pose(F, [IKJoint(q) for q in qs], T[:3, :3], T[:3, 3]), T
+
+
+def _branch_values(branch, T):
+    """The branch's joint values, each formula evaluated with the earlier joints; None when one
+    leaves its domain (complex, zoo, nan)."""
+    vals = {sp.Symbol(f"r{i + 1}{j + 1}"): T[i, j] for i in range(3) for j in range(3)}
+    vals.update(dict(zip(sp.symbols("px py pz"), T[:3, 3])))
+    known = {str(s) for s in vals}
+    q = {}
+    while len(q) < 6:
+        ready = [n for n in NAMES if n not in q and {str(x) for x in branch[n].free_symbols} <= known | set(q)]
+        assert ready, "a branch's formulas depend on one another in a cycle"
+        for n in ready:
+            v = complex(sp.N(branch[n].xreplace({**vals, **{sp.Symbol(k): x for k, x in q.items()}})))
+            if not np.isfinite(v) or abs(v.imag) > 1e-9:
+                return None
+            q[n] = v.real
+    return q
+
+
+@pytest.mark.parametrize("robot", sorted(ROBOTS))
+def test_every_closed_form_branch_reaches_the_pose_or_leaves_its_domain(robot):
+    arm = ROBOTS[robot]()
+    res, T = _solve(arm, [0.3, -0.5, 0.4, 0.7, -0.9, 1.2])
+    assert res.closed_form and len(res.all_solutions) == 8, res.notes
+    reached = []
+    for branch in res.closed_form:
+        q = _branch_values(branch, T)
+        if q is None:
+            continue
+        miss = np.max(np.abs(arm.fkine([q[n] for n in NAMES]).A - T))
+        assert miss < 1e-8, (branch, miss)
+        reached.append(q)
+    for s in res.all_solutions:
+        assert any(all(abs(wrap_angle(s[n] - q[n])) < 1e-6 for n in NAMES) for q in reached), s
+    # two wrist branches per branch of the arm (the UR way: q5, q6 per branch of q1)
+    arm_joints, wrist_joints = (["q1"], ["q5", "q6"]) if robot == "ur5" else (NAMES[:3], NAMES[3:])
+    wrist = {}
+    for branch in res.closed_form:
+        key = tuple(str(branch[n]) for n in arm_joints)
+        wrist.setdefault(key, set()).add(tuple(str(branch[n]) for n in wrist_joints))
+    assert {len(v) for v in wrist.values()} == {2}
+
+
+def test_an_over_determined_point_target_uses_every_equation_one_branch_per_solution():
+    """A 2R arm with its position and orientation (3 consistent equations, 2 joints): q1 from
+    both position equations once q1 + q2 = φ is used, one atan2; a single branch, the solution
+    (checked against the arm's position and angle, numpy)."""
+    from robosolve.ik.engine import solve_ik
+
+    q1, q2, x, y, phi = sp.symbols("q1 q2 x y phi")
+    eqs = [(sp.cos(q1) + 2 * sp.cos(q1 + q2), x), (sp.sin(q1) + 2 * sp.sin(q1 + q2), y), (q1 + q2, phi)]
+    a, b = 0.4, 0.9
+    vals = {x: np.cos(a) + 2 * np.cos(a + b), y: np.sin(a) + 2 * np.sin(a + b), phi: a + b}
+    res = solve_ik(eqs, [IKJoint(q1), IKJoint(q2)], vals, target_symbols=[x, y, phi])
+    assert res.status == "ok" and res.closed_form_subset == [0, 1, 2]
+    assert len(res.closed_form_branches) == 1
+    br = res.closed_form_branches[0]
+    v1 = float(br[q1].subs(vals))
+    v2 = float(br[q2].subs({**vals, q1: v1}))
+    assert abs(np.cos(v1) + 2 * np.cos(v1 + v2) - vals[x]) < 1e-12
+    assert abs(np.sin(v1) + 2 * np.sin(v1 + v2) - vals[y]) < 1e-12 and abs(v1 + v2 - (a + b)) < 1e-12
