@@ -101,3 +101,46 @@ def test_an_over_determined_point_target_uses_every_equation_one_branch_per_solu
     v2 = float(br[q2].subs({**vals, q1: v1}))
     assert abs(np.cos(v1) + 2 * np.cos(v1 + v2) - vals[x]) < 1e-12
     assert abs(np.sin(v1) + 2 * np.sin(v1 + v2) - vals[y]) < 1e-12 and abs(v1 + v2 - (a + b)) < 1e-12
+
+
+def _custom_wrist(kind):
+    """An anthropomorphic arm (standard DH) with a wrist of three rotations about the frame's
+    axes: z-y-z (Euler) or z-y-x (roll-pitch-yaw)."""
+    qs = sp.symbols("q1:7")
+    c, s = sp.cos, sp.sin
+    rot = {"z": lambda t: sp.Matrix([[c(t), -s(t), 0, 0], [s(t), c(t), 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]),
+           "y": lambda t: sp.Matrix([[c(t), 0, s(t), 0], [0, 1, 0, 0], [-s(t), 0, c(t), 0], [0, 0, 0, 1]]),
+           "x": lambda t: sp.Matrix([[1, 0, 0, 0], [0, c(t), -s(t), 0], [0, s(t), c(t), 0], [0, 0, 0, 1]])}
+    shift = sp.eye(4)
+    shift[2, 3] = sp.Rational(2, 5)
+    F = [dh_standard(qs[0], 0.5, 0, -sp.pi / 2), dh_standard(qs[1], 0, 0.4, 0),
+         dh_standard(qs[2], 0, 0.05, -sp.pi / 2)] + [shift * rot[kind[0]](qs[3]), rot[kind[1]](qs[4]),
+                                                    rot[kind[2]](qs[5]) * shift]
+    M = sp.lambdify(qs, F[0] * F[1] * F[2] * F[3] * F[4] * F[5], "numpy")
+    return F, [IKJoint(q) for q in qs], lambda q: np.array(M(*q), dtype=float)
+
+
+@pytest.mark.parametrize("kind, middle, aligned_at", [("zyz", "sine", 0.0), ("zyx", "cosine", np.pi / 2)])
+def test_the_wrist_step_names_the_middle_angle_function_whose_sign_gives_the_branches(kind, middle, aligned_at):
+    """ZYZ: the first and last axes align where the middle angle is 0 (branches by the sign of its
+    sine); roll-pitch-yaw: where it is ±π/2 (its cosine). The alignment is checked here on the
+    arm's forward kinematics (numpy), and every branch reaches the pose."""
+    F, joints, fk = _custom_wrist(kind)
+    q0 = [0.3, -0.5, 0.4, 0.7, -0.9, 1.2]
+    T = fk(q0)
+
+    def axis(q, k, h=1e-6):
+        d = list(q)
+        d[k] += h
+        W = (fk(d)[:3, :3] - fk(q)[:3, :3]) / h @ fk(q)[:3, :3].T
+        return np.array([W[2, 1], W[0, 2], W[1, 0]])
+
+    at = [0.3, -0.5, 0.4, 0.7, aligned_at, 1.2]
+    assert np.linalg.norm(np.cross(axis(at, 3), axis(at, 5))) < 1e-5
+    res = solve_pose(F, joints, T[:3, :3], T[:3, 3])
+    step = next(s for s in res.steps if s.title == "Kinematic decoupling: the wrist")
+    assert f"the sign of the middle angle's {middle}." in step.text and f"angle's {middle} vanishes" in step.text
+    for branch in res.closed_form:
+        q = _branch_values(branch, T)
+        assert q is None or np.max(np.abs(fk([q[n] for n in NAMES]) - T)) < 1e-8
+    assert len(res.closed_form) == 8
