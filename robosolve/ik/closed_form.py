@@ -312,6 +312,15 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
     return _Elimination(equations, unknowns, revolute, latex_names).run()
 
 
+def _without_common_scale(S, C):
+    """(S, C) with a positive number both carry divided out: atan2(2 y, 2 x) is atan2(y, x)."""
+    ks, kc = S.as_coeff_Mul()[0], C.as_coeff_Mul()[0]
+    k = abs(ks)
+    if k.is_Number and k != 0 and k != 1 and abs(float(k) - abs(float(kc))) <= 1e-15 * float(k):
+        return whole_floats(ik_fraction(S / k)), whole_floats(ik_fraction(C / k))
+    return S, C
+
+
 def _is_rotation(Ai, Bi, Aj, Bj) -> bool:
     """(A_i, B_i, A_j, B_j) = (u, -w, w, u): the pair rotates the vector (u, w) by q."""
     return _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
@@ -507,7 +516,7 @@ class _Elimination:
         if best is None:
             return None
         _, i, ei, ej, C, S = best
-        alt = sp.atan2(S, C)
+        alt = sp.atan2(*_without_common_scale(S, C))
         return (i, Stage(q, [alt], "atan2", ei, self.names[q], alt, {"S": S, "C": C}),
                 _pair_step(self.names[q], ei, ej, C, S, alt))
 

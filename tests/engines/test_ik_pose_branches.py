@@ -144,3 +144,15 @@ def test_the_wrist_step_names_the_middle_angle_function_whose_sign_gives_the_bra
         q = _branch_values(branch, T)
         assert q is None or np.max(np.abs(fk([q[n] for n in NAMES]) - T)) < 1e-8
     assert len(res.closed_form) == 8
+
+
+def test_a_turn_and_a_lift_give_one_branch_atan2_of_the_target():
+    """x = 0.5 cos q1, y = 0.5 sin q1, z = d2 + 0.2: q1 = atan2(y, x) (the common 1/0.5 divided
+    out), one branch, the angle of the point (math.atan2)."""
+    from robosolve.ik.engine import solve_ik
+
+    q1, d2, x, y, z = sp.symbols("q1 d2 x y z")
+    eqs = [(0.5 * sp.cos(q1), x), (0.5 * sp.sin(q1), y), (d2 + 0.2, z)]
+    res = solve_ik(eqs, [IKJoint(q1), IKJoint(d2, False, None)], {x: -0.3, y: 0.4, z: 1.0}, target_symbols=[x, y, z])
+    assert [str(b[q1]) for b in res.closed_form_branches] == ["atan2(y, x)"]
+    assert abs(res.all_solutions[0]["q1"] - np.arctan2(0.4, -0.3)) < 1e-12
