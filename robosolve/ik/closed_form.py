@@ -7,7 +7,9 @@ alternatives, so the symbolic work is done once whatever the number of
 solutions.  Rules, tried in this order on the remaining equations (each
 ``e = 0``):
 
-1. an equation with one unknown:
+1. an equation with one unknown: when a second equation has that joint as its only unknown and
+   the two, linear in (cos q, sin q), fix both (Cramer), ``q = atan2(sin q, cos q)``, one value
+   (a wrist's ZYZ-like angles from ³R₆'s entries); else from the one equation,
    revolute ``a cos q + b sin q + c = 0`` gives ``cos q = K`` (q = +-acos K),
    ``sin q = K`` (q = asin K, pi - asin K), ``tan q = -a/b`` (two atan2) or
    ``q = atan2(b, a) +- acos(-c / sqrt(a^2 + b^2))``; prismatic: linear or
@@ -310,6 +312,15 @@ def _derive(equations, unknowns, revolute, latex_names=None) -> ClosedForm:
     return _Elimination(equations, unknowns, revolute, latex_names).run()
 
 
+def _without_common_scale(S, C):
+    """(S, C) with a positive number both carry divided out: atan2(2 y, 2 x) is atan2(y, x)."""
+    ks, kc = S.as_coeff_Mul()[0], C.as_coeff_Mul()[0]
+    k = abs(ks)
+    if k.is_Number and k != 0 and k != 1 and abs(float(k) - abs(float(kc))) <= 1e-15 * float(k):
+        return whole_floats(ik_fraction(S / k)), whole_floats(ik_fraction(C / k))
+    return S, C
+
+
 def _is_rotation(Ai, Bi, Aj, Bj) -> bool:
     """(A_i, B_i, A_j, B_j) = (u, -w, w, u): the pair rotates the vector (u, w) by q."""
     return _is_zero(Ai - Bj) and _is_zero(Aj + Bi)
@@ -466,15 +477,48 @@ class _Elimination:
             if len(us) != 1:
                 continue
             q = us[0]
-            st = _solve_single(e, q, self.revolute[q], self.names[q])
+            pair = self._solve_pair(q) if self.revolute[q] else None
+            if pair:
+                idx, st, step = pair
+            else:
+                st = _solve_single(e, q, self.revolute[q], self.names[q])
+                step = _single_step(st, self.names[q]) if st is not None else None
             if st is None:
                 continue
             self.stages.append(st)
-            self.steps.append(_single_step(st, self.names[q]))
+            self.steps.append(step)
             self.remaining.remove(q)
             self.eqs.pop(idx)
             return True
         return False
+
+    def _solve_pair(self, q):
+        """Rule 1 on two equations: when two equations have q as their only unknown and the pair,
+        linear in (cos q, sin q), fixes both (Cramer, determinant not identically 0), q is the one
+        angle atan2(sin q, cos q): one value, where either equation alone gives two (±acos, asin
+        and pi - asin, phase) and only one of them satisfies the other (a wrist's ZYZ-like angles:
+        q4 from a13 and a23 once q5 is known). The shortest such pair; (index of its first
+        equation, stage, step) or None. The partner stays among the equations (a condition once
+        q is known)."""
+        lin = [(k, e, trig_linear(e, q)) for k, e in enumerate(self.eqs) if _unknowns_in(e, self.remaining) == [q]]
+        lin = [t for t in lin if t[2] is not None]
+        best = None
+        for n, (i, ei, (Ai, Bi, Ei)) in enumerate(lin):
+            for j, ej, (Aj, Bj, Ej) in lin[n + 1:]:
+                D = sp.expand(Ai * Bj - Aj * Bi)
+                if _is_zero(D):
+                    continue
+                C = ik_fraction(sp.expand(Bi * Ej - Bj * Ei) / D)
+                S = ik_fraction(sp.expand(Aj * Ei - Ai * Ej) / D)
+                ops = count_ops(C) + count_ops(S)
+                if best is None or ops < best[0]:
+                    best = (ops, i, ei, ej, C, S)
+        if best is None:
+            return None
+        _, i, ei, ej, C, S = best
+        alt = sp.atan2(*_without_common_scale(S, C))
+        return (i, Stage(q, [alt], "atan2", ei, self.names[q], alt, {"S": S, "C": C}),
+                _pair_step(self.names[q], ei, ej, C, S, alt))
 
     def _isolate_linear_unknown(self) -> bool:
         """Rule 2: an unknown that appears linearly is isolated and substituted."""
@@ -654,6 +698,15 @@ def _recovery_by_cramer_step(name, cos_q, sin_q, alt) -> Step:
         f"${name}$ from the two equations it was eliminated from",
         f"With the joints found so far, $\\cos {name}$ and $\\sin {name}$ follow "
         f"from the linear system (Cramer), and the angle from atan2 (one value per branch).",
+        [(rf"\cos {name}", cos_q), (rf"\sin {name}", sin_q), (name, alt)])
+
+
+def _pair_step(name, ei, ej, cos_q, sin_q, alt) -> Step:
+    return Step(
+        f"${name}$ from two equations",
+        f"The equations ${_tex(ik_fraction(ei))} = 0$ and ${_tex(ik_fraction(ej))} = 0$ contain ${name}$ "
+        f"only, through $\\cos {name}$ and $\\sin {name}$: together (Cramer) they give both, and the "
+        f"angle from atan2 (one value, where either equation alone would give two).",
         [(rf"\cos {name}", cos_q), (rf"\sin {name}", sin_q), (name, alt)])
 
 

@@ -570,13 +570,17 @@ def _cf_solutions(cf, values, joints, system):
 
 
 def _closed_form_subset(exprs, joints, names, tex, time_limit_s, tries=20):
-    """Over-determined but consistent: a closed form from n of the m equations (others checked)."""
+    """Over-determined but consistent: a closed form from all m equations, else from n of them (the
+    others checked). All first: a joint that is the only unknown left in two of them is one atan2 of
+    its sine and cosine (a wrist's angles from ³R₆'s nine entries), where n equations would leave one
+    of the two and a second, spurious branch (±acos, asin and π − asin)."""
     n = len(joints)
     budget = time_limit_s or 20.0
     import time as _time
 
     start = _time.process_time()          # CPU time, as core.timing's limits
-    for k, combo in enumerate(itertools.combinations(range(len(exprs)), n)):
+    combos = itertools.chain([tuple(range(len(exprs)))], itertools.combinations(range(len(exprs)), n))
+    for k, combo in enumerate(combos):
         left = budget - (_time.process_time() - start)
         if k >= tries or left <= 0.5:
             break

@@ -283,7 +283,7 @@ def _decoupled(res, chain, wrist, R, p, names, tex, time_limit_s, derive=True):
         if cf is not None and wrist_cf is None:
             wrist_cf = cf
         raw += [(q123 + list(wq), singular or ("shoulder" if shoulder else False)) for wq in ws]
-    res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen, Rc))
+    res.steps.append(_wrist_step(R3, tail, A, names, tex, singular_seen, Rc, _middle_function(tail, chain.q[3:])))
     if wrist_cf is not None and arm_cf is not None:
         sub = {A[i, j]: (R3.T * R_SYMS * Rc.T)[i, j] for i in range(3) for j in range(3)}
         res.closed_form = [{**a_b, **{k: v.xreplace(sub) for k, v in w_b.items()}}
@@ -847,19 +847,38 @@ def _centre_step(c_t, wc, w, split, names, chain) -> PoseStep:
         [("\\vec c", c), ("{}^{0}\\vec{r}_W", sp.Matrix(wc)), ("{}^{0}\\vec{r}_W", [[float(v)] for v in w])])
 
 
-def _wrist_step(R3, tail, A, names, tex, singular, Rc=None) -> PoseStep:
+def _middle_function(tail, q) -> str:
+    """"sine" when the wrist's first and last axes are aligned where the middle angle is 0
+    (ZYZ-like: the branches go by the sign of its sine, singular where it vanishes), "cosine"
+    when they are aligned at ±π/2 (a roll-pitch-yaw wrist, ZYX-like)."""
+    R = sp.lambdify(q, tail, modules=numpy_modules())
+    dR = [sp.lambdify(q, tail.diff(x), modules=numpy_modules()) for x in (q[0], q[2])]
+
+    def aligned(middle):
+        at = (0.3, middle, -0.7)
+        Rt = np.array(R(*at), dtype=float).T
+        w = [np.array(d(*at), dtype=float) @ Rt for d in dR]        # each axis, as a skew matrix
+        u, v = ([W[2, 1], W[0, 2], W[1, 0]] for W in w)
+        return np.linalg.norm(np.cross(u, v)) < 1e-9
+
+    return "cosine" if aligned(math.pi / 2) and not aligned(0.0) else "sine"
+
+
+def _wrist_step(R3, tail, A, names, tex, singular, Rc=None, middle="sine") -> PoseStep:
     tool = Rc is not None and Rc != sp.eye(3)
     text = ("With the first three joints known, the wrist's rotation is "
             + ("${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R\\,R_{t}^{T}$, $R_{t}$ the constant rotation of the target "
                "frame after the last joint's frame, " if tool else "${}^{3}R_{6} = ({}^{0}R_{3})^{T}\\,R$ ")
             + "(written $a_{ij}$ below); equating it to the wrist's "
-            "product of rotations gives the last three angles as Euler-like (ZYZ) angles: two branches, "
-            "from the sign of the middle angle's sine.")
+            "product of rotations gives the last three angles as Euler-like "
+            + ("(ZYZ)" if middle == "sine" else "(roll-pitch-yaw)") + " angles: two branches, "
+            f"from the sign of the middle angle's {middle}.")
     if singular:
-        text += (" At this pose the middle wrist angle's sine is 0 (the wrist singularity): the first and "
+        text += (f" At this pose the middle wrist angle's {middle} is 0 (the wrist singularity): the first and "
                  "last wrist axes are aligned, only their sum is determined.")
     else:
-        text += " The wrist is singular where the middle wrist angle's sine vanishes (first and last axes aligned)."
+        text += (f" The wrist is singular where the middle wrist angle's {middle} vanishes (first and last axes "
+                 "aligned).")
     return PoseStep("Kinematic decoupling: the wrist", text,
                     [("{}^{3}R_{6}(" + ", ".join(names.get(s, str(s)) for s in sorted(tail.free_symbols, key=str)) + ")",
                       tail), ("{}^{3}R_{6}", A)] + ([("R_{t}", Rc)] if tool else []))

@@ -247,10 +247,13 @@ def _closed_form_steps(ans, res, shown, m, n, names, values, tex, ik_joints) -> 
         cf = res.closed_form
         if res.closed_form_subset is not None:
             used = ", ".join(f"`{shown[k][0]}`" for k in res.closed_form_subset)
+            how = (": the closed form below uses them all (a joint whose sine and cosine two of them fix is one "
+                   "atan2, one branch)" if len(res.closed_form_subset) == m else
+                   f", so {n} of them are enough: the closed form below uses {used}")
             ans.steps.append(Step(
                 "More equations than joints",
-                f"The {m} equations are consistent (a configuration satisfies them all), so {n} of them are enough: "
-                f"the closed form below uses {used}; every branch is then checked on all {m}."))
+                f"The {m} equations are consistent (a configuration satisfies them all){how}; every branch "
+                f"is then checked on all {m}."))
         for st in cf.steps:
             ans.steps.append(Step(st.title, st.text, equations=list(st.equations)))
         nb = len(res.closed_form_branches)
