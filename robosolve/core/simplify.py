@@ -401,6 +401,11 @@ def jacobian_entry(expr):
     shorter (the singularity search meets the same factors many times)."""
     if expr.is_number or not expr.free_symbols:
         return sp.nsimplify(expr) if expr.is_Float else expr
+    floats, back = _float_placeholders(expr)
+    if floats:
+        # float coefficients (a point at [0.1, 0.2, 0]): as chain_product does, each float as a
+        # symbol, put back at the end (trigsimp on floats writes -1.0*L1*sin(q1) for -L1*sin(q1))
+        return jacobian_entry(expr.xreplace(floats)).xreplace(back)
     # the canonical form and the shortest of trigsimp's moves; for an entry given with
     # products of sums, only when that is no longer than the entry (trigsimp keeps a sum
     # squared). On every Jacobian entry of the problems and benchmarks where it applies,

@@ -615,7 +615,7 @@ def find_singularities(j: sp.Matrix, joints: Sequence[sp.Symbol], kinds: Mapping
     given, minors = minors, []
     if kind == "det":
         measure = factored_determinant(measure) if det is None else measure
-        exprs = [measure]
+        exprs = [measure] if measure != 0 else []   # det J ≡ 0: rank lost everywhere, as below
     else:
         # det(J Jᵀ) (or det(Jᵀ J)) = sum of the squares of the maximal minors
         minors = list(given) if given is not None else [factored_determinant(m) for m in _maximal_minors(j)]

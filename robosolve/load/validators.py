@@ -309,6 +309,22 @@ def v_duration(ql, path, value, q):
     return e
 
 
+def _rounded_rotation(r) -> bool:
+    """A numeric 3x3 block orthonormal with determinant 1 within the tolerance of an IK pose
+    target (load/pose_target.ROTATION_TOL): entries rounded by hand (0.707 for cos 45°)."""
+    import numpy as np
+
+    from robosolve.load.pose_target import ROTATION_TOL
+
+    try:
+        a = np.array(r.evalf().tolist(), dtype=float)
+    except (TypeError, ValueError):
+        return False
+    det = float(np.linalg.det(a))
+    return (float(np.max(np.abs(a.T @ a - np.eye(3)))) <= ROTATION_TOL
+            and abs(det - 1) <= ROTATION_TOL)
+
+
 def v_rotation_matrix(ql, path, value, q):
     m = ql.chk.matrix(path, value, ql.params_ns, shapes=((3, 3), (4, 4)))
     if m is None:
@@ -317,6 +333,8 @@ def v_rotation_matrix(ql, path, value, q):
     if m.shape == (4, 4) and list(m[3, :]) != [0, 0, 0, 1]:
         ql.chk.error(path, "the last row of a pose matrix must be [0, 0, 0, 1]")
         return None
+    if not m.free_symbols and _rounded_rotation(m[:3, :3]):
+        return m        # rounded by hand: projected by the solver, with a note (as an IK pose target)
     if not ql.b._is_rigid(full):
         ql.chk.error(path, "not a rotation: the 3x3 block must be orthonormal with determinant 1"
                        + (" (checked at sample values of " + ", ".join(sorted(s.name for s in m.free_symbols))

@@ -371,3 +371,15 @@ def test_a_prismatic_value_with_a_vanishing_coefficient_keeps_the_configurations
         at = {q1: 0.7, q2: s2, q3: s3, d4: 0.55}
         assert any(all(abs(np.angle(np.exp(1j * (at[k] - float(v.subs(params).subs(at)))))) < 1e-9
                        for k, v in c.values) for c in res.conditions if c.values and d4 not in dict(c.values)), (s2, s3)
+
+
+def test_a_square_jacobian_singular_everywhere_is_said_so_as_a_wide_one_is():
+    # a planar mechanism asked for x, y, z: the z row is zero, so det J ≡ 0 (sympy's rank says
+    # 2 < 3 for generic joint values); the note must say "every configuration" as it does for
+    # a wide J whose maximal minors all vanish, not leave a bare [{}]
+    J = sp.Matrix([[-sp.sin(t1), sp.cos(t2), 0], [sp.cos(t1), sp.sin(t2), 1], [0, 0, 0]])
+    assert J.subs({t1: sp.Rational(3, 10), t2: sp.Rational(7, 10)}).rank() == 2
+    kinds = {t1: "revolute", t2: "revolute", t3: "revolute"}
+    res = find_singularities(J, [t1, t2, t3], kinds)
+    assert res.measure == 0
+    assert any("every configuration" in n for n in res.notes)

@@ -146,3 +146,15 @@ def test_addition_formulas_by_groups_are_tr10i_of_the_whole_sum():
             e += rng.choice([1, -1, a, 2 * b, a * b, sp.Rational(1, 2)]) * f * g
         expanded = sp.expand(sp.expand_trig(e))
         assert _addition_formulas(expanded) == TR10i(expanded), e
+
+
+def test_a_jacobian_entry_with_float_coefficients_gains_no_one_point_zero_factors():
+    # the centre-of-mass Jacobian of a body whose point is given with float coordinates
+    # ([0.1, 0.2, 0]) came out as "-1.0*L1*sin(q1) - ..." (trigsimp on a float expression);
+    # the entry must stay the same function, with the symbols' coefficients left exact
+    e = (-L1 * sp.sin(q1) - L2 * sp.sin(q1 + q2) - sp.Float(0.1) * sp.sin(q1 + q2)
+         - sp.Float(0.2) * sp.cos(q1 + q2))
+    out = S.jacobian_entry(e)
+    assert _equal_at_random_points(out, e)
+    assert "1.0*" not in str(out)
+    assert sp.Float(1.0) not in out.atoms(sp.Float) and sp.Float(-1.0) not in out.atoms(sp.Float)

@@ -282,3 +282,34 @@ def test_displacement_between_decimal_configurations_of_a_tilted_arm(write_probl
     assert float(s["alpha"]) == pytest.approx(n["alpha"], rel=1e-9)
     values = {"L1": 0.527, "L2": 0.559, "L3": sp.Rational(3, 7), "L4": sp.Rational(1, 3)}
     assert float(sp.sympify(s["h"]).subs(values)) == pytest.approx(n["h"], abs=1e-9)
+
+
+def test_orientation_of_a_matrix_rounded_by_hand_is_projected_as_an_ik_target_is(write_problem):
+    # 0.707 for cos 45°: RᵀR differs from I by 3e-4, within the 1e-3 that a pose target of
+    # inverse_kinematics accepts. Its polar decomposition is exactly Rz(π/4) (the matrix is a
+    # multiple of it), so the representations are those of Rz(π/4); 0.7 (2e-2 off) stays an error.
+    path = write_problem("""
+        robosolve: 1
+        name: rounded
+        questions:
+          - type: orientation
+            matrix: [[0.707, -0.707, 0], [0.707, 0.707, 0], [0, 0, 1]]
+    """)
+    doc = results_document(solve_file(path), {})["answers"]["orientation"]
+    n = doc["numeric"]
+    assert "error" not in doc
+    assert n["axis_angle"]["angle"] == pytest.approx(math.pi / 4, abs=1e-12)
+    assert n["quaternion"] == pytest.approx([math.cos(math.pi / 8), 0, 0, math.sin(math.pi / 8)], abs=1e-12)
+    assert n["rpy"]["solutions"][0] == pytest.approx([0, 0, math.pi / 4], abs=1e-12)
+    assert any("nearest rotation" in note for note in doc["notes"])
+    far = write_problem("""
+        robosolve: 1
+        name: far
+        questions:
+          - type: orientation
+            matrix: [[0.7, -0.7, 0], [0.7, 0.7, 0], [0, 0, 1]]
+    """)
+    from robosolve.errors import InputError
+
+    with pytest.raises(InputError, match="not a rotation"):
+        solve_file(far)
