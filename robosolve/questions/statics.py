@@ -16,11 +16,21 @@ def _check(ql, path, item, q):
         chk.error(path + ("force",), f"expected {ncoord} components (one per coordinate), "
                   f"got {len(opts['force'])}")
     if "torque" in opts and "coordinates" in item:
-        chk.error(path + ("torque",), "a torque needs the default coordinates (the point's x, y, z)")
+        if "coordinates" in opts and _default_coordinates(opts["coordinates"], q.point):
+            del opts["coordinates"]     # written out, they are the default: the load stays a wrench
+        else:
+            chk.error(path + ("torque",), "a torque needs the default coordinates (the point's x, y, z)")
     if opts.get("weight"):
         ql.require_gravity(path)
         if not ql.b.problem.bodies and not ql.b.bodies_given:
             chk.error(path + ("weight",), "weight: true needs bodies (masses)")
+
+def _default_coordinates(coordinates, point) -> bool:
+    """Whether `coordinates` are the point's x, y, z in that order (the default, written out)."""
+    from robosolve.load.expressions import point_symbol
+
+    return list(coordinates) == [point_symbol(point, axis) for axis in "xyz"]
+
 
 def _statement(q, say) -> str:
     """The paper's statement (papers.md), from the load, its coordinates and `at`."""

@@ -216,3 +216,32 @@ def test_geometric_self_check_can_fail():
     bad[0][1] += 0.01
     _check_geometric(ans, ctx, q, bad, subs)
     assert any("internal check failed" in n for n in ans.notes)
+
+
+STATICS_WRENCH = """
+robosolve: 1
+name: wrench
+parameters: {L1: 0.5, L2: 0.3}
+joints: [{name: q1, type: revolute}, {name: q2, type: revolute}]
+frames: {"1": {pose: "Rz(q1) Tx(L1)"}, "2": {pose: "Rz(q2) Tx(L2)"}}
+questions:
+  - {type: statics, id: plain, force: [1, 0, 2], torque: [0, 1, 3], at: {q1: 0.4, q2: 0.9}}
+  - {type: statics, id: written, force: [1, 0, 2], torque: [0, 1, 3], coordinates: [E.x, E.y, E.z],
+     at: {q1: 0.4, q2: 0.9}}
+"""
+
+
+def test_a_torque_with_the_default_coordinates_written_out_is_the_same_wrench():
+    """`coordinates: [E.x, E.y, E.z]` is the default written out: a torque beside it is accepted
+    (it was 'a torque needs the default coordinates'). Reference: Fq = −(J_Pᵀ·F + J_ωᵀ·τ) of the
+    planar 2R by hand (J_ω rows: both joints about z)."""
+    report = solve_problem(load_problem_text(STATICS_WRENCH))
+    fq = [json.loads(json.dumps(answer_record(a, [])))["numeric"]["Fq"] for a in report.answers]
+    q1, q2, L1, L2 = 0.4, 0.9, 0.5, 0.3
+    JP = np.array([[-L1 * math.sin(q1) - L2 * math.sin(q1 + q2), -L2 * math.sin(q1 + q2)],
+                   [L1 * math.cos(q1) + L2 * math.cos(q1 + q2), L2 * math.cos(q1 + q2)], [0, 0]])
+    Jw = np.array([[0, 0], [0, 0], [1, 1]])
+    want = -(JP.T @ [1, 0, 2] + Jw.T @ [0, 1, 3])
+    for got in fq:
+        assert list(got) == ["q1", "q2"]
+        assert np.allclose([got["q1"], got["q2"]], want, atol=1e-9), (got, want)
