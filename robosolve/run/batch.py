@@ -255,4 +255,5 @@ def compare_json(old, new, path="$") -> list[str]:
         if abs(old - new) <= FLOAT_ATOL + FLOAT_RTOL * max(abs(old), abs(new)):
             return []
         return [f"{path}: {old!r} -> {new!r}"]
-    return [] if old == new else [f"{path}: {old!r} -> {new!r}"]
+    same = old == new and isinstance(old, bool) == isinstance(new, bool)   # True == 1 in Python, not in JSON
+    return [] if same else [f"{path}: {old!r} -> {new!r}"]

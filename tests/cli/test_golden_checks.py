@@ -36,3 +36,14 @@ def test_a_golden_folder_that_does_not_exist_is_a_usage_error(tmp_path):
     assert not (tmp_path / "gold").exists()
     r = runner.invoke(app, ["batch", str(tmp_path / "a.yaml"), "--check", str(tmp_path / "a.yaml"), "--jobs", "1"])
     assert r.exit_code == 2 and "not a folder" in r.output
+
+
+def test_a_boolean_that_becomes_a_number_is_a_difference():
+    """JSON's true and 1 are different values (`unreachable: true` is not the number 1), but
+    Python's True == 1 made the key-by-key comparison call them equal."""
+    from robosolve.run.batch import compare_json
+
+    assert compare_json({"unreachable": True}, {"unreachable": 1}) == ["$.unreachable: True -> 1"]
+    assert compare_json([0], [False]) == ["$[0]: 0 -> False"]
+    assert compare_json({"x": 1.0}, {"x": 1}) == []                       # numbers stay numbers
+    assert compare_json([True, False], [True, False]) == []
