@@ -75,6 +75,10 @@ def show(outcome, golden, update, con) -> None:
     for m in outcome.write_errors:
         err(m)
     for d in outcome.orphans:
+        if outcome.unnamed:     # its problem may be one whose name could not be read: not removed
+            err(f"golden check: {d}: not checked: {', '.join(outcome.unnamed)} could not be read, and "
+                f"'{d.name}' may be its name (fix the file, then check again)")
+            continue
         err(f"golden check: {d}: no problem file checked has the name '{d.name}' (was its problem "
             "removed or renamed? delete the folder, or check it with its problem file)")
     if golden is not None and update:

@@ -131,6 +131,7 @@ class BatchOutcome:
     diff_lines: list = field(default_factory=list)
     solved: int = 0
     orphans: list = field(default_factory=list)    # golden folders no file checked makes
+    unnamed: list = field(default_factory=list)    # files whose name could not be read (YAML error)
 
 
 def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), scheduler=None,
@@ -160,8 +161,10 @@ def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), sch
     if lines:
         status = max(status, ExitStatus.ANSWER_ERROR)
     known = {r.name for r in results if r.name} | {n for n in names.values() if n}
+    named = {r.file for r in results if r.name}
     return BatchOutcome(status, results=results, write_errors=write_errors, diff_lines=lines, solved=solved,
-                        orphans=orphan_goldens(golden, known) if golden is not None else [])
+                        orphans=orphan_goldens(golden, known) if golden is not None else [],
+                        unnamed=sorted(f for f, n in names.items() if n is None and f not in named))
 
 
 def orphan_goldens(golden, names) -> list[Path]:

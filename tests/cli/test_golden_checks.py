@@ -47,3 +47,19 @@ def test_a_boolean_that_becomes_a_number_is_a_difference():
     assert compare_json([0], [False]) == ["$[0]: 0 -> False"]
     assert compare_json({"x": 1.0}, {"x": 1}) == []                       # numbers stay numbers
     assert compare_json([True, False], [True, False]) == []
+
+
+def test_a_golden_folder_of_a_file_that_cannot_be_read_is_not_called_removed(tmp_path):
+    """A YAML syntax error hides the file's `name`: its golden folder was reported as if its problem
+    had been removed or renamed, with the advice to delete it. It names the unreadable file instead."""
+    src = tmp_path / "src"
+    src.mkdir()
+    (src / "a.yaml").write_text(MINI)
+    golden = tmp_path / "golden"
+    r = runner.invoke(app, ["batch", str(src), "--check", str(golden), "--update", "--jobs", "1"])
+    assert r.exit_code == 0
+    (src / "a.yaml").write_text(MINI + "oops: [\n")
+    r = runner.invoke(app, ["batch", str(src), "--check", str(golden), "--jobs", "1"])
+    assert r.exit_code == 2 and "YAML syntax error" in r.output
+    assert "delete the folder" not in r.output
+    assert f"{golden / 'mini'}: not checked: {src / 'a.yaml'} could not be read" in r.output
