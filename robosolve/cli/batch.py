@@ -39,6 +39,10 @@ def batch(
     if update and check is None:
         err("--update goes with --check GOLDEN_DIR")
         raise typer.Exit(ExitStatus.INPUT)
+    if check is not None and out is not None:
+        err("--out and --check do not go together: --check regenerates in memory and compares "
+            "(with --update it writes the golden folder); run --out separately to keep the outputs")
+        raise typer.Exit(ExitStatus.INPUT)
     if check is None and out is None:
         err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(ExitStatus.INPUT)

@@ -63,3 +63,17 @@ def test_a_golden_folder_of_a_file_that_cannot_be_read_is_not_called_removed(tmp
     assert r.exit_code == 2 and "YAML syntax error" in r.output
     assert "delete the folder" not in r.output
     assert f"{golden / 'mini'}: not checked: {src / 'a.yaml'} could not be read" in r.output
+
+
+def test_out_with_check_is_a_usage_error_not_ignored(tmp_path):
+    """`--check` compares in memory: an `--out` beside it was silently ignored (exit 0, no folder
+    written where the user asked). It is a usage error, and nothing is written."""
+    (tmp_path / "a.yaml").write_text(MINI)
+    golden, out = tmp_path / "golden", tmp_path / "out"
+    r = runner.invoke(app, ["batch", str(tmp_path / "a.yaml"), "--check", str(golden), "--update", "--jobs", "1"])
+    assert r.exit_code == 0
+    for extra in ([], ["--update"]):
+        r = runner.invoke(app, ["batch", str(tmp_path / "a.yaml"), "--check", str(golden), "--out", str(out),
+                                "--jobs", "1", *extra])
+        assert r.exit_code == 2 and "--out and --check do not go together" in r.output
+        assert not out.exists()
