@@ -224,13 +224,34 @@ def _compare_problem(golden_root: Path, name: str, new_text) -> list[str]:
         if not old.exists():
             out.append(f"--- {old}: missing in the golden folder")
             continue
-        a, b = old.read_text(encoding="utf-8"), new_text(g)
+        a, why = _read_golden(old)
+        if why:
+            out.append(f"{old}: unreadable golden file ({why}); rerun with --update to rewrite it")
+            continue
+        b = new_text(g)
         if g.endswith(".json"):
-            out += [f"{old}: {d}" for d in compare_json(json.loads(a), json.loads(b))]
+            out += [f"{old}: {d}" for d in compare_json(a, json.loads(b))]
         elif a != b:
             out += list(difflib.unified_diff(a.splitlines(), b.splitlines(), str(old), f"{name}/{g} (new)",
                                              lineterm=""))
     return out
+
+
+def _read_golden(path: Path):
+    """(content, None), or (None, why) for a golden file a bad merge or a hand edit broke: its JSON
+    parsed, report.md as text."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        return None, f"not UTF-8 text: {exc.reason} at byte {exc.start}"
+    except OSError as exc:
+        return None, exc.strerror or type(exc).__name__
+    if path.suffix != ".json":
+        return text, None
+    try:
+        return json.loads(text), None
+    except ValueError as exc:
+        return None, f"not JSON: {exc}"
 
 
 def compare_json(old, new, path="$") -> list[str]:

@@ -77,3 +77,19 @@ def test_out_with_check_is_a_usage_error_not_ignored(tmp_path):
                                 "--jobs", "1", *extra])
         assert r.exit_code == 2 and "--out and --check do not go together" in r.output
         assert not out.exists()
+
+
+def test_a_corrupt_golden_file_is_a_difference_not_an_internal_error(tmp_path):
+    """A golden results.json that is not JSON (a bad merge, a hand edit) or a report.md that is not
+    UTF-8 stopped the check with 'internal error'; each is a difference that names the file."""
+    (tmp_path / "a.yaml").write_text(MINI)
+    golden = tmp_path / "golden"
+    r = runner.invoke(app, ["batch", str(tmp_path / "a.yaml"), "--check", str(golden), "--update", "--jobs", "1"])
+    assert r.exit_code == 0
+    (golden / "mini" / "results.json").write_text('{"answers": ')
+    (golden / "mini" / "report.md").write_bytes(b"\xff\xfe not utf-8")
+    r = runner.invoke(app, ["batch", str(tmp_path / "a.yaml"), "--check", str(golden), "--jobs", "1"])
+    assert "internal error" not in r.output and r.exit_code == 1
+    assert f"{golden / 'mini' / 'results.json'}: unreadable golden file (not JSON:" in r.output
+    assert f"{golden / 'mini' / 'report.md'}: unreadable golden file (not UTF-8 text" in r.output
+    assert "golden check: differences found" in r.output
