@@ -255,3 +255,15 @@ def test_a_profile_follower_before_its_profile_is_an_input_error():
         f"f.yaml:{Q}: questions[0]: needs a motion_profile question before it (the first one, 'later', is "
         "questions[1]: put it before; questions are answered in file order)"]
     assert messages(prof + "  - {type: joint_torques, profile: later}\n") == []
+
+
+def test_a_trajectory_follower_before_its_trajectory_is_an_input_error():
+    """The same for a p_control that follows a task_trajectory given further down: it was answered
+    with 'the task trajectory ... has no answer'."""
+    traj = ("  - {type: task_trajectory, id: line, coordinates: [E.x, E.y], from: {E.x: 1.5, E.y: 0.2}, "
+            "to: {E.x: 1.2, E.y: 0.6}, max_velocity: 0.5, max_acceleration: 2}\n")
+    follower = "  - {type: p_control, trajectory: line, gains: {q1: 1, q2: 1}}\n"
+    assert messages(traj + follower) == []
+    assert messages(follower + traj) == [
+        f"f.yaml:{Q}: questions[0].trajectory: the task_trajectory question 'line' is questions[1], after "
+        "this one: put it before (questions are answered in file order)"]
