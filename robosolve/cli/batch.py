@@ -39,6 +39,10 @@ def batch(
     if update and check is None:
         err("--update goes with --check GOLDEN_DIR")
         raise typer.Exit(ExitStatus.INPUT)
+    if check is not None and out is not None:
+        err("--out and --check do not go together: --check regenerates in memory and compares "
+            "(with --update it writes the golden folder); run --out separately to keep the outputs")
+        raise typer.Exit(ExitStatus.INPUT)
     if check is None and out is None:
         err("give --out DIR (or --check GOLDEN_DIR)")
         raise typer.Exit(ExitStatus.INPUT)
@@ -75,6 +79,10 @@ def show(outcome, golden, update, con) -> None:
     for m in outcome.write_errors:
         err(m)
     for d in outcome.orphans:
+        if outcome.unnamed:     # its problem may be one whose name could not be read: not removed
+            err(f"golden check: {d}: not checked: {', '.join(outcome.unnamed)} could not be read, and "
+                f"'{d.name}' may be its name (fix the file, then check again)")
+            continue
         err(f"golden check: {d}: no problem file checked has the name '{d.name}' (was its problem "
             "removed or renamed? delete the folder, or check it with its problem file)")
     if golden is not None and update:

@@ -251,11 +251,20 @@ class _QuestionLoader:
             if ref is None:
                 if not profiles and not self.refused_ids:
                     chk.error(("questions", q.index), f"needs a {source} question (none in the file)")
-                else:
+                elif profiles and profiles[0].index > q.index:
+                    chk.error(("questions", q.index), f"needs a {source} question before it (the first one, "
+                              f"'{profiles[0].id}', is questions[{profiles[0].index}]: put it before; "
+                              "questions are answered in file order)")
+                elif profiles:
                     q.options["profile"] = profiles[0].id
             elif ref not in [p.id for p in profiles] and not self.refused(ref):
                 chk.error(("questions", q.index, "profile"), f"no {source} question with id '{ref}'"
                           + did_you_mean(ref, [p.id for p in profiles]))
+            elif (later := next((p for p in profiles if p.id == ref and p.index > q.index), None)):
+                # solved in file order: the follower would find no answer yet
+                chk.error(("questions", q.index, "profile"), f"the {source} question '{ref}' is "
+                          f"questions[{later.index}], after this one: put it before (questions are "
+                          "answered in file order)")
 
     # -- validators ---------------------------------------------------
     def marks(self, path, value):

@@ -87,6 +87,11 @@ def _resolve(ql, q, questions):
             ql.chk.error(base + ("trajectory",), f"no {ql.type_name('makes_trajectory')} question with id '{ref}'"
                          + V.did_you_mean(ref, [t.id for t in trajs]))
         return
+    if target.index > q.index:      # solved in file order: the follower would find no answer yet
+        ql.chk.error(base + ("trajectory",), f"the {ql.type_name('makes_trajectory')} question '{ref}' is "
+                     f"questions[{target.index}], after this one: put it before (questions are answered "
+                     "in file order)")
+        return
     if "coordinates" in target.rejected:
         return          # the trajectory's coordinates were refused (said): its gains are not judged
     law = q.options.get("law", "p")

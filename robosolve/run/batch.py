@@ -131,6 +131,7 @@ class BatchOutcome:
     diff_lines: list = field(default_factory=list)
     solved: int = 0
     orphans: list = field(default_factory=list)    # golden folders no file checked makes
+    unnamed: list = field(default_factory=list)    # files whose name could not be read (YAML error)
 
 
 def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), scheduler=None,
@@ -160,8 +161,10 @@ def run(files, out=None, jobs=0, golden=None, update=False, formats=("md",), sch
     if lines:
         status = max(status, ExitStatus.ANSWER_ERROR)
     known = {r.name for r in results if r.name} | {n for n in names.values() if n}
+    named = {r.file for r in results if r.name}
     return BatchOutcome(status, results=results, write_errors=write_errors, diff_lines=lines, solved=solved,
-                        orphans=orphan_goldens(golden, known) if golden is not None else [])
+                        orphans=orphan_goldens(golden, known) if golden is not None else [],
+                        unnamed=sorted(f for f, n in names.items() if n is None and f not in named))
 
 
 def orphan_goldens(golden, names) -> list[Path]:
@@ -221,13 +224,34 @@ def _compare_problem(golden_root: Path, name: str, new_text) -> list[str]:
         if not old.exists():
             out.append(f"--- {old}: missing in the golden folder")
             continue
-        a, b = old.read_text(encoding="utf-8"), new_text(g)
+        a, why = _read_golden(old)
+        if why:
+            out.append(f"{old}: unreadable golden file ({why}); rerun with --update to rewrite it")
+            continue
+        b = new_text(g)
         if g.endswith(".json"):
-            out += [f"{old}: {d}" for d in compare_json(json.loads(a), json.loads(b))]
+            out += [f"{old}: {d}" for d in compare_json(a, json.loads(b))]
         elif a != b:
             out += list(difflib.unified_diff(a.splitlines(), b.splitlines(), str(old), f"{name}/{g} (new)",
                                              lineterm=""))
     return out
+
+
+def _read_golden(path: Path):
+    """(content, None), or (None, why) for a golden file a bad merge or a hand edit broke: its JSON
+    parsed, report.md as text."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        return None, f"not UTF-8 text: {exc.reason} at byte {exc.start}"
+    except OSError as exc:
+        return None, exc.strerror or type(exc).__name__
+    if path.suffix != ".json":
+        return text, None
+    try:
+        return json.loads(text), None
+    except ValueError as exc:
+        return None, f"not JSON: {exc}"
 
 
 def compare_json(old, new, path="$") -> list[str]:
@@ -255,4 +279,5 @@ def compare_json(old, new, path="$") -> list[str]:
         if abs(old - new) <= FLOAT_ATOL + FLOAT_RTOL * max(abs(old), abs(new)):
             return []
         return [f"{path}: {old!r} -> {new!r}"]
-    return [] if old == new else [f"{path}: {old!r} -> {new!r}"]
+    same = old == new and isinstance(old, bool) == isinstance(new, bool)   # True == 1 in Python, not in JSON
+    return [] if same else [f"{path}: {old!r} -> {new!r}"]

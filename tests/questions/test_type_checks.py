@@ -241,3 +241,29 @@ def test_a_misspelt_joint_of_a_configuration_is_one_message_naming_the_joint_not
     assert messages("  - {type: motion_profile, from: {q2: 0}, to: {q1: 1, q2: 1}, "
                     "max_acceleration: {q1: 1, q2: 1}}\n") == [
         f"f.yaml:{Q}: questions[0].from: missing joint(s) q1 (give a value for every joint)"]
+
+
+def test_a_profile_follower_before_its_profile_is_an_input_error():
+    """A joint_torques (or p_control) question placed before the motion_profile it follows was
+    answered with the error 'the motion profile ... has no answer' (exit 1), though the profile is
+    answered further down: questions are solved in file order, so it is an input error that says so."""
+    prof = "  - {type: motion_profile, id: later, from: {q1: 0, q2: 0}, to: {q1: 1, q2: 1}, max_acceleration: {q1: 1, q2: 1}}\n"
+    assert messages("  - {type: joint_torques, profile: later}\n" + prof) == [
+        f"f.yaml:{Q}: questions[0].profile: the motion_profile question 'later' is questions[1], after this "
+        "one: put it before (questions are answered in file order)"]
+    assert messages("  - {type: p_control, gains: {q1: 1, q2: 1}}\n" + prof) == [
+        f"f.yaml:{Q}: questions[0]: needs a motion_profile question before it (the first one, 'later', is "
+        "questions[1]: put it before; questions are answered in file order)"]
+    assert messages(prof + "  - {type: joint_torques, profile: later}\n") == []
+
+
+def test_a_trajectory_follower_before_its_trajectory_is_an_input_error():
+    """The same for a p_control that follows a task_trajectory given further down: it was answered
+    with 'the task trajectory ... has no answer'."""
+    traj = ("  - {type: task_trajectory, id: line, coordinates: [E.x, E.y], from: {E.x: 1.5, E.y: 0.2}, "
+            "to: {E.x: 1.2, E.y: 0.6}, max_velocity: 0.5, max_acceleration: 2}\n")
+    follower = "  - {type: p_control, trajectory: line, gains: {q1: 1, q2: 1}}\n"
+    assert messages(traj + follower) == []
+    assert messages(follower + traj) == [
+        f"f.yaml:{Q}: questions[0].trajectory: the task_trajectory question 'line' is questions[1], after "
+        "this one: put it before (questions are answered in file order)"]
