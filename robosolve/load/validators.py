@@ -242,6 +242,8 @@ def v_pose_or_config(ql, path, value, q):
     if isinstance(value, dict):
         return {"config": v_joint_values(ql, path, value, q)}
     m = ql.chk.matrix(path, value, ql.params_ns, shapes=((4, 4),))
+    if m is not None and list(m[3, :]) == [0, 0, 0, 1] and not m.free_symbols and _rounded_rotation(m[:3, :3]):
+        return {"matrix": m}    # rounded by hand: projected by the solver, with a note (as an IK pose target)
     if m is not None and (list(m[3, :]) != [0, 0, 0, 1] or not ql.b._is_rigid(m)):
         ql.chk.error(path, "not a rototranslation: the last row must be [0, 0, 0, 1] and the 3x3 "
                        "rotation block orthonormal with determinant 1")

@@ -24,7 +24,7 @@ from robosolve.geometry.helical import (
 )
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, FigureSpec, MissingValues, SolveContext, Step, missing_note
-from robosolve.solvers.common import frame_tex, geometry_matrix, m_name
+from robosolve.solvers.common import frame_tex, geometry_matrix, m_name, nearest_rotation_if_rounded
 from robosolve.core.prose import name_md, name_plot
 
 CASE_TEXT = {
@@ -47,7 +47,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
         return _solve_screw(question, ctx)
     ans = Answer(question.type, question.id)
     try:
-        m01, m02, where, expressed, m0k = _poses(question, ctx)
+        m01, m02, where, expressed, m0k = _poses(question, ctx, ans)
     except MissingValues as exc:
         ans.error = missing_note("poses", exc.names, ctx.problem)
         return ans
@@ -114,9 +114,22 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
 # ---------------------------------------------------------------------------
 
 
-def _poses(question, ctx):
+def _projected(ans, opts):
+    """`from`/`to` with a rotation block rounded by hand replaced by the nearest rotation (a note)."""
+    out = {}
+    for side in ("from", "to"):
+        o = opts[side]
+        if "matrix" in o:
+            m = sp.Matrix(o["matrix"])          # a copy: the question's own matrix stays as given
+            m[:3, :3] = nearest_rotation_if_rounded(ans, m[:3, :3], f"The rotation block of `{side}`")
+            o = {**o, "matrix": m}
+        out[side] = o
+    return out["from"], out["to"]
+
+
+def _poses(question, ctx, ans):
     opts = question.options
-    src, dst = opts["from"], opts["to"]
+    src, dst = _projected(ans, opts)
     model = ctx.model
     if "config" in src or "config" in dst:
         frame = question.frame

@@ -21,27 +21,11 @@ from robosolve.geometry.rotations import (
 )
 from robosolve.load.problem import Question
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step, missing_note
-from robosolve.solvers.common import geometry_matrix, m_name
+from robosolve.solvers.common import geometry_matrix, m_name, nearest_rotation_if_rounded
 from robosolve.core.printing import latex
 
 FAMILY_TEX = {"phi + psi": "\\varphi + \\psi", "phi - psi": "\\varphi - \\psi",
               "roll - yaw": "\\text{roll} - \\text{yaw}", "roll + yaw": "\\text{roll} + \\text{yaw}"}
-
-
-def _projected_if_rounded(ans, r):
-    """A numeric R orthonormal only to the input check's tolerance (entries rounded by hand, as
-    load.validators accepts them): the nearest rotation, R = U·Vᵀ from its SVD, with a note;
-    any other R as it is."""
-    if r.free_symbols:
-        return r
-    a = np.array(r.evalf().tolist(), dtype=float)
-    err = float(np.max(np.abs(a.T @ a - np.eye(3))))
-    if err <= 1e-9 and abs(np.linalg.det(a) - 1) <= 1e-9:
-        return r        # orthonormal to the input check's own 1e-9: kept as given
-    u, _, vt = np.linalg.svd(a)
-    ans.note(Text("R is orthonormal only to ", Num(err, digits=2), " (entries rounded by hand): it is "
-                  "replaced by the nearest rotation (polar decomposition, R = U·Vᵀ from its SVD)"))
-    return sp.Matrix(3, 3, [sp.Float(float(v), 15) for v in (u @ vt).reshape(9)])
 
 
 def solve(question: Question, ctx: SolveContext) -> Answer:
@@ -49,7 +33,7 @@ def solve(question: Question, ctx: SolveContext) -> Answer:
     if "matrix" in question.options:
         r = sp.Matrix(question.options["matrix"])[:3, :3]
         where = "The rotation is the given matrix."
-        r = _projected_if_rounded(ans, r)
+        r = nearest_rotation_if_rounded(ans, r)
     else:
         frame = question.frame
         subs = {s: v for s, v in question.at.items() if s in set(ctx.model.q)}

@@ -313,3 +313,54 @@ def test_orientation_of_a_matrix_rounded_by_hand_is_projected_as_an_ik_target_is
 
     with pytest.raises(InputError, match="not a rotation"):
         solve_file(far)
+
+
+def test_displacement_between_matrices_rounded_by_hand_is_projected_as_an_ik_target_is(write_problem):
+    # `to` has 0.707 for cos 45° (RᵀR off I by 3e-4, within an IK pose target's 1e-3): its rotation
+    # block is a multiple of Rz(π/4), whose polar decomposition is Rz(π/4) exactly. The answers are
+    # those of the exact Q = M_to·M_from⁻¹ in closed form (scipy Rotation); `from` is exact and
+    # gets no note. 0.7 (2e-2 off) stays the input error at its line.
+    from scipy.spatial.transform import Rotation
+
+    path = write_problem("""
+        robosolve: 1
+        name: rounded
+        questions:
+          - type: displacement
+            from: [[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+            to: [[0.707, -0.707, 0, 0.3], [0.707, 0.707, 0, 0.2], [0, 0, 1, 0.5], [0, 0, 0, 1]]
+    """)
+    doc = results_document(solve_file(path), {})["answers"]["displacement"]
+    n = doc["numeric"]
+    assert "error" not in doc
+    m_from, m_to = np.eye(4), np.eye(4)
+    m_from[:3, 3] = [1, 0, 0]
+    m_to[:3, :3] = Rotation.from_rotvec([0, 0, math.pi / 4]).as_matrix()
+    m_to[:3, 3] = [0.3, 0.2, 0.5]
+    q = m_to @ np.linalg.inv(m_from)
+    rotvec = Rotation.from_matrix(q[:3, :3]).as_rotvec()
+    alpha = float(np.linalg.norm(rotvec))
+    u = rotvec / alpha
+    h = float(u @ q[:3, 3])
+    # P: the axis point nearest the origin, (I − R)·P = ΔT − h·u with u·P = 0
+    a = np.vstack([np.eye(3) - q[:3, :3], u])
+    point = np.linalg.lstsq(a, np.append(q[:3, 3] - h * u, 0), rcond=None)[0]
+    assert np.array(n["Q"], dtype=float) == pytest.approx(q, abs=1e-12)
+    assert n["alpha"] == pytest.approx(alpha, abs=1e-12)
+    assert n["u"] == pytest.approx(list(u), abs=1e-12)
+    assert n["h"] == pytest.approx(h, abs=1e-12)
+    assert n["pitch"] == pytest.approx(h / alpha, abs=1e-12)
+    assert n["P"] == pytest.approx(list(point), abs=1e-12)
+    assert sum("nearest rotation" in note for note in doc["notes"]) == 1
+    far = write_problem("""
+        robosolve: 1
+        name: far
+        questions:
+          - type: displacement
+            from: [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+            to: [[0.7, -0.7, 0, 0], [0.7, 0.7, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    """)
+    from robosolve.errors import InputError
+
+    with pytest.raises(InputError, match=r":6: .*not a rototranslation"):
+        solve_file(far)
