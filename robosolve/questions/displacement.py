@@ -93,7 +93,8 @@ def _statement(q, say) -> str:
 def _pose_source(side, q) -> str:
     """One end of a displacement: a given matrix, or 0M of the frame at a configuration."""
     if "matrix" in side:
-        return f"robot.matrix({literal(sp.Matrix(side['matrix']))})"
+        # rounded by hand (0.707), robosolve reads the nearest rotation: so does the notebook
+        return f"nearest_rotation_pose(robot.matrix({literal(sp.Matrix(side['matrix']))}))"
     config = {str(k): text(v) for k, v in side["config"].items()}
     return f"robot.pose({q.frame!r}).subs(robot.configuration({literal(config)}))"
 

@@ -80,6 +80,22 @@ def inverse_pose(M):
     return out
 
 
+def nearest_rotation_pose(M):
+    """A pose written in numbers rounded by hand (0.707): its rotation block replaced by the
+    nearest rotation U·Vᵀ (polar decomposition), as robosolve reads it when it is orthonormal to
+    1e-3 but not to 1e-9; any other pose as it is (exact entries, symbols)."""
+    if M.free_symbols:
+        return M
+    R = np.array(sp.N(M[:3, :3]).tolist(), dtype=float)
+    off = np.max(np.abs(R.T @ R - np.eye(3)))
+    if off <= 1e-9 or off > 1e-3 or np.linalg.det(R) <= 0:
+        return M
+    U, _, Vt = np.linalg.svd(R)
+    out = sp.Matrix(M)
+    out[:3, :3] = sp.Matrix((U @ Vt).tolist())
+    return out
+
+
 def vex(S):
     """The vector w of a skew-symmetric [w]."""
     return sp.Matrix([S[2, 1], S[0, 2], S[1, 0]])

@@ -349,3 +349,25 @@ def test_the_cell_of_an_unanswered_question_says_why(tmp_path, capsys):
     printed = _run_cells(tmp_path, text, capsys)
     assert "robosolve: gains_d.q1 must be a number (got P)" in printed
     assert "\n{}\n" not in printed
+
+
+ROUNDED_DISPLACEMENT = """\
+robosolve: 1
+name: rounded-by-hand
+questions:
+  - type: displacement
+    from: [[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
+    to: [[0.707, -0.707, 0, 0.3], [0.707, 0.707, 0, 0.2], [0, 0, 1, 0.5], [0, 0, 0, 1]]
+"""
+
+
+def test_a_displacement_between_matrices_rounded_by_hand_is_recomputed_as_robosolve_reads_it(tmp_path, capsys):
+    """robosolve reads 0.707 as the nearest rotation, Rz(π/4): so does the cell (it said Q
+    DIFFERS). By hand: Q = M_to·M_from⁻¹ with M_to's rotation Rz(π/4)."""
+    printed = _run_cells(tmp_path, ROUNDED_DISPLACEMENT, capsys)
+    c = np.cos(np.pi / 4)
+    m_to = np.array([[c, -c, 0, 0.3], [c, c, 0, 0.2], [0, 0, 1, 0.5], [0, 0, 0, 1]])
+    m_from = np.eye(4)
+    m_from[0, 3] = 1
+    assert np.allclose(_recomputed(printed, "Q"), m_to @ np.linalg.inv(m_from), atol=1e-12)
+    assert "DIFFERS" not in printed, printed
