@@ -143,6 +143,16 @@ class Reader:
                 raise ValueProblem(f"{_label(where)}'{k}' is not a joint (the joints: {', '.join(names)})"
                                    + did_you_mean(k, names))
 
+    def _asked_joints_only(self, mapping, entries):
+        """A given mapping of joint values without the joints the question does not ask for:
+        `entries` names the joints it does (an inverse kinematics whose target some joint does
+        not move: that joint is in no solution, grading.md), and a value given for one of the
+        robot's other joints is ignored alike in every key. Any other name stays."""
+        if not isinstance(mapping, dict) or not entries:
+            return mapping
+        left_out = {name for name, _ in self.joints} - set(entries)
+        return {k: v for k, v in mapping.items() if k not in left_out}
+
     # -- leaves -----------------------------------------------------------
     def scalar(self, value, where=""):
         if value is None:
@@ -255,6 +265,8 @@ class Reader:
                 if isinstance(value, str) and value.strip().startswith("["):
                     value = self._typed_vector(value, where)
                 value = self._in_joint_order(value, names)
+        if kind == R.JOINT_MAP and not self.expected:
+            return self._asked_joints_only(self.mapping(value, self.scalar, where), entries)
         if kind in MAP_KINDS:
             return self.mapping(value, self.scalar, where)
         if kind == R.MATRIX_MAP:
@@ -273,7 +285,7 @@ class Reader:
                 return out
             for i, x in enumerate(out):
                 self._joints_only(x, _join(where, f"element {i + 1}"))
-            return [self._as_joint_values(x) for x in out]
+            return [self._asked_joints_only(self._as_joint_values(x), entries) for x in out]
         if kind == R.AXES:      # an infinite semi-axis (a force ellipse at a singularity) is null
             return [None if v is None else self._typed(R.VECTOR, v, _join(where, f"element {i + 1}"))
                     for i, v in enumerate(self._list(value, where))]

@@ -222,3 +222,38 @@ def test_more_or_fewer_equations_than_the_moving_joints():
     assert ans["bad"]["error"].endswith("(theta3 does not move the target.)")
     assert ans["one"]["numeric"]["solutions"] == []
     assert any(n.startswith("1 equation for 2 unknown joints: infinitely many solutions") for n in ans["one"]["notes"])
+
+
+def test_a_value_for_the_joint_in_no_solution_is_ignored_in_every_key():
+    """theta3 given anyway (it moves nothing in W) is ignored alike in `solutions`, `selected`
+    and `q_dot`, right values graded right and wrong ones wrong; a name that is no joint of the
+    robot stays invalid. References: the 2R closed form and its Jacobian (numpy)."""
+    ref = reference_of(THREE_R_W)
+    (a1, b1), (a2, b2) = two_r()
+    q_dot = np.linalg.solve(jacobian_2r(a1, b1), [0.05, 0.01])
+
+    def graded(b_sel, extra="theta3"):
+        return grade_text(ref, f"""
+            robosolve-answers: 1
+            student: s1
+            answers:
+              ik:
+                solutions: [{{theta1: {a2}, theta2: {b2}, theta3: 0.7}}, {{theta1: {a1}, theta2: {b1}, theta3: 0}}]
+                selected: {{theta1: {a1}, theta2: {b_sel}, {extra}: 0.7}}
+                q_dot: {{theta1: {q_dot[0]}, theta2: {q_dot[1]}, {extra}: 1}}
+            """)
+
+    res = graded(b1)
+    assert [key(res, "ik", k).verdict for k in ("solutions", "selected", "q_dot")] == ["correct"] * 3
+    assert key(graded(b1 + 0.3), "ik", "selected").verdict == "incorrect"
+    bad = key(graded(b1, extra="thetaX"), "ik", "selected")
+    assert bad.verdict == "invalid"
+    assert "'thetaX'" in bad.feedback and "did you mean 'theta" in bad.feedback
+    bad = grade_text(ref, """
+        robosolve-answers: 1
+        student: s1
+        answers:
+          ik:
+            solutions: [{theta1: 1, theta2: 2, thetaX: 0.7}]
+        """)
+    assert key(bad, "ik", "solutions").verdict == "invalid"
