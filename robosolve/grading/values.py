@@ -112,6 +112,16 @@ class Reader:
             return dict(zip(names, value))
         return value
 
+    def _asked_vector_names(self, value, entries):
+        """The joints a vector of joint values is in the order of: the question's asked joints when
+        they are fewer than the robot's and the vector has one value each (an IK whose target
+        theta3 does not move: `[a, b]` is {theta1: a, theta2: b}); else every joint (None)."""
+        joints = [name for name, _ in self.joints]
+        if (entries and set(entries) < set(joints) and isinstance(value, (list, tuple))
+                and len(value) == len(entries)):
+            return list(entries)
+        return None
+
     def _as_joint_values(self, element):
         """A condition written as equations that each give one joint a value (`"theta2 = pi"`,
         `"theta3 = 0, theta5 = 0"`) is the mapping joint -> value it states, as the reference
@@ -264,6 +274,8 @@ class Reader:
             if kind == R.JOINT_MAP or names is not None:
                 if isinstance(value, str) and value.strip().startswith("["):
                     value = self._typed_vector(value, where)
+                if kind == R.JOINT_MAP:
+                    names = self._asked_vector_names(value, entries)
                 value = self._in_joint_order(value, names)
         if kind == R.JOINT_MAP and not self.expected:
             return self._asked_joints_only(self.mapping(value, self.scalar, where), entries)
@@ -278,7 +290,7 @@ class Reader:
             if not self.expected:
                 if kind == R.JOINT_MAP_SET:      # "theta2 = 0 or theta2 = pi": two conditions
                     items = [part for v in items for part in _alternatives(v)]
-                items = [self._in_joint_order(v) for v in items]
+                items = [self._in_joint_order(v, self._asked_vector_names(v, entries)) for v in items]
             out = [self.joint_map_or_equations(v, _join(where, f"element {i + 1}"), ak.by_value)
                    for i, v in enumerate(items)]
             if self.expected:

@@ -257,3 +257,31 @@ def test_a_value_for_the_joint_in_no_solution_is_ignored_in_every_key():
             solutions: [{theta1: 1, theta2: 2, thetaX: 0.7}]
         """)
     assert key(bad, "ik", "solutions").verdict == "invalid"
+
+
+def test_vectors_of_the_asked_joints_are_read_in_their_order():
+    """`selected: [a, b]` and solutions as vectors on the 3R whose target theta3 does not move are
+    the asked joints' values, {theta1: a, theta2: b} (they were read against all three joints and
+    graded invalid); three values still map to every joint, theta3 ignored. References: the 2R
+    closed form and its Jacobian (numpy)."""
+    ref = reference_of(THREE_R_W)
+    (a1, b1), (a2, b2) = two_r()
+    q_dot = np.linalg.solve(jacobian_2r(a1, b1), [0.05, 0.01])
+    res = grade_text(ref, f"""
+        robosolve-answers: 1
+        student: s1
+        answers:
+          ik:
+            solutions: [[{a2}, {b2}], [{a1}, {b1}, 0.3]]
+            selected: [{a1}, {b1}]
+            q_dot: "[{q_dot[0]}, {q_dot[1]}]"
+        """)
+    assert [key(res, "ik", k).verdict for k in ("solutions", "selected", "q_dot")] == ["correct"] * 3
+    wrong = grade_text(ref, f"""
+        robosolve-answers: 1
+        student: s1
+        answers:
+          ik:
+            selected: [{b1}, {a1}]
+        """)
+    assert key(wrong, "ik", "selected").verdict == "incorrect"
