@@ -129,3 +129,21 @@ def is_rototranslation(m, tol: float = 1e-9) -> bool:
         and abs(np.linalg.det(r) - 1.0) < tol * 1e3
         and np.allclose(a[3], [0, 0, 0, 1], atol=tol)
     )
+
+
+def rotation_defect(r) -> tuple[float, float]:
+    """(max |RᵀR − I|, det R) of a numeric 3x3 block: how far entries rounded by hand (0.707
+    for cos 45°) leave it from a rotation."""
+    import numpy as np
+
+    a = np.array(r, dtype=float).reshape(3, 3)
+    return float(np.max(np.abs(a.T @ a - np.eye(3)))), float(np.linalg.det(a))
+
+
+def nearest_rotation(r) -> sp.Matrix:
+    """The rotation nearest a numeric 3x3 block (polar decomposition: R = U·Vᵀ from its SVD),
+    its entries as 15-digit Floats: what robosolve reads for a rotation rounded by hand."""
+    import numpy as np
+
+    u, _, vt = np.linalg.svd(np.array(r, dtype=float).reshape(3, 3))
+    return sp.Matrix(3, 3, [sp.Float(float(v), 15) for v in (u @ vt).reshape(9)])

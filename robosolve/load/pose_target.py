@@ -10,10 +10,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
 import sympy as sp
 
-from robosolve.core.transforms import rot_x, rot_y, rot_z
+from robosolve.core.transforms import nearest_rotation, rot_x, rot_y, rot_z, rotation_defect
 from robosolve.load.expressions import degrees_hint
 
 POSE_KEYS = ("pose", "position", "R", "zyz", "rpy")
@@ -110,9 +109,7 @@ def _checked(ql, path, R, p, given):
     vals = [ql.chk.number_value(v) for v in R]
     if any(v is None for v in vals):
         return PoseTarget(R, p, given)       # checked when solved, with the values then known
-    Rn = np.array(vals, dtype=float).reshape(3, 3)
-    err = float(np.max(np.abs(Rn.T @ Rn - np.eye(3))))
-    det = float(np.linalg.det(Rn))
+    err, det = rotation_defect(vals)
     what = "the rotation of the pose" if given == "pose" else "R"
     if det <= 0 or err > ROTATION_TOL or abs(det - 1) > ROTATION_TOL:
         ql.chk.error(path, f"{what} is not a rotation: RᵀR differs from I by {err:.3g} and det R = {det:.6g} "
@@ -120,8 +117,6 @@ def _checked(ql, path, R, p, given):
         return None
     if err < 1e-12 and abs(det - 1) < 1e-12:
         return PoseTarget(R, p, given)
-    U, _, Vt = np.linalg.svd(Rn)
-    P = U @ Vt
     note = (f"{what} is orthonormal only to {err:.2g} (entries rounded by hand): it is replaced by the "
             "nearest rotation (polar decomposition, R = U·Vᵀ from its SVD)")
-    return PoseTarget(sp.Matrix(3, 3, [sp.Float(float(v), 15) for v in P.reshape(9)]), p, given, note=note)
+    return PoseTarget(nearest_rotation(vals), p, given, note=note)

@@ -314,17 +314,14 @@ def v_duration(ql, path, value, q):
 def _rounded_rotation(r) -> bool:
     """A numeric 3x3 block orthonormal with determinant 1 within the tolerance of an IK pose
     target (load/pose_target.ROTATION_TOL): entries rounded by hand (0.707 for cos 45°)."""
-    import numpy as np
-
+    from robosolve.core.transforms import rotation_defect
     from robosolve.load.pose_target import ROTATION_TOL
 
     try:
-        a = np.array(r.evalf().tolist(), dtype=float)
+        err, det = rotation_defect(r.evalf().tolist())
     except (TypeError, ValueError):
         return False
-    det = float(np.linalg.det(a))
-    return (float(np.max(np.abs(a.T @ a - np.eye(3)))) <= ROTATION_TOL
-            and abs(det - 1) <= ROTATION_TOL)
+    return err <= ROTATION_TOL and abs(det - 1) <= ROTATION_TOL
 
 
 def v_rotation_matrix(ql, path, value, q):

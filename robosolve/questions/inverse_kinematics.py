@@ -58,6 +58,7 @@ def notebook_cell(q, answer, problem):
         ]
     return lines(*code[:6], "robosolve = " + literal(want), *code[6:])
 
+
 def solved_joints(q, problem) -> list:
     """The joints a solution gives: those that move the target (a joint that moves nothing in it,
     the seventh of an arm asked the pose of frame 6 or the wrist joints of an arm asked its wrist
@@ -72,12 +73,9 @@ def solved_joints(q, problem) -> list:
     frame = problem.points[q.point].frame if q.point_given else q.frame
     moving: set = set()
     while frame in problem.frames:
-        f = problem.frames[frame]
-        leaves = list(f.matrix) if f.matrix is not None else [
-            x for factor in f.factors for x in (factor if isinstance(factor, (tuple, list)) else (factor,))]
-        for x in leaves:
-            moving |= getattr(x, "free_symbols", set())
-        frame = f.parent
+        for m in _factor_matrices(problem.frames[frame]):
+            moving |= m.free_symbols
+        frame = problem.frames[frame].parent
     return [j for j in problem.joints if j.symbol in moving]
 
 

@@ -3,11 +3,11 @@ budgeted symbolic parts."""
 
 from __future__ import annotations
 
-import numpy as np
 import sympy as sp
 
 from robosolve.core.prose import Num, Text, name_tex
 from robosolve.core.simplify import exact_geometry
+from robosolve.core.transforms import nearest_rotation, rotation_defect
 from robosolve.errors import SymbolicTimeout
 from robosolve.solvers.base import Answer, MissingValues, SolveContext, Step
 
@@ -18,14 +18,13 @@ def nearest_rotation_if_rounded(ans: Answer, r, what: str = "R"):
     rotation, R = U·Vᵀ from its SVD, with a note naming it (`what`); any other block as it is."""
     if r.free_symbols:
         return r
-    a = np.array(r.evalf().tolist(), dtype=float)
-    err = float(np.max(np.abs(a.T @ a - np.eye(3))))
-    if err <= 1e-9 and abs(np.linalg.det(a) - 1) <= 1e-9:
+    a = r.evalf().tolist()
+    err, det = rotation_defect(a)
+    if err <= 1e-9 and abs(det - 1) <= 1e-9:
         return r        # orthonormal to the input check's own 1e-9: kept as given (exact stays exact)
-    u, _, vt = np.linalg.svd(a)
     ans.note(Text(what + " is orthonormal only to ", Num(err, digits=2), " (entries rounded by hand): it is "
                   "replaced by the nearest rotation (polar decomposition, R = U·Vᵀ from its SVD)"))
-    return sp.Matrix(3, 3, [sp.Float(float(v), 15) for v in (u @ vt).reshape(9)])
+    return nearest_rotation(a)
 
 
 def frame_tex(name: str) -> str:
